@@ -1,0 +1,313 @@
+//! The CPU backend: f64 fields in host memory, `rustfft`/`realfft` transforms, rayon
+//! across the cores. It is also the reference ("CPU twin") for every GPU kernel.
+
+pub mod spectral;
+
+use super::kernel::{padded_kernel, stiffness_spectrum};
+use super::{Backend, BackendError, ContactChange, Preconditioner, Slot, N_SLOTS};
+use rayon::prelude::*;
+use spectral::SpectralFilter;
+
+/// Fields shorter than this are processed on one thread.
+const PAR_MIN: usize = 1 << 14;
+
+/// What a backend is built from: the grid, the element size, the material and the profile.
+#[derive(Debug, Clone)]
+pub struct GridSetup {
+    /// Elements along x.
+    pub nx: usize,
+    /// Elements along y.
+    pub ny: usize,
+    /// Element side Δx (length).
+    pub dx: f64,
+    /// Effective modulus E* (stress).
+    pub e_star: f64,
+    /// Indenter profile h at element centres (length), row-major nx × ny.
+    pub profile: Vec<f64>,
+    /// Preconditioner to apply in CG.
+    pub preconditioner: Preconditioner,
+}
+
+/// The CPU backend (f64).
+pub struct CpuBackend {
+    nx: usize,
+    ny: usize,
+    convolution: SpectralFilter,
+    preconditioner: Option<SpectralFilter>,
+    profile: Vec<f64>,
+    mask: Vec<bool>,
+    /// Scratch for the masked preconditioner input.
+    scratch: Vec<f64>,
+    slots: [f64; N_SLOTS],
+}
+
+impl CpuBackend {
+    /// Build the backend: plan the transforms and compute the kernel spectrum once.
+    pub fn new(setup: &GridSetup) -> Result<Self, BackendError> {
+        let (nx, ny) = (setup.nx, setup.ny);
+        if setup.profile.len() != nx * ny {
+            return Err(BackendError::Unavailable(format!(
+                "profile has {} values, grid needs {}",
+                setup.profile.len(),
+                nx * ny
+            )));
+        }
+        Ok(Self::with_periodic(setup, false))
+    }
+
+    /// Like [`CpuBackend::new`] but with a periodic (unpadded, nx × ny) convolution: the
+    /// wrong method that SPEC §4 warns against, kept to show what padding removes.
+    pub fn new_periodic(setup: &GridSetup) -> Self {
+        Self::with_periodic(setup, true)
+    }
+
+    fn with_periodic(setup: &GridSetup, periodic: bool) -> Self {
+        let (nx, ny, dx, e) = (setup.nx, setup.ny, setup.dx, setup.e_star);
+        let convolution = if periodic {
+            let mut f = SpectralFilter::new(nx, ny, nx, ny);
+            f.set_symbol_from_kernel(&periodic_kernel(nx, ny, dx, e));
+            f
+        } else {
+            let mut f = SpectralFilter::new(nx, ny, 2 * nx, 2 * ny);
+            f.set_symbol_from_kernel(&padded_kernel(nx, ny, dx, e));
+            f
+        };
+        let preconditioner = match setup.preconditioner {
+            Preconditioner::None => None,
+            Preconditioner::Stiffness => {
+                let mut f = SpectralFilter::new(nx, ny, nx, ny);
+                f.set_symbol(&stiffness_spectrum(nx, ny, dx, e));
+                Some(f)
+            }
+        };
+        CpuBackend {
+            nx,
+            ny,
+            convolution,
+            preconditioner,
+            profile: setup.profile.clone(),
+            mask: vec![false; nx * ny],
+            scratch: vec![0.0; nx * ny],
+            slots: [0.0; N_SLOTS],
+        }
+    }
+
+    fn ratio(&self, num: Slot, den: Slot) -> f64 {
+        let d = self.slots[den.0];
+        if d == 0.0 {
+            0.0
+        } else {
+            self.slots[num.0] / d
+        }
+    }
+}
+
+/// The kernel laid out periodically on nx × ny (offsets wrap at ±n/2): only for showing
+/// the error of an unpadded convolution.
+fn periodic_kernel(nx: usize, ny: usize, dx: f64, e: f64) -> Vec<f64> {
+    let off = |k: usize, n: usize| {
+        if k <= n / 2 {
+            k as f64
+        } else {
+            k as f64 - n as f64
+        }
+    };
+    let mut out = vec![0.0; nx * ny];
+    for j in 0..ny {
+        for i in 0..nx {
+            out[j * nx + i] = super::kernel::influence(off(i, nx) * dx, off(j, ny) * dx, dx, e);
+        }
+    }
+    out
+}
+
+impl Backend for CpuBackend {
+    type Field = Vec<f64>;
+
+    fn name(&self) -> &'static str {
+        "cpu"
+    }
+    fn precision(&self) -> &'static str {
+        "f64"
+    }
+    fn shape(&self) -> (usize, usize) {
+        (self.nx, self.ny)
+    }
+
+    fn field(&mut self) -> Result<Vec<f64>, BackendError> {
+        Ok(vec![0.0; self.nx * self.ny])
+    }
+    fn upload(&mut self, dst: &mut Vec<f64>, host: &[f64]) -> Result<(), BackendError> {
+        dst.copy_from_slice(host);
+        Ok(())
+    }
+    fn download(&mut self, src: &Vec<f64>, host: &mut [f64]) -> Result<(), BackendError> {
+        host.copy_from_slice(src);
+        Ok(())
+    }
+    fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError> {
+        self.mask.copy_from_slice(mask);
+        Ok(())
+    }
+    fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError> {
+        mask.copy_from_slice(&self.mask);
+        Ok(())
+    }
+
+    fn convolve(&mut self, src: &Vec<f64>, dst: &mut Vec<f64>) -> Result<(), BackendError> {
+        self.convolution.apply(src, dst);
+        Ok(())
+    }
+
+    fn precondition(&mut self, src: &Vec<f64>, dst: &mut Vec<f64>) -> Result<(), BackendError> {
+        match &mut self.preconditioner {
+            None => dst.copy_from_slice(src),
+            Some(f) => {
+                let mask = &self.mask;
+                self.scratch
+                    .par_iter_mut()
+                    .with_min_len(PAR_MIN)
+                    .zip(src.par_iter().zip(mask.par_iter()))
+                    .for_each(|(s, (v, &m))| *s = if m { *v } else { 0.0 });
+                f.apply(&self.scratch, dst);
+                dst.par_iter_mut()
+                    .with_min_len(PAR_MIN)
+                    .zip(mask.par_iter())
+                    .for_each(|(v, &m)| {
+                        if !m {
+                            *v = 0.0
+                        }
+                    });
+            }
+        }
+        Ok(())
+    }
+
+    fn residual(&mut self, u: &Vec<f64>, d: f64, r: &mut Vec<f64>) -> Result<(), BackendError> {
+        let (h, mask) = (&self.profile, &self.mask);
+        r.par_iter_mut()
+            .with_min_len(PAR_MIN)
+            .enumerate()
+            .for_each(|(i, ri)| *ri = if mask[i] { d - h[i] - u[i] } else { 0.0 });
+        Ok(())
+    }
+
+    fn dot(&mut self, a: &Vec<f64>, b: &Vec<f64>, out: Slot) -> Result<(), BackendError> {
+        let mask = &self.mask;
+        self.slots[out.0] = a
+            .par_iter()
+            .with_min_len(PAR_MIN)
+            .zip(b.par_iter())
+            .zip(mask.par_iter())
+            .map(|((x, y), &m)| if m { x * y } else { 0.0 })
+            .sum();
+        Ok(())
+    }
+
+    fn axpy_ratio(
+        &mut self,
+        y: &mut Vec<f64>,
+        x: &Vec<f64>,
+        num: Slot,
+        den: Slot,
+        sign: f64,
+    ) -> Result<(), BackendError> {
+        let a = sign * self.ratio(num, den);
+        let mask = &self.mask;
+        y.par_iter_mut()
+            .with_min_len(PAR_MIN)
+            .zip(x.par_iter().zip(mask.par_iter()))
+            .for_each(|(yi, (xi, &m))| {
+                if m {
+                    *yi += a * xi
+                }
+            });
+        Ok(())
+    }
+
+    fn xpay_ratio(
+        &mut self,
+        y: &mut Vec<f64>,
+        x: &Vec<f64>,
+        num: Slot,
+        den: Slot,
+    ) -> Result<(), BackendError> {
+        let b = self.ratio(num, den);
+        let mask = &self.mask;
+        y.par_iter_mut()
+            .with_min_len(PAR_MIN)
+            .zip(x.par_iter().zip(mask.par_iter()))
+            .for_each(|(yi, (xi, &m))| *yi = if m { xi + b * *yi } else { 0.0 });
+        Ok(())
+    }
+
+    fn copy_slot(&mut self, src: Slot, dst: Slot) -> Result<(), BackendError> {
+        self.slots[dst.0] = self.slots[src.0];
+        Ok(())
+    }
+
+    fn read_slots(&mut self, slots: &[Slot], out: &mut [f64]) -> Result<(), BackendError> {
+        for (o, s) in out.iter_mut().zip(slots) {
+            *o = self.slots[s.0];
+        }
+        Ok(())
+    }
+
+    fn update_contact(
+        &mut self,
+        p: &mut Vec<f64>,
+        u: &Vec<f64>,
+        d: f64,
+        sigma_c: f64,
+    ) -> Result<ContactChange, BackendError> {
+        let (nx, ny) = (self.nx, self.ny);
+        let h = &self.profile;
+        let (detached, attached) = self
+            .mask
+            .par_iter_mut()
+            .with_min_len(PAR_MIN)
+            .zip(p.par_iter_mut())
+            .enumerate()
+            .map(|(i, (m, pi))| {
+                let flip = if *m {
+                    *pi < -sigma_c
+                } else {
+                    h[i] - d + u[i] < 0.0
+                };
+                let out = match (flip, *m) {
+                    (true, true) => (1, 0),
+                    (true, false) => (0, 1),
+                    _ => (0, 0),
+                };
+                if flip {
+                    *m = !*m;
+                }
+                if !*m {
+                    *pi = 0.0;
+                }
+                out
+            })
+            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+        let n_contact = self.mask.par_iter().filter(|&&m| m).count();
+        let mask = &self.mask;
+        let on = |x: usize, y: usize| mask[y * nx + x] as usize;
+        let rows_edge: usize = (0..nx).map(|x| on(x, 0) + on(x, ny - 1)).sum();
+        let cols_edge: usize = (1..ny - 1).map(|y| on(0, y) + on(nx - 1, y)).sum();
+        let at_edge = rows_edge + cols_edge;
+        Ok(ContactChange {
+            detached,
+            attached,
+            n_contact,
+            at_edge,
+        })
+    }
+
+    fn sum_and_count(&mut self, p: &Vec<f64>) -> Result<(f64, usize), BackendError> {
+        let mask = &self.mask;
+        Ok(p.par_iter()
+            .with_min_len(PAR_MIN)
+            .zip(mask.par_iter())
+            .map(|(v, &m)| if m { (*v, 1usize) } else { (0.0, 0) })
+            .reduce(|| (0.0, 0), |a, b| (a.0 + b.0, a.1 + b.1)))
+    }
+}

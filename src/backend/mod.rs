@@ -1,0 +1,157 @@
+//! Backends: where the grid fields live and where the elastic operator and the
+//! vector operations of conjugate gradients run.
+//!
+//! The solver drives a [`Backend`] through a small set of operations that a GPU can
+//! run entirely on the device: every grid field stays resident, CG's scalars live in
+//! device-side [`Slot`]s, and the host reads back only a handful of scalars (when it
+//! chooses to test convergence) and whole fields only when a state is recorded.
+//!
+//! Conventions shared by every backend (all fields are `nx × ny`, row-major, x fastest):
+//! - the *contact set* C is a mask held by the backend; masked operations act on C only;
+//! - the *profile* h (length) and the element size Δx (length) are given at creation;
+//! - pressure p has units of stress, displacement u and gap g of length.
+
+pub mod cpu;
+pub mod kernel;
+
+use thiserror::Error;
+
+/// Errors a backend can raise.
+#[derive(Debug, Error)]
+pub enum BackendError {
+    /// The requested grid cannot be held by this backend.
+    #[error("grid {nx}×{ny} does not fit the {backend} backend: {reason}")]
+    GridTooLarge {
+        /// Elements along x.
+        nx: usize,
+        /// Elements along y.
+        ny: usize,
+        /// Backend name.
+        backend: &'static str,
+        /// Which limit, and what would fit.
+        reason: String,
+    },
+    /// The device went away or failed during the run.
+    #[error("the {backend} device failed: {reason}")]
+    DeviceLost {
+        /// Backend name.
+        backend: &'static str,
+        /// What the driver said.
+        reason: String,
+    },
+    /// A backend that is not available on this machine was requested.
+    #[error("{0}")]
+    Unavailable(String),
+}
+
+/// Index of a scalar register held on the backend's device (CG's α, β, residual norms).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Slot(pub usize);
+
+/// Number of scalar registers every backend provides.
+pub const N_SLOTS: usize = 8;
+
+/// How the elastic operator's inverse is approximated for preconditioning.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Preconditioner {
+    /// No preconditioning: z = r.
+    None,
+    /// z = P·S·P r with S the half-space stiffness E*|q|/2 applied in Fourier space on the
+    /// periodic Nx × Ny grid (an approximate inverse of the influence operator).
+    Stiffness,
+}
+
+/// Changes made by one detachment/attachment sweep of the contact set.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ContactChange {
+    /// Elements removed from C because their tensile stress exceeded σ_c.
+    pub detached: usize,
+    /// Elements added to C because their gap was negative.
+    pub attached: usize,
+    /// Elements in C after the sweep.
+    pub n_contact: usize,
+    /// Elements in C that touch the domain's outer ring of elements.
+    pub at_edge: usize,
+}
+
+/// The operations the solver needs, over fields resident on a device.
+///
+/// A backend owns: the contact mask, the profile h, the spectrum of the influence
+/// kernel (and of the preconditioner), and [`N_SLOTS`] scalar registers.
+pub trait Backend {
+    /// A real field of nx × ny values resident on the backend's device.
+    type Field;
+
+    /// Short name for reports ("cpu", "gpu").
+    fn name(&self) -> &'static str;
+    /// Arithmetic precision of the device fields ("f64", "f32").
+    fn precision(&self) -> &'static str;
+    /// Grid shape (nx, ny).
+    fn shape(&self) -> (usize, usize);
+
+    /// A new field, zero everywhere.
+    fn field(&mut self) -> Result<Self::Field, BackendError>;
+    /// Copy host values (row-major, length nx·ny) into a field.
+    fn upload(&mut self, dst: &mut Self::Field, host: &[f64]) -> Result<(), BackendError>;
+    /// Copy a field back to the host (row-major, length nx·ny).
+    fn download(&mut self, src: &Self::Field, host: &mut [f64]) -> Result<(), BackendError>;
+
+    /// Replace the contact mask (row-major, true = in contact).
+    fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError>;
+    /// Read the contact mask back.
+    fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError>;
+
+    /// dst = K ∗ src, the non-periodic convolution with the influence kernel
+    /// (src a pressure, dst a displacement); evaluated on the whole grid.
+    fn convolve(&mut self, src: &Self::Field, dst: &mut Self::Field) -> Result<(), BackendError>;
+    /// dst = M r, the preconditioner applied to a residual (zero off C).
+    fn precondition(
+        &mut self,
+        src: &Self::Field,
+        dst: &mut Self::Field,
+    ) -> Result<(), BackendError>;
+
+    /// r = d − h − u on C, 0 off C (the residual of (K p)_C = (d − h)_C given u = K p).
+    fn residual(
+        &mut self,
+        u: &Self::Field,
+        d: f64,
+        r: &mut Self::Field,
+    ) -> Result<(), BackendError>;
+    /// slots\[out\] = Σ_C a·b.
+    fn dot(&mut self, a: &Self::Field, b: &Self::Field, out: Slot) -> Result<(), BackendError>;
+    /// y += sign · (slots\[num\] / slots\[den\]) · x on C (a zero denominator gives a zero step).
+    fn axpy_ratio(
+        &mut self,
+        y: &mut Self::Field,
+        x: &Self::Field,
+        num: Slot,
+        den: Slot,
+        sign: f64,
+    ) -> Result<(), BackendError>;
+    /// y = x + (slots\[num\] / slots\[den\]) · y on C, 0 off C.
+    fn xpay_ratio(
+        &mut self,
+        y: &mut Self::Field,
+        x: &Self::Field,
+        num: Slot,
+        den: Slot,
+    ) -> Result<(), BackendError>;
+    /// slots\[dst\] = slots\[src\] (on the device).
+    fn copy_slot(&mut self, src: Slot, dst: Slot) -> Result<(), BackendError>;
+    /// Read scalar registers back to the host.
+    fn read_slots(&mut self, slots: &[Slot], out: &mut [f64]) -> Result<(), BackendError>;
+
+    /// One sweep of the Pohrt–Popov rule: detach elements of C with p < −σ_c, attach
+    /// elements off C whose gap g = h − d + u is negative; then p = 0 off C.
+    /// σ_c is a stress; σ_c = 0 gives the non-adhesive (Signorini) rule.
+    fn update_contact(
+        &mut self,
+        p: &mut Self::Field,
+        u: &Self::Field,
+        d: f64,
+        sigma_c: f64,
+    ) -> Result<ContactChange, BackendError>;
+    /// (Σ_C p, |C|): total pressure sum (stress; multiply by Δx² for force) and contact count.
+    fn sum_and_count(&mut self, p: &Self::Field) -> Result<(f64, usize), BackendError>;
+}

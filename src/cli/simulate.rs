@@ -1,0 +1,211 @@
+//! `jkrbem simulate`: one pull-off of one scene.
+
+use super::{failed, input, CliError};
+use clap::ValueEnum;
+use indicatif::{ProgressBar, ProgressStyle};
+use jkrbem::backend::cpu::{CpuBackend, GridSetup};
+use jkrbem::backend::{Backend, Preconditioner};
+use jkrbem::model::{Model, ModelOptions};
+use jkrbem::output::states_csv::StateWriter;
+use jkrbem::output::summary::Summary;
+use jkrbem::scene::Scene;
+use jkrbem::solver;
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Which backend runs the solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum BackendChoice {
+    /// A hardware GPU if there is one, else the CPU.
+    Auto,
+    /// The rustfft CPU backend (f64).
+    Cpu,
+    /// The wgpu GPU backend (f32).
+    Gpu,
+}
+
+/// Preconditioner of the CG solves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PreconditionerChoice {
+    /// The half-space stiffness E*|q|/2 in Fourier space (an approximate inverse of K).
+    Stiffness,
+    /// None: plain CG.
+    None,
+}
+
+/// Arguments of `jkrbem simulate`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Axis ratio R1/R2 of the ellipsoid (≥ 1; 1 is a sphere). Ignored if --r1 is given.
+    #[arg(long, default_value_t = 5.0)]
+    pub ratio: f64,
+    /// Radius of curvature along x, the major axis (length L). Overrides --ratio.
+    #[arg(long)]
+    pub r1: Option<f64>,
+    /// Radius of curvature along y, the minor axis (length L).
+    #[arg(long, default_value_t = 1.0)]
+    pub r2: f64,
+    /// Effective modulus E* = E/(1−ν²) of the half-space (force/length², F/L²).
+    #[arg(long, default_value_t = 1.0)]
+    pub e_star: f64,
+    /// Work of adhesion Δγ (energy per area, F/L).
+    #[arg(long, default_value_t = 1.0)]
+    pub work_of_adhesion: f64,
+    /// Elements along x, Nx (a power of two ≥ 16). The domain is the initial contact plus the
+    /// margin, so Δx = 2·a0·(1 + margin)/Nx.
+    #[arg(long, default_value_t = 256)]
+    pub grid: usize,
+    /// Elements along y, Ny (a power of two ≥ 16); by default fitted to the contact's aspect.
+    #[arg(long)]
+    pub grid_y: Option<usize>,
+    /// Mean radius c̄0 of the initial non-adhesive contact (in c_r): the JKR branch is traced
+    /// for all c̄ ≤ c̄0.
+    #[arg(long, default_value_t = 1.5)]
+    pub start_radius: f64,
+    /// Load steps from the initial approach d̄0 to the expected end of contact.
+    #[arg(long, default_value_t = 200)]
+    pub steps: usize,
+    /// Stop at this approach d̄ if the contact has not vanished by then (dimensionless).
+    #[arg(long, allow_hyphen_values = true)]
+    pub final_d: Option<f64>,
+    /// Free margin around the initial contact, relative to its half-axes.
+    #[arg(long, default_value_t = 0.08)]
+    pub margin: f64,
+    /// Relative residual at which CG stops.
+    #[arg(long, default_value_t = 1e-8)]
+    pub cg_tolerance: f64,
+    /// CG iteration limit per solve.
+    #[arg(long, default_value_t = 5000)]
+    pub cg_max_iterations: usize,
+    /// CG preconditioner.
+    #[arg(long, value_enum, default_value_t = PreconditionerChoice::Stiffness)]
+    pub preconditioner: PreconditionerChoice,
+    /// Backend: auto, cpu or gpu.
+    #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
+    pub backend: BackendChoice,
+    /// States CSV [default: jkrbem-out/simulate-r<ratio>-n<grid>.csv]. While running it is named
+    /// <stem>.incomplete.csv; a run that fails keeps that name.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Also write the summary as JSON to this file.
+    #[arg(long)]
+    pub summary: Option<PathBuf>,
+}
+
+impl Args {
+    fn scene(&self) -> Result<Scene, CliError> {
+        match self.r1 {
+            Some(r1) => Scene::new(r1, self.r2, self.e_star, self.work_of_adhesion),
+            None => Scene::from_ratio(self.ratio, self.r2, self.e_star, self.work_of_adhesion),
+        }
+        .map_err(input)
+    }
+
+    fn options(&self) -> ModelOptions {
+        ModelOptions {
+            nx: self.grid,
+            ny: self.grid_y,
+            start_radius_bar: self.start_radius,
+            steps: self.steps,
+            final_d_bar: self.final_d,
+            margin: self.margin,
+            cg_tolerance: self.cg_tolerance,
+            cg_max_iterations: self.cg_max_iterations,
+            preconditioner: match self.preconditioner {
+                PreconditionerChoice::Stiffness => Preconditioner::Stiffness,
+                PreconditionerChoice::None => Preconditioner::None,
+            },
+            ..ModelOptions::default()
+        }
+    }
+}
+
+/// Run `jkrbem simulate`.
+pub fn run(args: Args) -> Result<(), CliError> {
+    let scene = args.scene()?;
+    let model = Model::build(&scene, &args.options()).map_err(input)?;
+    if args.backend == BackendChoice::Gpu {
+        return Err(input(
+            "--backend gpu: the GPU backend is not available in this build yet; use --backend cpu",
+        ));
+    }
+    let out = args.out.clone().unwrap_or_else(|| {
+        PathBuf::from(format!(
+            "jkrbem-out/simulate-r{}-n{}.csv",
+            scene.ratio(),
+            model.nx
+        ))
+    });
+    let setup = GridSetup {
+        nx: model.nx,
+        ny: model.ny,
+        dx: model.dx,
+        e_star: scene.e_star,
+        profile: model.profile(),
+        preconditioner: model.preconditioner,
+    };
+    let mut backend = CpuBackend::new(&setup).map_err(failed)?;
+    eprintln!(
+        "jkrbem: R1/R2 = {}, grid {}×{}, Δx = {:.4e}, backend {} ({})",
+        scene.ratio(),
+        model.nx,
+        model.ny,
+        model.dx,
+        backend.name(),
+        backend.precision()
+    );
+    let mut writer = StateWriter::create(&out).map_err(failed)?;
+    let progress = progress_bar();
+    let mut write_error = None;
+    let start = Instant::now();
+    let outcome = solver::run(&mut backend, &model, &mut |s| {
+        progress.set_message(format!(
+            "state {}: d̄ = {:+.4}, F̄ = {:+.4}, c̄ = {:.4}",
+            s.step, s.d_bar, s.f_bar, s.c_bar
+        ));
+        progress.tick();
+        if let Err(e) = writer.write(s) {
+            write_error.get_or_insert(e);
+        }
+    });
+    let wall = start.elapsed().as_secs_f64();
+    progress.finish_and_clear();
+    if let Some(e) = write_error {
+        return Err(failed(e));
+    }
+    let path = writer.finish(outcome.complete()).map_err(failed)?;
+    let summary = Summary::new(
+        &model,
+        &outcome,
+        (backend.name(), backend.precision()),
+        wall,
+        &path,
+    );
+    print!("{}", summary.to_text());
+    println!("states written to {}", path.display());
+    if let Some(p) = &args.summary {
+        summary.write_json(p).map_err(failed)?;
+    }
+    match outcome.error {
+        None => Ok(()),
+        Some(e) => Err(failed(format!(
+            "the run stopped early: {e}\n  the {} states computed so far are in {} (incomplete)",
+            outcome.states.len(),
+            path.display()
+        ))),
+    }
+}
+
+/// A spinner with the current state on stderr, hidden when stderr is not a terminal.
+fn progress_bar() -> ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let pb = ProgressBar::new_spinner();
+    pb.set_style(
+        ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+    );
+    pb
+}

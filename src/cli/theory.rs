@@ -1,0 +1,87 @@
+//! `jkrbem theory`: closed-form curves.
+
+use super::{failed, input, CliError};
+use clap::ValueEnum;
+use jkrbem::theory::{self, TheoryModel};
+use std::path::PathBuf;
+
+/// Which closed form.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ModelChoice {
+    /// Non-adhesive elliptic Hertz contact.
+    Hertz,
+    /// JKR (sphere only: --ratio 1).
+    Jkr,
+    /// Johnson–Greenwood (2005) approximate theory for an elliptical contact.
+    Jg,
+}
+
+/// Arguments of `jkrbem theory`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The closed form.
+    #[arg(long, value_enum)]
+    pub model: ModelChoice,
+    /// Axis ratio R1/R2 (≥ 1).
+    #[arg(long, default_value_t = 1.0)]
+    pub ratio: f64,
+    /// Number of points on the curve.
+    #[arg(long, default_value_t = 400)]
+    pub points: usize,
+    /// Output CSV with columns c_bar,f_bar,d_bar,a_bar,b_bar [default:
+    /// jkrbem-out/theory-<model>-r<ratio>.csv].
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// Run `jkrbem theory`.
+pub fn run(args: Args) -> Result<(), CliError> {
+    let (model, name) = match args.model {
+        ModelChoice::Hertz => (TheoryModel::Hertz, "hertz"),
+        ModelChoice::Jkr => (TheoryModel::Jkr, "jkr"),
+        ModelChoice::Jg => (TheoryModel::Jg, "jg"),
+    };
+    if args.points < 2 {
+        return Err(input(format!(
+            "--points = {} is invalid: at least 2",
+            args.points
+        )));
+    }
+    let curve = theory::curve(model, args.ratio, args.points).map_err(input)?;
+    let out = args
+        .out
+        .unwrap_or_else(|| PathBuf::from(format!("jkrbem-out/theory-{name}-r{}.csv", args.ratio)));
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| failed(format!("cannot create {}: {e}", dir.display())))?;
+    }
+    let mut w = csv::Writer::from_path(&out).map_err(failed)?;
+    w.write_record(["c_bar", "f_bar", "d_bar", "a_bar", "b_bar"])
+        .map_err(failed)?;
+    for p in &curve {
+        w.serialize((p.c_bar, p.f_bar, p.d_bar, p.a_bar, p.b_bar))
+            .map_err(failed)?;
+    }
+    w.flush().map_err(failed)?;
+    println!(
+        "{} points of {} at R1/R2 = {} written to {}",
+        curve.len(),
+        name.to_uppercase(),
+        args.ratio,
+        out.display()
+    );
+    if model != TheoryModel::Hertz {
+        let p = theory::pull_off(model, args.ratio).map_err(input)?;
+        let f = p.force_min;
+        let e = p.end_of_contact;
+        println!(
+            "force-controlled pull-off (min F̄): F̄ = {:.6}, c̄ = {:.6}, d̄ = {:.6}, ā = {:.6}, b̄ = {:.6}",
+            f.f_bar, f.c_bar, f.d_bar, f.a_bar, f.b_bar
+        );
+        println!(
+            "displacement-controlled end of contact (min d̄): F̄ = {:.6}, c̄ = {:.6}, d̄ = {:.6}",
+            e.f_bar, e.c_bar, e.d_bar
+        );
+    }
+    Ok(())
+}

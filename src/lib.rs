@@ -1,0 +1,13 @@
+//! jkrbem: FFT-based boundary element solver for JKR-type adhesive contact of a rigid
+//! ellipsoid with an elastic half-space, with the Pohrt–Popov mesh-dependent detachment
+//! criterion.
+//!
+//! Data flows one way: [`scene`] → [`model`] → [`solver`] (over a [`backend`]) → states →
+//! [`output`]. [`theory`] holds the closed forms the results are checked against.
+
+pub mod backend;
+pub mod model;
+pub mod output;
+pub mod scene;
+pub mod solver;
+pub mod theory;

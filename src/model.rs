@@ -1,0 +1,312 @@
+//! What a scene needs numerically: the domain and grid, the detachment stress, the load
+//! steps and the CG settings. Knows nothing of backends.
+
+use crate::backend::Preconditioner;
+use crate::scene::Scene;
+use crate::theory::{self, hertz::HertzContact, TheoryModel};
+use std::f64::consts::PI;
+use thiserror::Error;
+
+/// Smallest grid side accepted (elements).
+pub const MIN_GRID: usize = 16;
+
+/// An invalid model choice, named as the flag that sets it.
+#[derive(Debug, Error, PartialEq)]
+pub enum ModelError {
+    /// A grid side that is not a power of two ≥ [`MIN_GRID`].
+    #[error("{flag} = {value} is invalid: the grid must be a power of two ≥ {MIN_GRID} (e.g. 64, 128, 256, 512)")]
+    Grid {
+        /// The flag.
+        flag: &'static str,
+        /// The value given.
+        value: usize,
+    },
+    /// Any other out-of-range value.
+    #[error("{flag} = {value} is invalid: {expected}")]
+    Invalid {
+        /// The flag.
+        flag: &'static str,
+        /// The value given, as text.
+        value: String,
+        /// What is accepted, and what to change.
+        expected: String,
+    },
+}
+
+/// κ = (2/π)·(ln(1+√2) − (√2−1)/3) (dimensionless): the mean displacement of a uniformly
+/// loaded square is 2κ p Δx / E* (SPEC §5).
+pub fn kappa() -> f64 {
+    let s2 = 2f64.sqrt();
+    2.0 / PI * ((1.0 + s2).ln() - (s2 - 1.0) / 3.0)
+}
+
+/// The Pohrt–Popov critical tensile stress σ_c = √(E* Δγ / (κ Δx)) (force/length²) for
+/// elements of side `dx` (length).
+pub fn critical_stress(scene: &Scene, dx: f64) -> f64 {
+    (scene.e_star * scene.work_of_adhesion / (kappa() * dx)).sqrt()
+}
+
+/// The user's choices that shape a model; `None` means "choose for the scene".
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelOptions {
+    /// Elements along x (power of two).
+    pub nx: usize,
+    /// Elements along y (power of two), or fit to the contact's aspect.
+    pub ny: Option<usize>,
+    /// Mean radius of the initial non-adhesive contact, c̄0 (dimensionless, in c_r).
+    pub start_radius_bar: f64,
+    /// Number of load steps from d0 to the expected end of contact.
+    pub steps: usize,
+    /// Final approach d̄ at which to stop if the contact is still there (dimensionless).
+    pub final_d_bar: Option<f64>,
+    /// Relative free margin around the initial contact on each side (dimensionless).
+    pub margin: f64,
+    /// Relative residual at which CG stops (dimensionless).
+    pub cg_tolerance: f64,
+    /// CG iteration limit per solve.
+    pub cg_max_iterations: usize,
+    /// Read the residual back every this many CG iterations.
+    pub cg_check_every: usize,
+    /// Preconditioner.
+    pub preconditioner: Preconditioner,
+    /// Limit on detachment/attachment sweeps per load step.
+    pub max_sweeps: usize,
+}
+
+impl Default for ModelOptions {
+    fn default() -> Self {
+        ModelOptions {
+            nx: 256,
+            ny: None,
+            start_radius_bar: 1.5,
+            steps: 200,
+            final_d_bar: None,
+            margin: 0.08,
+            cg_tolerance: 1e-8,
+            cg_max_iterations: 5000,
+            cg_check_every: 1,
+            preconditioner: Preconditioner::Stiffness,
+            max_sweeps: 2000,
+        }
+    }
+}
+
+/// Conjugate-gradient settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CgSettings {
+    /// Stop when ‖r‖ ≤ tolerance · ‖d − h‖ on C (dimensionless).
+    pub tolerance: f64,
+    /// Iteration limit per solve.
+    pub max_iterations: usize,
+    /// Read the residual every this many iterations.
+    pub check_every: usize,
+}
+
+/// The numerical model of a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Model {
+    /// The scene modelled.
+    pub scene: Scene,
+    /// Elements along x.
+    pub nx: usize,
+    /// Elements along y.
+    pub ny: usize,
+    /// Element side Δx (length).
+    pub dx: f64,
+    /// Detachment stress σ_c (force/length²).
+    pub sigma_c: f64,
+    /// The initial non-adhesive (Hertz) contact the approach aims at.
+    pub initial: HertzContact,
+    /// Approach of the first, non-adhesive press, d0 (length).
+    pub d0: f64,
+    /// Decrement of d per load step (length).
+    pub d_step: f64,
+    /// Stop once d falls below this (length).
+    pub d_final: f64,
+    /// CG settings.
+    pub cg: CgSettings,
+    /// Preconditioner.
+    pub preconditioner: Preconditioner,
+    /// Limit on detachment sweeps per step.
+    pub max_sweeps: usize,
+}
+
+fn check_grid(flag: &'static str, n: usize) -> Result<(), ModelError> {
+    if n >= MIN_GRID && n.is_power_of_two() {
+        Ok(())
+    } else {
+        Err(ModelError::Grid { flag, value: n })
+    }
+}
+
+fn invalid(flag: &'static str, value: impl ToString, expected: impl ToString) -> ModelError {
+    ModelError::Invalid {
+        flag,
+        value: value.to_string(),
+        expected: expected.to_string(),
+    }
+}
+
+impl Model {
+    /// Build the model: the initial Hertz contact of mean radius c̄0 sets the domain (plus
+    /// the margin), nx sets Δx, and ny is fitted to the contact's aspect unless given.
+    pub fn build(scene: &Scene, opt: &ModelOptions) -> Result<Self, ModelError> {
+        check_grid("--grid", opt.nx)?;
+        if let Some(ny) = opt.ny {
+            check_grid("--grid-y", ny)?;
+        }
+        let c0 = opt.start_radius_bar;
+        if !(c0.is_finite() && c0 > 0.0) {
+            return Err(invalid(
+                "--start-radius",
+                c0,
+                "a positive finite c̄0 (default 1.5)",
+            ));
+        }
+        if opt.steps == 0 {
+            return Err(invalid("--steps", 0, "at least 1 load step"));
+        }
+        if !(opt.margin.is_finite() && opt.margin >= 0.0) {
+            return Err(invalid("--margin", opt.margin, "a finite margin ≥ 0"));
+        }
+        if !(opt.cg_tolerance > 0.0 && opt.cg_tolerance < 1.0) {
+            return Err(invalid(
+                "--cg-tolerance",
+                opt.cg_tolerance,
+                "a value in (0, 1)",
+            ));
+        }
+        let scales = scene.scales();
+        let c0_len = c0 * scales.length;
+        let initial =
+            theory::hertz::hertz_for_mean_radius(scene.r1, scene.r2, scene.e_star, c0_len)
+                .map_err(|e| invalid("--ratio", scene.ratio(), e.to_string()))?;
+        let half_x = initial.a * (1.0 + opt.margin);
+        let dx = 2.0 * half_x / opt.nx as f64;
+        // Elements the initial contact and its margin span along y (the 1e-9 absorbs round-off
+        // when the contact is round and this equals nx).
+        let need_y = (2.0 * initial.b * (1.0 + opt.margin) / dx - 1e-9).ceil() as usize;
+        let ny = match opt.ny {
+            Some(ny) if ny < need_y => return Err(invalid(
+                "--grid-y",
+                ny,
+                format!(
+                    "the initial contact (c̄0 = {c0}) spans {need_y} elements along y at this Δx: \
+                         use --grid-y {} or more, or a smaller --start-radius",
+                    need_y.next_power_of_two()
+                ),
+            )),
+            Some(ny) => ny,
+            None => need_y.next_power_of_two().max(MIN_GRID),
+        };
+        let end = theory::pull_off(
+            if scene.ratio() == 1.0 {
+                TheoryModel::Jkr
+            } else {
+                TheoryModel::Jg
+            },
+            scene.ratio(),
+        )
+        .map(|p| p.end_of_contact.d_bar)
+        .unwrap_or(-0.5);
+        let d0 = initial.d;
+        let d0_bar = d0 / scales.approach;
+        if let Some(f) = opt.final_d_bar {
+            if !(f.is_finite() && f < d0_bar) {
+                return Err(invalid(
+                    "--final-d",
+                    f,
+                    format!("a finite d̄ below the initial approach d̄0 = {d0_bar:.4}"),
+                ));
+            }
+        }
+        let d_step = (d0_bar - end) / opt.steps as f64 * scales.approach;
+        let d_final = opt.final_d_bar.unwrap_or(end - 2.0 * (d0_bar - end)) * scales.approach;
+        Ok(Model {
+            scene: *scene,
+            nx: opt.nx,
+            ny,
+            dx,
+            sigma_c: critical_stress(scene, dx),
+            initial,
+            d0,
+            d_step,
+            d_final,
+            cg: CgSettings {
+                tolerance: opt.cg_tolerance,
+                max_iterations: opt.cg_max_iterations,
+                check_every: opt.cg_check_every.max(1),
+            },
+            preconditioner: opt.preconditioner,
+            max_sweeps: opt.max_sweeps,
+        })
+    }
+
+    /// x coordinate (length) of the centre of column `i`; the apex lies between the two
+    /// middle columns.
+    pub fn x(&self, i: usize) -> f64 {
+        (i as f64 + 0.5 - self.nx as f64 / 2.0) * self.dx
+    }
+
+    /// y coordinate (length) of the centre of row `j`.
+    pub fn y(&self, j: usize) -> f64 {
+        (j as f64 + 0.5 - self.ny as f64 / 2.0) * self.dx
+    }
+
+    /// The indenter profile h at element centres (length), row-major nx × ny.
+    pub fn profile(&self) -> Vec<f64> {
+        let mut h = Vec::with_capacity(self.nx * self.ny);
+        for j in 0..self.ny {
+            for i in 0..self.nx {
+                h.push(self.scene.profile(self.x(i), self.y(j)));
+            }
+        }
+        h
+    }
+
+    /// The initial guess of the contact set: the Hertz ellipse of the first press.
+    pub fn initial_contact(&self) -> Vec<bool> {
+        let (a, b) = (self.initial.a, self.initial.b);
+        let mut m = Vec::with_capacity(self.nx * self.ny);
+        for j in 0..self.ny {
+            for i in 0..self.nx {
+                let (x, y) = (self.x(i) / a, self.y(j) / b);
+                m.push(x * x + y * y < 1.0);
+            }
+        }
+        m
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kappa_matches_spec_value() {
+        assert!((kappa() - 0.473201).abs() < 1e-6);
+    }
+
+    #[test]
+    fn critical_stress_balances_energy() {
+        // ½ σ_c² Δx³ · 2κ/E* = Δγ Δx²  (SPEC §5).
+        let s = Scene::new(1.0, 1.0, 2.0, 0.3).unwrap();
+        let dx = 0.01;
+        let sc = critical_stress(&s, dx);
+        let released = 0.5 * sc * sc * dx.powi(3) * 2.0 * kappa() / s.e_star;
+        assert!((released / (s.work_of_adhesion * dx * dx) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn grid_must_be_power_of_two() {
+        let s = Scene::new(1.0, 1.0, 1.0, 1.0).unwrap();
+        for bad in [0, 8, 100, 255] {
+            let opt = ModelOptions {
+                nx: bad,
+                ..Default::default()
+            };
+            let e = Model::build(&s, &opt).unwrap_err();
+            assert!(e.to_string().contains("--grid"), "{e}");
+        }
+    }
+}
