@@ -152,6 +152,26 @@ pub trait Backend {
         d: f64,
         sigma_c: f64,
     ) -> Result<ContactChange, BackendError>;
+    /// The fraction t ∈ [0, 1] of a load step at which the first element of C reaches the
+    /// detachment stress, with p moving linearly from `p_old` (t = 0, all p ≥ −σ_c) to
+    /// `p_new` (t = 1) on a fixed contact set: min over C of (−σ_c − p_old)/(p_new − p_old)
+    /// where p_new < −σ_c; 1 if no element crosses.
+    fn first_crossing(
+        &mut self,
+        p_old: &Self::Field,
+        p_new: &Self::Field,
+        sigma_c: f64,
+    ) -> Result<f64, BackendError>;
+    /// dst = a + t·(b − a) on C, 0 off C.
+    fn lerp(
+        &mut self,
+        a: &Self::Field,
+        b: &Self::Field,
+        t: f64,
+        dst: &mut Self::Field,
+    ) -> Result<(), BackendError>;
+    /// dst = src on the whole grid.
+    fn copy(&mut self, src: &Self::Field, dst: &mut Self::Field) -> Result<(), BackendError>;
     /// (Σ_C p, |C|): total pressure sum (stress; multiply by Δx² for force) and contact count.
     fn sum_and_count(&mut self, p: &Self::Field) -> Result<(f64, usize), BackendError>;
 }

@@ -24,8 +24,53 @@ pub struct Fields<F> {
     pub p: F,
     /// Displacement K p after the last solve.
     pub u: F,
+    /// Pressure at the previous load step's equilibrium.
+    pub p_prev: F,
+    /// Pressure at a detachment onset inside a step.
+    pub p_onset: F,
     /// CG work fields.
     pub cg: CgWork<F>,
+}
+
+impl<F> Fields<F> {
+    /// Allocate the fields on `backend`.
+    pub fn new<B: Backend<Field = F>>(backend: &mut B) -> Result<Self, crate::backend::BackendError> {
+        Ok(Fields {
+            p: backend.field()?,
+            u: backend.field()?,
+            p_prev: backend.field()?,
+            p_onset: backend.field()?,
+            cg: CgWork::new(backend)?,
+        })
+    }
+}
+
+
+/// Solve for p on the unchanged contact set at approach `d` (length); returns the CG
+/// iterations spent.
+pub fn solve_fixed<B: Backend>(
+    backend: &mut B,
+    model: &Model,
+    fields: &mut Fields<B::Field>,
+    d: f64,
+) -> Result<usize, SolverError> {
+    let d_bar = d / model.scene.scales().approach;
+    let rep = cg::solve(backend, &mut fields.cg, &mut fields.p, d, &model.cg)?;
+    if rep.non_finite {
+        return Err(SolverError::NonFinite {
+            d_bar,
+            iterations: rep.iterations,
+        });
+    }
+    if !rep.converged {
+        return Err(SolverError::CgNotConverged {
+            d_bar,
+            residual: rep.residual,
+            iterations: rep.iterations,
+            tolerance: model.cg.tolerance,
+        });
+    }
+    Ok(rep.iterations)
 }
 
 /// Equilibrate the contact at approach `d` (length) with detachment stress `sigma_c`
@@ -44,22 +89,7 @@ pub fn equilibrate<B: Backend>(
         n_contact: 0,
     };
     loop {
-        let rep = cg::solve(backend, &mut fields.cg, &mut fields.p, d, &model.cg)?;
-        eq.cg_iterations += rep.iterations;
-        if rep.non_finite {
-            return Err(SolverError::NonFinite {
-                d_bar,
-                iterations: eq.cg_iterations,
-            });
-        }
-        if !rep.converged {
-            return Err(SolverError::CgNotConverged {
-                d_bar,
-                residual: rep.residual,
-                iterations: rep.iterations,
-                tolerance: model.cg.tolerance,
-            });
-        }
+        eq.cg_iterations += solve_fixed(backend, model, fields, d)?;
         backend.convolve(&fields.p, &mut fields.u)?;
         let change = backend.update_contact(&mut fields.p, &fields.u, d, sigma_c)?;
         eq.n_contact = change.n_contact;

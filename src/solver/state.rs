@@ -10,6 +10,10 @@ pub enum Phase {
     Approach,
     /// A step of the adhesive pull-off.
     Pulloff,
+    /// Inside a pull-off step, the approach at which the first element of the unchanged
+    /// contact set reaches σ_c: a local minimum of the sawtooth F(d), recorded so that the
+    /// force minimum does not depend on the step size.
+    Onset,
 }
 
 /// One converged state. Dimensional values are in the scene's units; `*_bar` values are

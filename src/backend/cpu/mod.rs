@@ -302,6 +302,47 @@ impl Backend for CpuBackend {
         })
     }
 
+    fn first_crossing(
+        &mut self,
+        p_old: &Vec<f64>,
+        p_new: &Vec<f64>,
+        sigma_c: f64,
+    ) -> Result<f64, BackendError> {
+        let mask = &self.mask;
+        Ok(p_old
+            .par_iter()
+            .with_min_len(PAR_MIN)
+            .zip(p_new.par_iter().zip(mask.par_iter()))
+            .map(|(&a, (&b, &m))| {
+                if m && b < -sigma_c && b < a {
+                    ((-sigma_c - a) / (b - a)).clamp(0.0, 1.0)
+                } else {
+                    1.0
+                }
+            })
+            .reduce(|| 1.0, f64::min))
+    }
+
+    fn lerp(
+        &mut self,
+        a: &Vec<f64>,
+        b: &Vec<f64>,
+        t: f64,
+        dst: &mut Vec<f64>,
+    ) -> Result<(), BackendError> {
+        let mask = &self.mask;
+        dst.par_iter_mut()
+            .with_min_len(PAR_MIN)
+            .enumerate()
+            .for_each(|(i, v)| *v = if mask[i] { a[i] + t * (b[i] - a[i]) } else { 0.0 });
+        Ok(())
+    }
+
+    fn copy(&mut self, src: &Vec<f64>, dst: &mut Vec<f64>) -> Result<(), BackendError> {
+        dst.copy_from_slice(src);
+        Ok(())
+    }
+
     fn sum_and_count(&mut self, p: &Vec<f64>) -> Result<(f64, usize), BackendError> {
         let mask = &self.mask;
         Ok(p.par_iter()
