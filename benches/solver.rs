@@ -24,8 +24,10 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 const GRIDS: [usize; 4] = [64, 128, 256, 512];
-const PRECONDITIONERS: [(Preconditioner, &str); 2] =
-    [(Preconditioner::None, "none"), (Preconditioner::Stiffness, "stiffness")];
+const PRECONDITIONERS: [(Preconditioner, &str); 2] = [
+    (Preconditioner::None, "none"),
+    (Preconditioner::Stiffness, "stiffness"),
+];
 /// CG's slots (as in `solver::cg`): r·z, previous r·z, s·Ks, r·r, and one never written.
 const RZ: Slot = Slot(0);
 const RZ_OLD: Slot = Slot(1);
@@ -37,7 +39,11 @@ const RESTART: usize = 50;
 
 fn model(n: usize, preconditioner: Preconditioner) -> Model {
     let scene = Scene::from_ratio(1.0, 1.0, 1.0, 1.0).expect("the sphere scene is valid");
-    let opt = ModelOptions { nx: n, preconditioner, ..Default::default() };
+    let opt = ModelOptions {
+        nx: n,
+        preconditioner,
+        ..Default::default()
+    };
     Model::build(&scene, &opt).expect("the grids are powers of two")
 }
 
@@ -69,7 +75,9 @@ impl CgState {
     fn new(n: usize, preconditioner: Preconditioner) -> Self {
         let model = model(n, preconditioner);
         let mut backend = backend(&model);
-        backend.set_contact(&model.initial_contact()).expect("mask fits");
+        backend
+            .set_contact(&model.initial_contact())
+            .expect("mask fits");
         let zero = vec![0.0; model.nx * model.ny];
         let mut st = CgState {
             backend,
@@ -129,7 +137,11 @@ struct FftPair {
 impl FftPair {
     fn new(m: usize) -> Self {
         let src = (0..m * m).map(|i| (i as f64 * 0.37).sin()).collect();
-        FftPair { filter: SpectralFilter::new(m, m, m, m), src, dst: vec![0.0; m * m] }
+        FftPair {
+            filter: SpectralFilter::new(m, m, m, m),
+            src,
+            dst: vec![0.0; m * m],
+        }
     }
     fn run(&mut self) {
         self.filter.apply(black_box(&self.src), &mut self.dst);
@@ -139,7 +151,9 @@ impl FftPair {
 
 fn criterion_benches(c: &mut Criterion) {
     let mut g = c.benchmark_group("cg_iteration");
-    g.sample_size(10).warm_up_time(Duration::from_secs(1)).measurement_time(Duration::from_secs(3));
+    g.sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3));
     for (pre, name) in PRECONDITIONERS {
         for n in GRIDS {
             let mut st = CgState::new(n, pre);
@@ -150,7 +164,9 @@ fn criterion_benches(c: &mut Criterion) {
     }
     g.finish();
     let mut g = c.benchmark_group("fft_pair");
-    g.sample_size(10).warm_up_time(Duration::from_secs(1)).measurement_time(Duration::from_secs(3));
+    g.sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3));
     for n in GRIDS {
         for (m, label) in [(2 * n, "padded_2n"), (n, "n")] {
             let mut fft = FftPair::new(m);
@@ -213,7 +229,11 @@ fn summary(cores: usize) {
             }
             let total = out.cg_iterations();
             let sweeps: usize = out.states.iter().map(|s| s.detach_sweeps).sum();
-            let pulloff: Vec<_> = out.states.iter().filter(|s| s.phase == Phase::Pulloff).collect();
+            let pulloff: Vec<_> = out
+                .states
+                .iter()
+                .filter(|s| s.phase == Phase::Pulloff)
+                .collect();
             let per_state = pulloff.iter().map(|s| s.cg_iterations).sum::<usize>() as f64
                 / pulloff.len().max(1) as f64;
             let per_solve = total as f64 / (out.states.len() + sweeps) as f64;

@@ -187,15 +187,17 @@ impl Model {
         // when the contact is round and this equals nx).
         let need_y = (2.0 * initial.b * (1.0 + opt.margin) / dx - 1e-9).ceil() as usize;
         let ny = match opt.ny {
-            Some(ny) if ny < need_y => return Err(invalid(
-                "--grid-y",
-                ny,
-                format!(
+            Some(ny) if ny < need_y => {
+                return Err(invalid(
+                    "--grid-y",
+                    ny,
+                    format!(
                     "the initial contact (c̄0 = {c0}) spans {need_y} elements along y at this Δx: \
                          use --grid-y {} or more, or a smaller --start-radius",
                     need_y.next_power_of_two()
                 ),
-            )),
+                ))
+            }
             Some(ny) => ny,
             None => need_y.next_power_of_two().max(MIN_GRID),
         };

@@ -30,7 +30,10 @@ fn bad_input_is_refused_with_the_flag_named_and_nothing_written() {
         (&["--work-of-adhesion", "0"], "--work-of-adhesion"),
         (&["--grid", "100"], "--grid"),
         (&["--grid", "8"], "--grid"),
-        (&["--ratio", "1", "--grid", "64", "--grid-y", "16"], "--grid-y"),
+        (
+            &["--ratio", "1", "--grid", "64", "--grid-y", "16"],
+            "--grid-y",
+        ),
         (&["--start-radius", "0"], "--start-radius"),
         (&["--start-radius", "NaN"], "--start-radius"),
         (&["--steps", "0"], "--steps"),
@@ -46,7 +49,10 @@ fn bad_input_is_refused_with_the_flag_named_and_nothing_written() {
         let err = stderr(&o);
         assert!(!o.status.success(), "{args:?} was accepted");
         assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
-        assert!(err.contains(flag), "{args:?}: message does not name {flag}: {err}");
+        assert!(
+            err.contains(flag),
+            "{args:?}: message does not name {flag}: {err}"
+        );
         assert!(!err.contains("panicked"), "{args:?}: {err}");
         assert!(!dir.path().join("out").exists(), "{args:?} wrote output");
     }
@@ -55,7 +61,18 @@ fn bad_input_is_refused_with_the_flag_named_and_nothing_written() {
 #[test]
 fn gpu_backend_is_refused_clearly_until_it_exists() {
     let dir = tempfile::tempdir().unwrap();
-    let o = jkrbem(&["simulate", "--grid", "16", "--backend", "gpu", "--out", "s.csv"], dir.path());
+    let o = jkrbem(
+        &[
+            "simulate",
+            "--grid",
+            "16",
+            "--backend",
+            "gpu",
+            "--out",
+            "s.csv",
+        ],
+        dir.path(),
+    );
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--backend gpu"), "{}", stderr(&o));
     assert!(!dir.path().join("s.csv").exists());
@@ -66,15 +83,27 @@ fn a_run_that_fails_midway_leaves_only_an_incomplete_file() {
     let dir = tempfile::tempdir().unwrap();
     let o = jkrbem(
         &[
-            "simulate", "--ratio", "1", "--grid", "32", "--cg-max-iterations", "2", "--out",
-            "s.csv", "--summary", "s.json",
+            "simulate",
+            "--ratio",
+            "1",
+            "--grid",
+            "32",
+            "--cg-max-iterations",
+            "2",
+            "--out",
+            "s.csv",
+            "--summary",
+            "s.json",
         ],
         dir.path(),
     );
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(err.contains("did not converge"), "{err}");
-    assert!(!dir.path().join("s.csv").exists(), "a failed run must not look complete");
+    assert!(
+        !dir.path().join("s.csv").exists(),
+        "a failed run must not look complete"
+    );
     assert!(dir.path().join("s.incomplete.csv").exists());
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
@@ -85,7 +114,9 @@ fn a_run_that_fails_midway_leaves_only_an_incomplete_file() {
 fn a_contact_reaching_the_domain_edge_stops_the_run() {
     let dir = tempfile::tempdir().unwrap();
     let o = jkrbem(
-        &["simulate", "--ratio", "1", "--grid", "32", "--margin", "0", "--out", "s.csv"],
+        &[
+            "simulate", "--ratio", "1", "--grid", "32", "--margin", "0", "--out", "s.csv",
+        ],
         dir.path(),
     );
     let err = stderr(&o);
@@ -99,8 +130,17 @@ fn a_good_run_writes_the_documented_csv_and_summary() {
     let dir = tempfile::tempdir().unwrap();
     let o = jkrbem(
         &[
-            "simulate", "--ratio", "2", "--grid", "32", "--steps", "40", "--out", "s.csv",
-            "--summary", "s.json",
+            "simulate",
+            "--ratio",
+            "2",
+            "--grid",
+            "32",
+            "--steps",
+            "40",
+            "--out",
+            "s.csv",
+            "--summary",
+            "s.json",
         ],
         dir.path(),
     );
@@ -115,8 +155,18 @@ fn a_good_run_writes_the_documented_csv_and_summary() {
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
     for key in [
-        "f_ad_bar", "c_bar_at_min", "d_bar_at_min", "n_d", "nx", "ny", "dx", "backend",
-        "precision", "cg_iterations", "wall_s", "complete",
+        "f_ad_bar",
+        "c_bar_at_min",
+        "d_bar_at_min",
+        "n_d",
+        "nx",
+        "ny",
+        "dx",
+        "backend",
+        "precision",
+        "cg_iterations",
+        "wall_s",
+        "complete",
     ] {
         assert!(!s[key].is_null(), "summary lacks {key}: {s}");
     }
@@ -129,13 +179,22 @@ fn a_good_run_writes_the_documented_csv_and_summary() {
 #[test]
 fn theory_writes_curves_and_refuses_jkr_for_an_ellipsoid() {
     let dir = tempfile::tempdir().unwrap();
-    let o = jkrbem(&["theory", "--model", "jg", "--ratio", "1", "--out", "jg.csv"], dir.path());
+    let o = jkrbem(
+        &["theory", "--model", "jg", "--ratio", "1", "--out", "jg.csv"],
+        dir.path(),
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("F̄ = -0.500000"), "{stdout}");
     let text = std::fs::read_to_string(dir.path().join("jg.csv")).unwrap();
-    assert_eq!(text.lines().next().unwrap(), "c_bar,f_bar,d_bar,a_bar,b_bar");
-    let o = jkrbem(&["theory", "--model", "jkr", "--ratio", "2", "--out", "j.csv"], dir.path());
+    assert_eq!(
+        text.lines().next().unwrap(),
+        "c_bar,f_bar,d_bar,a_bar,b_bar"
+    );
+    let o = jkrbem(
+        &["theory", "--model", "jkr", "--ratio", "2", "--out", "j.csv"],
+        dir.path(),
+    );
     assert_eq!(o.status.code(), Some(2));
     assert!(!dir.path().join("j.csv").exists());
 }

@@ -22,7 +22,9 @@ fn pressure(n: usize, seed: u64) -> Vec<f64> {
     let mut x = seed;
     (0..n)
         .map(|_| {
-            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         })
         .collect()
@@ -30,14 +32,19 @@ fn pressure(n: usize, seed: u64) -> Vec<f64> {
 
 /// max |a − b| over `scale`.
 fn max_relative_difference(a: &[f64], b: &[f64], scale: f64) -> f64 {
-    a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs())) / scale
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale
 }
 
 /// The displacement scale of a signed pressure field: max of K ∗ |p| (random signs cancel in
 /// K ∗ p, so its own maximum would understate the magnitudes being summed).
 fn magnitude_scale(p: &[f64], nx: usize, ny: usize, dx: f64, e: f64) -> f64 {
     let abs: Vec<f64> = p.iter().map(|v| v.abs()).collect();
-    direct_convolution(&abs, nx, ny, dx, e).iter().fold(0.0, |m, v| m.max(*v))
+    direct_convolution(&abs, nx, ny, dx, e)
+        .iter()
+        .fold(0.0, |m, v| m.max(*v))
 }
 
 #[test]
@@ -59,7 +66,10 @@ fn padded_fft_convolution_equals_direct_sum() {
 fn periodic_convolution_differs_from_direct_sum() {
     // Without zero padding neighbouring periodic images interact: the error is of order one.
     let (nx, ny, dx, e) = (32, 32, 1.0, 1.0);
-    let p = pressure(nx * ny, 7).iter().map(|v| v.abs()).collect::<Vec<_>>();
+    let p = pressure(nx * ny, 7)
+        .iter()
+        .map(|v| v.abs())
+        .collect::<Vec<_>>();
     let direct = direct_convolution(&p, nx, ny, dx, e);
     let mut b = CpuBackend::new_periodic(&setup(nx, ny, dx, e));
     let mut u = b.field().unwrap();
@@ -67,5 +77,8 @@ fn periodic_convolution_differs_from_direct_sum() {
     let scale = direct.iter().fold(0.0f64, |m, v| m.max(*v));
     let err = max_relative_difference(&u, &direct, scale);
     println!("periodic vs direct sum: max relative difference {err:.3}");
-    assert!(err > 0.05, "a periodic convolution should be visibly wrong, got {err:e}");
+    assert!(
+        err > 0.05,
+        "a periodic convolution should be visibly wrong, got {err:e}"
+    );
 }

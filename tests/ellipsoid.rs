@@ -33,8 +33,27 @@ fn ellipsoid_5_to_1_contact_is_mirror_symmetric_and_elongated_along_x() {
     assert_eq!(mirror_x, 0);
     assert_eq!(mirror_y, 0);
     for s in run.outcome.states.iter().filter(|s| s.n_contact > 0) {
-        assert!(s.a_axis > s.b_axis, "state {} ({:?}): a = {}, b = {}", s.step, s.phase, s.a_axis, s.b_axis);
+        assert!(
+            s.a_axis > s.b_axis,
+            "state {} ({:?}): a = {}, b = {}",
+            s.step,
+            s.phase,
+            s.a_axis,
+            s.b_axis
+        );
     }
-    let last = run.outcome.states.iter().rev().find(|s| s.phase == Phase::Pulloff).unwrap();
-    println!("at d̄ = {:.3}: ā = {:.3}, b̄ = {:.3}, b/a = {:.3}", last.d_bar, last.a_bar, last.b_bar, last.b_axis / last.a_axis);
+    let last = run
+        .outcome
+        .states
+        .iter()
+        .rev()
+        .find(|s| s.phase == Phase::Pulloff)
+        .unwrap();
+    println!(
+        "at d̄ = {:.3}: ā = {:.3}, b̄ = {:.3}, b/a = {:.3}",
+        last.d_bar,
+        last.a_bar,
+        last.b_bar,
+        last.b_axis / last.a_axis
+    );
 }

@@ -27,7 +27,11 @@ fn approach(ratio: f64, nx: usize) -> (f64, f64, f64, f64) {
 #[test]
 fn sphere_hertz_force_within_half_percent_and_area_within_two_percent_at_128() {
     let (f, f_h, a, a_h) = approach(1.0, 128);
-    println!("sphere 128²: F/F_Hertz − 1 = {:+.3e}, A/A_Hertz − 1 = {:+.3e}", f / f_h - 1.0, a / a_h - 1.0);
+    println!(
+        "sphere 128²: F/F_Hertz − 1 = {:+.3e}, A/A_Hertz − 1 = {:+.3e}",
+        f / f_h - 1.0,
+        a / a_h - 1.0
+    );
     assert!((f / f_h - 1.0).abs() < 0.005);
     assert!((a / a_h - 1.0).abs() < 0.02);
 }
@@ -36,7 +40,11 @@ fn sphere_hertz_force_within_half_percent_and_area_within_two_percent_at_128() {
 fn ellipsoid_hertz_force_and_area_at_128() {
     // Elliptic Hertz (R1/R2 = 5): same bounds, on a grid of 128 along the major axis.
     let (f, f_h, a, a_h) = approach(5.0, 128);
-    println!("5:1 ellipsoid 128: F/F_Hertz − 1 = {:+.3e}, A/A_Hertz − 1 = {:+.3e}", f / f_h - 1.0, a / a_h - 1.0);
+    println!(
+        "5:1 ellipsoid 128: F/F_Hertz − 1 = {:+.3e}, A/A_Hertz − 1 = {:+.3e}",
+        f / f_h - 1.0,
+        a / a_h - 1.0
+    );
     assert!((f / f_h - 1.0).abs() < 0.005);
     assert!((a / a_h - 1.0).abs() < 0.02);
 }

@@ -34,7 +34,9 @@ pub struct Fields<F> {
 
 impl<F> Fields<F> {
     /// Allocate the fields on `backend`.
-    pub fn new<B: Backend<Field = F>>(backend: &mut B) -> Result<Self, crate::backend::BackendError> {
+    pub fn new<B: Backend<Field = F>>(
+        backend: &mut B,
+    ) -> Result<Self, crate::backend::BackendError> {
         Ok(Fields {
             p: backend.field()?,
             u: backend.field()?,
@@ -44,7 +46,6 @@ impl<F> Fields<F> {
         })
     }
 }
-
 
 /// Solve for p on the unchanged contact set at approach `d` (length); returns the CG
 /// iterations spent.

@@ -97,7 +97,16 @@ fn run_inner<B: Backend>(
     let mut fields = Fields::new(backend)?;
     // 1. Non-adhesive press to d0.
     let eq = equilibrate(backend, model, &mut fields, model.d0, 0.0)?;
-    push(record(backend, model, &fields.p, &mut mask, 0, Phase::Approach, model.d0, &eq)?);
+    push(record(
+        backend,
+        model,
+        &fields.p,
+        &mut mask,
+        0,
+        Phase::Approach,
+        model.d0,
+        &eq,
+    )?);
     // 2. Adhesive pull-off, step by step.
     let mut d_prev = model.d0;
     let mut step = 0;
@@ -107,12 +116,30 @@ fn run_inner<B: Backend>(
         if d < model.d_final {
             return Ok(());
         }
-        let mut eq = advance_through_onsets(backend, model, &mut fields, &mut mask, step, d_prev, d, push)?;
+        let mut eq = advance_through_onsets(
+            backend,
+            model,
+            &mut fields,
+            &mut mask,
+            step,
+            d_prev,
+            d,
+            push,
+        )?;
         let last = equilibrate(backend, model, &mut fields, d, model.sigma_c)?;
         eq.cg_iterations += last.cg_iterations;
         eq.sweeps += last.sweeps;
         eq.n_contact = last.n_contact;
-        push(record(backend, model, &fields.p, &mut mask, step, Phase::Pulloff, d, &eq)?);
+        push(record(
+            backend,
+            model,
+            &fields.p,
+            &mut mask,
+            step,
+            Phase::Pulloff,
+            d,
+            &eq,
+        )?);
         d_prev = d;
         if eq.n_contact == 0 {
             return Ok(());
@@ -159,7 +186,16 @@ fn advance_through_onsets<B: Backend>(
         }
         backend.lerp(&fields.p_prev, &fields.p, t, &mut fields.p_onset)?;
         let d_on = d_c + t * (d_to - d_c);
-        push(record(backend, model, &fields.p_onset, mask, step, Phase::Onset, d_on, &no_work)?);
+        push(record(
+            backend,
+            model,
+            &fields.p_onset,
+            mask,
+            step,
+            Phase::Onset,
+            d_on,
+            &no_work,
+        )?);
         let t_push = (t + ONSET_PUSH).min(1.0);
         backend.lerp(&fields.p_prev, &fields.p, t_push, &mut fields.p_onset)?;
         backend.copy(&fields.p_onset, &mut fields.p)?;

@@ -334,7 +334,13 @@ impl Backend for CpuBackend {
         dst.par_iter_mut()
             .with_min_len(PAR_MIN)
             .enumerate()
-            .for_each(|(i, v)| *v = if mask[i] { a[i] + t * (b[i] - a[i]) } else { 0.0 });
+            .for_each(|(i, v)| {
+                *v = if mask[i] {
+                    a[i] + t * (b[i] - a[i])
+                } else {
+                    0.0
+                }
+            });
         Ok(())
     }
 
