@@ -60,6 +60,15 @@ pub struct CgReport {
     pub non_finite: bool,
 }
 
+impl CgReport {
+    /// Mark the report converged or non-finite from its residual; true if CG should stop.
+    fn finished(&mut self, tolerance: f64) -> bool {
+        self.non_finite = !self.residual.is_finite();
+        self.converged = self.residual <= tolerance;
+        self.non_finite || self.converged
+    }
+}
+
 /// Solve for p on the backend's contact set at approach `d` (length), warm-started from
 /// the p given (which must be zero off C).
 pub fn solve<B: Backend>(
@@ -92,12 +101,7 @@ pub fn solve<B: Backend>(
         converged: false,
         non_finite: false,
     };
-    if !report.residual.is_finite() {
-        report.non_finite = true;
-        return Ok(report);
-    }
-    if report.residual <= settings.tolerance {
-        report.converged = true;
+    if report.finished(settings.tolerance) {
         return Ok(report);
     }
     backend.precondition(r, z)?;
@@ -115,12 +119,7 @@ pub fn solve<B: Backend>(
             let mut rr = [0.0];
             backend.read_slots(&[RR], &mut rr)?;
             report.residual = relative(rr[0]);
-            if !report.residual.is_finite() {
-                report.non_finite = true;
-                return Ok(report);
-            }
-            if report.residual <= settings.tolerance {
-                report.converged = true;
+            if report.finished(settings.tolerance) {
                 return Ok(report);
             }
         }
