@@ -116,3 +116,41 @@ fn gpu_fft_matches_rustfft_within_f32_rounding_times_log2n() {
     }
     println!("GPU FFT checks took {:.2?}", start.elapsed());
 }
+
+#[test]
+fn gpu_fft_global_memory_stages_match_rustfft() {
+    let Some(ctx) = test_context() else { return };
+    // With 8-value lines in workgroup memory, n = 16 … 4096 run 1 … 9 global stages, so the
+    // result ends in the scratch buffer (odd) as well as in place (even).
+    let fft = GpuFft::with_shared_max(&ctx, 4096, 8).expect("FFT pipelines build");
+    assert_eq!(fft.shared_max(), 8);
+    for log2n in LENGTHS_LOG2 {
+        let n = 1usize << log2n;
+        let bound = 1e-6 * log2n as f64;
+        let mut worst = 0.0f64;
+        for (batch, inverse) in [(1, false), (5, true)] {
+            let data32: Vec<Complex<f32>> = pseudo_random(batch * n, 77 + log2n as u64)
+                .iter()
+                .map(|c| Complex::new(c.re as f32, c.im as f32))
+                .collect();
+            let exact: Vec<Complex<f64>> = data32
+                .iter()
+                .map(|c| Complex::new(c.re as f64, c.im as f64))
+                .collect();
+            let cpu = reference(&exact, n, inverse);
+            let gpu = fft
+                .fft_lines(&ctx, &data32, n, inverse)
+                .expect("GPU FFT runs");
+            let err = relative_error(
+                gpu.iter().map(|c| Complex::new(c.re as f64, c.im as f64)),
+                &cpu,
+            );
+            assert!(
+                err <= bound,
+                "global path n={n} batch={batch} inverse={inverse}: error {err:e} > {bound:e}"
+            );
+            worst = worst.max(err);
+        }
+        println!("global path n = {n:5}: max relative error {worst:.2e} (bound {bound:.1e})");
+    }
+}

@@ -83,6 +83,22 @@ impl GpuFft {
     /// Compiles the pipelines for lines of up to `n_max` complex values (a power of two ≥ 2)
     /// and uploads the twiddle table.
     pub fn new(ctx: &GpuContext, n_max: usize) -> Result<GpuFft, BackendError> {
+        Self::with_shared_max(ctx, n_max, SHARED_CAP as usize)
+    }
+
+    /// As [`GpuFft::new`], but lines longer than `shared_max` (a power of two ≥ 2; lowered to
+    /// what the adapter's workgroup memory holds) start with global-memory stages. Lets tests
+    /// exercise the global-memory path on short lines.
+    pub fn with_shared_max(
+        ctx: &GpuContext,
+        n_max: usize,
+        shared_max: usize,
+    ) -> Result<GpuFft, BackendError> {
+        if !shared_max.is_power_of_two() || shared_max < 2 {
+            return Err(BackendError::Unavailable(format!(
+                "GPU FFT shared-memory line length {shared_max} must be a power of two ≥ 2"
+            )));
+        }
         if !n_max.is_power_of_two() || n_max < 2 || n_max > u32::MAX as usize / 2 {
             return Err(BackendError::Unavailable(format!(
                 "GPU FFT length limit {n_max} must be a power of two ≥ 2"
@@ -101,7 +117,8 @@ impl GpuFft {
                 limits.max_compute_workgroup_storage_size
             )));
         }
-        let shared_max = shared_line_max(limits.max_compute_workgroup_storage_size, n_max);
+        let shared_max = shared_line_max(limits.max_compute_workgroup_storage_size, n_max)
+            .min(shared_max.min(SHARED_CAP as usize) as u32);
         let source =
             include_str!("../../../shaders/fft.wgsl").replace("__SMEM__", &shared_max.to_string());
         let device = ctx.device();
