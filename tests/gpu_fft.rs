@@ -5,7 +5,7 @@
 //! Skips with a message when no GPU adapter exists, unless `JKRBEM_REQUIRE_GPU=1`.
 
 use jkrbem::backend::gpu::fft::stockham_twin;
-use jkrbem::backend::gpu::{test_context, GpuFft};
+use jkrbem::backend::gpu::{list_adapters, test_context, GpuFft};
 use rustfft::num_complex::Complex;
 use rustfft::FftPlanner;
 
@@ -71,6 +71,11 @@ fn stockham_twin_matches_rustfft_to_f64_rounding() {
 fn gpu_fft_matches_rustfft_within_f32_rounding_times_log2n() {
     let Some(ctx) = test_context() else { return };
     println!("adapter: {}", ctx.adapter_summary());
+    let adapters = list_adapters();
+    for line in &adapters {
+        println!("  seen: {line}");
+    }
+    assert!(!adapters.is_empty(), "the adapter in use is listed");
     let fft = GpuFft::new(&ctx, 4096).expect("FFT pipelines build");
     println!(
         "lines up to {} values run in workgroup memory",

@@ -211,6 +211,17 @@ impl GpuContext {
         )
     }
 
+    /// Whether the adapter is real GPU hardware (discrete, integrated or virtual), not a
+    /// software implementation such as lavapipe.
+    pub fn is_hardware(&self) -> bool {
+        matches!(
+            self.info.device_type,
+            wgpu::DeviceType::DiscreteGpu
+                | wgpu::DeviceType::IntegratedGpu
+                | wgpu::DeviceType::VirtualGpu
+        )
+    }
+
     /// Blocks until all submitted work has finished.
     pub fn wait(&self) -> Result<(), BackendError> {
         self.device

@@ -302,6 +302,8 @@ impl GpuFft {
 
     /// Uploads `data` (whole lines of `n` values), transforms every line, waits and reads the
     /// result back. For tests and debugging; the solver keeps its fields on the device.
+    ///
+    /// Panics if `data` does not hold whole lines of `n` values.
     pub fn fft_lines(
         &self,
         ctx: &GpuContext,
@@ -310,7 +312,7 @@ impl GpuFft {
         inverse: bool,
     ) -> Result<Vec<Complex<f32>>, BackendError> {
         assert!(
-            n > 0 && data.len() % n == 0,
+            n > 0 && data.len().is_multiple_of(n),
             "data must hold whole lines of {n} values"
         );
         let host: Vec<[f32; 2]> = data.iter().map(|c| [c.re, c.im]).collect();
@@ -377,9 +379,9 @@ pub fn read_buffer<T: bytemuck::Pod>(
 
 /// CPU twin of `shaders/fft.wgsl`, in f64: the same radix-2 Stockham stages in the same order
 /// (`shared_max` plays the role of the shader's SMEM), for every line of `n` values in `data`.
-/// The inverse is unnormalised.
+/// The inverse is unnormalised. Panics unless n is a power of two ≥ 2 dividing `data.len()`.
 pub fn stockham_twin(data: &mut [Complex<f64>], n: usize, inverse: bool, shared_max: usize) {
-    assert!(n.is_power_of_two() && n >= 2 && data.len() % n == 0);
+    assert!(n.is_power_of_two() && n >= 2 && data.len().is_multiple_of(n));
     let sign = if inverse { 1.0 } else { -1.0 };
     let twiddle = |p: usize, len: usize| {
         Complex::from_polar(
