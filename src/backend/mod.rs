@@ -12,6 +12,7 @@
 //! - pressure p has units of stress, displacement u and gap g of length.
 
 pub mod cpu;
+pub mod gpu;
 pub mod kernel;
 
 use thiserror::Error;

@@ -1,0 +1,132 @@
+// Batched complex-to-complex radix-2 Stockham autosort FFT on f32.
+//
+// A complex value is a vec2<f32> (x = real, y = imaginary). Lines of length n (a power of two)
+// lie contiguously, one after another. The forward transform is X[k] = Σ x[j] e^{-2πi jk/n};
+// the inverse uses e^{+2πi jk/n} and is unnormalised (like rustfft).
+//
+// Stockham stage with stride s (s = 1, 2, 4, …, n/2) and current length L = n/s, m = L/2:
+// for every butterfly j in [0, n/2), p = j / s, q = j % s,
+//     a = x[j],  b = x[j + n/2],  w = e^{-2πi p / L}
+//     y[q + 2sp]     = a + b
+//     y[q + 2sp + s] = (a − b)·w
+// After the stage the elements ≡ q (mod 2s) form independent lines of length L/2, so once
+// L ≤ SMEM the rest of the transform of each residue q runs in workgroup memory
+// (`fft_shared`); the stages before that run in global memory, one per dispatch
+// (`fft_global_stage`). CPU twin: `jkrbem::backend::gpu::fft::stockham_twin`.
+//
+// The host substitutes SMEM (the largest line held in workgroup memory) before compiling.
+
+// Must stay in sync with `FftParams` in src/backend/gpu/fft.rs.
+struct Params {
+    // Line length n (complex values).
+    n: u32,
+    // Number of lines.
+    batch: u32,
+    // Stride s of the stage (`fft_global_stage`) or of the sub-lines (`fft_shared`).
+    stride: u32,
+    // Length of the twiddle table's full circle: twiddle[k] = e^{-2πi k / n_max}.
+    n_max: u32,
+    // 1 for the inverse transform, 0 for the forward one.
+    inverse: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+}
+
+const SMEM: u32 = __SMEM__u;
+const WG: u32 = 256u;
+
+@group(0) @binding(0) var<uniform> params: Params;
+// twiddle[k] = e^{-2πi k / n_max}, k in [0, n_max/2), computed on the host in f64.
+@group(0) @binding(1) var<storage, read> twiddle: array<vec2<f32>>;
+// Lines transformed in place by `fft_shared`.
+@group(0) @binding(2) var<storage, read_write> data: array<vec2<f32>>;
+// Source and destination of one global-memory stage.
+@group(0) @binding(3) var<storage, read> src: array<vec2<f32>>;
+@group(0) @binding(4) var<storage, read_write> dst: array<vec2<f32>>;
+
+// Two ping-pong buffers of SMEM complex values: 16·SMEM bytes of workgroup memory.
+var<workgroup> buf: array<array<vec2<f32>, SMEM>, 2>;
+
+fn cmul(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
+}
+
+// e^{∓2πi p / len}: the forward (−) or inverse (+) twiddle of a stage of length len.
+fn twiddle_for(p: u32, len: u32) -> vec2<f32> {
+    let w = twiddle[p * (params.n_max / len)];
+    return select(w, vec2<f32>(w.x, -w.y), params.inverse != 0u);
+}
+
+// One radix-2 Stockham stage over whole lines in global memory; one thread per butterfly.
+@compute @workgroup_size(WG)
+fn fft_global_stage(
+    @builtin(global_invocation_id) gid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+) {
+    let half = params.n / 2u;
+    let idx = gid.x + gid.y * nwg.x * WG;
+    if idx >= params.batch * half {
+        return;
+    }
+    let line = idx / half;
+    let j = idx % half;
+    let s = params.stride;
+    let p = j / s;
+    let q = j % s;
+    let base = line * params.n;
+    let a = src[base + j];
+    let b = src[base + j + half];
+    let w = twiddle_for(p, params.n / s);
+    dst[base + q + 2u * s * p] = a + b;
+    dst[base + q + 2u * s * p + s] = cmul(a - b, w);
+}
+
+// The remaining stages of one sub-line (elements base + q + stride·i, i in [0, n/stride))
+// in workgroup memory; one workgroup per (line, q).
+@compute @workgroup_size(WG)
+fn fft_shared(
+    @builtin(local_invocation_index) lid: u32,
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+) {
+    let g = wid.x + wid.y * nwg.x;
+    let stride = params.stride;
+    let len = params.n / stride;
+    let line = g / stride;
+    if line >= params.batch {
+        return;
+    }
+    let first = line * params.n + g % stride;
+    let half = len / 2u;
+
+    for (var i = lid; i < len; i += WG) {
+        buf[0][i] = data[first + i * stride];
+    }
+    workgroupBarrier();
+
+    var cur = 0u;
+    var s = 1u;
+    loop {
+        if s >= len {
+            break;
+        }
+        let nxt = 1u - cur;
+        for (var j = lid; j < half; j += WG) {
+            let p = j / s;
+            let q = j % s;
+            let a = buf[cur][j];
+            let b = buf[cur][j + half];
+            let w = twiddle_for(p, len / s);
+            buf[nxt][q + 2u * s * p] = a + b;
+            buf[nxt][q + 2u * s * p + s] = cmul(a - b, w);
+        }
+        workgroupBarrier();
+        cur = nxt;
+        s *= 2u;
+    }
+
+    for (var i = lid; i < len; i += WG) {
+        data[first + i * stride] = buf[cur][i];
+    }
+}

@@ -1,0 +1,9 @@
+//! The GPU backend (wgpu): device selection and the compute kernels of `shaders/`.
+//!
+//! Every WGSL kernel has a CPU twin in this module, and a test runs both on the same input.
+
+pub mod context;
+pub mod fft;
+
+pub use context::{list_adapters, test_context, AdapterInfoLine, AdapterPreference, GpuContext};
+pub use fft::GpuFft;
