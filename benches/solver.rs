@@ -176,12 +176,19 @@ fn criterion_benches(c: &mut Criterion) {
     g.finish();
 }
 
-/// Median in ms of `reps` timings of `f` (after one untimed call).
+/// Median in ms of timings of `f`: after 0.2 s of warm-up, at least `reps` of them and at
+/// least 0.5 s worth (so that the short ones are not at the mercy of a single hiccup).
 fn median_ms(reps: usize, mut f: impl FnMut() -> Duration) -> f64 {
-    f();
-    let mut t: Vec<f64> = (0..reps).map(|_| f().as_secs_f64() * 1e3).collect();
+    let t0 = Instant::now();
+    while t0.elapsed() < Duration::from_millis(200) {
+        f();
+    }
+    let (mut t, t0) = (Vec::new(), Instant::now());
+    while t.len() < reps || (t0.elapsed() < Duration::from_millis(500) && t.len() < 10_000) {
+        t.push(f().as_secs_f64() * 1e3);
+    }
     t.sort_by(f64::total_cmp);
-    t[reps / 2]
+    t[t.len() / 2]
 }
 
 fn timed(f: impl FnOnce()) -> Duration {
@@ -192,7 +199,9 @@ fn timed(f: impl FnOnce()) -> Duration {
 
 fn summary(cores: usize) {
     const REPS: usize = 20;
-    println!("\n## CG iteration vs FFT floor (sphere, medians of {REPS}, {cores} cores)\n");
+    println!(
+        "\n## CG iteration vs FFT floor (sphere, medians of ≥ {REPS} timings, {cores} cores)\n"
+    );
     println!("| grid | cores | t_iter none (ms) | t_iter stiffness (ms) | t_fft_pair 2N² (ms) | t_fft_pair N² (ms) | none / 2N² pair | stiffness / (2N² + N² pair) |");
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
     for n in GRIDS {
