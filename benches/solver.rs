@@ -48,14 +48,7 @@ fn model(n: usize, preconditioner: Preconditioner) -> Model {
 }
 
 fn backend(model: &Model) -> CpuBackend {
-    let setup = GridSetup {
-        nx: model.nx,
-        ny: model.ny,
-        dx: model.dx,
-        e_star: model.scene.e_star,
-        profile: model.profile(),
-        preconditioner: model.preconditioner,
-    };
+    let setup = GridSetup::for_model(model);
     CpuBackend::new(&setup).expect("the profile fits the grid")
 }
 

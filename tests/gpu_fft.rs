@@ -5,7 +5,7 @@
 //! Skips with a message when no GPU adapter exists, unless `JKRBEM_REQUIRE_GPU=1`.
 
 use jkrbem::backend::gpu::fft::stockham_twin;
-use jkrbem::backend::gpu::{list_adapters, test_context, GpuFft};
+use jkrbem::backend::gpu::{list_adapters, test_context, GpuContext, GpuFft};
 use rustfft::num_complex::Complex;
 use rustfft::FftPlanner;
 
@@ -88,23 +88,13 @@ fn gpu_fft_matches_rustfft_within_f32_rounding_times_log2n() {
         let mut worst = [0.0f64; 2];
         for batch in [1, 3, 64] {
             for inverse in [false, true] {
-                let data = pseudo_random(batch * n, 1000 * log2n as u64 + batch as u64);
-                let data32: Vec<Complex<f32>> = data
-                    .iter()
-                    .map(|c| Complex::new(c.re as f32, c.im as f32))
-                    .collect();
-                // The CPU reference transforms exactly the f32 values the GPU sees.
-                let exact: Vec<Complex<f64>> = data32
-                    .iter()
-                    .map(|c| Complex::new(c.re as f64, c.im as f64))
-                    .collect();
-                let cpu = reference(&exact, n, inverse);
-                let gpu = fft
-                    .fft_lines(&ctx, &data32, n, inverse)
-                    .expect("GPU FFT runs");
-                let err = relative_error(
-                    gpu.iter().map(|c| Complex::new(c.re as f64, c.im as f64)),
-                    &cpu,
+                let err = gpu_vs_rustfft(
+                    &fft,
+                    &ctx,
+                    n,
+                    batch,
+                    inverse,
+                    1000 * log2n as u64 + batch as u64,
                 );
                 assert!(
                     err <= bound,
@@ -122,6 +112,34 @@ fn gpu_fft_matches_rustfft_within_f32_rounding_times_log2n() {
     println!("GPU FFT checks took {:.2?}", start.elapsed());
 }
 
+/// Max relative error of the GPU FFT of `batch` lines of `n` pseudo-random values against
+/// rustfft applied to exactly the f32 values the GPU sees.
+fn gpu_vs_rustfft(
+    fft: &GpuFft,
+    ctx: &GpuContext,
+    n: usize,
+    batch: usize,
+    inverse: bool,
+    seed: u64,
+) -> f64 {
+    let data32: Vec<Complex<f32>> = pseudo_random(batch * n, seed)
+        .iter()
+        .map(|c| Complex::new(c.re as f32, c.im as f32))
+        .collect();
+    let exact: Vec<Complex<f64>> = data32
+        .iter()
+        .map(|c| Complex::new(c.re as f64, c.im as f64))
+        .collect();
+    let cpu = reference(&exact, n, inverse);
+    let gpu = fft
+        .fft_lines(ctx, &data32, n, inverse)
+        .expect("GPU FFT runs");
+    relative_error(
+        gpu.iter().map(|c| Complex::new(c.re as f64, c.im as f64)),
+        &cpu,
+    )
+}
+
 #[test]
 fn gpu_fft_global_memory_stages_match_rustfft() {
     let Some(ctx) = test_context() else { return };
@@ -134,22 +152,7 @@ fn gpu_fft_global_memory_stages_match_rustfft() {
         let bound = 1e-6 * log2n as f64;
         let mut worst = 0.0f64;
         for (batch, inverse) in [(1, false), (5, true)] {
-            let data32: Vec<Complex<f32>> = pseudo_random(batch * n, 77 + log2n as u64)
-                .iter()
-                .map(|c| Complex::new(c.re as f32, c.im as f32))
-                .collect();
-            let exact: Vec<Complex<f64>> = data32
-                .iter()
-                .map(|c| Complex::new(c.re as f64, c.im as f64))
-                .collect();
-            let cpu = reference(&exact, n, inverse);
-            let gpu = fft
-                .fft_lines(&ctx, &data32, n, inverse)
-                .expect("GPU FFT runs");
-            let err = relative_error(
-                gpu.iter().map(|c| Complex::new(c.re as f64, c.im as f64)),
-                &cpu,
-            );
+            let err = gpu_vs_rustfft(&fft, &ctx, n, batch, inverse, 77 + log2n as u64);
             assert!(
                 err <= bound,
                 "global path n={n} batch={batch} inverse={inverse}: error {err:e} > {bound:e}"

@@ -137,14 +137,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             model.nx
         ))
     });
-    let setup = GridSetup {
-        nx: model.nx,
-        ny: model.ny,
-        dx: model.dx,
-        e_star: scene.e_star,
-        profile: model.profile(),
-        preconditioner: model.preconditioner,
-    };
+    let setup = GridSetup::for_model(&model);
     let mut backend = CpuBackend::new(&setup).map_err(failed)?;
     eprintln!(
         "jkrbem: R1/R2 = {}, grid {}×{}, Δx = {:.4e}, backend {} ({})",

@@ -16,15 +16,7 @@ pub struct Run {
 
 /// The CPU backend for a model.
 pub fn cpu_backend(model: &Model) -> CpuBackend {
-    CpuBackend::new(&GridSetup {
-        nx: model.nx,
-        ny: model.ny,
-        dx: model.dx,
-        e_star: model.scene.e_star,
-        profile: model.profile(),
-        preconditioner: model.preconditioner,
-    })
-    .expect("grid setup is consistent")
+    CpuBackend::new(&GridSetup::for_model(model)).expect("grid setup is consistent")
 }
 
 /// The model of R1/R2 = `ratio` (R2 = E* = Δγ = 1).

@@ -28,6 +28,20 @@ pub struct GridSetup {
     pub preconditioner: Preconditioner,
 }
 
+impl GridSetup {
+    /// The setup a model asks for: its grid, element size, material, profile and preconditioner.
+    pub fn for_model(model: &crate::model::Model) -> Self {
+        GridSetup {
+            nx: model.nx,
+            ny: model.ny,
+            dx: model.dx,
+            e_star: model.scene.e_star,
+            profile: model.profile(),
+            preconditioner: model.preconditioner,
+        }
+    }
+}
+
 /// The CPU backend (f64).
 pub struct CpuBackend {
     nx: usize,
