@@ -14,6 +14,7 @@
 pub mod cpu;
 pub mod gpu;
 pub mod kernel;
+pub mod select;
 
 use thiserror::Error;
 
@@ -73,6 +74,17 @@ pub struct ContactChange {
     pub n_contact: usize,
     /// Elements in C that touch the domain's outer ring of elements.
     pub at_edge: usize,
+}
+
+/// Work a backend has done since it was created, for benchmarks and reports.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Compute kernels launched on the device (0 for the CPU backend).
+    pub dispatches: u64,
+    /// Blocking reads of device memory by the host (scalars or fields).
+    pub readbacks: u64,
+    /// Command submissions to the device queue.
+    pub submits: u64,
 }
 
 /// The operations the solver needs, over fields resident on a device.
@@ -175,4 +187,9 @@ pub trait Backend {
     fn copy(&mut self, src: &Self::Field, dst: &mut Self::Field) -> Result<(), BackendError>;
     /// (Σ_C p, |C|): total pressure sum (stress; multiply by Δx² for force) and contact count.
     fn sum_and_count(&mut self, p: &Self::Field) -> Result<(f64, usize), BackendError>;
+
+    /// Work done since creation (zeros where a backend does not count).
+    fn counters(&self) -> Counters {
+        Counters::default()
+    }
 }

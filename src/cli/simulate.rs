@@ -3,8 +3,9 @@
 use super::{failed, input, CliError};
 use clap::ValueEnum;
 use indicatif::{ProgressBar, ProgressStyle};
-use jkrbem::backend::cpu::{CpuBackend, GridSetup};
-use jkrbem::backend::{Backend, Preconditioner};
+use jkrbem::backend::cpu::GridSetup;
+use jkrbem::backend::select::{self, BackendKind};
+use jkrbem::backend::{Backend, BackendError, Preconditioner};
 use jkrbem::model::{Model, ModelOptions};
 use jkrbem::output::states_csv::StateWriter;
 use jkrbem::output::summary::Summary;
@@ -23,6 +24,17 @@ pub enum BackendChoice {
     Cpu,
     /// The wgpu GPU backend (f32).
     Gpu,
+}
+
+impl BackendChoice {
+    /// The library's name for this choice.
+    pub fn kind(self) -> BackendKind {
+        match self {
+            BackendChoice::Auto => BackendKind::Auto,
+            BackendChoice::Cpu => BackendKind::Cpu,
+            BackendChoice::Gpu => BackendKind::Gpu,
+        }
+    }
 }
 
 /// Preconditioner of the CG solves.
@@ -81,7 +93,8 @@ pub struct Args {
     /// CG preconditioner.
     #[arg(long, value_enum, default_value_t = PreconditionerChoice::Stiffness)]
     pub preconditioner: PreconditionerChoice,
-    /// Backend: auto, cpu or gpu.
+    /// Backend: `cpu` (f64, rustfft), `gpu` (f32, wgpu; the best adapter, a software one such
+    /// as lavapipe included) or `auto` (a hardware GPU if present, else the CPU).
     #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
     pub backend: BackendChoice,
     /// States CSV [default: jkrbem-out/simulate-r<ratio>-n<grid>.csv]. While running it is named
@@ -125,11 +138,6 @@ impl Args {
 pub fn run(args: Args) -> Result<(), CliError> {
     let scene = args.scene()?;
     let model = Model::build(&scene, &args.options()).map_err(input)?;
-    if args.backend == BackendChoice::Gpu {
-        return Err(input(
-            "--backend gpu: the GPU backend is not available in this build yet; use --backend cpu",
-        ));
-    }
     let out = args.out.clone().unwrap_or_else(|| {
         PathBuf::from(format!(
             "jkrbem-out/simulate-r{}-n{}.csv",
@@ -138,21 +146,39 @@ pub fn run(args: Args) -> Result<(), CliError> {
         ))
     });
     let setup = GridSetup::for_model(&model);
-    let mut backend = CpuBackend::new(&setup).map_err(failed)?;
+    let opened = select::open(args.backend.kind(), &setup).map_err(backend_error)?;
     eprintln!(
-        "jkrbem: R1/R2 = {}, grid {}×{}, Δx = {:.4e}, backend {} ({})",
+        "jkrbem: R1/R2 = {}, grid {}×{}, Δx = {:.4e}, backend {}",
         scene.ratio(),
         model.nx,
         model.ny,
         model.dx,
-        backend.name(),
-        backend.precision()
+        opened.note
     );
-    let mut writer = StateWriter::create(&out).map_err(failed)?;
+    let mut any = opened.backend;
+    jkrbem::with_backend!(&mut any, backend => run_on(backend, &args, &model, &out))
+}
+
+/// A backend that could not be opened: a refused grid or a missing device is bad input.
+pub fn backend_error(e: BackendError) -> CliError {
+    match e {
+        BackendError::GridTooLarge { .. } | BackendError::Unavailable(_) => input(e),
+        BackendError::DeviceLost { .. } => failed(e),
+    }
+}
+
+/// Run the model on an opened backend, writing the states CSV at `out` and the summary.
+fn run_on<B: Backend>(
+    backend: &mut B,
+    args: &Args,
+    model: &Model,
+    out: &std::path::Path,
+) -> Result<(), CliError> {
+    let mut writer = StateWriter::create(out).map_err(failed)?;
     let progress = progress_bar();
     let mut write_error = None;
     let start = Instant::now();
-    let outcome = solver::run(&mut backend, &model, &mut |s| {
+    let outcome = solver::run(backend, model, &mut |s| {
         progress.set_message(format!(
             "state {}: d̄ = {:+.4}, F̄ = {:+.4}, c̄ = {:.4}",
             s.step, s.d_bar, s.f_bar, s.c_bar
@@ -169,7 +195,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
     let path = writer.finish(outcome.complete()).map_err(failed)?;
     let summary = Summary::new(
-        &model,
+        model,
         &outcome,
         (backend.name(), backend.precision()),
         wall,

@@ -2,8 +2,10 @@
 //!
 //! Every WGSL kernel has a CPU twin in this module, and a test runs both on the same input.
 
+pub mod backend;
 pub mod context;
 pub mod fft;
 
+pub use backend::{GpuBackend, GpuField};
 pub use context::{list_adapters, test_context, AdapterInfoLine, AdapterPreference, GpuContext};
 pub use fft::GpuFft;

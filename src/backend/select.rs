@@ -1,0 +1,98 @@
+//! Opening the backend a user asked for: `cpu`, `gpu` (the best adapter) or `auto` (a
+//! hardware GPU if there is one, else the CPU), behind one enum the solver is dispatched on.
+
+use super::cpu::{CpuBackend, GridSetup};
+use super::gpu::{AdapterPreference, GpuBackend, GpuContext};
+use super::BackendError;
+
+/// Which backend to open.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BackendKind {
+    /// A hardware GPU if there is one, else the CPU backend.
+    #[default]
+    Auto,
+    /// The rustfft CPU backend (f64).
+    Cpu,
+    /// The wgpu backend (f32) on the best adapter, software adapters included.
+    Gpu,
+}
+
+/// An opened backend of either kind.
+pub enum AnyBackend {
+    /// The CPU backend.
+    Cpu(CpuBackend),
+    /// The GPU backend.
+    Gpu(Box<GpuBackend>),
+}
+
+/// A backend and a line saying what was chosen and why (for the user).
+pub struct Opened {
+    /// The backend.
+    pub backend: AnyBackend,
+    /// E.g. "gpu: NVIDIA H100 [discrete GPU, Vulkan, …]" or "cpu (auto: no hardware GPU: …)".
+    pub note: String,
+}
+
+/// Open the backend `kind` for `setup`.
+///
+/// `gpu` takes the best adapter (discrete, integrated, virtual, then software such as
+/// lavapipe, saying so) and fails if there is none or the grid does not fit; `auto` takes a
+/// hardware GPU whose limits hold the grid, and otherwise the CPU backend, saying why.
+pub fn open(kind: BackendKind, setup: &GridSetup) -> Result<Opened, BackendError> {
+    let cpu = |why: String| -> Result<Opened, BackendError> {
+        Ok(Opened {
+            backend: AnyBackend::Cpu(CpuBackend::new(setup)?),
+            note: why,
+        })
+    };
+    match kind {
+        BackendKind::Cpu => cpu("cpu (f64, rustfft)".into()),
+        BackendKind::Gpu => {
+            let ctx = GpuContext::new(AdapterPreference::Best)?;
+            let mut note = format!("gpu (f32, wgpu) on {}", ctx.adapter_summary());
+            if !ctx.is_hardware() {
+                note.push_str(" — a software adapter: expect it to be slower than --backend cpu");
+            }
+            let backend = GpuBackend::new(ctx, setup)?;
+            Ok(Opened {
+                backend: AnyBackend::Gpu(Box::new(backend)),
+                note,
+            })
+        }
+        BackendKind::Auto => match GpuContext::new(AdapterPreference::Best) {
+            Ok(ctx) if ctx.is_hardware() => {
+                let summary = ctx.adapter_summary();
+                match GpuBackend::new(ctx, setup) {
+                    Ok(b) => Ok(Opened {
+                        backend: AnyBackend::Gpu(Box::new(b)),
+                        note: format!("gpu (f32, wgpu) on {summary} (auto: hardware GPU found)"),
+                    }),
+                    Err(e) => cpu(format!("cpu (f64, rustfft) (auto: {summary} refused: {e})")),
+                }
+            }
+            Ok(ctx) => cpu(format!(
+                "cpu (f64, rustfft) (auto: the only GPU adapter is software: {})",
+                ctx.adapter_summary()
+            )),
+            Err(e) => cpu(format!("cpu (f64, rustfft) (auto: {e})")),
+        },
+    }
+}
+
+/// Run `$body` with `$b` bound to `&mut` the concrete backend inside an [`AnyBackend`], so
+/// generic solver code is monomorphised for each backend.
+#[macro_export]
+macro_rules! with_backend {
+    ($any:expr, $b:ident => $body:expr) => {
+        match $any {
+            $crate::backend::select::AnyBackend::Cpu(cpu) => {
+                let $b = cpu;
+                $body
+            }
+            $crate::backend::select::AnyBackend::Gpu(gpu) => {
+                let $b = &mut **gpu;
+                $body
+            }
+        }
+    };
+}
