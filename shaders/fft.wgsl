@@ -52,9 +52,10 @@ fn cmul(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
 }
 
-// e^{∓2πi p / len}: the forward (−) or inverse (+) twiddle of a stage of length len.
-fn twiddle_for(p: u32, len: u32) -> vec2<f32> {
-    let w = twiddle[p * (params.n_max / len)];
+// e^{∓2πi p / len} for len = 2^log_len: the forward (−) or inverse (+) twiddle of a stage.
+// Every length is a power of two, so indices use shifts and masks instead of divisions.
+fn twiddle_for(p: u32, log_len: u32) -> vec2<f32> {
+    let w = twiddle[p << (countTrailingZeros(params.n_max) - log_len)];
     return select(w, vec2<f32>(w.x, -w.y), params.inverse != 0u);
 }
 
@@ -69,64 +70,80 @@ fn fft_global_stage(
     if idx >= params.batch * half {
         return;
     }
-    let line = idx / half;
-    let j = idx % half;
+    let log_half = countTrailingZeros(half);
+    let line = idx >> log_half;
+    let j = idx & (half - 1u);
     let s = params.stride;
-    let p = j / s;
-    let q = j % s;
+    let log_s = countTrailingZeros(s);
+    let p = j >> log_s;
+    let q = j & (s - 1u);
     let base = line * params.n;
     let a = src[base + j];
     let b = src[base + j + half];
-    let w = twiddle_for(p, params.n / s);
+    let w = twiddle_for(p, log_half + 1u - log_s);
     dst[base + q + 2u * s * p] = a + b;
     dst[base + q + 2u * s * p + s] = cmul(a - b, w);
 }
 
-// The remaining stages of one sub-line (elements base + q + stride·i, i in [0, n/stride))
-// in workgroup memory; one workgroup per (line, q).
+// The remaining stages of sub-lines (elements line·n + q + stride·i, i in [0, n/stride)) in
+// workgroup memory. Sub-line g = line·stride + q; one workgroup takes LPG consecutive
+// sub-lines, LPG = max(1, min(2·WG, SMEM) / len), so short lines keep every thread busy.
 @compute @workgroup_size(WG)
 fn fft_shared(
     @builtin(local_invocation_index) lid: u32,
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) nwg: vec3<u32>,
 ) {
-    let g = wid.x + wid.y * nwg.x;
     let stride = params.stride;
-    let len = params.n / stride;
-    let line = g / stride;
-    if line >= params.batch {
-        return;
-    }
-    let first = line * params.n + g % stride;
+    let log_stride = countTrailingZeros(stride);
+    let log_n = countTrailingZeros(params.n);
+    let log_len = log_n - log_stride;
+    let len = 1u << log_len;
+    let lpg = max(1u, min(2u * WG, SMEM) >> log_len);
+    let g0 = (wid.x + wid.y * nwg.x) * lpg;
+    let total = params.batch * stride;
     let half = len / 2u;
+    let log_half = log_len - 1u;
 
-    for (var i = lid; i < len; i += WG) {
-        buf[0][i] = data[first + i * stride];
+    for (var t = lid; t < lpg * len; t += WG) {
+        let g = g0 + (t >> log_len);
+        if g < total {
+            let at = ((g >> log_stride) << log_n) + (g & (stride - 1u)) + ((t & (len - 1u)) << log_stride);
+            buf[0][t] = data[at];
+        }
     }
     workgroupBarrier();
 
     var cur = 0u;
-    var s = 1u;
+    var log_s = 0u;
     loop {
-        if s >= len {
+        if log_s >= log_len {
             break;
         }
+        let s = 1u << log_s;
         let nxt = 1u - cur;
-        for (var j = lid; j < half; j += WG) {
-            let p = j / s;
-            let q = j % s;
-            let a = buf[cur][j];
-            let b = buf[cur][j + half];
-            let w = twiddle_for(p, len / s);
-            buf[nxt][q + 2u * s * p] = a + b;
-            buf[nxt][q + 2u * s * p + s] = cmul(a - b, w);
+        for (var t = lid; t < lpg * half; t += WG) {
+            let base = (t >> log_half) << log_len;
+            let j = t & (half - 1u);
+            let p = j >> log_s;
+            let q = j & (s - 1u);
+            let a = buf[cur][base + j];
+            let b = buf[cur][base + j + half];
+            let w = twiddle_for(p, log_len - log_s);
+            let o = base + q + ((p << log_s) << 1u);
+            buf[nxt][o] = a + b;
+            buf[nxt][o + s] = cmul(a - b, w);
         }
         workgroupBarrier();
         cur = nxt;
-        s *= 2u;
+        log_s += 1u;
     }
 
-    for (var i = lid; i < len; i += WG) {
-        data[first + i * stride] = buf[cur][i];
+    for (var t = lid; t < lpg * len; t += WG) {
+        let g = g0 + (t >> log_len);
+        if g < total {
+            let at = ((g >> log_stride) << log_n) + (g & (stride - 1u)) + ((t & (len - 1u)) << log_stride);
+            data[at] = buf[cur][t];
+        }
     }
 }

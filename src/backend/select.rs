@@ -20,7 +20,7 @@ pub enum BackendKind {
 /// An opened backend of either kind.
 pub enum AnyBackend {
     /// The CPU backend.
-    Cpu(CpuBackend),
+    Cpu(Box<CpuBackend>),
     /// The GPU backend.
     Gpu(Box<GpuBackend>),
 }
@@ -41,7 +41,7 @@ pub struct Opened {
 pub fn open(kind: BackendKind, setup: &GridSetup) -> Result<Opened, BackendError> {
     let cpu = |why: String| -> Result<Opened, BackendError> {
         Ok(Opened {
-            backend: AnyBackend::Cpu(CpuBackend::new(setup)?),
+            backend: AnyBackend::Cpu(Box::new(CpuBackend::new(setup)?)),
             note: why,
         })
     };
@@ -86,7 +86,7 @@ macro_rules! with_backend {
     ($any:expr, $b:ident => $body:expr) => {
         match $any {
             $crate::backend::select::AnyBackend::Cpu(cpu) => {
-                let $b = cpu;
+                let $b = &mut **cpu;
                 $body
             }
             $crate::backend::select::AnyBackend::Gpu(gpu) => {

@@ -47,3 +47,27 @@ pub fn run_model(model: Model) -> Run {
 pub fn gpu_required() -> bool {
     std::env::var("JKRBEM_REQUIRE_GPU").is_ok_and(|v| v == "1")
 }
+
+/// Deterministic pseudo-random values in [−1, 1) (64-bit LCG, top bits).
+pub fn pseudo_random(n: usize, seed: u64) -> Vec<f64> {
+    let mut x = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    (0..n)
+        .map(|_| {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        })
+        .collect()
+}
+
+/// The GPU backend for a setup on the best adapter; `None` (test skipped, reason printed)
+/// when there is no adapter, unless `JKRBEM_REQUIRE_GPU=1`, which makes that a failure.
+pub fn gpu_backend(
+    setup: &jkrbem::backend::cpu::GridSetup,
+) -> Option<jkrbem::backend::gpu::GpuBackend> {
+    let ctx = jkrbem::backend::gpu::test_context()?;
+    Some(jkrbem::backend::gpu::GpuBackend::new(ctx, setup).expect("GPU backend opens"))
+}

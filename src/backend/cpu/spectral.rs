@@ -65,6 +65,16 @@ impl SpectralFilter {
         self.hx
     }
 
+    /// The symbol in use (column-major, hx × my), already divided by mx·my.
+    pub fn symbol(&self) -> &[f64] {
+        &self.symbol
+    }
+
+    /// Transform size (mx, my).
+    pub fn transform_shape(&self) -> (usize, usize) {
+        (self.mx, self.my)
+    }
+
     /// Use `symbol` (column-major, hx × my, `kx * my + ky`) as the filter's multiplier.
     pub fn set_symbol(&mut self, symbol: &[f64]) {
         assert_eq!(symbol.len(), self.hx * self.my);

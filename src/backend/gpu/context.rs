@@ -1,6 +1,7 @@
 //! Choosing a wgpu adapter and opening a device on it.
 
 use crate::backend::BackendError;
+use std::sync::{Arc, Mutex};
 
 /// Which kind of adapter [`GpuContext::new`] should open.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -55,6 +56,8 @@ pub struct GpuContext {
     queue: wgpu::Queue,
     info: wgpu::AdapterInfo,
     limits: wgpu::Limits,
+    /// The first validation error, out-of-memory or device loss the driver reported.
+    failure: Arc<Mutex<Option<String>>>,
 }
 
 impl std::fmt::Debug for GpuContext {
@@ -172,11 +175,21 @@ impl GpuContext {
             ..Default::default()
         }))
         .map_err(|e| BackendError::Unavailable(format!("{}: {e}", info.name)))?;
+        let failure: Arc<Mutex<Option<String>>> = Arc::default();
+        let sink = failure.clone();
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            record_failure(&sink, e.to_string());
+        }));
+        let sink = failure.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            record_failure(&sink, format!("device lost ({reason:?}): {message}"));
+        });
         Ok(GpuContext {
             device,
             queue,
             info,
             limits,
+            failure,
         })
     }
 
@@ -222,7 +235,7 @@ impl GpuContext {
         )
     }
 
-    /// Blocks until all submitted work has finished.
+    /// Blocks until all submitted work has finished; fails if the device reported an error.
     pub fn wait(&self) -> Result<(), BackendError> {
         self.device
             .poll(wgpu::PollType::wait_indefinitely())
@@ -230,7 +243,36 @@ impl GpuContext {
             .map_err(|e| BackendError::DeviceLost {
                 backend: "gpu",
                 reason: e.to_string(),
-            })
+            })?;
+        self.check()
+    }
+
+    /// Fails with [`BackendError::DeviceLost`] if the driver has reported a lost device, an
+    /// out-of-memory or a validation error since the device was opened.
+    pub fn check(&self) -> Result<(), BackendError> {
+        match self.failure.lock().map(|f| f.clone()) {
+            Ok(None) => Ok(()),
+            Ok(Some(reason)) => Err(BackendError::DeviceLost {
+                backend: "gpu",
+                reason,
+            }),
+            Err(_) => Err(BackendError::DeviceLost {
+                backend: "gpu",
+                reason: "the error record was poisoned".into(),
+            }),
+        }
+    }
+
+    /// Destroys the device, as a driver reset would: every later operation fails with
+    /// [`BackendError::DeviceLost`]. For tests of the device-loss path.
+    pub fn lose_device(&self) {
+        self.device.destroy();
+    }
+}
+
+fn record_failure(sink: &Mutex<Option<String>>, message: String) {
+    if let Ok(mut f) = sink.lock() {
+        f.get_or_insert(message);
     }
 }
 

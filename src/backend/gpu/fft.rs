@@ -6,8 +6,6 @@
 //! radix-2 Stockham stages in global memory (one dispatch each) and then finish in workgroup
 //! memory. Twiddles e^{-2πik/n_max} are computed on the host in f64 and uploaded as f32.
 
-use std::sync::Mutex;
-
 use rustfft::num_complex::Complex;
 use wgpu::util::DeviceExt;
 
@@ -34,6 +32,23 @@ struct FftParams {
     pad: [u32; 3],
 }
 
+/// One dispatch of a plan.
+struct FftPass {
+    /// A global-memory stage (else the shared-memory finish).
+    global: bool,
+    bind: wgpu::BindGroup,
+    grid: (u32, u32),
+}
+
+/// The dispatches of one batched transform of a fixed buffer (see [`GpuFft::plan`]).
+pub struct FftPlan {
+    passes: Vec<FftPass>,
+    /// (scratch, buffer, bytes) when the result ends in the scratch buffer.
+    copy_back: Option<(wgpu::Buffer, wgpu::Buffer, u64)>,
+    /// Uniform buffers the bind groups refer to.
+    _params: Vec<wgpu::Buffer>,
+}
+
 /// Compiled FFT pipelines and the twiddle table, built once per device.
 pub struct GpuFft {
     global_stage: wgpu::ComputePipeline,
@@ -41,7 +56,6 @@ pub struct GpuFft {
     twiddles: wgpu::Buffer,
     n_max: u32,
     shared_max: u32,
-    scratch: Mutex<Option<wgpu::Buffer>>,
 }
 
 impl std::fmt::Debug for GpuFft {
@@ -147,7 +161,6 @@ impl GpuFft {
             twiddles,
             n_max,
             shared_max,
-            scratch: Mutex::new(None),
         })
     }
 
@@ -185,17 +198,17 @@ impl GpuFft {
             })
     }
 
-    /// Transforms, in place, `batch` contiguous lines of `n` complex values held in `buffer`
-    /// (`vec2<f32>`; usages STORAGE | COPY_SRC | COPY_DST). The inverse is unnormalised.
-    /// The work is submitted, not waited for.
-    pub fn run(
+    /// Records the dispatches that transform, in place, `batch` contiguous lines of `n`
+    /// complex values held in `buffer` (`vec2<f32>`; usages STORAGE | COPY_SRC | COPY_DST).
+    /// The inverse is unnormalised. Run the plan with [`GpuFft::encode`] as often as needed.
+    pub fn plan(
         &self,
         ctx: &GpuContext,
         buffer: &wgpu::Buffer,
         n: usize,
         batch: usize,
         inverse: bool,
-    ) -> Result<(), BackendError> {
+    ) -> Result<FftPlan, BackendError> {
         let too_large = |reason: String| BackendError::GridTooLarge {
             nx: n,
             ny: batch,
@@ -221,38 +234,33 @@ impl GpuFft {
                 limits.max_storage_buffer_binding_size
             )));
         }
+        let mut plan = FftPlan {
+            passes: Vec::new(),
+            copy_back: None,
+            _params: Vec::new(),
+        };
         if batch == 0 {
-            return Ok(());
+            return Ok(plan);
         }
         let (n32, batch32) = (n as u32, batch as u32);
         let device = ctx.device();
         let max_dim = limits.max_compute_workgroups_per_dimension;
-        let mut encoder = device.create_command_encoder(&Default::default());
-
         let shared_max = self.shared_max.min(n32);
         let global_stages = (n32 / shared_max).trailing_zeros();
-        let scratch_guard;
-        let mut target = buffer;
+        let mut target = buffer.clone();
         if global_stages > 0 {
-            let mut guard = self.scratch.lock().expect("scratch lock");
-            if guard.as_ref().is_none_or(|s| s.size() < bytes) {
-                *guard = Some(device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("fft scratch"),
-                    size: bytes,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                    mapped_at_creation: false,
-                }));
-            }
-            scratch_guard = guard;
-            let scratch = scratch_guard.as_ref().expect("scratch allocated");
+            let scratch = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("fft scratch"),
+                size: bytes,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
             let layout = self.global_stage.get_bind_group_layout(0);
-            let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&self.global_stage);
             for k in 0..global_stages {
                 let (src, dst) = if k % 2 == 0 {
-                    (buffer, scratch)
+                    (buffer, &scratch)
                 } else {
-                    (scratch, buffer)
+                    (&scratch, buffer)
                 };
                 let params = self.params(ctx, n32, batch32, 1 << k, inverse);
                 let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -261,41 +269,77 @@ impl GpuFft {
                     entries: &[
                         bind(0, &params),
                         bind(1, &self.twiddles),
-                        wgpu::BindGroupEntry {
-                            binding: 3,
-                            resource: src.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 4,
-                            resource: dst.as_entire_binding(),
-                        },
+                        bind(3, src),
+                        bind(4, dst),
                     ],
                 });
-                pass.set_bind_group(0, &bind, &[]);
                 let groups = (batch32 * (n32 / 2)).div_ceil(WORKGROUP);
-                let (x, y) = dispatch_grid(groups, max_dim);
-                pass.dispatch_workgroups(x, y, 1);
-                target = dst;
+                plan.passes.push(FftPass {
+                    global: true,
+                    bind,
+                    grid: dispatch_grid(groups, max_dim),
+                });
+                plan._params.push(params);
+            }
+            if global_stages % 2 == 1 {
+                target = scratch.clone();
+                plan.copy_back = Some((scratch, buffer.clone(), bytes));
             }
         }
-
-        let stride = n32 / shared_max;
+        let stride = 1u32 << global_stages;
         let params = self.params(ctx, n32, batch32, stride, inverse);
+        let layout = self.shared.get_bind_group_layout(0);
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("fft shared"),
-            layout: &self.shared.get_bind_group_layout(0),
-            entries: &[bind(0, &params), bind(1, &self.twiddles), bind(2, target)],
+            layout: &layout,
+            entries: &[bind(0, &params), bind(1, &self.twiddles), bind(2, &target)],
         });
+        // Sub-lines per workgroup: must equal `lpg` in fft_shared.
+        let len = n32 / stride;
+        let lines_per_group = ((2 * WORKGROUP).min(self.shared_max) / len).max(1);
+        plan.passes.push(FftPass {
+            global: false,
+            bind,
+            grid: dispatch_grid((batch32 * stride).div_ceil(lines_per_group), max_dim),
+        });
+        plan._params.push(params);
+        Ok(plan)
+    }
+
+    /// Appends a plan's dispatches to `encoder`; returns the number of dispatches.
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, plan: &FftPlan) -> u64 {
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&self.shared);
-            pass.set_bind_group(0, &bind, &[]);
-            let (x, y) = dispatch_grid(batch32 * stride, max_dim);
-            pass.dispatch_workgroups(x, y, 1);
+            for p in &plan.passes {
+                pass.set_pipeline(if p.global {
+                    &self.global_stage
+                } else {
+                    &self.shared
+                });
+                pass.set_bind_group(0, &p.bind, &[]);
+                pass.dispatch_workgroups(p.grid.0, p.grid.1, 1);
+            }
         }
-        if !std::ptr::eq(target, buffer) {
-            encoder.copy_buffer_to_buffer(target, 0, buffer, 0, bytes);
+        if let Some((src, dst, bytes)) = &plan.copy_back {
+            encoder.copy_buffer_to_buffer(src, 0, dst, 0, *bytes);
         }
+        plan.passes.len() as u64
+    }
+
+    /// Transforms, in place, `batch` contiguous lines of `n` complex values held in `buffer`
+    /// (`vec2<f32>`; usages STORAGE | COPY_SRC | COPY_DST). The inverse is unnormalised.
+    /// The work is submitted, not waited for.
+    pub fn run(
+        &self,
+        ctx: &GpuContext,
+        buffer: &wgpu::Buffer,
+        n: usize,
+        batch: usize,
+        inverse: bool,
+    ) -> Result<(), BackendError> {
+        let plan = self.plan(ctx, buffer, n, batch, inverse)?;
+        let mut encoder = ctx.device().create_command_encoder(&Default::default());
+        self.encode(&mut encoder, &plan);
         ctx.queue().submit([encoder.finish()]);
         Ok(())
     }

