@@ -25,6 +25,8 @@ enum Command {
     Simulate(cli::simulate::Args),
     /// Write a closed-form curve (Hertz, JKR or Johnson–Greenwood) as CSV.
     Theory(cli::theory::Args),
+    /// List the GPU adapters wgpu sees, with their limits and the largest grid each holds.
+    Devices(cli::devices::Args),
 }
 
 fn main() -> ExitCode {
@@ -32,6 +34,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Simulate(a) => cli::simulate::run(a),
         Command::Theory(a) => cli::theory::run(a),
+        Command::Devices(a) => cli::devices::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

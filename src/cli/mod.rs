@@ -1,5 +1,6 @@
 //! One module per subcommand, and the error type they share.
 
+pub mod devices;
 pub mod simulate;
 pub mod theory;
 

@@ -15,6 +15,9 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 
+/// Default CG readback interval on the GPU (iterations).
+const GPU_CHECK_EVERY: usize = 2;
+
 /// Which backend runs the solver.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum BackendChoice {
@@ -90,6 +93,10 @@ pub struct Args {
     /// CG iteration limit per solve.
     #[arg(long, default_value_t = 5000)]
     pub cg_max_iterations: usize,
+    /// Read CG's residual back to the host every this many iterations [default: 1 on the CPU,
+    /// 2 on the GPU, where each readback waits for the device].
+    #[arg(long)]
+    pub cg_check_every: Option<usize>,
     /// CG preconditioner.
     #[arg(long, value_enum, default_value_t = PreconditionerChoice::Stiffness)]
     pub preconditioner: PreconditionerChoice,
@@ -137,7 +144,10 @@ impl Args {
 /// Run `jkrbem simulate`.
 pub fn run(args: Args) -> Result<(), CliError> {
     let scene = args.scene()?;
-    let model = Model::build(&scene, &args.options()).map_err(input)?;
+    let mut model = Model::build(&scene, &args.options()).map_err(input)?;
+    if args.cg_check_every == Some(0) {
+        return Err(input("--cg-check-every must be at least 1"));
+    }
     let out = args.out.clone().unwrap_or_else(|| {
         PathBuf::from(format!(
             "jkrbem-out/simulate-r{}-n{}.csv",
@@ -156,6 +166,13 @@ pub fn run(args: Args) -> Result<(), CliError> {
         opened.note
     );
     let mut any = opened.backend;
+    model.cg.check_every =
+        args.cg_check_every
+            .unwrap_or(if matches!(any, select::AnyBackend::Gpu(_)) {
+                GPU_CHECK_EVERY
+            } else {
+                1
+            });
     jkrbem::with_backend!(&mut any, backend => run_on(backend, &args, &model, &out))
 }
 

@@ -152,10 +152,7 @@ pub fn check_fits(limits: &wgpu::Limits, nx: usize, ny: usize) -> Result<(), Bac
     if need <= limit && nx * ny <= u32::MAX as usize / 4 {
         return Ok(());
     }
-    let mut n = 16usize;
-    while largest_buffer_bytes(4 * n, 4 * n) <= limit {
-        n *= 2;
-    }
+    let n = largest_square_grid(limits);
     Err(BackendError::GridTooLarge {
         nx,
         ny,
@@ -167,6 +164,19 @@ pub fn check_fits(limits: &wgpu::Limits, nx: usize, ny: usize) -> Result<(), Bac
             limit >> 20
         ),
     })
+}
+
+/// The largest square power-of-two grid N × N whose buffers the adapter's limits allow
+/// (its padded column spectrum, (N + 1)·2N complex f32 values, in one binding).
+pub fn largest_square_grid(limits: &wgpu::Limits) -> usize {
+    let limit = limits
+        .max_storage_buffer_binding_size
+        .min(limits.max_buffer_size);
+    let mut n = 4usize;
+    while largest_buffer_bytes(4 * n, 4 * n) <= limit && n < 1 << 20 {
+        n *= 2;
+    }
+    n
 }
 
 fn storage(ctx: &GpuContext, label: &str, bytes: u64) -> wgpu::Buffer {
@@ -633,5 +643,25 @@ impl Backend for GpuBackend {
 
     fn counters(&self) -> Counters {
         self.rec.counters
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_limits_name_the_limit_and_what_fits() {
+        let limits = wgpu::Limits {
+            max_storage_buffer_binding_size: 128 << 20,
+            max_buffer_size: 256 << 20,
+            ..wgpu::Limits::default()
+        };
+        assert!(check_fits(&limits, 2048, 2048).is_ok());
+        assert_eq!(largest_square_grid(&limits), 2048);
+        let err = check_fits(&limits, 4096, 4096).unwrap_err().to_string();
+        assert!(err.contains("max_storage_buffer_binding_size"), "{err}");
+        assert!(err.contains("2048×2048"), "{err}");
+        assert!(check_fits(&limits, 4096, 1024).is_ok());
     }
 }

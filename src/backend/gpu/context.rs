@@ -33,19 +33,24 @@ pub struct AdapterInfoLine {
     pub max_buffer_size: u64,
     /// Workgroup (shared) memory available to one compute workgroup (bytes).
     pub max_compute_workgroup_storage_size: u32,
+    /// The largest square grid N × N the GPU backend can hold on this adapter (elements).
+    pub largest_grid: usize,
 }
 
 impl std::fmt::Display for AdapterInfoLine {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{} ({}, {}): storage binding {} MiB, buffer {} MiB, workgroup memory {} KiB",
+            "{} ({}, {}): storage binding {} MiB, buffer {} MiB, workgroup memory {} KiB, \
+             grids up to {}×{}",
             self.name,
             self.device_type,
             self.backend,
             self.max_storage_buffer_binding_size >> 20,
             self.max_buffer_size >> 20,
-            self.max_compute_workgroup_storage_size >> 10
+            self.max_compute_workgroup_storage_size >> 10,
+            self.largest_grid,
+            self.largest_grid
         )
     }
 }
@@ -123,6 +128,7 @@ fn info_line(adapter: &wgpu::Adapter) -> AdapterInfoLine {
         max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
         max_buffer_size: limits.max_buffer_size,
         max_compute_workgroup_storage_size: limits.max_compute_workgroup_storage_size,
+        largest_grid: super::backend::largest_square_grid(&limits),
     }
 }
 

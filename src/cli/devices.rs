@@ -1,0 +1,32 @@
+//! `jkrbem devices`: the GPU adapters wgpu sees, best first, with the limits that decide
+//! which grids the GPU backend can hold.
+
+use super::CliError;
+use jkrbem::backend::gpu::list_adapters;
+
+/// Arguments of `jkrbem devices` (none).
+#[derive(Debug, clap::Args)]
+pub struct Args {}
+
+/// Run `jkrbem devices`.
+pub fn run(_args: Args) -> Result<(), CliError> {
+    let adapters = list_adapters();
+    if adapters.is_empty() {
+        println!(
+            "no GPU adapter with compute shaders was found; `--backend auto` will use the CPU \
+             (on Linux without a GPU, Mesa's lavapipe gives a software adapter: \
+             apt-get install mesa-vulkan-drivers libvulkan1)"
+        );
+        return Ok(());
+    }
+    println!("GPU adapters, best first (`--backend gpu` takes the first):");
+    for (i, a) in adapters.iter().enumerate() {
+        let software = if a.device_type == "Cpu" {
+            "  [software: `--backend auto` skips it]"
+        } else {
+            ""
+        };
+        println!("{}. {a}{software}", i + 1);
+    }
+    Ok(())
+}
