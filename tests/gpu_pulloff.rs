@@ -97,3 +97,60 @@ fn losing_the_device_mid_run_keeps_the_states_and_says_so() {
     }
     let _ = gpu.name();
 }
+
+/// One CG solve on the initial Hertz contact at `nx` (sphere), in f32 on the GPU: the
+/// recursive residual must reach the solver's tolerance, and the true residual
+/// ‖(d − h − K p)_C‖/‖(d − h)_C‖, recomputed from p, is reported beside it.
+fn large_grid_cg(nx: usize) {
+    use jkrbem::backend::Slot;
+    use jkrbem::solver::cg::{self, CgWork};
+    let model = model_for(
+        1.0,
+        ModelOptions {
+            nx,
+            ..ModelOptions::default()
+        },
+    );
+    let Some(mut gpu) = gpu_backend(&GridSetup::for_model(&model)) else {
+        return;
+    };
+    gpu.set_contact(&model.initial_contact()).unwrap();
+    let mut work = CgWork::new(&mut gpu).unwrap();
+    let mut p = gpu.field().unwrap();
+    let start = std::time::Instant::now();
+    let report = cg::solve(&mut gpu, &mut work, &mut p, model.d0, &model.cg).unwrap();
+    let wall = start.elapsed().as_secs_f64();
+    let (mut u, mut r, zero) = (gpu.field().unwrap(), gpu.field().unwrap(), gpu.field().unwrap());
+    gpu.residual(&zero, model.d0, &mut r).unwrap();
+    gpu.dot(&r, &r, Slot(6)).unwrap();
+    let mut bb = [0.0];
+    gpu.read_slots(&[Slot(6)], &mut bb).unwrap();
+    gpu.convolve(&p, &mut u).unwrap();
+    gpu.residual(&u, model.d0, &mut r).unwrap();
+    gpu.dot(&r, &r, Slot(6)).unwrap();
+    let mut rr = [0.0];
+    gpu.read_slots(&[Slot(6)], &mut rr).unwrap();
+    println!(
+        "{nx}×{nx} CG on the GPU (f32): {} iterations, recursive residual {:.2e} (tolerance \
+         {:.0e}, converged {}), true residual {:.2e}, {wall:.1} s on {}",
+        report.iterations,
+        report.residual,
+        model.cg.tolerance,
+        report.converged,
+        (rr[0] / bb[0]).sqrt(),
+        gpu.adapter_summary()
+    );
+    assert!(report.converged, "{report:?}");
+}
+
+#[test]
+fn cg_reaches_the_tolerance_at_256() {
+    large_grid_cg(256);
+}
+
+/// Minutes on a software adapter: run with `cargo test --release -- --ignored`.
+#[test]
+#[ignore]
+fn cg_reaches_the_tolerance_at_2048() {
+    large_grid_cg(2048);
+}
