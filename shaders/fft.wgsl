@@ -14,7 +14,9 @@
 // (`fft_shared`); the stages before that run in global memory, one per dispatch
 // (`fft_global_stage`). CPU twin: `jkrbem::backend::gpu::fft::stockham_twin`.
 //
-// The host substitutes SMEM (the largest line held in workgroup memory) before compiling.
+// The host substitutes SMEM (the largest line held in workgroup memory) before compiling, and
+// appends `fft_shared_oop`: a copy of `fft_shared` (the last function of this file) that loads
+// from `src` and stores to `dst`, so an odd number of global stages needs no copy back.
 
 // Must stay in sync with `FftParams` in src/backend/gpu/fft.rs.
 struct Params {

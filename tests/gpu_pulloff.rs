@@ -120,7 +120,11 @@ fn large_grid_cg(nx: usize) {
     let start = std::time::Instant::now();
     let report = cg::solve(&mut gpu, &mut work, &mut p, model.d0, &model.cg).unwrap();
     let wall = start.elapsed().as_secs_f64();
-    let (mut u, mut r, zero) = (gpu.field().unwrap(), gpu.field().unwrap(), gpu.field().unwrap());
+    let (mut u, mut r, zero) = (
+        gpu.field().unwrap(),
+        gpu.field().unwrap(),
+        gpu.field().unwrap(),
+    );
     gpu.residual(&zero, model.d0, &mut r).unwrap();
     gpu.dot(&r, &r, Slot(6)).unwrap();
     let mut bb = [0.0];

@@ -32,10 +32,20 @@ struct FftParams {
     pad: [u32; 3],
 }
 
+/// Which kernel a dispatch of a plan runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum PassKind {
+    /// One radix-2 stage in global memory.
+    Global,
+    /// The workgroup-memory finish, in place.
+    Shared,
+    /// The workgroup-memory finish, from the scratch buffer into the data buffer.
+    SharedOutOfPlace,
+}
+
 /// One dispatch of a plan.
 struct FftPass {
-    /// A global-memory stage (else the shared-memory finish).
-    global: bool,
+    kind: PassKind,
     bind: wgpu::BindGroup,
     grid: (u32, u32),
 }
@@ -43,8 +53,6 @@ struct FftPass {
 /// The dispatches of one batched transform of a fixed buffer (see [`GpuFft::plan`]).
 pub struct FftPlan {
     passes: Vec<FftPass>,
-    /// (scratch, buffer, bytes) when the result ends in the scratch buffer.
-    copy_back: Option<(wgpu::Buffer, wgpu::Buffer, u64)>,
     /// Uniform buffers the bind groups refer to.
     _params: Vec<wgpu::Buffer>,
 }
@@ -53,6 +61,7 @@ pub struct FftPlan {
 pub struct GpuFft {
     global_stage: wgpu::ComputePipeline,
     shared: wgpu::ComputePipeline,
+    shared_oop: wgpu::ComputePipeline,
     twiddles: wgpu::Buffer,
     n_max: u32,
     shared_max: u32,
@@ -81,6 +90,21 @@ fn shared_line_max(workgroup_bytes: u32, n_max: u32) -> u32 {
 fn dispatch_grid(total: u32, max_dim: u32) -> (u32, u32) {
     let x = total.clamp(1, max_dim);
     (x, total.div_ceil(x))
+}
+
+/// The WGSL of shaders/fft.wgsl with SMEM substituted and `fft_shared_oop` appended: a copy of
+/// `fft_shared` (the file's last function) that loads from `src` and stores to `dst`.
+fn fft_source(shared_max: u32) -> String {
+    let base =
+        include_str!("../../../shaders/fft.wgsl").replace("__SMEM__", &shared_max.to_string());
+    let start = base
+        .rfind("@compute @workgroup_size(WG)\nfn fft_shared(")
+        .expect("fft.wgsl ends with fft_shared");
+    let oop = base[start..]
+        .replace("fn fft_shared(", "fn fft_shared_oop(")
+        .replace("= data[at]", "= src[at]")
+        .replace("data[at] =", "dst[at] =");
+    format!("{base}\n{oop}")
 }
 
 /// The twiddle table e^{-2πik/n_max}, k in [0, n_max/2), evaluated in f64, stored as f32.
@@ -133,8 +157,7 @@ impl GpuFft {
         }
         let shared_max = shared_line_max(limits.max_compute_workgroup_storage_size, n_max)
             .min(shared_max.min(SHARED_CAP as usize) as u32);
-        let source =
-            include_str!("../../../shaders/fft.wgsl").replace("__SMEM__", &shared_max.to_string());
+        let source = fft_source(shared_max);
         let device = ctx.device();
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("fft.wgsl"),
@@ -158,6 +181,7 @@ impl GpuFft {
         Ok(GpuFft {
             global_stage: pipeline("fft_global_stage"),
             shared: pipeline("fft_shared"),
+            shared_oop: pipeline("fft_shared_oop"),
             twiddles,
             n_max,
             shared_max,
@@ -236,7 +260,6 @@ impl GpuFft {
         }
         let mut plan = FftPlan {
             passes: Vec::new(),
-            copy_back: None,
             _params: Vec::new(),
         };
         if batch == 0 {
@@ -247,7 +270,7 @@ impl GpuFft {
         let max_dim = limits.max_compute_workgroups_per_dimension;
         let shared_max = self.shared_max.min(n32);
         let global_stages = (n32 / shared_max).trailing_zeros();
-        let mut target = buffer.clone();
+        let mut scratch_in = None;
         if global_stages > 0 {
             let scratch = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("fft scratch"),
@@ -275,30 +298,46 @@ impl GpuFft {
                 });
                 let groups = (batch32 * (n32 / 2)).div_ceil(WORKGROUP);
                 plan.passes.push(FftPass {
-                    global: true,
+                    kind: PassKind::Global,
                     bind,
                     grid: dispatch_grid(groups, max_dim),
                 });
                 plan._params.push(params);
             }
             if global_stages % 2 == 1 {
-                target = scratch.clone();
-                plan.copy_back = Some((scratch, buffer.clone(), bytes));
+                scratch_in = Some(scratch);
             }
         }
         let stride = 1u32 << global_stages;
         let params = self.params(ctx, n32, batch32, stride, inverse);
-        let layout = self.shared.get_bind_group_layout(0);
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("fft shared"),
-            layout: &layout,
-            entries: &[bind(0, &params), bind(1, &self.twiddles), bind(2, &target)],
-        });
+        let (kind, bind) = match &scratch_in {
+            None => (
+                PassKind::Shared,
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("fft shared"),
+                    layout: &self.shared.get_bind_group_layout(0),
+                    entries: &[bind(0, &params), bind(1, &self.twiddles), bind(2, buffer)],
+                }),
+            ),
+            Some(scratch) => (
+                PassKind::SharedOutOfPlace,
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("fft shared out of place"),
+                    layout: &self.shared_oop.get_bind_group_layout(0),
+                    entries: &[
+                        bind(0, &params),
+                        bind(1, &self.twiddles),
+                        bind(3, scratch),
+                        bind(4, buffer),
+                    ],
+                }),
+            ),
+        };
         // Sub-lines per workgroup: must equal `lpg` in fft_shared.
         let len = n32 / stride;
         let lines_per_group = ((2 * WORKGROUP).min(self.shared_max) / len).max(1);
         plan.passes.push(FftPass {
-            global: false,
+            kind,
             bind,
             grid: dispatch_grid((batch32 * stride).div_ceil(lines_per_group), max_dim),
         });
@@ -311,17 +350,14 @@ impl GpuFft {
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
             for p in &plan.passes {
-                pass.set_pipeline(if p.global {
-                    &self.global_stage
-                } else {
-                    &self.shared
+                pass.set_pipeline(match p.kind {
+                    PassKind::Global => &self.global_stage,
+                    PassKind::Shared => &self.shared,
+                    PassKind::SharedOutOfPlace => &self.shared_oop,
                 });
                 pass.set_bind_group(0, &p.bind, &[]);
                 pass.dispatch_workgroups(p.grid.0, p.grid.1, 1);
             }
-        }
-        if let Some((src, dst, bytes)) = &plan.copy_back {
-            encoder.copy_buffer_to_buffer(src, 0, dst, 0, *bytes);
         }
         plan.passes.len() as u64
     }
