@@ -7,6 +7,7 @@ pub mod context;
 pub mod fft;
 pub mod recorder;
 pub mod spectral;
+pub mod traffic;
 
 pub use backend::{GpuBackend, GpuField};
 pub use context::{list_adapters, test_context, AdapterInfoLine, AdapterPreference, GpuContext};
