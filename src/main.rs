@@ -25,6 +25,9 @@ enum Command {
     Simulate(cli::simulate::Args),
     /// Write a closed-form curve (Hertz, JKR or Johnson–Greenwood) as CSV.
     Theory(cli::theory::Args),
+    /// Time the convolution, one CG iteration and whole pull-offs per backend and grid; write
+    /// a CSV and an SVG chart.
+    Bench(cli::bench::Args),
 }
 
 fn main() -> ExitCode {
@@ -32,6 +35,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Simulate(a) => cli::simulate::run(a),
         Command::Theory(a) => cli::theory::run(a),
+        Command::Bench(a) => cli::bench::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
