@@ -3,9 +3,11 @@
 //! criterion.
 //!
 //! Data flows one way: [`scene`] → [`model`] → [`solver`] (over a [`backend`]) → states →
-//! [`output`]. [`theory`] holds the closed forms the results are checked against.
+//! [`output`]. [`theory`] holds the closed forms the results are checked against, and
+//! [`bench`] times the backend operations and whole pull-offs (`jkrbem bench`).
 
 pub mod backend;
+pub mod bench;
 pub mod model;
 pub mod output;
 pub mod scene;

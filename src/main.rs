@@ -27,6 +27,9 @@ enum Command {
     Theory(cli::theory::Args),
     /// List the GPU adapters wgpu sees, with their limits and the largest grid each holds.
     Devices(cli::devices::Args),
+    /// Time the convolution, one CG iteration and whole pull-offs per backend and grid; write
+    /// a CSV and an SVG chart.
+    Bench(cli::bench::Args),
 }
 
 fn main() -> ExitCode {
@@ -35,6 +38,7 @@ fn main() -> ExitCode {
         Command::Simulate(a) => cli::simulate::run(a),
         Command::Theory(a) => cli::theory::run(a),
         Command::Devices(a) => cli::devices::run(a),
+        Command::Bench(a) => cli::bench::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

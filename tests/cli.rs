@@ -59,26 +59,6 @@ fn bad_input_is_refused_with_the_flag_named_and_nothing_written() {
 }
 
 #[test]
-fn gpu_backend_is_refused_clearly_until_it_exists() {
-    let dir = tempfile::tempdir().unwrap();
-    let o = jkrbem(
-        &[
-            "simulate",
-            "--grid",
-            "16",
-            "--backend",
-            "gpu",
-            "--out",
-            "s.csv",
-        ],
-        dir.path(),
-    );
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("--backend gpu"), "{}", stderr(&o));
-    assert!(!dir.path().join("s.csv").exists());
-}
-
-#[test]
 fn a_run_that_fails_midway_leaves_only_an_incomplete_file() {
     let dir = tempfile::tempdir().unwrap();
     let o = jkrbem(

@@ -1,5 +1,8 @@
-//! Outputs: state CSVs that are never half-written, and run summaries for people and scripts.
+//! Outputs: state CSVs that are never half-written, run summaries for people and scripts,
+//! log–log charts, and the timings of `jkrbem bench`.
 
+pub mod bench;
+pub mod chart;
 pub mod states_csv;
 pub mod summary;
 
@@ -23,6 +26,14 @@ pub enum OutputError {
         path: String,
         /// The cause.
         source: csv::Error,
+    },
+    /// A chart could not be drawn.
+    #[error("cannot draw chart {path}: {reason}")]
+    Chart {
+        /// The path.
+        path: String,
+        /// What the plotting library said.
+        reason: String,
     },
 }
 
