@@ -1,7 +1,7 @@
 //! One module per subcommand, and the error type they share.
 
-pub mod devices;
 pub mod bench;
+pub mod devices;
 pub mod simulate;
 pub mod theory;
 
