@@ -19,15 +19,7 @@ fn setup(nx: usize, ny: usize, dx: f64, e_star: f64) -> GridSetup {
 
 /// A deterministic pseudo-random pressure field in [−1, 1).
 fn pressure(n: usize, seed: u64) -> Vec<f64> {
-    let mut x = seed;
-    (0..n)
-        .map(|_| {
-            x = x
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        })
-        .collect()
+    common::pseudo_random(n, seed)
 }
 
 /// max |a − b| over `scale`.

@@ -6,7 +6,7 @@
 
 use super::context::GpuContext;
 use super::fft::GpuFft;
-use super::recorder::{grid_for, module, Kernel, Recorder, WORKGROUP};
+use super::recorder::{grid_for, module, storage, Kernel, Recorder, WORKGROUP};
 use super::spectral::{largest_buffer_bytes, GpuSpectralFilter, SpectralKernels};
 use crate::backend::cpu::spectral::SpectralFilter;
 use crate::backend::cpu::GridSetup;
@@ -179,17 +179,6 @@ pub fn largest_square_grid(limits: &wgpu::Limits) -> usize {
     n
 }
 
-fn storage(ctx: &GpuContext, label: &str, bytes: u64) -> wgpu::Buffer {
-    ctx.device().create_buffer(&wgpu::BufferDescriptor {
-        label: Some(label),
-        size: bytes.max(4),
-        usage: wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_SRC
-            | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
-}
-
 impl GpuBackend {
     /// Build the backend on an opened device: compile the kernels, upload the profile and
     /// the kernel spectra (computed in f64 on the CPU). Refuses, before allocating anything,
@@ -273,6 +262,8 @@ impl GpuBackend {
         self.nx * self.ny
     }
 
+    /// Record an element-wise kernel of vector.wgsl over the grid; the parameters (binding 0)
+    /// and the contact mask (binding 4) are bound here, the fields by `entries`.
     fn vector(
         &mut self,
         kernel: fn(&Kernels) -> &Kernel,
@@ -280,12 +271,35 @@ impl GpuBackend {
         entries: &[(u32, &wgpu::Buffer)],
     ) -> Result<(), BackendError> {
         let p = self.rec.uniform(&self.ctx, &params)?;
-        let mut all = vec![(0, &p)];
+        let mut all = vec![(0, &p), (4, &self.mask)];
         all.extend_from_slice(entries);
         let grid = grid_for(&self.ctx, self.n());
         self.rec
             .dispatch(&self.ctx, kernel(&self.kernels), &all, grid);
         Ok(())
+    }
+
+    /// y ← kernel(y, x, slots[num] / slots[den], sign) for axpy_ratio and xpay_ratio.
+    fn ratio_update(
+        &mut self,
+        kernel: fn(&Kernels) -> &Kernel,
+        y: &mut GpuField,
+        x: &GpuField,
+        (num, den): (Slot, Slot),
+        sign: f64,
+    ) -> Result<(), BackendError> {
+        let params = VectorParams {
+            num: num.0 as u32,
+            den: den.0 as u32,
+            sign: sign as f32,
+            ..self.vector_params()
+        };
+        let slots = self.slots.clone();
+        self.vector(
+            kernel,
+            params,
+            &[(1, &x.buffer), (3, &y.buffer), (6, &slots)],
+        )
     }
 
     fn vector_params(&self) -> VectorParams {
@@ -450,13 +464,12 @@ impl Backend for GpuBackend {
             scalar: d as f32,
             ..self.vector_params()
         };
-        let (mask, profile) = (self.mask.clone(), self.profile.clone());
+        let profile = self.profile.clone();
         self.vector(
             |k| &k.residual,
             params,
-            &[(1, &u.buffer), (3, &r.buffer), (4, &mask), (5, &profile)],
-        )?;
-        Ok(())
+            &[(1, &u.buffer), (3, &r.buffer), (5, &profile)],
+        )
     }
 
     fn dot(&mut self, a: &GpuField, b: &GpuField, out: Slot) -> Result<(), BackendError> {
@@ -478,19 +491,7 @@ impl Backend for GpuBackend {
         den: Slot,
         sign: f64,
     ) -> Result<(), BackendError> {
-        let params = VectorParams {
-            num: num.0 as u32,
-            den: den.0 as u32,
-            sign: sign as f32,
-            ..self.vector_params()
-        };
-        let (mask, slots) = (self.mask.clone(), self.slots.clone());
-        self.vector(
-            |k| &k.axpy_ratio,
-            params,
-            &[(1, &x.buffer), (3, &y.buffer), (4, &mask), (6, &slots)],
-        )?;
-        Ok(())
+        self.ratio_update(|k| &k.axpy_ratio, y, x, (num, den), sign)
     }
 
     fn xpay_ratio(
@@ -500,18 +501,7 @@ impl Backend for GpuBackend {
         num: Slot,
         den: Slot,
     ) -> Result<(), BackendError> {
-        let params = VectorParams {
-            num: num.0 as u32,
-            den: den.0 as u32,
-            ..self.vector_params()
-        };
-        let (mask, slots) = (self.mask.clone(), self.slots.clone());
-        self.vector(
-            |k| &k.xpay_ratio,
-            params,
-            &[(1, &x.buffer), (3, &y.buffer), (4, &mask), (6, &slots)],
-        )?;
-        Ok(())
+        self.ratio_update(|k| &k.xpay_ratio, y, x, (num, den), 1.0)
     }
 
     fn copy_slot(&mut self, src: Slot, dst: Slot) -> Result<(), BackendError> {
@@ -608,13 +598,11 @@ impl Backend for GpuBackend {
             scalar: t as f32,
             ..self.vector_params()
         };
-        let mask = self.mask.clone();
         self.vector(
             |k| &k.lerp,
             params,
-            &[(1, &a.buffer), (2, &b.buffer), (3, &dst.buffer), (4, &mask)],
-        )?;
-        Ok(())
+            &[(1, &a.buffer), (2, &b.buffer), (3, &dst.buffer)],
+        )
     }
 
     fn copy(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {

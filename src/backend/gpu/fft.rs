@@ -425,36 +425,7 @@ pub fn read_buffer<T: bytemuck::Pod>(
     ctx: &GpuContext,
     buffer: &wgpu::Buffer,
 ) -> Result<Vec<T>, BackendError> {
-    let device = ctx.device();
-    let staging = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size: buffer.size(),
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
-    ctx.queue().submit([encoder.finish()]);
-    let (tx, rx) = std::sync::mpsc::channel();
-    staging.map_async(wgpu::MapMode::Read, .., move |r| {
-        let _ = tx.send(r);
-    });
-    ctx.wait()?;
-    let lost = |reason: String| BackendError::DeviceLost {
-        backend: "gpu",
-        reason,
-    };
-    rx.recv()
-        .map_err(|e| lost(e.to_string()))?
-        .map_err(|e| lost(e.to_string()))?;
-    let out = {
-        let view = staging
-            .get_mapped_range(..)
-            .map_err(|e| lost(e.to_string()))?;
-        bytemuck::pod_collect_to_vec(&view)
-    };
-    staging.unmap();
-    Ok(out)
+    super::recorder::Recorder::default().read(ctx, buffer, 0, buffer.size())
 }
 
 /// CPU twin of `shaders/fft.wgsl`, in f64: the same radix-2 Stockham stages in the same order

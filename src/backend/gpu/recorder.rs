@@ -46,6 +46,18 @@ pub fn module(ctx: &GpuContext, label: &str, source: &str) -> wgpu::ShaderModule
         })
 }
 
+/// A zeroed storage buffer of `bytes` bytes (at least 4) that can be copied from and to.
+pub fn storage(ctx: &GpuContext, label: &str, bytes: u64) -> wgpu::Buffer {
+    ctx.device().create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: bytes.max(4),
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_SRC
+            | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
 /// Workgroups to cover `n` elements, as an (x, y) grid within the per-dimension limit.
 pub fn grid_for(ctx: &GpuContext, n: usize) -> (u32, u32) {
     let total = (n as u64).div_ceil(WORKGROUP as u64).max(1) as u32;

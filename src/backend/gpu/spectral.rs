@@ -8,7 +8,7 @@
 
 use super::context::GpuContext;
 use super::fft::{FftPlan, GpuFft};
-use super::recorder::{grid_for, module, Kernel, Recorder};
+use super::recorder::{grid_for, module, storage, Kernel, Recorder};
 use crate::backend::cpu::spectral::SpectralFilter;
 use crate::backend::BackendError;
 use wgpu::util::DeviceExt;
@@ -74,17 +74,6 @@ pub struct GpuSpectralFilter {
     row_inv: FftPlan,
     col_fwd: FftPlan,
     col_inv: FftPlan,
-}
-
-fn storage(ctx: &GpuContext, label: &str, bytes: u64) -> wgpu::Buffer {
-    ctx.device().create_buffer(&wgpu::BufferDescriptor {
-        label: Some(label),
-        size: bytes.max(4),
-        usage: wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_SRC
-            | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
 }
 
 impl GpuSpectralFilter {
