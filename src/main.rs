@@ -23,6 +23,11 @@ struct Cli {
 enum Command {
     /// Simulate the adhesive pull-off of one scene and write its states as CSV.
     Simulate(cli::simulate::Args),
+    /// Run one pull-off per axis ratio R1/R2 (optionally one shard of them) and write a
+    /// summary CSV beside each ratio's states.
+    Sweep(cli::sweep::Args),
+    /// Merge the shard summaries of a split sweep into DIR/sweep.csv.
+    Collect(cli::collect::Args),
     /// Write a closed-form curve (Hertz, JKR or Johnson–Greenwood) as CSV.
     Theory(cli::theory::Args),
     /// List the GPU adapters wgpu sees, with their limits and the largest grid each holds.
@@ -37,6 +42,8 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Simulate(a) => cli::simulate::run(a),
         Command::Theory(a) => cli::theory::run(a),
+        Command::Sweep(a) => cli::sweep::run(a),
+        Command::Collect(a) => cli::collect::run(a),
         Command::Devices(a) => cli::devices::run(a),
         Command::Bench(a) => cli::bench::run(a),
     };

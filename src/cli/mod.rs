@@ -1,8 +1,10 @@
 //! One module per subcommand, and the error type they share.
 
 pub mod bench;
+pub mod collect;
 pub mod devices;
 pub mod simulate;
+pub mod sweep;
 pub mod theory;
 
 use std::fmt;

@@ -16,7 +16,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 /// Default CG readback interval on the GPU (iterations).
-const GPU_CHECK_EVERY: usize = 2;
+pub const GPU_CHECK_EVERY: usize = 2;
 
 /// Which backend runs the solver.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -191,14 +191,42 @@ fn run_on<B: Backend>(
     model: &Model,
     out: &std::path::Path,
 ) -> Result<(), CliError> {
+    let (summary, outcome, path) = pulloff_to_file(backend, model, out)?;
+    print!("{}", summary.to_text());
+    println!("states written to {}", path.display());
+    if let Some(p) = &args.summary {
+        summary.write_json(p).map_err(failed)?;
+    }
+    match outcome.error {
+        None => Ok(()),
+        Some(e) => Err(failed(format!(
+            "the run stopped early: {e}\n  the {} states computed so far are in {} (incomplete)",
+            outcome.states.len(),
+            path.display()
+        ))),
+    }
+}
+
+/// Run a model's pull-off on an opened backend, streaming its states to `out` (named
+/// `<stem>.incomplete.csv` until the run completes), with a progress line on a terminal.
+/// Returns the summary, the outcome and the path the states ended up at.
+pub fn pulloff_to_file<B: Backend>(
+    backend: &mut B,
+    model: &Model,
+    out: &std::path::Path,
+) -> Result<(Summary, solver::Outcome, PathBuf), CliError> {
     let mut writer = StateWriter::create(out).map_err(failed)?;
     let progress = progress_bar();
     let mut write_error = None;
     let start = Instant::now();
     let outcome = solver::run(backend, model, &mut |s| {
         progress.set_message(format!(
-            "state {}: d̄ = {:+.4}, F̄ = {:+.4}, c̄ = {:.4}",
-            s.step, s.d_bar, s.f_bar, s.c_bar
+            "R1/R2 = {}, state {}: d̄ = {:+.4}, F̄ = {:+.4}, c̄ = {:.4}",
+            model.scene.ratio(),
+            s.step,
+            s.d_bar,
+            s.f_bar,
+            s.c_bar
         ));
         progress.tick();
         if let Err(e) = writer.write(s) {
@@ -218,19 +246,7 @@ fn run_on<B: Backend>(
         wall,
         &path,
     );
-    print!("{}", summary.to_text());
-    println!("states written to {}", path.display());
-    if let Some(p) = &args.summary {
-        summary.write_json(p).map_err(failed)?;
-    }
-    match outcome.error {
-        None => Ok(()),
-        Some(e) => Err(failed(format!(
-            "the run stopped early: {e}\n  the {} states computed so far are in {} (incomplete)",
-            outcome.states.len(),
-            path.display()
-        ))),
-    }
+    Ok((summary, outcome, path))
 }
 
 /// A spinner with the current state on stderr, hidden when stderr is not a terminal.

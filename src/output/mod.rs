@@ -5,6 +5,7 @@ pub mod bench;
 pub mod chart;
 pub mod states_csv;
 pub mod summary;
+pub mod sweep_csv;
 
 use thiserror::Error;
 
