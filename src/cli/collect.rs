@@ -2,6 +2,7 @@
 //! into DIR/sweep.csv.
 
 use super::{failed, input, CliError};
+use jkrbem::output::sweep_charts::write_sweep_charts;
 use jkrbem::output::sweep_csv::{self, CollectError};
 use std::path::PathBuf;
 
@@ -35,6 +36,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
         c.rows.len(),
         c.shards - c.missing.len(),
         path.display()
+    );
+    write_sweep_charts(&args.dir, &c.rows).map_err(failed)?;
+    println!(
+        "charts written to {0}/force_vs_ratio.svg and {0}/pulloff_curves.svg",
+        args.dir.display()
     );
     Ok(())
 }

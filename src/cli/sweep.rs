@@ -7,6 +7,7 @@ use super::{failed, input, CliError};
 use jkrbem::backend::cpu::GridSetup;
 use jkrbem::backend::select::{self, AnyBackend};
 use jkrbem::model::{Model, ModelOptions};
+use jkrbem::output::sweep_charts::write_sweep_charts;
 use jkrbem::output::sweep_csv::{self, SweepRow};
 use jkrbem::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -133,6 +134,13 @@ pub fn run(args: Args) -> Result<(), CliError> {
         );
     }
     println!("summary written to {}", path.display());
+    if shard.is_none() {
+        write_sweep_charts(&args.out, &sorted).map_err(failed)?;
+        println!(
+            "charts written to {0}/force_vs_ratio.svg and {0}/pulloff_curves.svg",
+            args.out.display()
+        );
+    }
     let failures = failures.into_inner().expect("failures");
     if failures.is_empty() {
         Ok(())

@@ -3,8 +3,10 @@
 
 pub mod bench;
 pub mod chart;
+pub mod line_chart;
 pub mod states_csv;
 pub mod summary;
+pub mod sweep_charts;
 pub mod sweep_csv;
 
 use thiserror::Error;

@@ -1,0 +1,127 @@
+//! The charts of a sweep (SPEC §8.1 and §8.6): the pull-off curves F̄(d̄) of every ratio beside
+//! JKR/JG, and the adhesive force |min F̄| against R1/R2 beside JG.
+
+use super::line_chart::{LineChart, Style};
+use super::states_csv::read_states;
+use super::sweep_csv::SweepRow;
+use super::OutputError;
+use crate::theory::{self, TheoryModel};
+use std::path::Path;
+
+/// Points of the closed-form curves (per ratio).
+const THEORY_POINTS: usize = 300;
+
+/// (d̄, F̄) of the pull-off and onset states in a states CSV.
+pub fn pulloff_points(states_csv: &Path) -> Result<Vec<(f64, f64)>, OutputError> {
+    let records = read_states(states_csv)?;
+    let header = csv::Reader::from_path(states_csv)
+        .and_then(|mut r| r.headers().cloned())
+        .map_err(|source| OutputError::Csv {
+            path: states_csv.display().to_string(),
+            source,
+        })?;
+    let col = |name: &str| header.iter().position(|h| h == name);
+    let (Some(phase), Some(d), Some(f)) = (col("phase"), col("d_bar"), col("f_bar")) else {
+        return Ok(Vec::new());
+    };
+    Ok(records
+        .iter()
+        .filter(|r| r.get(phase) != Some("approach"))
+        .filter_map(|r| Some((r.get(d)?.parse().ok()?, r.get(f)?.parse().ok()?)))
+        .collect())
+}
+
+/// The closed form for a ratio: JKR for the sphere, JG otherwise, as (d̄, F̄) on its adhesive
+/// branch up to approach `d_max`; empty if the theory cannot be evaluated.
+fn theory_curve(ratio: f64, d_max: f64) -> Vec<(f64, f64)> {
+    let model = if ratio == 1.0 {
+        TheoryModel::Jkr
+    } else {
+        TheoryModel::Jg
+    };
+    theory::curve(model, ratio, THEORY_POINTS)
+        .map(|pts| {
+            pts.iter()
+                .filter(|p| p.d_bar <= d_max)
+                .map(|p| (p.d_bar, p.f_bar))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// F̄(d̄) of every ratio of a sweep (states read from `dir`), with the closed forms dashed.
+pub fn pulloff_curves_chart(dir: &Path, rows: &[SweepRow]) -> Result<LineChart, OutputError> {
+    let mut chart = LineChart::new(
+        "Pull-off: force against approach (markers: jkrbem, dashed: JKR / JG)",
+        "approach d̄ = d·Re/c_r²",
+        "force F̄ = F/(3π Re Δγ)",
+    );
+    chart.legend = plotters::prelude::SeriesLabelPosition::LowerRight;
+    for (i, r) in rows.iter().enumerate() {
+        let name = format!("r{}-n{}", r.ratio, r.grid);
+        let complete = dir.join(format!("{name}.csv"));
+        let path = if complete.exists() {
+            complete
+        } else {
+            dir.join(format!("{name}.incomplete.csv"))
+        };
+        let mut d_max = 1.0;
+        if path.exists() {
+            let label = format!("R1/R2 = {} ({}×{})", r.ratio, r.grid, r.ny);
+            let points = pulloff_points(&path)?;
+            d_max = points.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+            chart.push(&label, points, i, Style::Markers);
+        }
+        let reference = if r.ratio == 1.0 { "JKR" } else { "JG" };
+        chart.push(
+            &format!("{reference}, R1/R2 = {}", r.ratio),
+            theory_curve(r.ratio, d_max),
+            i,
+            Style::Dashed,
+        );
+    }
+    Ok(chart)
+}
+
+/// |min F̄| against R1/R2 (log axis): the sweep's points beside JG's pull-off force.
+pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
+    let mut chart = LineChart::new(
+        "Adhesive force against axis ratio",
+        "R1/R2",
+        "adhesive force |min F̄|",
+    );
+    chart.x_log = true;
+    chart.legend = plotters::prelude::SeriesLabelPosition::LowerLeft;
+    let hi = rows.iter().map(|r| r.ratio).fold(2.0, f64::max);
+    let jg: Vec<(f64, f64)> = (0..=200)
+        .map(|i| hi.powf(i as f64 / 200.0))
+        .filter_map(|ratio| {
+            let model = if ratio == 1.0 {
+                TheoryModel::Jkr
+            } else {
+                TheoryModel::Jg
+            };
+            let p = theory::pull_off(model, ratio).ok()?;
+            Some((ratio, p.force_min.f_bar.abs()))
+        })
+        .collect();
+    chart.push("Johnson–Greenwood (JKR at 1)", jg, 1, Style::Line);
+    let sim: Vec<(f64, f64)> = rows
+        .iter()
+        .filter_map(|r| Some((r.ratio, r.f_ad_bar?)))
+        .collect();
+    let grids: Vec<String> = rows.iter().map(|r| r.grid.to_string()).collect();
+    chart.push(
+        &format!("jkrbem (Nx = {})", grids.join(", ")),
+        sim,
+        0,
+        Style::Markers,
+    );
+    chart
+}
+
+/// Write `force_vs_ratio.svg` and `pulloff_curves.svg` into `dir`.
+pub fn write_sweep_charts(dir: &Path, rows: &[SweepRow]) -> Result<(), OutputError> {
+    force_vs_ratio_chart(rows).write_svg(&dir.join("force_vs_ratio.svg"))?;
+    pulloff_curves_chart(dir, rows)?.write_svg(&dir.join("pulloff_curves.svg"))
+}
