@@ -3,8 +3,10 @@
 //! criterion.
 //!
 //! Data flows one way: [`scene`] → [`model`] → [`solver`] (over a [`backend`]) → states →
-//! [`output`]. [`theory`] holds the closed forms the results are checked against.
+//! [`output`]. [`theory`] holds the closed forms the results are checked against, and
+//! [`analysis`] the fits and contours of the study made from the states.
 
+pub mod analysis;
 pub mod backend;
 pub mod model;
 pub mod output;
