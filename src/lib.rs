@@ -3,9 +3,11 @@
 //! criterion.
 //!
 //! Data flows one way: [`scene`] → [`model`] → [`solver`] (over a [`backend`]) → states →
-//! [`output`]. [`theory`] holds the closed forms the results are checked against, and
-//! [`bench`] times the backend operations and whole pull-offs (`jkrbem bench`).
+//! [`output`]. [`theory`] holds the closed forms the results are checked against,
+//! [`analysis`] the fits and contours of the study made from the states, and [`bench`] times
+//! the backend operations and whole pull-offs (`jkrbem bench`).
 
+pub mod analysis;
 pub mod backend;
 pub mod bench;
 pub mod model;

@@ -1,0 +1,16 @@
+//! Analysis of recorded pull-offs for the study (SPEC §8): least-squares fits of the branch
+//! and of coefficients against R1/R2, quarter contours of the contact beside an ellipse, and
+//! the crossed-cylinder form of the scene. Pure functions of states, masks and numbers.
+
+pub mod branch;
+pub mod contour;
+pub mod crossed;
+pub mod fit;
+mod lstsq;
+
+pub use branch::{adhesive_branch, BranchPoint};
+pub use contour::{ellipse_departure, quarter_contour, ContourError, Departure, Point};
+pub use crossed::CrossedCylinders;
+pub use fit::{
+    fit_d_of_c, fit_f_of_c, fit_power_law, FitError, FitQuality, LinearFit2, PowerFit, PowerLawFit,
+};
