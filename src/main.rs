@@ -26,6 +26,9 @@ enum Command {
     /// Run one pull-off per axis ratio R1/R2 (optionally one shard of them) and write a
     /// summary CSV beside each ratio's states.
     Sweep(cli::sweep::Args),
+    /// Crossed identical elastic cylinders at several angles: adhesive force in newtons
+    /// beside Johnson–Greenwood.
+    Crossed(cli::crossed::Args),
     /// Merge the shard summaries of a split sweep into DIR/sweep.csv.
     Collect(cli::collect::Args),
     /// Write a closed-form curve (Hertz, JKR or Johnson–Greenwood) as CSV.
@@ -44,6 +47,7 @@ fn main() -> ExitCode {
         Command::Theory(a) => cli::theory::run(a),
         Command::Sweep(a) => cli::sweep::run(a),
         Command::Collect(a) => cli::collect::run(a),
+        Command::Crossed(a) => cli::crossed::run(a),
         Command::Devices(a) => cli::devices::run(a),
         Command::Bench(a) => cli::bench::run(a),
     };

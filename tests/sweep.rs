@@ -91,3 +91,69 @@ fn bad_sweep_input_is_refused_before_any_work() {
     let o = jkrbem(&["collect", "nowhere"], dir.path());
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn crossed_cylinders_give_forces_in_newtons_beside_jg() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = jkrbem(
+        &[
+            "crossed",
+            "--angles",
+            "90,50",
+            "--radius",
+            "0.01",
+            "--e",
+            "1e6",
+            "--nu",
+            "0.5",
+            "--work-of-adhesion",
+            "0.05",
+            "--grid",
+            "32",
+            "--margin",
+            "0.2",
+            "--steps",
+            "40",
+            "--backend",
+            "cpu",
+            "--out",
+            "cr",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(dir.path().join("cr/crossed.csv")).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
+    assert_eq!(rows.len(), 2);
+    // θ = 90°: a sphere of radius R; JKR's pull-off force is (3/2)·π·R·Δγ.
+    let sphere = &rows[0];
+    assert_eq!(sphere[col("angle_deg")], 90.0);
+    assert!((sphere[col("ratio")] - 1.0).abs() < 1e-12);
+    let jkr = 1.5 * std::f64::consts::PI * 0.01 * 0.05;
+    assert!((sphere[col("jg_f_ad")] / jkr - 1.0).abs() < 1e-9);
+    // The simulated force is the normalised one times 3π Re Δγ, and over-adheres on a coarse grid.
+    let f = sphere[col("f_ad")];
+    assert!(
+        (f / (sphere[col("f_ad_bar")] * 3.0 * std::f64::consts::PI * 0.01 * 0.05) - 1.0).abs()
+            < 1e-9
+    );
+    assert!(f > jkr && f < 1.3 * jkr, "{f} vs {jkr}");
+    // θ = 50°: R1/R2 = cot²(25°).
+    let cot = 1.0 / 25f64.to_radians().tan();
+    assert!((rows[1][col("ratio")] / (cot * cot) - 1.0).abs() < 1e-9);
+    assert!(dir.path().join("cr/crossed.svg").exists());
+
+    let bad = jkrbem(&["crossed", "--nu", "0.7", "--out", "x"], dir.path());
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--nu"));
+    assert!(!dir.path().join("x").exists());
+}

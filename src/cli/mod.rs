@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod collect;
+pub mod crossed;
 pub mod devices;
 pub mod simulate;
 pub mod sweep;

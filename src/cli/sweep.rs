@@ -7,6 +7,7 @@ use super::{failed, input, CliError};
 use jkrbem::backend::cpu::GridSetup;
 use jkrbem::backend::select::{self, AnyBackend};
 use jkrbem::model::{Model, ModelOptions};
+use jkrbem::output::summary::Summary;
 use jkrbem::output::sweep_charts::write_sweep_charts;
 use jkrbem::output::sweep_csv::{self, SweepRow};
 use jkrbem::scene::Scene;
@@ -96,27 +97,15 @@ pub fn run(args: Args) -> Result<(), CliError> {
         shard.map_or(String::new(), |(k, n)| format!(", shard {k} of {n}")),
         args.jobs
     );
-    let queue = Mutex::new(models.into_iter());
-    let rows = Mutex::new(Vec::new());
-    let failures = Mutex::new(Vec::new());
-    std::thread::scope(|scope| {
-        for _ in 0..args.jobs {
-            scope.spawn(|| loop {
-                let next = queue.lock().expect("queue").next();
-                let Some(model) = next else { break };
-                match run_one(&args, model) {
-                    Ok((row, error)) => {
-                        if let Some(e) = error {
-                            failures.lock().expect("failures").push(e);
-                        }
-                        rows.lock().expect("rows").push(row);
-                    }
-                    Err(e) => failures.lock().expect("failures").push(e.to_string()),
-                }
-            });
-        }
-    });
-    let rows = rows.into_inner().expect("rows");
+    let jobs: Vec<(Model, PathBuf)> = models
+        .into_iter()
+        .map(|m| {
+            let out = states_path(&args.out, m.scene.ratio(), args.grid);
+            (m, out)
+        })
+        .collect();
+    let (summaries, failures) = run_all(jobs, args.jobs, args.backend);
+    let rows: Vec<SweepRow> = summaries.iter().map(SweepRow::from_summary).collect();
     let path = sweep_csv::sweep_csv_path(&args.out, shard);
     sweep_csv::write_rows(&path, &rows).map_err(failed)?;
     println!("ratio   |min F̄|   JG      n_d    wall (s)");
@@ -141,7 +130,6 @@ pub fn run(args: Args) -> Result<(), CliError> {
             args.out.display()
         );
     }
-    let failures = failures.into_inner().expect("failures");
     if failures.is_empty() {
         Ok(())
     } else {
@@ -153,12 +141,50 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
 }
 
-/// One ratio: open the backend, run, write states and summary. Returns the row and the
-/// run's error, if it stopped early.
-fn run_one(args: &Args, mut model: Model) -> Result<(SweepRow, Option<String>), CliError> {
+/// Run every (model, states path) pull-off, `jobs` at a time, each on its own backend of
+/// `choice`; every summary is also written as JSON beside its states. Returns the summaries
+/// of the runs that started (complete or not) and the failures, in words.
+pub fn run_all(
+    work: Vec<(Model, PathBuf)>,
+    jobs: usize,
+    choice: BackendChoice,
+) -> (Vec<Summary>, Vec<String>) {
+    let queue = Mutex::new(work.into_iter());
+    let summaries = Mutex::new(Vec::new());
+    let failures = Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..jobs.max(1) {
+            scope.spawn(|| loop {
+                let next = queue.lock().expect("queue").next();
+                let Some((model, out)) = next else { break };
+                match run_one(choice, model, &out) {
+                    Ok((summary, error)) => {
+                        if let Some(e) = error {
+                            failures.lock().expect("failures").push(e);
+                        }
+                        summaries.lock().expect("summaries").push(summary);
+                    }
+                    Err(e) => failures.lock().expect("failures").push(e.to_string()),
+                }
+            });
+        }
+    });
+    (
+        summaries.into_inner().expect("summaries"),
+        failures.into_inner().expect("failures"),
+    )
+}
+
+/// One pull-off: open the backend, run, write states and summary. Returns the summary and
+/// the run's error, if it stopped early.
+fn run_one(
+    choice: BackendChoice,
+    mut model: Model,
+    out: &Path,
+) -> Result<(Summary, Option<String>), CliError> {
     let ratio = model.scene.ratio();
     let opened =
-        select::open(args.backend.kind(), &GridSetup::for_model(&model)).map_err(backend_error)?;
+        select::open(choice.kind(), &GridSetup::for_model(&model)).map_err(backend_error)?;
     eprintln!(
         "R1/R2 = {ratio}: grid {}×{}, {}",
         model.nx, model.ny, opened.note
@@ -167,14 +193,13 @@ fn run_one(args: &Args, mut model: Model) -> Result<(SweepRow, Option<String>), 
     if matches!(any, AnyBackend::Gpu(_)) {
         model.cg.check_every = GPU_CHECK_EVERY;
     }
-    let out = states_path(&args.out, ratio, args.grid);
     let (summary, outcome, path) =
-        jkrbem::with_backend!(&mut any, backend => pulloff_to_file(backend, &model, &out))?;
+        jkrbem::with_backend!(&mut any, backend => pulloff_to_file(backend, &model, out))?;
     summary
         .write_json(&path.with_extension("json"))
         .map_err(failed)?;
     let error = outcome
         .error
         .map(|e| format!("R1/R2 = {ratio}: {e} (states so far in {})", path.display()));
-    Ok((SweepRow::from_summary(&summary), error))
+    Ok((summary, error))
 }
