@@ -29,6 +29,9 @@ enum Command {
     /// Crossed identical elastic cylinders at several angles: adhesive force in newtons
     /// beside Johnson–Greenwood.
     Crossed(cli::crossed::Args),
+    /// Run the whole study (sweep, fits, crossed cylinders) and write every chart and an
+    /// index.html.
+    Reproduce(cli::reproduce::Args),
     /// Merge the shard summaries of a split sweep into DIR/sweep.csv.
     Collect(cli::collect::Args),
     /// Write a closed-form curve (Hertz, JKR or Johnson–Greenwood) as CSV.
@@ -47,6 +50,7 @@ fn main() -> ExitCode {
         Command::Theory(a) => cli::theory::run(a),
         Command::Sweep(a) => cli::sweep::run(a),
         Command::Collect(a) => cli::collect::run(a),
+        Command::Reproduce(a) => cli::reproduce::run(a),
         Command::Crossed(a) => cli::crossed::run(a),
         Command::Devices(a) => cli::devices::run(a),
         Command::Bench(a) => cli::bench::run(a),

@@ -4,6 +4,7 @@ pub mod bench;
 pub mod collect;
 pub mod crossed;
 pub mod devices;
+pub mod reproduce;
 pub mod simulate;
 pub mod sweep;
 pub mod theory;

@@ -65,7 +65,7 @@ fn model_for(args: &Args, ratio: f64) -> Result<Model, String> {
 }
 
 /// States file of one ratio in `dir`.
-fn states_path(dir: &Path, ratio: f64, grid: usize) -> PathBuf {
+pub fn states_path(dir: &Path, ratio: f64, grid: usize) -> PathBuf {
     dir.join(format!("r{ratio}-n{grid}.csv"))
 }
 

@@ -159,8 +159,15 @@ impl LineChart {
             range(all.iter().map(|p| p.1).collect()),
         );
         if self.x_log {
-            let (lo, hi) = (xr.start.max(1e-300), xr.end);
-            let (lo, hi) = (lo / 1.1, hi * 1.1);
+            // The data's own extent, padded by a factor (a linear pad could reach x ≤ 0).
+            let lo = all.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
+            let hi = all.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+            let (lo, hi) = if lo.is_finite() {
+                (lo, hi)
+            } else {
+                (1.0, 10.0)
+            };
+            let (lo, hi) = (lo / 1.1, hi.max(lo * 1.5) * 1.1);
             let ticks = self.x_ticks(&(lo.log10()..hi.log10()));
             let ticks: Vec<f64> = ticks.iter().map(|t| 10f64.powf(*t)).collect();
             self.draw_on(root, (lo..hi).log_scale().with_key_points(ticks), yr)

@@ -5,6 +5,7 @@ pub mod bench;
 pub mod chart;
 pub mod line_chart;
 pub mod states_csv;
+pub mod study_charts;
 pub mod summary;
 pub mod sweep_charts;
 pub mod sweep_csv;

@@ -91,3 +91,16 @@ pub fn read_states(path: &Path) -> Result<Vec<csv::StringRecord>, OutputError> {
             source,
         })
 }
+
+/// Read a states CSV back into [`State`]s (the columns of [`HEADER`]).
+pub fn read_state_rows(path: &Path) -> Result<Vec<State>, OutputError> {
+    let csv_err = |source| OutputError::Csv {
+        path: path.display().to_string(),
+        source,
+    };
+    csv::Reader::from_path(path)
+        .map_err(csv_err)?
+        .deserialize()
+        .collect::<Result<_, _>>()
+        .map_err(csv_err)
+}

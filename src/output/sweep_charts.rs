@@ -110,6 +110,22 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
         .iter()
         .filter_map(|r| Some((r.ratio, r.f_ad_bar?)))
         .collect();
+    let (x, y): (Vec<f64>, Vec<f64>) = sim.iter().copied().unzip();
+    if let Ok(law) = crate::analysis::fit_power_law(&x, &y) {
+        let curve = (0..=200)
+            .map(|i| hi.powf(i as f64 / 200.0))
+            .map(|r| (r, law.eval(r)))
+            .collect();
+        chart.push(
+            &format!(
+                "fit {:.3}·(R1/R2)^{:.3} + {:.3} (R² = {:.4})",
+                law.k1, law.k2, law.k3, law.quality.r_squared
+            ),
+            curve,
+            0,
+            Style::Dashed,
+        );
+    }
     let grids: Vec<String> = rows.iter().map(|r| r.grid.to_string()).collect();
     chart.push(
         &format!("jkrbem (Nx = {})", grids.join(", ")),

@@ -1,9 +1,9 @@
 //! A recorded, converged state of the pull-off, dimensional and normalised.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Which part of the protocol a state belongs to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Phase {
     /// The first, non-adhesive press to d0.
@@ -18,7 +18,7 @@ pub enum Phase {
 
 /// One converged state. Dimensional values are in the scene's units; `*_bar` values are
 /// normalised as in SPEC §2.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct State {
     /// Load step (0 for the approach).
     pub step: usize,

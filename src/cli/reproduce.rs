@@ -1,0 +1,290 @@
+//! `jkrbem reproduce`: the whole study of SPEC §8 from one command — the sweep over R1/R2, the
+//! fits, the crossed cylinders — with every chart as SVG and an index.html that shows them.
+
+use super::simulate::BackendChoice;
+use super::sweep::{run_all, states_path};
+use super::{crossed, failed, input, CliError};
+use jkrbem::model::{Model, ModelOptions};
+use jkrbem::output::line_chart::LineChart;
+use jkrbem::output::states_csv::read_state_rows;
+use jkrbem::output::study_charts::{
+    axis_ratio_chart, branch_chart, branch_fits, coefficient_laws, coefficients_chart, BranchLaw,
+    RatioRun,
+};
+use jkrbem::output::sweep_charts::{force_vs_ratio_chart, pulloff_curves_chart};
+use jkrbem::output::sweep_csv::{self, SweepRow};
+use jkrbem::scene::Scene;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The ratios of the study and the grid Nx of each, quick (2 CPU cores, minutes) and full
+/// (the study's resolution, for a GPU). Slender contacts need more elements along x for the
+/// same count across the minor axis.
+const RATIOS: [f64; 6] = [1.0, 2.0, 5.0, 10.0, 25.0, 50.0];
+const QUICK_GRIDS: [usize; 6] = [64, 64, 128, 128, 256, 256];
+const FULL_GRIDS: [usize; 6] = [512, 512, 1024, 1024, 2048, 2048];
+
+/// Arguments of `jkrbem reproduce`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Output folder: sweep/, crossed/, the charts and index.html.
+    #[arg(long, default_value = "jkrbem-out/reproduce")]
+    pub out: PathBuf,
+    /// Coarse grids (Nx 64 … 256) that finish in minutes on 2 CPU cores, instead of the
+    /// study's (Nx 512 … 2048, meant for a GPU).
+    #[arg(long)]
+    pub quick: bool,
+    /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.
+    #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
+    pub backend: BackendChoice,
+    /// Pull-offs run at the same time.
+    #[arg(long, default_value_t = 1)]
+    pub jobs: usize,
+}
+
+/// One chart of the report: file name, caption.
+struct Figure {
+    file: String,
+    caption: String,
+}
+
+/// Run `jkrbem reproduce`.
+pub fn run(args: Args) -> Result<(), CliError> {
+    if args.jobs == 0 {
+        return Err(input("--jobs must be at least 1"));
+    }
+    let start = Instant::now();
+    let grids = if args.quick { QUICK_GRIDS } else { FULL_GRIDS };
+    let sweep_dir = args.out.join("sweep");
+    let mut work = Vec::new();
+    for (&ratio, &grid) in RATIOS.iter().zip(&grids) {
+        let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
+        let model = Model::build(
+            &scene,
+            &ModelOptions {
+                nx: grid,
+                ..ModelOptions::default()
+            },
+        )
+        .map_err(input)?;
+        work.push((model, states_path(&sweep_dir, ratio, grid)));
+    }
+    eprintln!(
+        "jkrbem reproduce: {} ratios on grids {:?}{}",
+        RATIOS.len(),
+        grids,
+        if args.quick { " (quick)" } else { "" }
+    );
+    let (summaries, mut failures) = run_all(work, args.jobs, args.backend);
+    let mut rows: Vec<SweepRow> = summaries.iter().map(SweepRow::from_summary).collect();
+    rows.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
+    sweep_csv::write_rows(&sweep_csv::sweep_csv_path(&sweep_dir, None), &rows).map_err(failed)?;
+    let backend = rows.first().map_or("?".to_string(), |r| r.backend.clone());
+    let sweep_wall: f64 = rows.iter().map(|r| r.wall_s).sum();
+    let grid_text = rows
+        .iter()
+        .map(|r| format!("{}: {}×{}", r.ratio, r.grid, r.ny))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let runs: Vec<RatioRun> = rows
+        .iter()
+        .filter_map(|r| {
+            let path = states_path(&sweep_dir, r.ratio, r.grid);
+            let states = read_state_rows(&path).ok()?;
+            Some(RatioRun {
+                ratio: r.ratio,
+                grid: (r.grid, r.ny),
+                states,
+            })
+        })
+        .collect();
+    let fits: Vec<_> = runs.iter().map(branch_fits).collect();
+    let what = format!(
+        "R1/R2 = {grid_text} (Nx×Ny); backend {backend}; pull-offs {sweep_wall:.0} s in all"
+    );
+    let pick = |want: &[f64]| -> (Vec<RatioRun>, Vec<_>) {
+        let runs: Vec<RatioRun> = runs
+            .iter()
+            .filter(|r| want.contains(&r.ratio))
+            .map(|r| RatioRun {
+                ratio: r.ratio,
+                grid: r.grid,
+                states: r.states.clone(),
+            })
+            .collect();
+        let fits = runs.iter().map(branch_fits).collect();
+        (runs, fits)
+    };
+    let mut figures = Vec::new();
+    let mut chart = |file: &str, chart: LineChart, caption: String| -> Result<(), CliError> {
+        chart.write_svg(&args.out.join(file)).map_err(failed)?;
+        figures.push(Figure {
+            file: file.into(),
+            caption,
+        });
+        Ok(())
+    };
+    chart(
+        "pulloff_curves.svg",
+        pulloff_curves_chart(&sweep_dir, &rows).map_err(failed)?,
+        format!("§8.1 Pull-off curves F̄(d̄) beside JKR (sphere) and JG. {what}."),
+    )?;
+    let (r2, _) = pick(&[2.0, 5.0, 10.0, 25.0]);
+    chart(
+        "axis_ratio.svg",
+        axis_ratio_chart(&r2),
+        format!("§8.2 Axis ratio b_simu/a_simu against F̄ beside JG's g(F̄). {what}."),
+    )?;
+    let (r3, f3) = pick(&[2.0, 10.0, 25.0]);
+    for (law, file, name) in [
+        (BranchLaw::DOfC, "d_of_c.svg", "d̄(c̄), fit d̄ = A c̄² + B c̄^½"),
+        (
+            BranchLaw::FOfC,
+            "f_of_c.svg",
+            "F̄(c̄), fit F̄ = c1 c̄³ + c2 c̄^α",
+        ),
+        (BranchLaw::FOfD, "f_of_d.svg", "F̄(d̄) from both fits"),
+    ] {
+        chart(
+            file,
+            branch_chart(&r3, &f3, law),
+            format!("§8.4 {name}, on the adhesive branch (onset states), beside JG. {what}."),
+        )?;
+    }
+    let laws = coefficient_laws(&fits);
+    let law_text = laws
+        .iter()
+        .map(|(n, _, l)| match l {
+            Some(l) => format!("{n} = {:.3}·(R1/R2)^{:.3} + {:.3}", l.k1, l.k2, l.k3),
+            None => format!("{n}: no fit"),
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
+    chart(
+        "coefficients.svg",
+        coefficients_chart(&fits),
+        format!(
+            "§8.5 The branch-law coefficients against R1/R2 with fitted laws: {law_text}. {what}."
+        ),
+    )?;
+    chart(
+        "force_vs_ratio.svg",
+        force_vs_ratio_chart(&rows),
+        format!("§8.6 Adhesive force |min F̄| against R1/R2 beside JG's pull-off force, with the fitted law. {what}."),
+    )?;
+    drop(chart);
+    // §8.7: crossed cylinders, at the grids of the nearest ratios.
+    let crossed_dir = args.out.join("crossed");
+    let crossed_args = crossed::Args {
+        radius: 0.01,
+        angles: vec![90.0, 70.0, 50.0, 30.0, 16.1],
+        young: 1.0e6,
+        poisson: 0.5,
+        work_of_adhesion: 0.05,
+        grid: if args.quick { 128 } else { 1024 },
+        steps: 200,
+        margin: 0.08,
+        backend: args.backend,
+        jobs: args.jobs,
+        out: crossed_dir.clone(),
+    };
+    let crossed_grid = crossed_args.grid;
+    let t = Instant::now();
+    if let Err(e) = crossed::run(crossed_args) {
+        failures.push(format!("crossed cylinders: {e}"));
+    }
+    let crossed_svg = crossed_dir.join("crossed.svg");
+    if crossed_svg.exists() {
+        std::fs::copy(&crossed_svg, args.out.join("crossed.svg")).map_err(failed)?;
+        figures.push(Figure {
+            file: "crossed.svg".into(),
+            caption: format!(
+                "§8.7 Crossed cylinders (R = 10 mm, E = 1 MPa, ν = 0.5, Δγ = 0.05 J/m²): adhesive \
+                 force in N against crossing angle beside JG; Nx = {crossed_grid}, backend {backend}, \
+                 {:.0} s.",
+                t.elapsed().as_secs_f64()
+            ),
+        });
+    }
+    write_index(
+        &args.out,
+        &figures,
+        &rows,
+        start.elapsed().as_secs_f64(),
+        args.quick,
+    )?;
+    println!(
+        "report: {} ({} charts, {:.0} s)",
+        args.out.join("index.html").display(),
+        figures.len(),
+        start.elapsed().as_secs_f64()
+    );
+    if failures.is_empty() {
+        Ok(())
+    } else {
+        Err(failed(format!(
+            "{} part(s) failed (the report shows the rest):\n  {}",
+            failures.len(),
+            failures.join("\n  ")
+        )))
+    }
+}
+
+/// index.html: every chart with its caption, and the sweep's table.
+fn write_index(
+    dir: &Path,
+    figures: &[Figure],
+    rows: &[SweepRow],
+    wall: f64,
+    quick: bool,
+) -> Result<(), CliError> {
+    let mut html = String::from(
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <title>jkrbem: the study</title>\
+         <style>body{font-family:sans-serif;max-width:960px;margin:2em auto;color:#222}\
+         figure{margin:2em 0}img{width:100%;border:1px solid #ddd}\
+         figcaption{font-size:0.95em;color:#444}table{border-collapse:collapse}\
+         td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}</style></head><body>\n",
+    );
+    let _ = writeln!(
+        html,
+        "<h1>jkrbem: adhesive contact of ellipsoids</h1><p>{} run, {wall:.0} s in all. \
+         Normalisation: F̄ = F/(3π Re Δγ), c̄ = c/c_r, d̄ = d·Re/c_r² (SPEC §2).</p>",
+        if quick {
+            "Quick (coarse grids)"
+        } else {
+            "Full-resolution"
+        }
+    );
+    html.push_str(
+        "<table><tr><th>R1/R2</th><th>grid</th><th>|min F̄|</th><th>JG</th>\
+         <th>n_d</th><th>wall (s)</th></tr>\n",
+    );
+    for r in rows {
+        let f = |v: Option<f64>| v.map_or("—".into(), |v| format!("{v:.4}"));
+        let _ = writeln!(
+            html,
+            "<tr><td>{}</td><td>{}×{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.1}</td></tr>",
+            r.ratio,
+            r.grid,
+            r.ny,
+            f(r.f_ad_bar),
+            f(r.jg_f_ad_bar),
+            r.n_d.map_or("—".into(), |v| format!("{v:.0}")),
+            r.wall_s
+        );
+    }
+    html.push_str("</table>\n");
+    for f in figures {
+        let _ = writeln!(
+            html,
+            "<figure><img src=\"{0}\" alt=\"{0}\"><figcaption>{1}</figcaption></figure>",
+            f.file,
+            f.caption.replace('&', "&amp;").replace('<', "&lt;")
+        );
+    }
+    html.push_str("</body></html>\n");
+    let path = dir.join("index.html");
+    std::fs::write(&path, html).map_err(|e| failed(format!("{}: {e}", path.display())))
+}

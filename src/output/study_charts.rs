@@ -1,0 +1,217 @@
+//! The charts of the study (SPEC §8.2, §8.4–§8.6) made from pull-off states: the axis ratio
+//! b/a against F̄, the branch laws d̄(c̄), F̄(c̄), F̄(d̄) with their fits, the fitted
+//! coefficients against R1/R2, and the adhesive force with its fitted law.
+
+use super::line_chart::{LineChart, Style};
+use crate::analysis::branch::columns;
+use crate::analysis::{adhesive_branch, fit_d_of_c, fit_f_of_c, fit_power_law};
+use crate::analysis::{LinearFit2, PowerFit, PowerLawFit};
+use crate::solver::{Phase, State};
+use crate::theory::{self, TheoryModel, TheoryPoint};
+
+/// Points of closed-form and fitted curves.
+const CURVE_POINTS: usize = 200;
+
+/// One ratio's pull-off.
+pub struct RatioRun {
+    /// R1/R2.
+    pub ratio: f64,
+    /// Elements along x and y.
+    pub grid: (usize, usize),
+    /// The recorded states.
+    pub states: Vec<State>,
+}
+
+/// The branch fits of one ratio (None where there were too few branch points).
+pub struct BranchFits {
+    /// R1/R2.
+    pub ratio: f64,
+    /// d̄ = A c̄² + B c̄^½.
+    pub d_of_c: Option<LinearFit2>,
+    /// F̄ = c1 c̄³ + c2 c̄^α.
+    pub f_of_c: Option<PowerFit>,
+}
+
+fn reference(ratio: f64) -> (TheoryModel, &'static str) {
+    if ratio == 1.0 {
+        (TheoryModel::Jkr, "JKR")
+    } else {
+        (TheoryModel::Jg, "JG")
+    }
+}
+
+fn theory_points(ratio: f64) -> Vec<TheoryPoint> {
+    theory::curve(reference(ratio).0, ratio, CURVE_POINTS).unwrap_or_default()
+}
+
+/// Least-squares fits of a run's adhesive branch.
+pub fn branch_fits(run: &RatioRun) -> BranchFits {
+    let (c, d, f) = columns(&adhesive_branch(&run.states));
+    BranchFits {
+        ratio: run.ratio,
+        d_of_c: fit_d_of_c(&c, &d).ok(),
+        f_of_c: fit_f_of_c(&c, &f).ok(),
+    }
+}
+
+/// b/a against F̄ for each run (pull-off states in contact) beside JG's g(F̄).
+pub fn axis_ratio_chart(runs: &[RatioRun]) -> LineChart {
+    let mut chart = LineChart::new(
+        "Contact axis ratio against force (markers: jkrbem, lines: JG)",
+        "force F̄",
+        "axis ratio b_simu / a_simu",
+    );
+    for (i, run) in runs.iter().enumerate() {
+        let sim = run
+            .states
+            .iter()
+            .filter(|s| s.phase != Phase::Approach && s.n_contact > 0 && s.a_bar > 0.0)
+            .map(|s| (s.f_bar, s.b_bar / s.a_bar))
+            .collect();
+        chart.push(
+            &format!("R1/R2 = {} ({}×{})", run.ratio, run.grid.0, run.grid.1),
+            sim,
+            i,
+            Style::Markers,
+        );
+        let f_max = run.states.iter().map(|s| s.f_bar).fold(0.0, f64::max);
+        let jg = theory_points(run.ratio)
+            .iter()
+            .filter(|p| p.f_bar <= f_max && p.a_bar > 0.0)
+            .map(|p| (p.f_bar, p.b_bar / p.a_bar))
+            .collect();
+        chart.push(&format!("JG, R1/R2 = {}", run.ratio), jg, i, Style::Line);
+    }
+    chart
+}
+
+/// Which law of the branch a chart shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BranchLaw {
+    /// d̄(c̄).
+    DOfC,
+    /// F̄(c̄).
+    FOfC,
+    /// F̄(d̄).
+    FOfD,
+}
+
+/// One branch law for several runs: the adhesive branch (markers), the closed form (line) and
+/// the fitted law (dashed).
+pub fn branch_chart(runs: &[RatioRun], fits: &[BranchFits], law: BranchLaw) -> LineChart {
+    let (title, x, y) = match law {
+        BranchLaw::DOfC => ("Approach against contact radius", "c̄", "d̄"),
+        BranchLaw::FOfC => ("Force against contact radius", "c̄", "F̄"),
+        BranchLaw::FOfD => ("Force against approach", "d̄", "F̄"),
+    };
+    let mut chart = LineChart::new(
+        &format!("{title} (markers: jkrbem, lines: JKR/JG, dashed: fit)"),
+        x,
+        y,
+    );
+    let pick = |c: f64, d: f64, f: f64| match law {
+        BranchLaw::DOfC => (c, d),
+        BranchLaw::FOfC => (c, f),
+        BranchLaw::FOfD => (d, f),
+    };
+    for (i, (run, fit)) in runs.iter().zip(fits).enumerate() {
+        let branch = adhesive_branch(&run.states);
+        let c_max = branch.iter().map(|p| p.c_bar).fold(0.0, f64::max);
+        let c_min = branch.iter().map(|p| p.c_bar).fold(f64::INFINITY, f64::min);
+        chart.push(
+            &format!("R1/R2 = {} ({}×{})", run.ratio, run.grid.0, run.grid.1),
+            branch
+                .iter()
+                .map(|p| pick(p.c_bar, p.d_bar, p.f_bar))
+                .collect(),
+            i,
+            Style::Markers,
+        );
+        let (_, name) = reference(run.ratio);
+        chart.push(
+            &format!("{name}, R1/R2 = {}", run.ratio),
+            theory_points(run.ratio)
+                .iter()
+                .filter(|p| p.c_bar <= c_max && p.c_bar >= c_min)
+                .map(|p| pick(p.c_bar, p.d_bar, p.f_bar))
+                .collect(),
+            i,
+            Style::Line,
+        );
+        if let (Some(d), Some(f)) = (&fit.d_of_c, &fit.f_of_c) {
+            let fitted = (0..=CURVE_POINTS)
+                .map(|k| c_min + (c_max - c_min) * k as f64 / CURVE_POINTS as f64)
+                .map(|c| pick(c, d.eval(c), f.eval(c)))
+                .collect();
+            chart.push(
+                &format!("fit, R1/R2 = {}", run.ratio),
+                fitted,
+                i,
+                Style::Dashed,
+            );
+        }
+    }
+    chart
+}
+
+/// A coefficient's name and its value in a ratio's fits.
+type Coefficient = (&'static str, fn(&BranchFits) -> Option<f64>);
+
+/// The coefficients of the branch laws.
+pub const COEFFICIENTS: [Coefficient; 5] = [
+    ("A", |f| f.d_of_c.as_ref().map(|d| d.a)),
+    ("B", |f| f.d_of_c.as_ref().map(|d| d.b)),
+    ("c1", |f| f.f_of_c.as_ref().map(|p| p.c1)),
+    ("c2", |f| f.f_of_c.as_ref().map(|p| p.c2)),
+    ("α", |f| f.f_of_c.as_ref().map(|p| p.alpha)),
+];
+
+/// Each coefficient's values against R1/R2 and its law k1·(R1/R2)^k2 + k3 (None with fewer
+/// than three ratios or a failed fit).
+pub fn coefficient_laws(
+    fits: &[BranchFits],
+) -> Vec<(&'static str, Vec<(f64, f64)>, Option<PowerLawFit>)> {
+    COEFFICIENTS
+        .iter()
+        .map(|(name, get)| {
+            let pts: Vec<(f64, f64)> = fits
+                .iter()
+                .filter_map(|f| Some((f.ratio, get(f)?)))
+                .collect();
+            let (x, y): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
+            let law = fit_power_law(&x, &y).ok();
+            (*name, pts, law)
+        })
+        .collect()
+}
+
+/// The fitted coefficients against R1/R2 (log axis) with their laws (dashed).
+pub fn coefficients_chart(fits: &[BranchFits]) -> LineChart {
+    let mut chart = LineChart::new(
+        "Branch-law coefficients against axis ratio (dashed: k1·(R1/R2)^k2 + k3)",
+        "R1/R2",
+        "coefficient",
+    );
+    chart.x_log = true;
+    chart.legend = plotters::prelude::SeriesLabelPosition::LowerRight;
+    for (i, (name, pts, law)) in coefficient_laws(fits).into_iter().enumerate() {
+        let hi = pts.iter().map(|p| p.0).fold(1.0, f64::max);
+        chart.push(name, pts, i, Style::Markers);
+        if let Some(law) = law {
+            let curve = (0..=CURVE_POINTS)
+                .map(|k| hi.powf(k as f64 / CURVE_POINTS as f64))
+                .map(|x| (x, law.eval(x)))
+                .collect();
+            chart.push(
+                &format!(
+                    "{name} = {:.3}·(R1/R2)^{:.3} + {:.3}",
+                    law.k1, law.k2, law.k3
+                ),
+                curve,
+                i,
+                Style::Dashed,
+            );
+        }
+    }
+    chart
+}

@@ -1,0 +1,72 @@
+//! `jkrbem reproduce --quick`: the whole study on coarse grids writes every chart of SPEC §8
+//! (with data in each) and an index.html that shows them with captions, and the adhesive
+//! force falls with R1/R2 less steeply than Johnson–Greenwood's.
+
+use std::process::Command;
+
+#[test]
+fn quick_reproduction_writes_every_chart_with_data_and_an_index() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_jkrbem"))
+        .args([
+            "reproduce",
+            "--quick",
+            "--backend",
+            "cpu",
+            "--jobs",
+            "2",
+            "--out",
+            "rep",
+        ])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let rep = dir.path().join("rep");
+    let index = std::fs::read_to_string(rep.join("index.html")).unwrap();
+    let charts = [
+        "pulloff_curves.svg",
+        "axis_ratio.svg",
+        "d_of_c.svg",
+        "f_of_c.svg",
+        "f_of_d.svg",
+        "coefficients.svg",
+        "force_vs_ratio.svg",
+        "crossed.svg",
+    ];
+    for c in charts {
+        assert!(
+            index.contains(&format!("src=\"{c}\"")),
+            "{c} missing from index.html"
+        );
+        let svg = std::fs::read_to_string(rep.join(c)).unwrap();
+        assert!(
+            svg.matches("<circle").count() >= 5,
+            "{c} shows no simulated points"
+        );
+        assert!(
+            svg.contains("<polyline") || svg.contains("<path"),
+            "{c} has no lines"
+        );
+    }
+    assert_eq!(index.matches("<figcaption>").count(), charts.len());
+    assert!(index.contains("backend cpu-f64"));
+    // |min F̄| falls with the ratio, and less steeply than JG.
+    let rows: Vec<Vec<String>> = std::fs::read_to_string(rep.join("sweep/sweep.csv"))
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
+    let f = |r: &Vec<String>, i: usize| r[i].parse::<f64>().unwrap();
+    let (first, last) = (&rows[0], &rows[rows.len() - 1]);
+    assert_eq!(f(first, 0), 1.0);
+    assert!(
+        f(last, 1) < f(first, 1),
+        "the adhesive force falls with R1/R2"
+    );
+    assert!(
+        f(first, 1) - f(last, 1) < f(first, 4) - f(last, 4),
+        "it falls less steeply than JG"
+    );
+}
