@@ -173,7 +173,6 @@ pub fn run(args: Args) -> Result<(), CliError> {
         force_vs_ratio_chart(&rows),
         format!("§8.6 Adhesive force |min F̄| against R1/R2 beside JG's pull-off force, with the fitted law. {what}."),
     )?;
-    drop(chart);
     // §8.7: crossed cylinders, at the grids of the nearest ratios.
     let crossed_dir = args.out.join("crossed");
     let crossed_args = crossed::Args {

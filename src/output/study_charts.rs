@@ -166,11 +166,12 @@ pub const COEFFICIENTS: [Coefficient; 5] = [
     ("α", |f| f.f_of_c.as_ref().map(|p| p.alpha)),
 ];
 
+/// A coefficient's name, its (R1/R2, value) points and its fitted law.
+pub type CoefficientLaw = (&'static str, Vec<(f64, f64)>, Option<PowerLawFit>);
+
 /// Each coefficient's values against R1/R2 and its law k1·(R1/R2)^k2 + k3 (None with fewer
 /// than three ratios or a failed fit).
-pub fn coefficient_laws(
-    fits: &[BranchFits],
-) -> Vec<(&'static str, Vec<(f64, f64)>, Option<PowerLawFit>)> {
+pub fn coefficient_laws(fits: &[BranchFits]) -> Vec<CoefficientLaw> {
     COEFFICIENTS
         .iter()
         .map(|(name, get)| {
