@@ -33,6 +33,9 @@ fn quick_reproduction_writes_every_chart_with_data_and_an_index() {
         "coefficients.svg",
         "force_vs_ratio.svg",
         "crossed.svg",
+        "contours_r1.svg",
+        "contours_r5.svg",
+        "contours_r25.svg",
     ];
     for c in charts {
         assert!(

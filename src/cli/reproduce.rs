@@ -2,14 +2,15 @@
 //! fits, the crossed cylinders — with every chart as SVG and an index.html that shows them.
 
 use super::simulate::BackendChoice;
-use super::sweep::{run_all, states_path};
+use super::sweep::{contours_path, run_all, states_path};
 use super::{crossed, failed, input, CliError};
+use jkrbem::analysis::capture::ContourRow;
 use jkrbem::model::{Model, ModelOptions};
 use jkrbem::output::line_chart::LineChart;
 use jkrbem::output::states_csv::read_state_rows;
 use jkrbem::output::study_charts::{
-    axis_ratio_chart, branch_chart, branch_fits, coefficient_laws, coefficients_chart, BranchLaw,
-    RatioRun,
+    axis_ratio_chart, branch_chart, branch_fits, coefficient_laws, coefficients_chart,
+    contour_chart, BranchLaw, RatioRun,
 };
 use jkrbem::output::sweep_charts::{force_vs_ratio_chart, pulloff_curves_chart};
 use jkrbem::output::sweep_csv::{self, SweepRow};
@@ -173,6 +174,46 @@ pub fn run(args: Args) -> Result<(), CliError> {
         force_vs_ratio_chart(&rows),
         format!("§8.6 Adhesive force |min F̄| against R1/R2 beside JG's pull-off force, with the fitted law. {what}."),
     )?;
+    // §8.1 snapshots and §8.3: quarter contours against ellipses.
+    for ratio in [1.0, 5.0, 25.0] {
+        let Some(row) = rows.iter().find(|r| r.ratio == ratio) else {
+            continue;
+        };
+        let path = contours_path(&states_path(&sweep_dir, ratio, row.grid));
+        let contours: Vec<ContourRow> = csv::Reader::from_path(&path)
+            .and_then(|mut r| r.deserialize().collect())
+            .map_err(|e| failed(format!("{}: {e}", path.display())))?;
+        let mut labels: Vec<String> = Vec::new();
+        for c in &contours {
+            if labels.last() != Some(&c.label) {
+                labels.push(c.label.clone());
+            }
+        }
+        let departures = labels
+            .iter()
+            .filter_map(|l| contours.iter().find(|c| &c.label == l))
+            .map(|c| {
+                format!(
+                    "{} (c̄ = {:.2}): rms {:.1} %, max {:.1} %",
+                    c.label,
+                    c.c_bar,
+                    100.0 * c.departure_rms,
+                    100.0 * c.departure_max
+                )
+            })
+            .collect::<Vec<_>>()
+            .join("; ");
+        chart(
+            &format!("contours_r{ratio}.svg"),
+            contour_chart(ratio, &contours),
+            format!(
+                "§8.1/§8.3 Quarter contours of the contact during pull-off, R1/R2 = {ratio} \
+                 ({}×{}), beside the ellipses with the same half-axes. Departure r/r_e − 1: \
+                 {departures}. Backend {backend}.",
+                row.grid, row.ny
+            ),
+        )?;
+    }
     // §8.7: crossed cylinders, at the grids of the nearest ratios.
     let crossed_dir = args.out.join("crossed");
     let crossed_args = crossed::Args {

@@ -4,6 +4,7 @@
 
 use super::simulate::{backend_error, pulloff_to_file, BackendChoice, GPU_CHECK_EVERY};
 use super::{failed, input, CliError};
+use jkrbem::analysis::capture::{contour_rows, ContourRow};
 use jkrbem::backend::cpu::GridSetup;
 use jkrbem::backend::select::{self, AnyBackend};
 use jkrbem::model::{Model, ModelOptions};
@@ -141,6 +142,24 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
 }
 
+/// The contours file beside a states file: `<stem>.contours.csv`.
+pub fn contours_path(states: &Path) -> PathBuf {
+    let stem = states
+        .file_stem()
+        .map_or_else(|| "states".into(), |s| s.to_string_lossy().into_owned());
+    states.with_file_name(format!("{stem}.contours.csv"))
+}
+
+/// Write quarter-contour rows as CSV.
+fn write_contours(path: &Path, rows: &[ContourRow]) -> Result<(), csv::Error> {
+    let mut w = csv::Writer::from_path(path)?;
+    for r in rows {
+        w.serialize(r)?;
+    }
+    w.flush()?;
+    Ok(())
+}
+
 /// Run every (model, states path) pull-off, `jobs` at a time, each on its own backend of
 /// `choice`; every summary is also written as JSON beside its states. Returns the summaries
 /// of the runs that started (complete or not) and the failures, in words.
@@ -193,11 +212,12 @@ fn run_one(
     if matches!(any, AnyBackend::Gpu(_)) {
         model.cg.check_every = GPU_CHECK_EVERY;
     }
-    let (summary, outcome, path) =
+    let (summary, outcome, path, snapshots) =
         jkrbem::with_backend!(&mut any, backend => pulloff_to_file(backend, &model, out))?;
     summary
         .write_json(&path.with_extension("json"))
         .map_err(failed)?;
+    write_contours(&contours_path(out), &contour_rows(&model, &snapshots)).map_err(failed)?;
     let error = outcome
         .error
         .map(|e| format!("R1/R2 = {ratio}: {e} (states so far in {})", path.display()));

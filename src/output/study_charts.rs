@@ -216,3 +216,36 @@ pub fn coefficients_chart(fits: &[BranchFits]) -> LineChart {
     }
     chart
 }
+
+/// Quarter contours of the contact at the captured states of one run (markers) beside the
+/// ellipses with the same half-axes (lines), in c_r units (SPEC §8.1 snapshots, §8.3).
+pub fn contour_chart(ratio: f64, rows: &[crate::analysis::capture::ContourRow]) -> LineChart {
+    let mut chart = LineChart::new(
+        &format!("Quarter contours during pull-off, R1/R2 = {ratio} (lines: ellipses ā, b̄)"),
+        "x / c_r",
+        "y / c_r",
+    );
+    let mut labels: Vec<&str> = rows.iter().map(|r| r.label.as_str()).collect();
+    labels.dedup();
+    for (i, label) in labels.iter().enumerate() {
+        let group: Vec<_> = rows.iter().filter(|r| r.label == *label).collect();
+        let first = group[0];
+        chart.push(
+            &format!(
+                "{label}: c̄ = {:.2}, F̄ = {:.3}, departure rms {:.1} %",
+                first.c_bar,
+                first.f_bar,
+                100.0 * first.departure_rms
+            ),
+            group.iter().map(|r| (r.x_bar, r.y_bar)).collect(),
+            i,
+            Style::Markers,
+        );
+        let ellipse = (0..=CURVE_POINTS)
+            .map(|k| k as f64 / CURVE_POINTS as f64 * std::f64::consts::FRAC_PI_2)
+            .map(|t| (first.a_bar * t.cos(), first.b_bar * t.sin()))
+            .collect();
+        chart.push(&format!("ellipse {label}"), ellipse, i, Style::Line);
+    }
+    chart
+}

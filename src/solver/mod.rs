@@ -7,7 +7,7 @@ pub mod equilibrium;
 pub mod protocol;
 pub mod state;
 
-pub use protocol::{run, Outcome};
+pub use protocol::{run, run_with_contact, Outcome};
 pub use state::{Phase, State};
 
 use crate::backend::BackendError;

@@ -78,9 +78,19 @@ fn record<B: Backend>(
 
 /// Run the whole protocol on `backend`, calling `observe` with each recorded state.
 pub fn run<B: Backend>(backend: &mut B, model: &Model, observe: &mut dyn FnMut(&State)) -> Outcome {
+    run_with_contact(backend, model, &mut |s, _| observe(s))
+}
+
+/// Like [`run`], but `observe` also sees the contact mask of each state (row-major nx × ny,
+/// true = in contact), for contours and snapshots.
+pub fn run_with_contact<B: Backend>(
+    backend: &mut B,
+    model: &Model,
+    observe: &mut dyn FnMut(&State, &[bool]),
+) -> Outcome {
     let mut states = Vec::new();
-    let error = run_inner(backend, model, &mut |s| {
-        observe(&s);
+    let error = run_inner(backend, model, &mut |s, mask| {
+        observe(&s, mask);
         states.push(s);
     })
     .err();
@@ -90,14 +100,14 @@ pub fn run<B: Backend>(backend: &mut B, model: &Model, observe: &mut dyn FnMut(&
 fn run_inner<B: Backend>(
     backend: &mut B,
     model: &Model,
-    push: &mut dyn FnMut(State),
+    push: &mut dyn FnMut(State, &[bool]),
 ) -> Result<(), SolverError> {
     let mut mask = model.initial_contact();
     backend.set_contact(&mask)?;
     let mut fields = Fields::new(backend)?;
     // 1. Non-adhesive press to d0.
     let eq = equilibrate(backend, model, &mut fields, model.d0, 0.0)?;
-    push(record(
+    let state = record(
         backend,
         model,
         &fields.p,
@@ -106,7 +116,8 @@ fn run_inner<B: Backend>(
         Phase::Approach,
         model.d0,
         &eq,
-    )?);
+    )?;
+    push(state, &mask);
     // 2. Adhesive pull-off, step by step.
     let mut d_prev = model.d0;
     let mut step = 0;
@@ -130,7 +141,7 @@ fn run_inner<B: Backend>(
         eq.cg_iterations += last.cg_iterations;
         eq.sweeps += last.sweeps;
         eq.n_contact = last.n_contact;
-        push(record(
+        let state = record(
             backend,
             model,
             &fields.p,
@@ -139,7 +150,8 @@ fn run_inner<B: Backend>(
             Phase::Pulloff,
             d,
             &eq,
-        )?);
+        )?;
+        push(state, &mask);
         d_prev = d;
         if eq.n_contact == 0 {
             return Ok(());
@@ -168,7 +180,7 @@ fn advance_through_onsets<B: Backend>(
     step: usize,
     d_from: f64,
     d_to: f64,
-    push: &mut dyn FnMut(State),
+    push: &mut dyn FnMut(State, &[bool]),
 ) -> Result<Equilibrium, SolverError> {
     let no_work = Equilibrium {
         cg_iterations: 0,
@@ -186,7 +198,7 @@ fn advance_through_onsets<B: Backend>(
         }
         backend.lerp(&fields.p_prev, &fields.p, t, &mut fields.p_onset)?;
         let d_on = d_c + t * (d_to - d_c);
-        push(record(
+        let state = record(
             backend,
             model,
             &fields.p_onset,
@@ -195,7 +207,8 @@ fn advance_through_onsets<B: Backend>(
             Phase::Onset,
             d_on,
             &no_work,
-        )?);
+        )?;
+        push(state, mask);
         let t_push = (t + ONSET_PUSH).min(1.0);
         backend.lerp(&fields.p_prev, &fields.p, t_push, &mut fields.p_onset)?;
         backend.copy(&fields.p_onset, &mut fields.p)?;
