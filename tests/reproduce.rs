@@ -53,6 +53,14 @@ fn quick_reproduction_writes_every_chart_with_data_and_an_index() {
         );
     }
     assert_eq!(index.matches("<figcaption>").count(), charts.len());
+    // The fits with their quality, per ratio and across ratios.
+    let fits = std::fs::read_to_string(rep.join("fits.csv")).unwrap();
+    assert!(fits.starts_with(
+        "ratio,a,b,d_r_squared,d_rms,c1,c2,alpha,alpha_at_bound,f_r_squared,f_rms,points"
+    ));
+    assert_eq!(fits.lines().count(), 7);
+    let laws = std::fs::read_to_string(rep.join("coefficient_laws.csv")).unwrap();
+    assert_eq!(laws.lines().count(), 6, "{laws}");
     assert!(index.contains("backend cpu-f64"));
     // |min F̄| falls with the ratio, and less steeply than JG.
     let rows: Vec<Vec<String>> = std::fs::read_to_string(rep.join("sweep/sweep.csv"))

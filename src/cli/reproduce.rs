@@ -101,6 +101,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         })
         .collect();
     let fits: Vec<_> = runs.iter().map(branch_fits).collect();
+    write_fit_tables(&args.out, &fits)?;
     let what = format!(
         "R1/R2 = {grid_text} (Nx×Ny); backend {backend}; pull-offs {sweep_wall:.0} s in all"
     );
@@ -269,6 +270,90 @@ pub fn run(args: Args) -> Result<(), CliError> {
             failures.join("\n  ")
         )))
     }
+}
+
+/// One ratio's branch fits with their quality.
+#[derive(serde::Serialize)]
+struct FitRow {
+    ratio: f64,
+    a: Option<f64>,
+    b: Option<f64>,
+    d_r_squared: Option<f64>,
+    d_rms: Option<f64>,
+    c1: Option<f64>,
+    c2: Option<f64>,
+    alpha: Option<f64>,
+    alpha_at_bound: Option<bool>,
+    f_r_squared: Option<f64>,
+    f_rms: Option<f64>,
+    points: Option<usize>,
+}
+
+/// One coefficient's law k1·(R1/R2)^k2 + k3 with its quality.
+#[derive(serde::Serialize)]
+struct LawRow {
+    coefficient: &'static str,
+    k1: Option<f64>,
+    k2: Option<f64>,
+    k3: Option<f64>,
+    r_squared: Option<f64>,
+    rms: Option<f64>,
+    ratios: usize,
+}
+
+/// fits.csv (per ratio: A, B, c1, c2, α with R² and RMS residuals) and
+/// coefficient_laws.csv (each coefficient's law across ratios).
+fn write_fit_tables(
+    dir: &Path,
+    fits: &[jkrbem::output::study_charts::BranchFits],
+) -> Result<(), CliError> {
+    std::fs::create_dir_all(dir).map_err(failed)?;
+    write_csv(
+        &dir.join("fits.csv"),
+        fits.iter().map(|f| {
+            let d = f.d_of_c.as_ref();
+            let p = f.f_of_c.as_ref();
+            FitRow {
+                ratio: f.ratio,
+                a: d.map(|d| d.a),
+                b: d.map(|d| d.b),
+                d_r_squared: d.map(|d| d.quality.r_squared),
+                d_rms: d.map(|d| d.quality.rms_residual),
+                c1: p.map(|p| p.c1),
+                c2: p.map(|p| p.c2),
+                alpha: p.map(|p| p.alpha),
+                f_r_squared: p.map(|p| p.quality.r_squared),
+                f_rms: p.map(|p| p.quality.rms_residual),
+                points: d.map(|d| d.quality.points),
+            }
+        }),
+    )?;
+    write_csv(
+        &dir.join("coefficient_laws.csv"),
+        coefficient_laws(fits)
+            .into_iter()
+            .map(|(name, pts, law)| LawRow {
+                coefficient: name,
+                k1: law.as_ref().map(|l| l.k1),
+                k2: law.as_ref().map(|l| l.k2),
+                k3: law.as_ref().map(|l| l.k3),
+                r_squared: law.as_ref().map(|l| l.quality.r_squared),
+                rms: law.as_ref().map(|l| l.quality.rms_residual),
+                ratios: pts.len(),
+            }),
+    )
+}
+
+/// Write serialisable rows as a CSV file.
+fn write_csv<T: serde::Serialize>(
+    path: &Path,
+    rows: impl Iterator<Item = T>,
+) -> Result<(), CliError> {
+    let mut w = csv::Writer::from_path(path).map_err(failed)?;
+    for r in rows {
+        w.serialize(r).map_err(failed)?;
+    }
+    w.flush().map_err(failed)
 }
 
 /// index.html: every chart with its caption, and the sweep's table.
