@@ -322,6 +322,7 @@ fn write_fit_tables(
                 c1: p.map(|p| p.c1),
                 c2: p.map(|p| p.c2),
                 alpha: p.map(|p| p.alpha),
+                alpha_at_bound: p.map(|p| p.alpha_at_bound),
                 f_r_squared: p.map(|p| p.quality.r_squared),
                 f_rms: p.map(|p| p.quality.rms_residual),
                 points: d.map(|d| d.quality.points),
