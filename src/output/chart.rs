@@ -10,8 +10,8 @@ use std::path::Path;
 /// Most distinct x values that still get one tick each.
 const MAX_DATA_TICKS: usize = 12;
 
-/// Colours of series groups (the "tab10" palette), picked by [`Series::color`].
-const PALETTE: [RGBColor; 8] = [
+/// Colours of series groups (the "tab10" palette), picked by a series' colour index.
+pub(crate) const PALETTE: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
@@ -85,14 +85,7 @@ impl LogLogChart {
 
     /// Write the chart as SVG to `path`, creating its folder.
     pub fn write_svg(&self, path: &Path) -> Result<(), OutputError> {
-        let svg = self.to_svg().map_err(|reason| OutputError::Chart {
-            path: path.display().to_string(),
-            reason,
-        })?;
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            fs::create_dir_all(dir).map_err(|e| OutputError::io(dir, e))?;
-        }
-        fs::write(path, svg).map_err(|e| OutputError::io(path, e))
+        write_svg_document(path, self.to_svg())
     }
 
     fn points(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
@@ -158,6 +151,21 @@ impl LogLogChart {
         }
         Ok(())
     }
+}
+
+/// Write a rendered SVG document (or the renderer's error) to `path`, creating its folder.
+pub(crate) fn write_svg_document(
+    path: &Path,
+    svg: Result<String, String>,
+) -> Result<(), OutputError> {
+    let svg = svg.map_err(|reason| OutputError::Chart {
+        path: path.display().to_string(),
+        reason,
+    })?;
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        fs::create_dir_all(dir).map_err(|e| OutputError::io(dir, e))?;
+    }
+    fs::write(path, svg).map_err(|e| OutputError::io(path, e))
 }
 
 /// The points of a series that have a place on log axes.

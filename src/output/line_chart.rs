@@ -1,22 +1,10 @@
 //! Charts on linear axes (optionally a logarithmic x axis), written as SVG with `plotters`:
 //! simulated states as markers, closed forms and fits as lines, each with a legend entry.
 
+use super::chart::{write_svg_document, PALETTE};
 use super::OutputError;
 use plotters::prelude::*;
-use std::fs;
 use std::path::Path;
-
-/// Colours, picked by [`Curve::color`] (the "tab10" palette).
-const PALETTE: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(23, 190, 207),
-];
 
 /// How a curve is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -98,14 +86,7 @@ impl LineChart {
 
     /// Write the chart as SVG to `path`, creating its folder.
     pub fn write_svg(&self, path: &Path) -> Result<(), OutputError> {
-        let svg = self.to_svg().map_err(|reason| OutputError::Chart {
-            path: path.display().to_string(),
-            reason,
-        })?;
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            fs::create_dir_all(dir).map_err(|e| OutputError::io(dir, e))?;
-        }
-        fs::write(path, svg).map_err(|e| OutputError::io(path, e))
+        write_svg_document(path, self.to_svg())
     }
 
     /// x ticks: on a log axis log10 of 1, 2, 5 × 10^k inside the range; on a linear axis
