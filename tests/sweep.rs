@@ -157,3 +157,58 @@ fn crossed_cylinders_give_forces_in_newtons_beside_jg() {
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--nu"));
     assert!(!dir.path().join("x").exists());
 }
+
+#[test]
+fn extrapolation_to_zero_element_size_moves_the_sphere_towards_jkr() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = jkrbem(
+        &[
+            "simulate",
+            "--ratio",
+            "1",
+            "--extrapolate",
+            "--extrapolate-grids",
+            "32,64,128",
+            "--margin",
+            "0.1",
+            "--backend",
+            "cpu",
+            "--out",
+            "ex/s.csv",
+            "--summary",
+            "ex/s.json",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("ex/s.json")).unwrap())
+            .unwrap();
+    let x = &report["f_ad_bar_extrapolated"];
+    let (value, bar, finest) = (
+        x["value"].as_f64().unwrap(),
+        x["error_bar"].as_f64().unwrap(),
+        x["finest"].as_f64().unwrap(),
+    );
+    println!("extrapolated |min F̄| = {value:.4} ± {bar:.4}, finest {finest:.4}");
+    // Closer to JKR's 1/2 than the finest grid, and within its own error bar of it.
+    assert!((value - 0.5).abs() < (finest - 0.5).abs());
+    assert!((value - 0.5).abs() <= bar, "{value} ± {bar}");
+    for n in [32, 64, 128] {
+        assert!(dir.path().join(format!("ex/s-n{n}.csv")).exists());
+    }
+    let bad = jkrbem(
+        &[
+            "simulate",
+            "--extrapolate",
+            "--extrapolate-grids",
+            "128,64",
+            "--out",
+            "y/s.csv",
+        ],
+        dir.path(),
+    );
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--extrapolate-grids"));
+    assert!(!dir.path().join("y").exists());
+}

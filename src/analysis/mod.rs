@@ -6,6 +6,7 @@ pub mod branch;
 pub mod capture;
 pub mod contour;
 pub mod crossed;
+pub mod extrapolate;
 pub mod fit;
 mod lstsq;
 

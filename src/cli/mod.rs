@@ -4,6 +4,7 @@ pub mod bench;
 pub mod collect;
 pub mod crossed;
 pub mod devices;
+pub mod extrapolate;
 pub mod reproduce;
 pub mod simulate;
 pub mod sweep;

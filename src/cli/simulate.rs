@@ -112,10 +112,19 @@ pub struct Args {
     /// Also write the summary as JSON to this file.
     #[arg(long)]
     pub summary: Option<PathBuf>,
+    /// Run the scene on the grids of --extrapolate-grids (instead of --grid) and extrapolate
+    /// |min F̄|, c̄ and d̄ at the minimum to Δx → 0 (first order, SPEC §7), with an error bar
+    /// from the spread of the two finest pairs.
+    #[arg(long)]
+    pub extrapolate: bool,
+    /// Grids Nx for --extrapolate, coarse to fine (powers of two, at least two).
+    #[arg(long, value_delimiter = ',', default_value = "64,128,256")]
+    pub extrapolate_grids: Vec<usize>,
 }
 
 impl Args {
-    fn scene(&self) -> Result<Scene, CliError> {
+    /// The scene of these arguments.
+    pub fn scene(&self) -> Result<Scene, CliError> {
         match self.r1 {
             Some(r1) => Scene::new(r1, self.r2, self.e_star, self.work_of_adhesion),
             None => Scene::from_ratio(self.ratio, self.r2, self.e_star, self.work_of_adhesion),
@@ -123,7 +132,8 @@ impl Args {
         .map_err(input)
     }
 
-    fn options(&self) -> ModelOptions {
+    /// The model options of these arguments.
+    pub fn options(&self) -> ModelOptions {
         ModelOptions {
             nx: self.grid,
             ny: self.grid_y,
@@ -144,6 +154,9 @@ impl Args {
 
 /// Run `jkrbem simulate`.
 pub fn run(args: Args) -> Result<(), CliError> {
+    if args.extrapolate {
+        return super::extrapolate::run(&args);
+    }
     let scene = args.scene()?;
     let mut model = Model::build(&scene, &args.options()).map_err(input)?;
     if args.cg_check_every == Some(0) {
