@@ -22,7 +22,12 @@ pub struct Extrapolated {
 /// decreasing, at least two). Returns None for fewer than two points or non-decreasing Δx.
 pub fn extrapolate_first_order(dx: &[f64], values: &[f64]) -> Option<Extrapolated> {
     let n = dx.len();
-    if n < 2 || values.len() != n || dx.windows(2).any(|w| !(w[1] < w[0])) {
+    if n < 2
+        || values.len() != n
+        || dx
+            .windows(2)
+            .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Less))
+    {
         return None;
     }
     let pair = |c: usize, f: usize| values[f] + (values[f] - values[c]) * dx[f] / (dx[c] - dx[f]);
