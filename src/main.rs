@@ -32,6 +32,9 @@ enum Command {
     /// Run the whole study (sweep, fits, crossed cylinders) and write every chart and an
     /// index.html.
     Reproduce(cli::reproduce::Args),
+    /// One scene on several grids and backends: the error of the adhesive force against its
+    /// wall time, as CSV and a log–log chart.
+    Accuracy(cli::accuracy::Args),
     /// Merge the shard summaries of a split sweep into DIR/sweep.csv.
     Collect(cli::collect::Args),
     /// Write a closed-form curve (Hertz, JKR or Johnson–Greenwood) as CSV.
@@ -50,6 +53,7 @@ fn main() -> ExitCode {
         Command::Theory(a) => cli::theory::run(a),
         Command::Sweep(a) => cli::sweep::run(a),
         Command::Collect(a) => cli::collect::run(a),
+        Command::Accuracy(a) => cli::accuracy::run(a),
         Command::Reproduce(a) => cli::reproduce::run(a),
         Command::Crossed(a) => cli::crossed::run(a),
         Command::Devices(a) => cli::devices::run(a),

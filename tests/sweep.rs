@@ -212,3 +212,42 @@ fn extrapolation_to_zero_element_size_moves_the_sphere_towards_jkr() {
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--extrapolate-grids"));
     assert!(!dir.path().join("y").exists());
 }
+
+#[test]
+fn accuracy_charts_error_against_cost_with_the_extrapolated_point() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = jkrbem(
+        &[
+            "accuracy",
+            "--ratio",
+            "1",
+            "--grids",
+            "32,64",
+            "--backends",
+            "cpu",
+            "--out",
+            "acc",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(dir.path().join("acc/accuracy.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "backend,precision,grid,n_d,f_ad_bar,error,wall_s,cg_iterations"
+    );
+    let errors: Vec<f64> = lines
+        .map(|l| l.split(',').nth(5).unwrap().parse().unwrap())
+        .collect();
+    // Two grids and the extrapolated point: the error falls with the grid, and extrapolation
+    // beats the finest grid.
+    assert_eq!(errors.len(), 3);
+    assert!(errors[0] > errors[1] && errors[1] > 0.0);
+    assert!(errors[2].abs() < errors[1]);
+    let svg = std::fs::read_to_string(dir.path().join("acc/accuracy.svg")).unwrap();
+    assert!(svg.contains("exact JKR value"));
+    let bad = jkrbem(&["accuracy", "--backends", "tpu", "--out", "z"], dir.path());
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(!dir.path().join("z").exists());
+}

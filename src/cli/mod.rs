@@ -1,5 +1,6 @@
 //! One module per subcommand, and the error type they share.
 
+pub mod accuracy;
 pub mod bench;
 pub mod collect;
 pub mod crossed;

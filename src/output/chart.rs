@@ -49,6 +49,11 @@ pub struct LogLogChart {
     pub series: Vec<Series>,
     /// Size of the picture (pixels).
     pub size: (u32, u32),
+    /// Put x ticks at the data's own x values when there are few (grid sizes); otherwise on
+    /// a 1–2–5 sequence (times).
+    pub x_data_ticks: bool,
+    /// Corner of the legend.
+    pub legend: SeriesLabelPosition,
 }
 
 impl LogLogChart {
@@ -64,6 +69,8 @@ impl LogLogChart {
             y_label: y_label.into(),
             series: Vec::new(),
             size: (900, 600),
+            x_data_ticks: true,
+            legend: SeriesLabelPosition::UpperLeft,
         }
     }
 
@@ -98,7 +105,7 @@ impl LogLogChart {
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
         root.fill(&WHITE)?;
         let (xs, ys): (Vec<f64>, Vec<f64>) = self.points().unzip();
-        let (x_range, x_ticks) = axis(&xs, true);
+        let (x_range, x_ticks) = axis(&xs, self.x_data_ticks);
         let (y_range, y_ticks) = axis(&ys, false);
         let mut chart = ChartBuilder::on(root)
             .caption(&self.title, ("sans-serif", 20))
@@ -143,7 +150,7 @@ impl LogLogChart {
         if !self.series.is_empty() {
             chart
                 .configure_series_labels()
-                .position(SeriesLabelPosition::UpperLeft)
+                .position(self.legend.clone())
                 .label_font(("sans-serif", 14))
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK.mix(0.4))

@@ -1,0 +1,212 @@
+//! `jkrbem accuracy`: one scene on several grids and backends; the error of the adhesive force
+//! against the wall time it cost, as CSV and a log–log chart.
+
+use super::simulate::BackendChoice;
+use super::sweep::run_all;
+use super::{failed, input, CliError};
+use jkrbem::analysis::extrapolate::extrapolate_first_order;
+use jkrbem::model::{Model, ModelOptions};
+use jkrbem::output::chart::{LogLogChart, Series};
+use jkrbem::output::summary::Summary;
+use jkrbem::scene::Scene;
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// Arguments of `jkrbem accuracy`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Axis ratio R1/R2 (≥ 1; 1 is the sphere, whose exact answer is JKR's 1/2).
+    #[arg(long, default_value_t = 1.0)]
+    pub ratio: f64,
+    /// Grids Nx, coarse to fine (powers of two ≥ 16).
+    #[arg(long, value_delimiter = ',', default_value = "32,64,128")]
+    pub grids: Vec<usize>,
+    /// Backends, comma-separated: `cpu` (f64) and/or `gpu` (f32). The precision follows the
+    /// backend.
+    #[arg(long, value_delimiter = ',', default_value = "cpu")]
+    pub backends: Vec<String>,
+    /// Output folder: states per run, accuracy.csv and accuracy.svg.
+    #[arg(long, default_value = "jkrbem-out/accuracy")]
+    pub out: PathBuf,
+}
+
+/// One run of the chart.
+#[derive(Debug, Clone, Serialize)]
+struct Row {
+    backend: String,
+    precision: String,
+    grid: String,
+    n_d: Option<f64>,
+    f_ad_bar: Option<f64>,
+    /// Relative error of |min F̄| against the reference.
+    error: Option<f64>,
+    wall_s: f64,
+    cg_iterations: usize,
+}
+
+/// Run `jkrbem accuracy`.
+pub fn run(args: Args) -> Result<(), CliError> {
+    if args.grids.len() < 2 || args.grids.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(input(
+            "--grids: give at least two increasing grids, e.g. 32,64,128",
+        ));
+    }
+    let mut choices = Vec::new();
+    for b in &args.backends {
+        choices.push(match b.trim() {
+            "cpu" => BackendChoice::Cpu,
+            "gpu" => BackendChoice::Gpu,
+            other => {
+                return Err(input(format!(
+                    "--backends: unknown backend {other:?} (use cpu and/or gpu)"
+                )))
+            }
+        });
+    }
+    let scene = Scene::from_ratio(args.ratio, 1.0, 1.0, 1.0).map_err(input)?;
+    let mut per_backend: Vec<(String, Vec<Summary>)> = Vec::new();
+    let mut failures = Vec::new();
+    for (name, choice) in args.backends.iter().zip(&choices) {
+        let mut work = Vec::new();
+        for &nx in &args.grids {
+            let model = Model::build(
+                &scene,
+                &ModelOptions {
+                    nx,
+                    ..ModelOptions::default()
+                },
+            )
+            .map_err(|e| input(format!("--grids {nx}: {e}")))?;
+            work.push((model, args.out.join(format!("{}-n{nx}.csv", name.trim()))));
+        }
+        let (mut summaries, f) = run_all(work, 1, *choice);
+        summaries.sort_by_key(|s| s.nx);
+        failures.extend(f);
+        per_backend.push((name.trim().to_string(), summaries));
+    }
+    // The reference: JKR's exact 1/2 for the sphere, else the first backend extrapolated.
+    let (reference, reference_text) = if args.ratio == 1.0 {
+        (Some(0.5), "exact JKR value 1/2".to_string())
+    } else {
+        let s = &per_backend[0].1;
+        let dx: Vec<f64> = s.iter().map(|s| s.dx).collect();
+        let f: Option<Vec<f64>> = s.iter().map(|s| s.f_ad_bar).collect();
+        let x = f.and_then(|f| extrapolate_first_order(&dx, &f));
+        (
+            x.map(|x| x.value),
+            x.map_or("no reference".into(), |x| {
+                format!(
+                    "{} extrapolated to Δx → 0: {:.4} ± {:.4}",
+                    per_backend[0].0, x.value, x.error_bar
+                )
+            }),
+        )
+    };
+    let error = |f: Option<f64>| Some(f? / reference? - 1.0);
+    let mut rows = Vec::new();
+    let mut chart = LogLogChart::new(
+        format!(
+            "R1/R2 = {}: error of |min F̄| against cost ({reference_text})",
+            args.ratio
+        ),
+        "wall time (s)",
+        "|relative error of |min F̄||",
+    );
+    chart.x_data_ticks = false;
+    chart.legend = plotters::prelude::SeriesLabelPosition::UpperRight;
+    for (i, (name, summaries)) in per_backend.iter().enumerate() {
+        let mut points = Vec::new();
+        for s in summaries {
+            let e = error(s.f_ad_bar);
+            rows.push(Row {
+                backend: name.clone(),
+                precision: s.precision.clone(),
+                grid: format!("{}x{}", s.nx, s.ny),
+                n_d: s.n_d,
+                f_ad_bar: s.f_ad_bar,
+                error: e,
+                wall_s: s.wall_s,
+                cg_iterations: s.cg_iterations,
+            });
+            if let Some(e) = e {
+                points.push((s.wall_s, e.abs()));
+            }
+        }
+        chart.push(Series {
+            label: format!(
+                "{name} ({}), one grid per point",
+                summaries.first().map_or("", |s| s.precision.as_str())
+            ),
+            points,
+            color: i,
+            dashed: false,
+        });
+        // Extrapolation from the two finest grids costs their wall times together.
+        if args.ratio == 1.0 && summaries.len() >= 2 {
+            let n = summaries.len();
+            let dx: Vec<f64> = summaries.iter().map(|s| s.dx).collect();
+            let f: Option<Vec<f64>> = summaries.iter().map(|s| s.f_ad_bar).collect();
+            if let Some(x) = f.and_then(|f| extrapolate_first_order(&dx, &f)) {
+                let cost = summaries[n - 2].wall_s + summaries[n - 1].wall_s;
+                let e = x.value / 0.5 - 1.0;
+                rows.push(Row {
+                    backend: name.clone(),
+                    precision: summaries[0].precision.clone(),
+                    grid: format!(
+                        "extrapolated from {} and {}",
+                        summaries[n - 2].nx,
+                        summaries[n - 1].nx
+                    ),
+                    n_d: None,
+                    f_ad_bar: Some(x.value),
+                    error: Some(e),
+                    wall_s: cost,
+                    cg_iterations: summaries[n - 2].cg_iterations + summaries[n - 1].cg_iterations,
+                });
+                chart.push(Series {
+                    label: format!("{name}: extrapolated to Δx → 0 from the two finest grids"),
+                    points: vec![(cost, e.abs())],
+                    color: i,
+                    dashed: true,
+                });
+            }
+        }
+    }
+    std::fs::create_dir_all(&args.out).map_err(failed)?;
+    let csv_path = args.out.join("accuracy.csv");
+    let mut w = csv::Writer::from_path(&csv_path).map_err(failed)?;
+    for r in &rows {
+        w.serialize(r).map_err(failed)?;
+    }
+    w.flush().map_err(failed)?;
+    chart
+        .write_svg(&args.out.join("accuracy.svg"))
+        .map_err(failed)?;
+    println!("reference: {reference_text}");
+    println!("backend  grid                         |min F̄|   error      wall (s)");
+    for r in &rows {
+        println!(
+            "{:<8} {:<28} {:<9} {:<10} {:.2}",
+            r.backend,
+            r.grid,
+            r.f_ad_bar.map_or("—".into(), |v| format!("{v:.4}")),
+            r.error
+                .map_or("—".into(), |v| format!("{:+.2} %", 100.0 * v)),
+            r.wall_s
+        );
+    }
+    println!(
+        "written {} and {}",
+        csv_path.display(),
+        args.out.join("accuracy.svg").display()
+    );
+    if failures.is_empty() {
+        Ok(())
+    } else {
+        Err(failed(format!(
+            "{} run(s) failed:\n  {}",
+            failures.len(),
+            failures.join("\n  ")
+        )))
+    }
+}
