@@ -1,20 +1,9 @@
 //! `jkrbem bench`: a quick CPU run writes one CSV row per grid with the documented columns and
 //! a chart; bad grids and unknown backends are refused before any work, naming the flag.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
 
-fn jkrbem(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_jkrbem"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{jkrbem, stderr};
 
 const HEADER: &str = "backend,precision,adapter,grid,nx,ny,convolution_ms,cg_iteration_ms,\
 dispatches_per_iteration,readbacks_per_iteration,pulloff_s,pulloff_cg_iterations,f_ad_bar";

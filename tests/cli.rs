@@ -2,20 +2,9 @@
 //! a run that fails mid-way leaves only a file marked incomplete, and a good run writes the
 //! documented CSV and JSON.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
 
-fn jkrbem(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_jkrbem"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{jkrbem, stderr};
 
 #[test]
 fn bad_input_is_refused_with_the_flag_named_and_nothing_written() {

@@ -2,13 +2,15 @@
 //! (with data in each) and an index.html that shows them with captions, and the adhesive
 //! force falls with R1/R2 less steeply than Johnson–Greenwood's.
 
-use std::process::Command;
+mod common;
+
+use common::{jkrbem, stderr};
 
 #[test]
 fn quick_reproduction_writes_every_chart_with_data_and_an_index() {
     let dir = tempfile::tempdir().unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_jkrbem"))
-        .args([
+    let o = jkrbem(
+        &[
             "reproduce",
             "--quick",
             "--backend",
@@ -17,11 +19,10 @@ fn quick_reproduction_writes_every_chart_with_data_and_an_index() {
             "2",
             "--out",
             "rep",
-        ])
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
     let rep = dir.path().join("rep");
     let index = std::fs::read_to_string(rep.join("index.html")).unwrap();
     let charts = [

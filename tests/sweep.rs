@@ -2,16 +2,11 @@
 //! the documented columns, shards that a cluster runs separately and their merge, and bad
 //! input refused before any work.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
 
-fn jkrbem(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_jkrbem"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the binary runs")
-}
+use common::{jkrbem, stderr};
+use std::path::Path;
+use std::process::Output;
 
 const QUICK: &[&str] = &[
     "--grid",
@@ -37,7 +32,7 @@ fn sweep(dir: &Path, extra: &[&str]) -> Output {
 fn shards_run_separately_and_collect_merges_them_into_the_whole_sweep() {
     let whole = tempfile::tempdir().unwrap();
     let o = sweep(whole.path(), &["--jobs", "2"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let expected = std::fs::read_to_string(whole.path().join("sw/sweep.csv")).unwrap();
     let header = expected.lines().next().unwrap();
     assert!(header
@@ -52,7 +47,7 @@ fn shards_run_separately_and_collect_merges_them_into_the_whole_sweep() {
     assert!(sweep(split.path(), &["--shard", "1/2"]).status.success());
     let early = jkrbem(&["collect", "sw"], split.path());
     assert_eq!(early.status.code(), Some(1), "a missing shard is reported");
-    assert!(String::from_utf8_lossy(&early.stderr).contains("shards [2] of 2"));
+    assert!(stderr(&early).contains("shards [2] of 2"));
     assert!(sweep(split.path(), &["--shard", "2/2"]).status.success());
     assert!(jkrbem(&["collect", "sw"], split.path()).status.success());
     let merged = std::fs::read_to_string(split.path().join("sw/sweep.csv")).unwrap();
@@ -78,7 +73,7 @@ fn bad_sweep_input_is_refused_before_any_work() {
     ] {
         let dir = tempfile::tempdir().unwrap();
         let o = sweep(dir.path(), extra);
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = stderr(&o);
         assert_eq!(o.status.code(), Some(2), "{extra:?}: {err}");
         assert!(err.contains(flag), "{extra:?}: {err}");
         assert!(!dir.path().join("sw").exists());
@@ -86,7 +81,7 @@ fn bad_sweep_input_is_refused_before_any_work() {
     let dir = tempfile::tempdir().unwrap();
     let o = jkrbem(&["sweep", "--ratios", "1,0.5", "--out", "sw"], dir.path());
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--ratios"));
+    assert!(stderr(&o).contains("--ratios"));
     assert!(!dir.path().join("sw").exists());
     let o = jkrbem(&["collect", "nowhere"], dir.path());
     assert_eq!(o.status.code(), Some(2));
@@ -121,7 +116,7 @@ fn crossed_cylinders_give_forces_in_newtons_beside_jg() {
         ],
         dir.path(),
     );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(dir.path().join("cr/crossed.csv")).unwrap();
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
@@ -154,7 +149,7 @@ fn crossed_cylinders_give_forces_in_newtons_beside_jg() {
 
     let bad = jkrbem(&["crossed", "--nu", "0.7", "--out", "x"], dir.path());
     assert_eq!(bad.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("--nu"));
+    assert!(stderr(&bad).contains("--nu"));
     assert!(!dir.path().join("x").exists());
 }
 
@@ -180,7 +175,7 @@ fn extrapolation_to_zero_element_size_moves_the_sphere_towards_jkr() {
         ],
         dir.path(),
     );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("ex/s.json")).unwrap())
             .unwrap();
@@ -209,7 +204,7 @@ fn extrapolation_to_zero_element_size_moves_the_sphere_towards_jkr() {
         dir.path(),
     );
     assert_eq!(bad.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("--extrapolate-grids"));
+    assert!(stderr(&bad).contains("--extrapolate-grids"));
     assert!(!dir.path().join("y").exists());
 }
 
@@ -230,7 +225,7 @@ fn accuracy_charts_error_against_cost_with_the_extrapolated_point() {
         ],
         dir.path(),
     );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(dir.path().join("acc/accuracy.csv")).unwrap();
     let mut lines = text.lines();
     assert_eq!(

@@ -71,3 +71,17 @@ pub fn gpu_backend(
     let ctx = jkrbem::backend::gpu::test_context()?;
     Some(jkrbem::backend::gpu::GpuBackend::new(ctx, setup).expect("GPU backend opens"))
 }
+
+/// Run the `jkrbem` binary with `args` in `dir` and wait for it.
+pub fn jkrbem(args: &[&str], dir: &std::path::Path) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs")
+}
+
+/// A process's standard error as text.
+pub fn stderr(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
