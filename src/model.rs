@@ -202,11 +202,7 @@ impl Model {
             None => need_y.next_power_of_two().max(MIN_GRID),
         };
         let end = theory::pull_off(
-            if scene.ratio() == 1.0 {
-                TheoryModel::Jkr
-            } else {
-                TheoryModel::Jg
-            },
+            TheoryModel::adhesive_reference(scene.ratio()),
             scene.ratio(),
         )
         .map(|p| p.end_of_contact.d_bar)

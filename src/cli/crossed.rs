@@ -8,7 +8,7 @@ use super::{failed, input, CliError};
 use jkrbem::analysis::CrossedCylinders;
 use jkrbem::model::{Model, ModelOptions};
 use jkrbem::output::line_chart::{LineChart, Style};
-use jkrbem::theory::{self, TheoryModel};
+use jkrbem::theory;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -67,12 +67,7 @@ struct CrossedRow {
 
 /// JG's (JKR's at 90°) adhesive force |min F̄| at a ratio.
 fn jg_force_bar(ratio: f64) -> Option<f64> {
-    let model = if ratio == 1.0 {
-        TheoryModel::Jkr
-    } else {
-        TheoryModel::Jg
-    };
-    Some(theory::pull_off(model, ratio).ok()?.force_min.f_bar.abs())
+    theory::reference_adhesive_force(ratio).ok()
 }
 
 /// The analysis layer names its parameters `--angle`, `--young` and `--poisson`; this

@@ -72,8 +72,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             .file_stem()
             .map_or("states".into(), |s| s.to_string_lossy().into_owned());
         let out = stem.with_file_name(format!("{name}-n{}.csv", model.nx));
-        let (summary, outcome, path, _) =
-            jkrbem::with_backend!(&mut any, backend => pulloff_to_file(backend, &model, &out))?;
+        let (summary, outcome, path) = jkrbem::with_backend!(
+            &mut any,
+            backend => pulloff_to_file(backend, &model, &out, None)
+        )?;
         if let Some(e) = outcome.error {
             return Err(failed(format!(
                 "the {}×{} run stopped early: {e} (states so far in {})",

@@ -3,7 +3,7 @@
 use super::{failed, input, CliError};
 use clap::ValueEnum;
 use indicatif::{ProgressBar, ProgressStyle};
-use jkrbem::analysis::capture::{ContactCapture, Snapshot};
+use jkrbem::analysis::capture::ContactCapture;
 use jkrbem::backend::cpu::GridSetup;
 use jkrbem::backend::select::{self, BackendKind};
 use jkrbem::backend::{Backend, BackendError, Preconditioner};
@@ -205,7 +205,7 @@ fn run_on<B: Backend>(
     model: &Model,
     out: &std::path::Path,
 ) -> Result<(), CliError> {
-    let (summary, outcome, path, _) = pulloff_to_file(backend, model, out)?;
+    let (summary, outcome, path) = pulloff_to_file(backend, model, out, None)?;
     print!("{}", summary.to_text());
     println!("states written to {}", path.display());
     if let Some(p) = &args.summary {
@@ -223,20 +223,22 @@ fn run_on<B: Backend>(
 
 /// Run a model's pull-off on an opened backend, streaming its states to `out` (named
 /// `<stem>.incomplete.csv` until the run completes), with a progress line on a terminal.
-/// Returns the summary, the outcome, the path the states ended up at, and the contact
-/// snapshots at c̄ = 1.4, 1.1, 0.8, 0.5 and at the force minimum.
+/// `capture`, if given, sees every state with its contact mask. Returns the summary, the
+/// outcome and the path the states ended up at.
 pub fn pulloff_to_file<B: Backend>(
     backend: &mut B,
     model: &Model,
     out: &std::path::Path,
-) -> Result<(Summary, solver::Outcome, PathBuf, Vec<Snapshot>), CliError> {
-    let mut capture = ContactCapture::new(&SNAPSHOT_RADII);
+    mut capture: Option<&mut ContactCapture>,
+) -> Result<(Summary, solver::Outcome, PathBuf), CliError> {
     let mut writer = StateWriter::create(out).map_err(failed)?;
     let progress = progress_bar();
     let mut write_error = None;
     let start = Instant::now();
     let outcome = solver::run_with_contact(backend, model, &mut |s, mask| {
-        capture.observe(s, mask);
+        if let Some(c) = capture.as_deref_mut() {
+            c.observe(s, mask);
+        }
         progress.set_message(format!(
             "R1/R2 = {}, state {}: d̄ = {:+.4}, F̄ = {:+.4}, c̄ = {:.4}",
             model.scene.ratio(),
@@ -263,7 +265,7 @@ pub fn pulloff_to_file<B: Backend>(
         wall,
         &path,
     );
-    Ok((summary, outcome, path, capture.into_snapshots()))
+    Ok((summary, outcome, path))
 }
 
 /// Mean contact radii c̄ at which the pull-off's contact is kept for contours.

@@ -2,9 +2,11 @@
 //! a summary CSV; `--shard K/N` runs every N-th ratio so a cluster can split the sweep, and
 //! `jkrbem collect` merges the shards.
 
-use super::simulate::{backend_error, pulloff_to_file, BackendChoice, GPU_CHECK_EVERY};
+use super::simulate::{
+    backend_error, pulloff_to_file, BackendChoice, GPU_CHECK_EVERY, SNAPSHOT_RADII,
+};
 use super::{failed, input, CliError};
-use jkrbem::analysis::capture::{contour_rows, ContourRow};
+use jkrbem::analysis::capture::{contour_rows, ContactCapture, ContourRow};
 use jkrbem::backend::cpu::GridSetup;
 use jkrbem::backend::select::{self, AnyBackend};
 use jkrbem::model::{Model, ModelOptions};
@@ -212,12 +214,19 @@ fn run_one(
     if matches!(any, AnyBackend::Gpu(_)) {
         model.cg.check_every = GPU_CHECK_EVERY;
     }
-    let (summary, outcome, path, snapshots) =
-        jkrbem::with_backend!(&mut any, backend => pulloff_to_file(backend, &model, out))?;
+    let mut capture = ContactCapture::new(&SNAPSHOT_RADII);
+    let (summary, outcome, path) = jkrbem::with_backend!(
+        &mut any,
+        backend => pulloff_to_file(backend, &model, out, Some(&mut capture))
+    )?;
     summary
         .write_json(&path.with_extension("json"))
         .map_err(failed)?;
-    write_contours(&contours_path(out), &contour_rows(&model, &snapshots)).map_err(failed)?;
+    write_contours(
+        &contours_path(out),
+        &contour_rows(&model, &capture.into_snapshots()),
+    )
+    .map_err(failed)?;
     let error = outcome
         .error
         .map(|e| format!("R1/R2 = {ratio}: {e} (states so far in {})", path.display()));

@@ -81,13 +81,7 @@ impl LogLogChart {
 
     /// The chart as an SVG document.
     pub fn to_svg(&self) -> Result<String, String> {
-        let mut svg = String::new();
-        {
-            let root = SVGBackend::with_string(&mut svg, self.size).into_drawing_area();
-            self.draw(&root).map_err(|e| e.to_string())?;
-            root.present().map_err(|e| e.to_string())?;
-        }
-        Ok(svg)
+        render_svg(self.size, |root| self.draw(root).map_err(|e| e.to_string()))
     }
 
     /// Write the chart as SVG to `path`, creating its folder.
@@ -158,6 +152,20 @@ impl LogLogChart {
         }
         Ok(())
     }
+}
+
+/// Render a chart drawn by `draw` into an SVG document of `size` pixels.
+pub(crate) fn render_svg(
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<SVGBackend, plotters::coord::Shift>) -> Result<(), String>,
+) -> Result<String, String> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        draw(&root)?;
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
 }
 
 /// Write a rendered SVG document (or the renderer's error) to `path`, creating its folder.

@@ -1,7 +1,7 @@
 //! Charts on linear axes (optionally a logarithmic x axis), written as SVG with `plotters`:
 //! simulated states as markers, closed forms and fits as lines, each with a legend entry.
 
-use super::chart::{write_svg_document, PALETTE};
+use super::chart::{render_svg, write_svg_document, PALETTE};
 use super::OutputError;
 use plotters::prelude::*;
 use std::path::Path;
@@ -75,13 +75,7 @@ impl LineChart {
 
     /// The chart as an SVG document.
     pub fn to_svg(&self) -> Result<String, String> {
-        let mut svg = String::new();
-        {
-            let root = SVGBackend::with_string(&mut svg, self.size).into_drawing_area();
-            self.draw(&root).map_err(|e| e.to_string())?;
-            root.present().map_err(|e| e.to_string())?;
-        }
-        Ok(svg)
+        render_svg(self.size, |root| self.draw(root).map_err(|e| e.to_string()))
     }
 
     /// Write the chart as SVG to `path`, creating its folder.

@@ -32,12 +32,9 @@ pub struct BranchFits {
     pub f_of_c: Option<PowerFit>,
 }
 
-fn reference(ratio: f64) -> (TheoryModel, &'static str) {
-    if ratio == 1.0 {
-        (TheoryModel::Jkr, "JKR")
-    } else {
-        (TheoryModel::Jg, "JG")
-    }
+fn reference(ratio: f64) -> (TheoryModel, String) {
+    let model = TheoryModel::adhesive_reference(ratio);
+    (model, model.name().to_uppercase())
 }
 
 fn theory_points(ratio: f64) -> Vec<TheoryPoint> {

@@ -68,11 +68,8 @@ impl Summary {
         states_csv: &Path,
     ) -> Self {
         let ratio = model.scene.ratio();
-        let (name, which) = if ratio == 1.0 {
-            ("jkr", TheoryModel::Jkr)
-        } else {
-            ("jg", TheoryModel::Jg)
-        };
+        let which = TheoryModel::adhesive_reference(ratio);
+        let name = which.name();
         let reference = theory::pull_off(which, ratio)
             .ok()
             .map(|p| -p.force_min.f_bar);

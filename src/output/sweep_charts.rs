@@ -34,11 +34,7 @@ pub fn pulloff_points(states_csv: &Path) -> Result<Vec<(f64, f64)>, OutputError>
 /// The closed form for a ratio: JKR for the sphere, JG otherwise, as (d̄, F̄) on its adhesive
 /// branch up to approach `d_max`; empty if the theory cannot be evaluated.
 fn theory_curve(ratio: f64, d_max: f64) -> Vec<(f64, f64)> {
-    let model = if ratio == 1.0 {
-        TheoryModel::Jkr
-    } else {
-        TheoryModel::Jg
-    };
+    let model = TheoryModel::adhesive_reference(ratio);
     theory::curve(model, ratio, THEORY_POINTS)
         .map(|pts| {
             pts.iter()
@@ -72,7 +68,9 @@ pub fn pulloff_curves_chart(dir: &Path, rows: &[SweepRow]) -> Result<LineChart, 
             d_max = points.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
             chart.push(&label, points, i, Style::Markers);
         }
-        let reference = if r.ratio == 1.0 { "JKR" } else { "JG" };
+        let reference = TheoryModel::adhesive_reference(r.ratio)
+            .name()
+            .to_uppercase();
         chart.push(
             &format!("{reference}, R1/R2 = {}", r.ratio),
             theory_curve(r.ratio, d_max),
@@ -95,15 +93,7 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
     let hi = rows.iter().map(|r| r.ratio).fold(2.0, f64::max);
     let jg: Vec<(f64, f64)> = (0..=200)
         .map(|i| hi.powf(i as f64 / 200.0))
-        .filter_map(|ratio| {
-            let model = if ratio == 1.0 {
-                TheoryModel::Jkr
-            } else {
-                TheoryModel::Jg
-            };
-            let p = theory::pull_off(model, ratio).ok()?;
-            Some((ratio, p.force_min.f_bar.abs()))
-        })
+        .filter_map(|ratio| Some((ratio, theory::reference_adhesive_force(ratio).ok()?)))
         .collect();
     chart.push("Johnson–Greenwood (JKR at 1)", jg, 1, Style::Line);
     let sim: Vec<(f64, f64)> = rows

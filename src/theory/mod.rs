@@ -79,6 +79,27 @@ pub enum TheoryModel {
     Jg,
 }
 
+impl TheoryModel {
+    /// The closed form an adhesive run of R1/R2 = `ratio` is compared with: JKR for the
+    /// sphere, Johnson–Greenwood otherwise.
+    pub fn adhesive_reference(ratio: f64) -> TheoryModel {
+        if ratio == 1.0 {
+            TheoryModel::Jkr
+        } else {
+            TheoryModel::Jg
+        }
+    }
+
+    /// Short lower-case name ("hertz", "jkr", "jg").
+    pub fn name(self) -> &'static str {
+        match self {
+            TheoryModel::Hertz => "hertz",
+            TheoryModel::Jkr => "jkr",
+            TheoryModel::Jg => "jg",
+        }
+    }
+}
+
 /// The two critical points of an adhesive branch.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PullOff {
@@ -141,6 +162,15 @@ pub fn curve(model: TheoryModel, ratio: f64, n: usize) -> Result<Vec<TheoryPoint
             Ok(targets.map(|c| jg::jg_point_at_c(ratio, t_h, c)).collect())
         }
     }
+}
+
+/// The adhesive force |min F̄| of the closed form an adhesive run of R1/R2 = `ratio` is
+/// compared with (JKR's 1/2 for the sphere, Johnson–Greenwood's otherwise).
+pub fn reference_adhesive_force(ratio: f64) -> Result<f64, TheoryError> {
+    Ok(pull_off(TheoryModel::adhesive_reference(ratio), ratio)?
+        .force_min
+        .f_bar
+        .abs())
 }
 
 /// Force-controlled pull-off and displacement-controlled end of contact of an adhesive branch

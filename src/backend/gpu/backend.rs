@@ -67,6 +67,17 @@ struct ContactParams {
     sigma: f32,
 }
 
+/// Which reduction of reduce.wgsl to run.
+#[derive(Debug, Clone, Copy)]
+enum Reduction {
+    /// Σ_C a·b.
+    Dot,
+    /// Σ_C a and |C|.
+    Sum,
+    /// The first-crossing fraction (a minimum).
+    Crossing,
+}
+
 /// The compiled kernels of vector.wgsl, reduce.wgsl and contact.wgsl.
 struct Kernels {
     residual: Kernel,
@@ -314,11 +325,11 @@ impl GpuBackend {
         }
     }
 
-    /// Two-pass reduction: `first` over the fields into partials, then `finish` into `out`.
+    /// Two-pass reduction of `kind` over the fields a, b: partials per workgroup, then one
+    /// workgroup into slot `out`.
     fn reduce(
         &mut self,
-        first: fn(&Kernels) -> &Kernel,
-        finish: fn(&Kernels) -> &Kernel,
+        kind: Reduction,
         a: &wgpu::Buffer,
         b: &wgpu::Buffer,
         out: u32,
@@ -333,23 +344,28 @@ impl GpuBackend {
             pad1: [0; 3],
         };
         let p = self.rec.uniform(&self.ctx, &params)?;
-        let (mask, partials, counts, slots) =
-            (&self.mask, &self.partials, &self.counts, &self.slots);
-        let kernel = first(&self.kernels);
-        let is_crossing = std::ptr::eq(kernel, &self.kernels.crossing_partials);
-        // Every first pass reads b (sum_partials statically, with b = a); only the sums count.
-        let mut entries = vec![(0, &p), (1, a), (2, b), (3, mask), (4, partials)];
-        if !is_crossing {
-            entries.push((5, counts));
+        let k = &self.kernels;
+        let (first, finish, counted) = match kind {
+            Reduction::Dot => (&k.dot_partials, &k.finish_sum, true),
+            Reduction::Sum => (&k.sum_partials, &k.finish_sum, true),
+            Reduction::Crossing => (&k.crossing_partials, &k.finish_min, false),
+        };
+        // Every first pass reads b (sum_partials statically, with b = a); sums also count.
+        let mut entries = vec![
+            (0, &p),
+            (1, a),
+            (2, b),
+            (3, &self.mask),
+            (4, &self.partials),
+        ];
+        let mut finishing = vec![(0, &p), (4, &self.partials), (6, &self.slots)];
+        if counted {
+            entries.push((5, &self.counts));
+            finishing.push((5, &self.counts));
         }
         self.rec
-            .dispatch(&self.ctx, kernel, &entries, (self.reduce_groups, 1));
-        let finish = finish(&self.kernels);
-        let mut entries = vec![(0, &p), (4, partials), (6, slots)];
-        if std::ptr::eq(finish, &self.kernels.finish_sum) {
-            entries.push((5, counts));
-        }
-        self.rec.dispatch(&self.ctx, finish, &entries, (1, 1));
+            .dispatch(&self.ctx, first, &entries, (self.reduce_groups, 1));
+        self.rec.dispatch(&self.ctx, finish, &finishing, (1, 1));
         Ok(())
     }
 
@@ -473,14 +489,7 @@ impl Backend for GpuBackend {
     }
 
     fn dot(&mut self, a: &GpuField, b: &GpuField, out: Slot) -> Result<(), BackendError> {
-        self.reduce(
-            |k| &k.dot_partials,
-            |k| &k.finish_sum,
-            &a.buffer,
-            &b.buffer,
-            out.0 as u32,
-            0.0,
-        )
+        self.reduce(Reduction::Dot, &a.buffer, &b.buffer, out.0 as u32, 0.0)
     }
 
     fn axpy_ratio(
@@ -577,8 +586,7 @@ impl Backend for GpuBackend {
         sigma_c: f64,
     ) -> Result<f64, BackendError> {
         self.reduce(
-            |k| &k.crossing_partials,
-            |k| &k.finish_min,
+            Reduction::Crossing,
             &p_old.buffer,
             &p_new.buffer,
             MIN_SLOT,
@@ -614,14 +622,7 @@ impl Backend for GpuBackend {
     }
 
     fn sum_and_count(&mut self, p: &GpuField) -> Result<(f64, usize), BackendError> {
-        self.reduce(
-            |k| &k.sum_partials,
-            |k| &k.finish_sum,
-            &p.buffer,
-            &p.buffer,
-            SUM_SLOT,
-            0.0,
-        )?;
+        self.reduce(Reduction::Sum, &p.buffer, &p.buffer, SUM_SLOT, 0.0)?;
         let sum = self.read_f32(SUM_SLOT)? as f64;
         let c: Vec<u32> =
             self.rec

@@ -71,6 +71,8 @@ pub fn grid_for(ctx: &GpuContext, n: usize) -> (u32, u32) {
 pub struct Recorder {
     encoder: Option<wgpu::CommandEncoder>,
     uniforms: HashMap<Vec<u8>, wgpu::Buffer>,
+    /// Mappable readback buffers by size, reused (a CG residual check reads one every time).
+    staging: HashMap<u64, wgpu::Buffer>,
     /// Work done so far.
     pub counters: Counters,
 }
@@ -165,12 +167,18 @@ impl Recorder {
         offset: u64,
         bytes: u64,
     ) -> Result<Vec<T>, BackendError> {
-        let staging = ctx.device().create_buffer(&wgpu::BufferDescriptor {
-            label: Some("readback"),
-            size: bytes,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let staging = self
+            .staging
+            .entry(bytes)
+            .or_insert_with(|| {
+                ctx.device().create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("readback"),
+                    size: bytes,
+                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                })
+            })
+            .clone();
         self.encoder(ctx)
             .copy_buffer_to_buffer(buffer, offset, &staging, 0, bytes);
         self.flush(ctx)?;
