@@ -12,6 +12,7 @@ pub mod backend;
 pub mod bench;
 pub mod model;
 pub mod output;
+pub mod plan;
 pub mod scene;
 pub mod solver;
 pub mod theory;

@@ -46,6 +46,29 @@ pub fn critical_stress(scene: &Scene, dx: f64) -> f64 {
     (scene.e_star * scene.work_of_adhesion / (kappa() * dx)).sqrt()
 }
 
+/// How the approach is decreased from one recorded state to the next.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Stepping {
+    /// Fixed steps, each refined to the exact approach of every detachment onset inside it
+    /// (the sawtooth's local minima), so the force minimum does not depend on the step size.
+    #[default]
+    Adaptive,
+    /// Fixed steps only: the detachment cascade of a whole step is resolved at its end. Kept
+    /// to show what too large a step costs.
+    Fixed,
+}
+
+/// What a run is for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Measure {
+    /// The whole pull-off curve, to the end of contact.
+    #[default]
+    Curve,
+    /// Only the adhesive force |min F̄|: fixed steps while the force falls, onsets refined
+    /// from three steps before the minimum, and a stop once the minimum is confirmed.
+    AdhesiveForce,
+}
+
 /// The user's choices that shape a model; `None` means "choose for the scene".
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelOptions {
@@ -71,6 +94,12 @@ pub struct ModelOptions {
     pub preconditioner: Preconditioner,
     /// Limit on detachment/attachment sweeps per load step.
     pub max_sweeps: usize,
+    /// How load steps are taken.
+    pub stepping: Stepping,
+    /// What the run is for.
+    pub measure: Measure,
+    /// Re-grid as the contact shrinks: the same Nx × Ny on a smaller domain (finer Δx).
+    pub regrid: bool,
 }
 
 impl Default for ModelOptions {
@@ -87,6 +116,9 @@ impl Default for ModelOptions {
             cg_check_every: 1,
             preconditioner: Preconditioner::Stiffness,
             max_sweeps: 2000,
+            stepping: Stepping::Adaptive,
+            measure: Measure::Curve,
+            regrid: false,
         }
     }
 }
@@ -129,6 +161,14 @@ pub struct Model {
     pub preconditioner: Preconditioner,
     /// Limit on detachment sweeps per step.
     pub max_sweeps: usize,
+    /// Relative free margin around the contact on each side (dimensionless).
+    pub margin: f64,
+    /// How load steps are taken.
+    pub stepping: Stepping,
+    /// What the run is for.
+    pub measure: Measure,
+    /// Whether to re-grid as the contact shrinks.
+    pub regrid: bool,
 }
 
 fn check_grid(flag: &'static str, n: usize) -> Result<(), ModelError> {
@@ -237,7 +277,59 @@ impl Model {
             },
             preconditioner: opt.preconditioner,
             max_sweeps: opt.max_sweeps,
+            margin: opt.margin,
+            stepping: opt.stepping,
+            measure: opt.measure,
+            regrid: opt.regrid,
         })
+    }
+
+    /// The same model on a domain scaled by `factor` (< 1 refines): Δx scales with it, the
+    /// grid stays Nx × Ny, and σ_c is recomputed for the new Δx.
+    pub fn regridded(&self, factor: f64) -> Model {
+        let dx = self.dx * factor;
+        Model {
+            dx,
+            sigma_c: critical_stress(&self.scene, dx),
+            ..self.clone()
+        }
+    }
+
+    /// Half-extents (length) of the contact in `mask` along x and y: the largest |x| (|y|)
+    /// reached by a contact element's outer side; (0, 0) without contact.
+    pub fn contact_extent(&self, mask: &[bool]) -> (f64, f64) {
+        let (mut ex, mut ey) = (0f64, 0f64);
+        for j in 0..self.ny {
+            for i in 0..self.nx {
+                if mask[j * self.nx + i] {
+                    ex = ex.max(self.x(i).abs() + 0.5 * self.dx);
+                    ey = ey.max(self.y(j).abs() + 0.5 * self.dx);
+                }
+            }
+        }
+        (ex, ey)
+    }
+
+    /// Carry a field (row-major, on this model's grid) over to `fine`, a re-gridded model:
+    /// each element of the new grid takes the value of the element of this grid that holds
+    /// its centre (`outside` where none does).
+    pub fn resample<T: Copy>(&self, fine: &Model, values: &[T], outside: T) -> Vec<T> {
+        let index = |x: f64, n: usize| {
+            let k = (x / self.dx + n as f64 / 2.0).floor();
+            (k >= 0.0 && k < n as f64).then_some(k as usize)
+        };
+        let mut out = Vec::with_capacity(fine.nx * fine.ny);
+        for j in 0..fine.ny {
+            for i in 0..fine.nx {
+                out.push(
+                    match (index(fine.x(i), self.nx), index(fine.y(j), self.ny)) {
+                        (Some(ic), Some(jc)) => values[jc * self.nx + ic],
+                        _ => outside,
+                    },
+                );
+            }
+        }
+        out
     }
 
     /// x coordinate (length) of the centre of column `i`; the apex lies between the two

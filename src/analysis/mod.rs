@@ -5,6 +5,7 @@
 pub mod branch;
 pub mod capture;
 pub mod contour;
+pub mod convergence;
 pub mod crossed;
 pub mod extrapolate;
 pub mod fit;

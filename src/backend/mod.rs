@@ -192,4 +192,10 @@ pub trait Backend {
     fn counters(&self) -> Counters {
         Counters::default()
     }
+
+    /// A new backend of the same kind, on the same device, for another grid (the solver
+    /// re-grids a shrinking contact with it).
+    fn sibling(&self, setup: &cpu::GridSetup) -> Result<Self, BackendError>
+    where
+        Self: Sized;
 }

@@ -5,7 +5,7 @@ use super::simulate::BackendChoice;
 use super::sweep::run_all;
 use super::{failed, input, CliError};
 use jkrbem::analysis::extrapolate::extrapolate_first_order;
-use jkrbem::model::{Model, ModelOptions};
+use jkrbem::model::{Measure, Model, ModelOptions};
 use jkrbem::output::chart::{LogLogChart, Series};
 use jkrbem::output::summary::Summary;
 use jkrbem::scene::Scene;
@@ -25,14 +25,71 @@ pub struct Args {
     /// backend.
     #[arg(long, value_delimiter = ',', default_value = "cpu")]
     pub backends: Vec<String>,
+    /// Ways of running each grid, comma-separated: `plain` (the whole curve on a fixed grid),
+    /// `measure` (--measure adhesive-force: stop once the minimum is confirmed) and `regrid`
+    /// (--measure adhesive-force --regrid: also refine Δx as the contact shrinks).
+    #[arg(long, value_delimiter = ',', default_value = "plain,measure,regrid")]
+    pub variants: Vec<String>,
     /// Output folder: states per run, accuracy.csv and accuracy.svg.
     #[arg(long, default_value = "jkrbem-out/accuracy")]
     pub out: PathBuf,
 }
 
+/// A way of running each grid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Variant {
+    Plain,
+    Measure,
+    Regrid,
+}
+
+impl Variant {
+    fn parse(text: &str) -> Result<Self, CliError> {
+        match text.trim() {
+            "plain" => Ok(Variant::Plain),
+            "measure" => Ok(Variant::Measure),
+            "regrid" => Ok(Variant::Regrid),
+            other => Err(input(format!(
+                "--variants: unknown variant {other:?} (use plain, measure, regrid)"
+            ))),
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Variant::Plain => "plain",
+            Variant::Measure => "measure",
+            Variant::Regrid => "regrid",
+        }
+    }
+
+    /// The flags this variant adds, for labels.
+    fn flags(self) -> &'static str {
+        match self {
+            Variant::Plain => "whole curve",
+            Variant::Measure => "--measure adhesive-force",
+            Variant::Regrid => "--measure adhesive-force --regrid",
+        }
+    }
+
+    fn options(self, nx: usize) -> ModelOptions {
+        ModelOptions {
+            nx,
+            measure: if self == Variant::Plain {
+                Measure::Curve
+            } else {
+                Measure::AdhesiveForce
+            },
+            regrid: self == Variant::Regrid,
+            ..ModelOptions::default()
+        }
+    }
+}
+
 /// One run of the chart.
 #[derive(Debug, Clone, Serialize)]
 struct Row {
+    variant: &'static str,
     backend: String,
     precision: String,
     grid: String,
@@ -63,33 +120,40 @@ pub fn run(args: Args) -> Result<(), CliError> {
             }
         });
     }
+    let variants: Vec<Variant> = args
+        .variants
+        .iter()
+        .map(|v| Variant::parse(v))
+        .collect::<Result<_, _>>()?;
+    if variants.is_empty() {
+        return Err(input(
+            "--variants: give at least one of plain, measure, regrid",
+        ));
+    }
     let scene = Scene::from_ratio(args.ratio, 1.0, 1.0, 1.0).map_err(input)?;
-    let mut per_backend: Vec<(String, Vec<Summary>)> = Vec::new();
+    let mut per_backend: Vec<(String, Variant, Vec<Summary>)> = Vec::new();
     let mut failures = Vec::new();
     for (name, choice) in args.backends.iter().zip(&choices) {
-        let mut work = Vec::new();
-        for &nx in &args.grids {
-            let model = Model::build(
-                &scene,
-                &ModelOptions {
-                    nx,
-                    ..ModelOptions::default()
-                },
-            )
-            .map_err(|e| input(format!("--grids {nx}: {e}")))?;
-            work.push((model, args.out.join(format!("{}-n{nx}.csv", name.trim()))));
+        for &variant in &variants {
+            let mut work = Vec::new();
+            for &nx in &args.grids {
+                let model = Model::build(&scene, &variant.options(nx))
+                    .map_err(|e| input(format!("--grids {nx}: {e}")))?;
+                let file = format!("{}-{}-n{nx}.csv", name.trim(), variant.name());
+                work.push((model, args.out.join(file)));
+            }
+            let (mut summaries, f) = run_all(work, 1, *choice);
+            summaries.sort_by_key(|s| s.nx);
+            failures.extend(f);
+            per_backend.push((name.trim().to_string(), variant, summaries));
         }
-        let (mut summaries, f) = run_all(work, 1, *choice);
-        summaries.sort_by_key(|s| s.nx);
-        failures.extend(f);
-        per_backend.push((name.trim().to_string(), summaries));
     }
     // The reference: JKR's exact 1/2 for the sphere, else the first backend extrapolated.
     let (reference, reference_text) = if args.ratio == 1.0 {
         (Some(0.5), "exact JKR value 1/2".to_string())
     } else {
-        let s = &per_backend[0].1;
-        let dx: Vec<f64> = s.iter().map(|s| s.dx).collect();
+        let s = &per_backend[0].2;
+        let dx: Vec<f64> = s.iter().map(|s| s.dx_at_min.unwrap_or(s.dx)).collect();
         let f: Option<Vec<f64>> = s.iter().map(|s| s.f_ad_bar).collect();
         let x = f.and_then(|f| extrapolate_first_order(&dx, &f));
         (
@@ -114,11 +178,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
     );
     chart.x_data_ticks = false;
     chart.legend = plotters::prelude::SeriesLabelPosition::UpperRight;
-    for (i, (name, summaries)) in per_backend.iter().enumerate() {
+    for (i, (name, variant, summaries)) in per_backend.iter().enumerate() {
         let mut points = Vec::new();
         for s in summaries {
             let e = error(s.f_ad_bar);
             rows.push(Row {
+                variant: variant.name(),
                 backend: name.clone(),
                 precision: s.precision.clone(),
                 grid: format!("{}x{}", s.nx, s.ny),
@@ -134,22 +199,27 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }
         chart.push(Series {
             label: format!(
-                "{name} ({}), one grid per point",
-                summaries.first().map_or("", |s| s.precision.as_str())
+                "{name} ({}), {}: one grid per point",
+                summaries.first().map_or("", |s| s.precision.as_str()),
+                variant.flags()
             ),
             points,
             color: i,
             dashed: false,
         });
         // Extrapolation from the two finest grids costs their wall times together.
-        if args.ratio == 1.0 && summaries.len() >= 2 {
+        if let (Some(reference), true) = (reference, summaries.len() >= 2) {
             let n = summaries.len();
-            let dx: Vec<f64> = summaries.iter().map(|s| s.dx).collect();
+            let dx: Vec<f64> = summaries
+                .iter()
+                .map(|s| s.dx_at_min.unwrap_or(s.dx))
+                .collect();
             let f: Option<Vec<f64>> = summaries.iter().map(|s| s.f_ad_bar).collect();
             if let Some(x) = f.and_then(|f| extrapolate_first_order(&dx, &f)) {
                 let cost = summaries[n - 2].wall_s + summaries[n - 1].wall_s;
-                let e = x.value / 0.5 - 1.0;
+                let e = x.value / reference - 1.0;
                 rows.push(Row {
+                    variant: variant.name(),
                     backend: name.clone(),
                     precision: summaries[0].precision.clone(),
                     grid: format!(
@@ -163,12 +233,18 @@ pub fn run(args: Args) -> Result<(), CliError> {
                     wall_s: cost,
                     cg_iterations: summaries[n - 2].cg_iterations + summaries[n - 1].cg_iterations,
                 });
-                chart.push(Series {
-                    label: format!("{name}: extrapolated to Δx → 0 from the two finest grids"),
-                    points: vec![(cost, e.abs())],
-                    color: i,
-                    dashed: true,
-                });
+                // The reference itself (non-sphere) has no error to chart.
+                if e.abs() > 0.0 {
+                    chart.push(Series {
+                        label: format!(
+                            "{name}, {}: extrapolated from the two finest",
+                            variant.name()
+                        ),
+                        points: vec![(cost, e.abs())],
+                        color: i,
+                        dashed: true,
+                    });
+                }
             }
         }
     }
@@ -183,10 +259,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
         .write_svg(&args.out.join("accuracy.svg"))
         .map_err(failed)?;
     println!("reference: {reference_text}");
-    println!("backend  grid                         |min F̄|   error      wall (s)");
+    println!("variant  backend  grid                         |min F̄|   error      wall (s)");
     for r in &rows {
         println!(
-            "{:<8} {:<28} {:<9} {:<10} {:.2}",
+            "{:<8} {:<8} {:<28} {:<9} {:<10} {:.2}",
+            r.variant,
             r.backend,
             r.grid,
             r.f_ad_bar.map_or("—".into(), |v| format!("{v:.4}")),

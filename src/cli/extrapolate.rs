@@ -95,7 +95,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         summaries.push(summary);
     }
     let length = scene.scales().length;
-    let dx: Vec<f64> = summaries.iter().map(|s| s.dx / length).collect();
+    let dx: Vec<f64> = summaries
+        .iter()
+        .map(|s| s.dx_at_min.unwrap_or(s.dx) / length)
+        .collect();
     let column = |get: fn(&Summary) -> Option<f64>| -> Option<Vec<f64>> {
         summaries.iter().map(get).collect()
     };

@@ -7,7 +7,7 @@ use jkrbem::analysis::capture::ContactCapture;
 use jkrbem::backend::cpu::GridSetup;
 use jkrbem::backend::select::{self, BackendKind};
 use jkrbem::backend::{Backend, BackendError, Preconditioner};
-use jkrbem::model::{Model, ModelOptions};
+use jkrbem::model::{Measure, Model, ModelOptions, Stepping};
 use jkrbem::output::states_csv::StateWriter;
 use jkrbem::output::summary::Summary;
 use jkrbem::scene::Scene;
@@ -39,6 +39,27 @@ impl BackendChoice {
             BackendChoice::Gpu => BackendKind::Gpu,
         }
     }
+}
+
+/// How load steps are taken.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum SteppingChoice {
+    /// Each step refined to the exact approach of every detachment onset inside it, so the
+    /// force minimum does not depend on --steps.
+    Adaptive,
+    /// Whole steps only, the detachment cascade resolved at each step's end (shows what too
+    /// large a step costs).
+    Fixed,
+}
+
+/// What the run is for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MeasureChoice {
+    /// The whole pull-off curve, to the end of contact.
+    Curve,
+    /// Only the adhesive force: whole steps while the force falls, onsets refined from three
+    /// steps before its minimum, and a stop once the minimum is confirmed.
+    AdhesiveForce,
 }
 
 /// Preconditioner of the CG solves.
@@ -82,6 +103,19 @@ pub struct Args {
     /// Load steps from the initial approach d̄0 to the expected end of contact.
     #[arg(long, default_value_t = 200)]
     pub steps: usize,
+    /// How load steps are taken: `adaptive` refines each step to every detachment onset in it
+    /// (the force minimum is then independent of --steps); `fixed` does not.
+    #[arg(long, value_enum, default_value_t = SteppingChoice::Adaptive)]
+    pub stepping: SteppingChoice,
+    /// What to compute: the whole `curve`, or only the `adhesive-force` (stops once the force
+    /// minimum is confirmed, refining load steps only near it; cheaper).
+    #[arg(long, value_enum, default_value_t = MeasureChoice::Curve)]
+    pub measure: MeasureChoice,
+    /// Re-grid as the contact shrinks: once the contact and its margin fit in 80 % of the
+    /// domain, the same Nx × Ny is laid over a domain fitted to it (finer Δx, σ_c recomputed,
+    /// the contact carried over and re-equilibrated).
+    #[arg(long)]
+    pub regrid: bool,
     /// Stop at this approach d̄ if the contact has not vanished by then (dimensionless).
     #[arg(long, allow_hyphen_values = true)]
     pub final_d: Option<f64>,
@@ -120,6 +154,27 @@ pub struct Args {
     /// Grids Nx for --extrapolate, coarse to fine (powers of two, at least two).
     #[arg(long, value_delimiter = ',', default_value = "64,128,256")]
     pub extrapolate_grids: Vec<usize>,
+    /// Reach this relative accuracy of the adhesive force |min F̄| (a percentage: `5%`, `1%`)
+    /// at the least cost: chooses the grid (or grids to extrapolate), the domain, the load
+    /// steps and what to compute from the convergence law (SPEC §7), says what it chose, and
+    /// overrides --grid, --grid-y, --steps, --stepping, --measure, --regrid and --extrapolate.
+    #[arg(long, value_parser = parse_percentage)]
+    pub accuracy: Option<f64>,
+}
+
+/// A percentage such as `5%` or `5` as a fraction (0.05).
+fn parse_percentage(text: &str) -> Result<f64, String> {
+    let number = text.trim().trim_end_matches('%').trim();
+    let v: f64 = number
+        .parse()
+        .map_err(|_| format!("{text:?} is not a percentage (e.g. 5% or 1%)"))?;
+    if v.is_finite() && v > 0.0 && v < 100.0 {
+        Ok(v / 100.0)
+    } else {
+        Err(format!(
+            "{text:?}: give a percentage in (0, 100), e.g. 5% or 1%"
+        ))
+    }
 }
 
 impl Args {
@@ -147,13 +202,35 @@ impl Args {
                 PreconditionerChoice::Stiffness => Preconditioner::Stiffness,
                 PreconditionerChoice::None => Preconditioner::None,
             },
+            stepping: match self.stepping {
+                SteppingChoice::Adaptive => Stepping::Adaptive,
+                SteppingChoice::Fixed => Stepping::Fixed,
+            },
+            measure: match self.measure {
+                MeasureChoice::Curve => Measure::Curve,
+                MeasureChoice::AdhesiveForce => Measure::AdhesiveForce,
+            },
+            regrid: self.regrid,
             ..ModelOptions::default()
         }
     }
 }
 
 /// Run `jkrbem simulate`.
-pub fn run(args: Args) -> Result<(), CliError> {
+pub fn run(mut args: Args) -> Result<(), CliError> {
+    if let Some(target) = args.accuracy {
+        let scene = args.scene()?;
+        let plan = jkrbem::plan::for_accuracy(&scene, target, &args.options()).map_err(input)?;
+        eprintln!("jkrbem: {}", plan.describe(scene.ratio()));
+        args.grid = plan.grids[plan.grids.len() - 1];
+        args.grid_y = None;
+        args.steps = plan.options.steps;
+        args.stepping = SteppingChoice::Adaptive;
+        args.measure = MeasureChoice::AdhesiveForce;
+        args.regrid = plan.options.regrid;
+        args.extrapolate = plan.extrapolates();
+        args.extrapolate_grids = plan.grids;
+    }
     if args.extrapolate {
         return super::extrapolate::run(&args);
     }

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 /// The CSV header, one column per [`State`] field.
 pub const HEADER: &str = "step,phase,d,force,area,mean_radius,a_axis,b_axis,n_contact,\
-cg_iterations,detach_sweeps,d_bar,f_bar,c_bar,a_bar,b_bar";
+cg_iterations,detach_sweeps,d_bar,f_bar,c_bar,a_bar,b_bar,dx";
 
 /// The name a run's states carry until it completes: `dir/stem.incomplete.csv`.
 pub fn incomplete_path(path: &Path) -> PathBuf {

@@ -2,8 +2,9 @@
 //! value, with what the run cost. Printed for people, written as JSON for scripts.
 
 use super::OutputError;
-use crate::model::Model;
-use crate::solver::Outcome;
+use crate::analysis::convergence;
+use crate::model::{Model, Stepping};
+use crate::solver::{protocol::RegridEvent, Outcome};
 use crate::theory::{self, TheoryModel};
 use serde::Serialize;
 use std::path::Path;
@@ -56,6 +57,49 @@ pub struct Summary {
     pub error: Option<String>,
     /// Where the states were written.
     pub states_csv: String,
+    /// Element side Δx at the force minimum (length; differs from `dx` after re-grids).
+    pub dx_at_min: Option<f64>,
+    /// The grid changes made during the run.
+    pub regrids: Vec<RegridEvent>,
+    /// Whether the run stopped once the force minimum was confirmed (--measure adhesive-force).
+    pub stopped_after_minimum: bool,
+    /// Warnings about the result (e.g. too coarse a grid), for people and scripts.
+    pub warnings: Vec<String>,
+}
+
+/// With [`Stepping::Fixed`], a warning if the steps around the force minimum detached
+/// elements: the minimum then lies at an onset inside a step, which whole steps do not see.
+fn step_warning(model: &Model, outcome: &Outcome) -> Option<String> {
+    if model.stepping != Stepping::Fixed {
+        return None;
+    }
+    let states = &outcome.states;
+    let k = states
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1.force.total_cmp(&b.1.force))?
+        .0;
+    let around = &states[k.saturating_sub(1)..(k + 2).min(states.len())];
+    let lost = around
+        .windows(2)
+        .map(|w| w[0].n_contact.saturating_sub(w[1].n_contact))
+        .max()
+        .unwrap_or(0);
+    let jump = around
+        .windows(2)
+        .map(|w| (w[1].f_bar - w[0].f_bar).abs())
+        .fold(0.0, f64::max);
+    let f_min = states[k].f_bar.abs();
+    (lost > 0).then(|| {
+        format!(
+            "load steps too large to resolve the force minimum: with --stepping fixed, one step \
+             (Δd̄ = {:.4}) around it detached {lost} elements and changed F̄ by {:.1} % of |min F̄|, \
+             so the minimum lies at an onset inside a step; use --stepping adaptive (the \
+             default), which refines every step to its onsets",
+            model.d_step / model.scene.scales().approach,
+            100.0 * jump / f_min
+        )
+    })
 }
 
 impl Summary {
@@ -75,6 +119,12 @@ impl Summary {
             .map(|p| -p.force_min.f_bar);
         let min = outcome.force_minimum();
         let f_ad = min.map(|s| -s.f_bar);
+        let n_d = min.map(|s| 2.0 * s.b_axis / s.dx);
+        let warnings = n_d
+            .and_then(|n| convergence::coarse_grid_warning(ratio, n))
+            .into_iter()
+            .chain(step_warning(model, outcome))
+            .collect();
         Summary {
             ratio,
             f_ad_bar: f_ad,
@@ -82,7 +132,7 @@ impl Summary {
             d_bar_at_min: min.map(|s| s.d_bar),
             a_bar_at_min: min.map(|s| s.a_bar),
             b_bar_at_min: min.map(|s| s.b_bar),
-            n_d: min.map(|s| 2.0 * s.b_axis / model.dx),
+            n_d,
             reference_model: name,
             reference_f_ad_bar: reference,
             relative_error: f_ad.zip(reference).map(|(f, r)| f / r - 1.0),
@@ -98,6 +148,10 @@ impl Summary {
             complete: outcome.complete(),
             error: outcome.error.as_ref().map(|e| e.to_string()),
             states_csv: states_csv.display().to_string(),
+            dx_at_min: min.map(|s| s.dx),
+            regrids: outcome.regrids.clone(),
+            stopped_after_minimum: outcome.stopped_after_minimum,
+            warnings,
         }
     }
 
@@ -137,10 +191,29 @@ impl Summary {
             self.sigma_c,
             opt(self.n_d, 0)
         );
+        if !self.regrids.is_empty() {
+            s += &format!(
+                "Δx at the force minimum {} after {} re-grid(s)\n",
+                self.dx_at_min.map_or("—".into(), |v| format!("{v:.5e}")),
+                self.regrids.len()
+            );
+        }
         s += &format!(
             "{} backend ({}), {} states, {} CG iterations, {:.2} s\n",
             self.backend, self.precision, self.states, self.cg_iterations, self.wall_s
         );
+        for r in &self.regrids {
+            s += &format!(
+                "re-gridded at d̄ = {:.4}: Δx {:.4e} → {:.4e}\n",
+                r.d_bar, r.dx_from, r.dx_to
+            );
+        }
+        if self.stopped_after_minimum {
+            s += "stopped once the force minimum was confirmed (--measure adhesive-force)\n";
+        }
+        for w in &self.warnings {
+            s += &format!("WARNING: {w}\n");
+        }
         if let Some(e) = &self.error {
             s += &format!("INCOMPLETE: {e}\n");
         }

@@ -7,7 +7,7 @@ use crate::backend::Backend;
 use crate::model::Model;
 
 /// The result of equilibrating one approach.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Equilibrium {
     /// CG iterations over all sweeps.
     pub cg_iterations: usize,
@@ -15,6 +15,14 @@ pub struct Equilibrium {
     pub sweeps: usize,
     /// Elements in contact at the end.
     pub n_contact: usize,
+}
+
+impl Equilibrium {
+    /// Add another equilibration's work (iterations and sweeps) to this one's.
+    pub fn add(&mut self, other: &Equilibrium) {
+        self.cg_iterations += other.cg_iterations;
+        self.sweeps += other.sweeps;
+    }
 }
 
 /// Fields the loop works on: the pressure p (force/length²) and the displacement u = K p

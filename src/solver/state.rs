@@ -14,6 +14,9 @@ pub enum Phase {
     /// contact set reaches σ_c: a local minimum of the sawtooth F(d), recorded so that the
     /// force minimum does not depend on the step size.
     Onset,
+    /// The state just after re-gridding: the contact carried to a finer grid and
+    /// re-equilibrated at the same approach.
+    Regrid,
 }
 
 /// One converged state. Dimensional values are in the scene's units; `*_bar` values are
@@ -52,6 +55,10 @@ pub struct State {
     pub a_bar: f64,
     /// b̄ (dimensionless).
     pub b_bar: f64,
+    /// Element side Δx of the grid this state was computed on (length); it changes only
+    /// when the run re-grids.
+    #[serde(default)]
+    pub dx: f64,
 }
 
 /// Half-lengths (in elements) of a contact mask along the two axes through the centre of an

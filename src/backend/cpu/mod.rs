@@ -53,6 +53,8 @@ pub struct CpuBackend {
     /// Scratch for the masked preconditioner input.
     scratch: Vec<f64>,
     slots: [f64; N_SLOTS],
+    /// Whether the convolution is the (wrong) periodic one.
+    periodic: bool,
 }
 
 impl CpuBackend {
@@ -103,6 +105,7 @@ impl CpuBackend {
             mask: vec![false; nx * ny],
             scratch: vec![0.0; nx * ny],
             slots: [0.0; N_SLOTS],
+            periodic,
         }
     }
 
@@ -146,6 +149,13 @@ impl Backend for CpuBackend {
     }
     fn shape(&self) -> (usize, usize) {
         (self.nx, self.ny)
+    }
+    fn sibling(&self, setup: &GridSetup) -> Result<Self, BackendError> {
+        if self.periodic {
+            Ok(Self::new_periodic(setup))
+        } else {
+            Self::new(setup)
+        }
     }
 
     fn field(&mut self) -> Result<Vec<f64>, BackendError> {

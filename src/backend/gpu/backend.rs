@@ -397,6 +397,9 @@ impl Backend for GpuBackend {
     fn shape(&self) -> (usize, usize) {
         (self.nx, self.ny)
     }
+    fn sibling(&self, setup: &GridSetup) -> Result<Self, BackendError> {
+        GpuBackend::new(self.ctx.clone(), setup)
+    }
 
     fn field(&mut self) -> Result<GpuField, BackendError> {
         let buffer = storage(&self.ctx, "field", self.n() as u64 * 4);

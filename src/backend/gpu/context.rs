@@ -55,7 +55,9 @@ impl std::fmt::Display for AdapterInfoLine {
     }
 }
 
-/// An open wgpu device and its queue, with what was learnt about the adapter.
+/// An open wgpu device and its queue, with what was learnt about the adapter. Clones share
+/// the device.
+#[derive(Clone)]
 pub struct GpuContext {
     device: wgpu::Device,
     queue: wgpu::Queue,

@@ -1,0 +1,186 @@
+//! Modelling no more than a scene needs: from a requested accuracy of the adhesive force,
+//! choose the grid, the domain, the load steps and what to compute, by the convergence law
+//! (SPEC §7, [`crate::analysis::convergence`]).
+
+use crate::analysis::convergence;
+use crate::model::{Measure, Model, ModelError, ModelOptions, Stepping};
+use crate::scene::Scene;
+use crate::theory::{self, TheoryModel};
+
+/// Smallest grid side a plan uses (elements): coarser grids are not yet in the first-order
+/// regime (the observed order from 32/64/128 was 1.1, from 64/128/256 without re-gridding 0.6).
+pub const MIN_PLAN_GRID: usize = 32;
+
+/// Largest grid side a plan runs directly; finer answers come from extrapolation.
+pub const MAX_DIRECT_GRID: usize = 256;
+
+/// Targets below this (relative) are met by extrapolating three grids to Δx → 0, whose
+/// finest grid alone is expected within 4× the target.
+pub const EXTRAPOLATE_BELOW: f64 = 0.03;
+
+/// Δx at the force minimum over the initial Δx with re-gridding: the last re-grid falls at
+/// c̄ ≤ 1.125 from c̄0 = 1.5 (measured 0.50–0.63 for R1/R2 = 1…25; 0.75 is the bound).
+pub const REGRID_DX_GAIN: f64 = 0.75;
+
+/// Load steps of a plan: with adaptive stepping the force minimum does not depend on them
+/// (measured: 0.5155 with 100 and 200 steps, 128², re-gridded).
+pub const PLAN_STEPS: usize = 100;
+
+/// What a requested accuracy led to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// Grids Nx to run, coarse to fine (one: a direct answer; three: extrapolated).
+    pub grids: Vec<usize>,
+    /// The options each grid is run with (nx set per grid).
+    pub options: ModelOptions,
+    /// Predicted elements across the minor axis at the minimum on the finest grid.
+    pub n_d: f64,
+    /// Predicted relative error range of the finest grid alone (first order).
+    pub finest_error: (f64, f64),
+    /// The target (relative).
+    pub target: f64,
+}
+
+impl Plan {
+    /// Whether the answer is extrapolated from several grids.
+    pub fn extrapolates(&self) -> bool {
+        self.grids.len() > 1
+    }
+
+    /// What was chosen and why, for the user.
+    pub fn describe(&self, ratio: f64) -> String {
+        let (lo, hi) = self.finest_error;
+        let how = if self.extrapolates() {
+            format!(
+                "extrapolate |min F̄| to Δx → 0 from grids {:?} (the finest alone: +{:.1}…{:.1} %)",
+                self.grids,
+                100.0 * lo,
+                100.0 * hi
+            )
+        } else {
+            format!(
+                "grid {} directly (expected error +{:.1}…{:.1} %)",
+                self.grids[0],
+                100.0 * lo,
+                100.0 * hi
+            )
+        };
+        format!(
+            "--accuracy {:.3} %: R1/R2 = {ratio}: {how}; about {:.0} elements across the minor \
+             axis at the minimum; domain: the initial contact c̄0 = {} plus {} % margin, re-gridded \
+             to the shrinking contact (finer Δx, same grid); load steps: {} adaptive, stopped once \
+             the force minimum is confirmed (--measure adhesive-force); precision: the backend's \
+             (f32 on a GPU is 1e-6 relative, far below the target)",
+            100.0 * self.target,
+            self.n_d,
+            self.options.start_radius_bar,
+            100.0 * self.options.margin,
+            self.options.steps,
+        )
+    }
+}
+
+/// Predicted elements across the minor axis at the force minimum for a model, re-gridded:
+/// the closed form's b̄ at the minimum over the Δx expected there.
+fn predicted_n_d(model: &Model) -> f64 {
+    let ratio = model.scene.ratio();
+    let b_bar = theory::pull_off(TheoryModel::adhesive_reference(ratio), ratio)
+        .map(|p| p.force_min.b_bar)
+        .unwrap_or(0.5);
+    2.0 * b_bar * model.scene.scales().length / (model.dx * REGRID_DX_GAIN)
+}
+
+/// The cheapest plan expected to reach relative accuracy `target` (e.g. 0.01) on `scene`,
+/// starting from the user's `base` options (CG settings, start radius, margin are kept).
+pub fn for_accuracy(scene: &Scene, target: f64, base: &ModelOptions) -> Result<Plan, ModelError> {
+    if !(target.is_finite() && target > 0.0 && target < 1.0) {
+        return Err(ModelError::Invalid {
+            flag: "--accuracy",
+            value: format!("{}", 100.0 * target),
+            expected: "a percentage in (0, 100), e.g. 5% or 1%".into(),
+        });
+    }
+    let ratio = scene.ratio();
+    let options = ModelOptions {
+        ny: None,
+        steps: PLAN_STEPS,
+        stepping: Stepping::Adaptive,
+        measure: Measure::AdhesiveForce,
+        regrid: true,
+        ..base.clone()
+    };
+    let finest_target = if target < EXTRAPOLATE_BELOW {
+        4.0 * target
+    } else {
+        target
+    };
+    let needed = convergence::n_d_for(ratio, finest_target);
+    let mut nx = MIN_PLAN_GRID;
+    let n_d = loop {
+        let model = Model::build(
+            scene,
+            &ModelOptions {
+                nx,
+                ..options.clone()
+            },
+        )?;
+        let n_d = predicted_n_d(&model);
+        if n_d >= needed || nx >= 8 * MAX_DIRECT_GRID {
+            break n_d;
+        }
+        nx *= 2;
+    };
+    let extrapolate = target < EXTRAPOLATE_BELOW || nx > MAX_DIRECT_GRID;
+    let grids = if extrapolate {
+        let finest = nx.max(4 * MIN_PLAN_GRID);
+        vec![finest / 4, finest / 2, finest]
+    } else {
+        vec![nx]
+    };
+    let finest = *grids.last().unwrap_or(&nx);
+    let n_d = n_d * finest as f64 / nx as f64;
+    Ok(Plan {
+        grids,
+        options,
+        n_d,
+        finest_error: convergence::expected_error(ratio, n_d),
+        target,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sphere() -> Scene {
+        Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap()
+    }
+
+    #[test]
+    fn looser_targets_take_coarser_grids() {
+        let base = ModelOptions::default();
+        let p10 = for_accuracy(&sphere(), 0.10, &base).unwrap();
+        let p5 = for_accuracy(&sphere(), 0.05, &base).unwrap();
+        assert_eq!(p10.grids.len(), 1);
+        assert_eq!(p5.grids.len(), 1);
+        assert!(p10.grids[0] < p5.grids[0], "{p10:?} {p5:?}");
+        assert!(p5.finest_error.1 <= 0.05);
+    }
+
+    #[test]
+    fn one_percent_extrapolates_three_grids() {
+        let p = for_accuracy(&sphere(), 0.01, &ModelOptions::default()).unwrap();
+        assert!(p.extrapolates());
+        assert_eq!(p.grids.len(), 3);
+        assert!(p.finest_error.1 <= 0.04, "{p:?}");
+        assert!(p.options.regrid && p.options.measure == Measure::AdhesiveForce);
+    }
+
+    #[test]
+    fn bad_targets_are_refused() {
+        for t in [0.0, -0.1, 1.5, f64::NAN] {
+            let e = for_accuracy(&sphere(), t, &ModelOptions::default()).unwrap_err();
+            assert!(e.to_string().contains("--accuracy"), "{e}");
+        }
+    }
+}
