@@ -10,17 +10,21 @@ mod common;
 use common::{gpu_backend, model_for, run_model};
 use jkrbem::backend::cpu::GridSetup;
 use jkrbem::backend::{Backend, BackendError};
-use jkrbem::model::ModelOptions;
+use jkrbem::model::{Measure, ModelOptions};
 use jkrbem::solver::{self, SolverError};
 
 fn compare(ratio: f64, nx: usize) {
-    let model = model_for(
+    compare_with(
         ratio,
         ModelOptions {
             nx,
             ..ModelOptions::default()
         },
     );
+}
+
+fn compare_with(ratio: f64, options: ModelOptions) {
+    let model = model_for(ratio, options);
     let Some(mut gpu) = gpu_backend(&GridSetup::for_model(&model)) else {
         return;
     };
@@ -57,6 +61,20 @@ fn compare(ratio: f64, nx: usize) {
         c.cg_iterations()
     );
     assert!(rel < 2e-3, "GPU and CPU adhesive forces differ by {rel:e}");
+}
+
+#[test]
+fn regridded_adhesive_force_measurement_matches_cpu() {
+    // The GPU backend makes its sibling on the same device when the contact is re-gridded.
+    compare_with(
+        1.0,
+        ModelOptions {
+            nx: 32,
+            measure: Measure::AdhesiveForce,
+            regrid: true,
+            ..ModelOptions::default()
+        },
+    );
 }
 
 #[test]
