@@ -207,45 +207,43 @@ pub fn run(args: Args) -> Result<(), CliError> {
             color: i,
             dashed: false,
         });
-        // Extrapolation from the two finest grids costs their wall times together.
-        if let (Some(reference), true) = (reference, summaries.len() >= 2) {
-            let n = summaries.len();
-            let dx: Vec<f64> = summaries
-                .iter()
-                .map(|s| s.dx_at_min.unwrap_or(s.dx))
-                .collect();
-            let f: Option<Vec<f64>> = summaries.iter().map(|s| s.f_ad_bar).collect();
-            if let Some(x) = f.and_then(|f| extrapolate_first_order(&dx, &f)) {
-                let cost = summaries[n - 2].wall_s + summaries[n - 1].wall_s;
-                let e = x.value / reference - 1.0;
-                rows.push(Row {
-                    variant: variant.name(),
-                    backend: name.clone(),
-                    precision: summaries[0].precision.clone(),
-                    grid: format!(
-                        "extrapolated from {} and {}",
-                        summaries[n - 2].nx,
-                        summaries[n - 1].nx
-                    ),
-                    n_d: None,
-                    f_ad_bar: Some(x.value),
-                    error: Some(e),
-                    wall_s: cost,
-                    cg_iterations: summaries[n - 2].cg_iterations + summaries[n - 1].cg_iterations,
-                });
-                // The reference itself (non-sphere) has no error to chart.
-                if e.abs() > 0.0 {
-                    chart.push(Series {
-                        label: format!(
-                            "{name}, {}: extrapolated from the two finest",
-                            variant.name()
-                        ),
-                        points: vec![(cost, e.abs())],
-                        color: i,
-                        dashed: true,
-                    });
-                }
+        // Extrapolation from each pair of consecutive grids costs their wall times together.
+        let Some(reference) = reference else { continue };
+        let mut points = Vec::new();
+        for pair in summaries.windows(2) {
+            let dx: Vec<f64> = pair.iter().map(|s| s.dx_at_min.unwrap_or(s.dx)).collect();
+            let f: Option<Vec<f64>> = pair.iter().map(|s| s.f_ad_bar).collect();
+            let Some(x) = f.and_then(|f| extrapolate_first_order(&dx, &f)) else {
+                continue;
+            };
+            let cost = pair[0].wall_s + pair[1].wall_s;
+            let e = x.value / reference - 1.0;
+            rows.push(Row {
+                variant: variant.name(),
+                backend: name.clone(),
+                precision: pair[0].precision.clone(),
+                grid: format!("extrapolated from {} and {}", pair[0].nx, pair[1].nx),
+                n_d: None,
+                f_ad_bar: Some(x.value),
+                error: Some(e),
+                wall_s: cost,
+                cg_iterations: pair[0].cg_iterations + pair[1].cg_iterations,
+            });
+            // The reference itself (non-sphere) has no error to chart.
+            if e.abs() > 0.0 {
+                points.push((cost, e.abs()));
             }
+        }
+        if !points.is_empty() {
+            chart.push(Series {
+                label: format!(
+                    "{name}, {}: extrapolated from two consecutive grids",
+                    variant.name()
+                ),
+                points,
+                color: i,
+                dashed: true,
+            });
         }
     }
     std::fs::create_dir_all(&args.out).map_err(failed)?;
