@@ -1,7 +1,7 @@
 //! The detachment/attachment loop at one approach (SPEC §6.2): solve on a fixed contact
 //! set, detach over-stressed elements, attach overlapping ones, repeat until nothing changes.
 
-use super::cg::{self, CgWork};
+use super::cg::{self, CgEnd, CgWork};
 use super::SolverError;
 use crate::backend::Backend;
 use crate::model::Model;
@@ -57,13 +57,13 @@ pub fn solve_fixed<B: Backend>(
 ) -> Result<usize, SolverError> {
     let d_bar = d / model.scene.scales().approach;
     let rep = cg::solve(backend, &mut fields.cg, &mut fields.p, d, &model.cg)?;
-    if rep.non_finite {
+    if rep.end == CgEnd::NonFinite {
         return Err(SolverError::NonFinite {
             d_bar,
             iterations: rep.iterations,
         });
     }
-    if !rep.converged {
+    if !rep.converged() {
         return Err(SolverError::CgNotConverged {
             d_bar,
             residual: rep.residual,
