@@ -46,6 +46,13 @@ pub struct Summary {
     pub precision: String,
     /// CG iterations over the run.
     pub cg_iterations: usize,
+    /// The largest relative CG residual of any state, recomputed from p (dimensionless).
+    pub cg_residual_max: Option<f64>,
+    /// CG solves that needed the safer retry.
+    pub cg_retries: usize,
+    /// Warnings about the run (CG retries, states accepted above the CG tolerance); empty
+    /// for a healthy run.
+    pub warnings: Vec<String>,
     /// States recorded.
     pub states: usize,
     /// Wall time of the solve (s).
@@ -93,6 +100,9 @@ impl Summary {
             backend: backend.0.to_string(),
             precision: backend.1.to_string(),
             cg_iterations: outcome.cg_iterations(),
+            cg_residual_max: outcome.worst_cg_residual(),
+            cg_retries: outcome.cg_retries.len(),
+            warnings: outcome.warnings.clone(),
             states: outcome.states.len(),
             wall_s,
             complete: outcome.complete(),
@@ -141,6 +151,15 @@ impl Summary {
             "{} backend ({}), {} states, {} CG iterations, {:.2} s\n",
             self.backend, self.precision, self.states, self.cg_iterations, self.wall_s
         );
+        if self.cg_retries > 0 {
+            s += &format!(
+                "CG: {} solve(s) retried in the safer mode, worst relative residual {} \
+                 (warnings on stderr)\n",
+                self.cg_retries,
+                self.cg_residual_max
+                    .map_or("—".into(), |r| format!("{r:.2e}"))
+            );
+        }
         if let Some(e) = &self.error {
             s += &format!("INCOMPLETE: {e}\n");
         }

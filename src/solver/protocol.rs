@@ -2,6 +2,7 @@
 //! approach decreases step by step until the contact vanishes or d passes its final value.
 
 use super::equilibrium::{equilibrate, solve_fixed, Equilibrium, Fields};
+use super::retry::{self, CgRetry};
 use super::state::{axis_half_lengths, Phase, State};
 use super::SolverError;
 use crate::backend::Backend;
@@ -15,6 +16,11 @@ pub struct Outcome {
     pub states: Vec<State>,
     /// The error that ended the run early, if any.
     pub error: Option<SolverError>,
+    /// The CG solves that needed the safer retry, in order (empty for a healthy run).
+    pub cg_retries: Vec<CgRetry>,
+    /// What the user should know about a run that went on: CG retries, and states accepted
+    /// above the CG tolerance (empty for a healthy run).
+    pub warnings: Vec<String>,
 }
 
 impl Outcome {
@@ -26,6 +32,12 @@ impl Outcome {
     /// Total CG iterations over all states.
     pub fn cg_iterations(&self) -> usize {
         self.states.iter().map(|s| s.cg_iterations).sum()
+    }
+
+    /// The largest relative CG residual of any recorded state (dimensionless), if any
+    /// state was recorded.
+    pub fn worst_cg_residual(&self) -> Option<f64> {
+        self.states.iter().map(|s| s.cg_residual).reduce(f64::max)
     }
 
     /// The state of minimum force (the adhesive force is its |F̄|), if any state was recorded.
@@ -68,6 +80,7 @@ fn record<B: Backend>(
         n_contact: n,
         cg_iterations: eq.cg_iterations,
         detach_sweeps: eq.sweeps,
+        cg_residual: eq.cg_residual,
         d_bar: d / sc.approach,
         f_bar: force / sc.force,
         c_bar: mean_radius / sc.length,
@@ -89,24 +102,34 @@ pub fn run_with_contact<B: Backend>(
     observe: &mut dyn FnMut(&State, &[bool]),
 ) -> Outcome {
     let mut states = Vec::new();
-    let error = run_inner(backend, model, &mut |s, mask| {
+    let mut cg_retries = Vec::new();
+    let error = run_inner(backend, model, &mut cg_retries, &mut |s, mask| {
         observe(&s, mask);
         states.push(s);
     })
     .err();
-    Outcome { states, error }
+    let warnings = retry::warnings(&cg_retries, &model.cg);
+    Outcome {
+        states,
+        error,
+        cg_retries,
+        warnings,
+    }
 }
 
+/// The protocol; the safer CG retries of every equilibrium are appended to `retries`.
 fn run_inner<B: Backend>(
     backend: &mut B,
     model: &Model,
+    retries: &mut Vec<CgRetry>,
     push: &mut dyn FnMut(State, &[bool]),
 ) -> Result<(), SolverError> {
     let mut mask = model.initial_contact();
     backend.set_contact(&mask)?;
     let mut fields = Fields::new(backend)?;
     // 1. Non-adhesive press to d0.
-    let eq = equilibrate(backend, model, &mut fields, model.d0, 0.0)?;
+    let mut eq = equilibrate(backend, model, &mut fields, model.d0, 0.0)?;
+    retries.append(&mut eq.retries);
     let state = record(
         backend,
         model,
@@ -138,9 +161,8 @@ fn run_inner<B: Backend>(
             push,
         )?;
         let last = equilibrate(backend, model, &mut fields, d, model.sigma_c)?;
-        eq.cg_iterations += last.cg_iterations;
-        eq.sweeps += last.sweeps;
-        eq.n_contact = last.n_contact;
+        eq.absorb(last);
+        retries.append(&mut eq.retries);
         let state = record(
             backend,
             model,
@@ -182,16 +204,17 @@ fn advance_through_onsets<B: Backend>(
     d_to: f64,
     push: &mut dyn FnMut(State, &[bool]),
 ) -> Result<Equilibrium, SolverError> {
-    let no_work = Equilibrium {
-        cg_iterations: 0,
-        sweeps: 0,
-        n_contact: 0,
-    };
-    let mut total = no_work;
+    let mut total = Equilibrium::default();
     let mut d_c = d_from;
     for _ in 0..MAX_ONSETS_PER_STEP {
         backend.copy(&fields.p, &mut fields.p_prev)?;
-        total.cg_iterations += solve_fixed(backend, model, fields, d_to)?;
+        let solve = solve_fixed(backend, model, fields, d_to)?;
+        // The onset state interpolates to this solve: no work of its own, its residual.
+        let onset = Equilibrium {
+            cg_residual: solve.residual,
+            ..Equilibrium::default()
+        };
+        total.add_solve(solve);
         let t = backend.first_crossing(&fields.p_prev, &fields.p, model.sigma_c)?;
         if t >= 1.0 {
             break;
@@ -206,7 +229,7 @@ fn advance_through_onsets<B: Backend>(
             step,
             Phase::Onset,
             d_on,
-            &no_work,
+            &onset,
         )?;
         push(state, mask);
         let t_push = (t + ONSET_PUSH).min(1.0);
@@ -214,9 +237,9 @@ fn advance_through_onsets<B: Backend>(
         backend.copy(&fields.p_onset, &mut fields.p)?;
         d_c += t_push * (d_to - d_c);
         let eq = equilibrate(backend, model, fields, d_c, model.sigma_c)?;
-        total.cg_iterations += eq.cg_iterations;
-        total.sweeps += eq.sweeps;
-        if eq.n_contact == 0 || t_push >= 1.0 {
+        let vanished = eq.n_contact == 0;
+        total.absorb(eq);
+        if vanished || t_push >= 1.0 {
             break;
         }
     }
