@@ -223,6 +223,7 @@ pub fn time_cg_iteration<B: Backend>(
         tolerance: 0.0,
         max_iterations,
         check_every: usize::MAX,
+        accept: model.cg.accept,
     };
     let mut made = 0;
     let mut counted = [Counters::default(); 2];

@@ -88,6 +88,9 @@ pub struct ModelOptions {
     pub cg_tolerance: f64,
     /// CG iteration limit per solve.
     pub cg_max_iterations: usize,
+    /// Relative residual up to which a solve that missed the tolerance even in CG's safer
+    /// retry is accepted, and its state marked (dimensionless).
+    pub cg_accept: f64,
     /// Read the residual back every this many CG iterations.
     pub cg_check_every: usize,
     /// Preconditioner.
@@ -113,6 +116,7 @@ impl Default for ModelOptions {
             margin: 0.08,
             cg_tolerance: 1e-8,
             cg_max_iterations: 5000,
+            cg_accept: 1e-5,
             cg_check_every: 1,
             preconditioner: Preconditioner::Stiffness,
             max_sweeps: 2000,
@@ -128,10 +132,21 @@ impl Default for ModelOptions {
 pub struct CgSettings {
     /// Stop when ‖r‖ ≤ tolerance · ‖d − h‖ on C (dimensionless).
     pub tolerance: f64,
-    /// Iteration limit per solve.
+    /// Iteration limit per solve (and again for its safer retry).
     pub max_iterations: usize,
     /// Read the residual every this many iterations.
     pub check_every: usize,
+    /// A solve that misses the tolerance even in the safer retry is still accepted, and its
+    /// state marked, if ‖r‖ ≤ accept · ‖d − h‖ on C (dimensionless).
+    pub accept: f64,
+}
+
+impl CgSettings {
+    /// The relative residual up to which a solve is accepted: `accept`, or the tolerance
+    /// if that is looser.
+    pub fn acceptable(&self) -> f64 {
+        self.accept.max(self.tolerance)
+    }
 }
 
 /// The numerical model of a scene.
@@ -216,6 +231,13 @@ impl Model {
                 "a value in (0, 1)",
             ));
         }
+        if !(opt.cg_accept > 0.0 && opt.cg_accept < 1.0) {
+            return Err(invalid(
+                "--cg-accept",
+                opt.cg_accept,
+                "a value in (0, 1) (default 1e-5)",
+            ));
+        }
         let scales = scene.scales();
         let c0_len = c0 * scales.length;
         let initial =
@@ -274,6 +296,7 @@ impl Model {
                 tolerance: opt.cg_tolerance,
                 max_iterations: opt.cg_max_iterations,
                 check_every: opt.cg_check_every.max(1),
+                accept: opt.cg_accept,
             },
             preconditioner: opt.preconditioner,
             max_sweeps: opt.max_sweeps,

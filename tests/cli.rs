@@ -26,6 +26,8 @@ fn bad_input_is_refused_with_the_flag_named_and_nothing_written() {
         (&["--start-radius", "0"], "--start-radius"),
         (&["--start-radius", "NaN"], "--start-radius"),
         (&["--steps", "0"], "--steps"),
+        (&["--cg-accept", "0"], "--cg-accept"),
+        (&["--cg-accept", "1"], "--cg-accept"),
         (&["--final-d", "5"], "--final-d"),
         (&["--backend", "quantum"], "--backend"),
         (&["--grid", "abc"], "--grid"),
@@ -118,7 +120,7 @@ fn a_good_run_writes_the_documented_csv_and_summary() {
     assert_eq!(
         text.lines().next().unwrap(),
         "step,phase,d,force,area,mean_radius,a_axis,b_axis,n_contact,cg_iterations,\
-         detach_sweeps,d_bar,f_bar,c_bar,a_bar,b_bar"
+         detach_sweeps,d_bar,f_bar,c_bar,a_bar,b_bar,cg_residual"
     );
     assert!(text.lines().count() > 40);
     let s: serde_json::Value =

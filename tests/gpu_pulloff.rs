@@ -158,11 +158,11 @@ fn large_grid_cg(nx: usize) {
         report.iterations,
         report.residual,
         model.cg.tolerance,
-        report.converged,
+        report.converged(),
         (rr[0] / bb[0]).sqrt(),
         gpu.adapter_summary()
     );
-    assert!(report.converged, "{report:?}");
+    assert!(report.converged(), "{report:?}");
 }
 
 #[test]

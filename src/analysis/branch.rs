@@ -72,6 +72,7 @@ mod tests {
             c_bar,
             a_bar: c_bar,
             b_bar: c_bar,
+            cg_residual: 0.0,
             dx: 0.1,
         }
     }

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 /// The CSV header, one column per [`State`] field.
 pub const HEADER: &str = "step,phase,d,force,area,mean_radius,a_axis,b_axis,n_contact,\
-cg_iterations,detach_sweeps,d_bar,f_bar,c_bar,a_bar,b_bar,dx";
+cg_iterations,detach_sweeps,d_bar,f_bar,c_bar,a_bar,b_bar,cg_residual,dx";
 
 /// The name a run's states carry until it completes: `dir/stem.incomplete.csv`.
 pub fn incomplete_path(path: &Path) -> PathBuf {
@@ -103,4 +103,25 @@ pub fn read_state_rows(path: &Path) -> Result<Vec<State>, OutputError> {
         .deserialize()
         .collect::<Result<_, _>>()
         .map_err(csv_err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_file_written_before_the_cg_residual_column_still_reads() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("old.csv");
+        let old_header = HEADER.strip_suffix(",cg_residual,dx").unwrap();
+        fs::write(
+            &path,
+            format!("{old_header}\n0,approach,1,2,3,4,5,6,7,8,9,10,11,12,13,14\n"),
+        )
+        .unwrap();
+        let states = read_state_rows(&path).unwrap();
+        assert_eq!(states.len(), 1);
+        assert_eq!(states[0].b_bar, 14.0);
+        assert!(states[0].cg_residual.is_nan(), "not recorded reads as NaN");
+    }
 }

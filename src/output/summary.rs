@@ -47,6 +47,10 @@ pub struct Summary {
     pub precision: String,
     /// CG iterations over the run.
     pub cg_iterations: usize,
+    /// The largest relative CG residual of any state, recomputed from p (dimensionless).
+    pub cg_residual_max: Option<f64>,
+    /// CG solves that needed the safer retry.
+    pub cg_retries: usize,
     /// States recorded.
     pub states: usize,
     /// Wall time of the solve (s).
@@ -63,7 +67,8 @@ pub struct Summary {
     pub regrids: Vec<RegridEvent>,
     /// Whether the run stopped once the force minimum was confirmed (--measure adhesive-force).
     pub stopped_after_minimum: bool,
-    /// Warnings about the result (e.g. too coarse a grid), for people and scripts.
+    /// Warnings about the result (CG retries and states accepted above the CG tolerance, too
+    /// coarse a grid, too large load steps); empty for a healthy run.
     pub warnings: Vec<String>,
 }
 
@@ -124,6 +129,7 @@ impl Summary {
             .and_then(|n| convergence::coarse_grid_warning(ratio, n))
             .into_iter()
             .chain(step_warning(model, outcome))
+            .chain(outcome.warnings.iter().cloned())
             .collect();
         Summary {
             ratio,
@@ -143,6 +149,8 @@ impl Summary {
             backend: backend.0.to_string(),
             precision: backend.1.to_string(),
             cg_iterations: outcome.cg_iterations(),
+            cg_residual_max: outcome.worst_cg_residual(),
+            cg_retries: outcome.cg_retries.len(),
             states: outcome.states.len(),
             wall_s,
             complete: outcome.complete(),
@@ -202,6 +210,15 @@ impl Summary {
             "{} backend ({}), {} states, {} CG iterations, {:.2} s\n",
             self.backend, self.precision, self.states, self.cg_iterations, self.wall_s
         );
+        if self.cg_retries > 0 {
+            s += &format!(
+                "CG: {} solve(s) retried in the safer mode, worst relative residual {} \
+                 (warnings on stderr)\n",
+                self.cg_retries,
+                self.cg_residual_max
+                    .map_or("—".into(), |r| format!("{r:.2e}"))
+            );
+        }
         for r in &self.regrids {
             s += &format!(
                 "re-gridded at d̄ = {:.4}: Δx {:.4e} → {:.4e}\n",

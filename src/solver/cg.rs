@@ -3,9 +3,22 @@
 //!
 //! All vectors and CG's scalars stay on the backend's device; the host reads the residual
 //! norm back only every `check_every` iterations to decide convergence.
+//!
+//! Two modes, both generic over the backend:
+//! - [`solve`], the normal mode, follows the recurrence residual r ← r − α K s. Its checked
+//!   values form a [`ResidualHistory`] that ends the solve early when it stagnates or
+//!   diverges. When the recurrence reaches the tolerance, the true residual (d − h − K p)_C is
+//!   recomputed once from p: in finite precision the recurrence goes on falling far below the
+//!   arithmetic's floor (measured in f32: to 1e-24 and then 0, while the true residual stays
+//!   at 8.6e-8), so only the true residual can tell that the tolerance is out of reach.
+//! - [`solve_safe`], the safer mode, reads the residual every iteration and restarts CG from
+//!   the true residual at least every [`REPLACE_EVERY`] iterations (residual replacement, which
+//!   removes the drift of the recurrence); its history holds true residuals only, and it
+//!   returns the best p it saw.
 
 use crate::backend::{Backend, BackendError, Slot};
 use crate::model::CgSettings;
+use std::fmt;
 
 /// r·z of the current iteration.
 const RZ: Slot = Slot(0);
@@ -20,6 +33,32 @@ const BB: Slot = Slot(4);
 /// A register that is never written, so it stays 0.
 const ZERO: Slot = Slot(7);
 
+/// A checked residual above this multiple of the best one so far means CG has diverged.
+/// CG's residual norm is not monotone, but in healthy solves it rises above its best by a
+/// few times at most; a rise of three orders of magnitude is not round-off.
+pub const DIVERGENCE_FACTOR: f64 = 1e3;
+/// CG has stagnated when its best residual has not fallen below this fraction of the best
+/// residual one stagnation window earlier.
+pub const STAGNATION_FACTOR: f64 = 0.5;
+/// The stagnation window is at least this many iterations. Preconditioned CG on this problem
+/// halves its residual in one or two iterations, unpreconditioned CG in a few; 50 leaves a
+/// wide margin for a slow stretch and still stops a stalled solve long before the limit.
+pub const STAGNATION_MIN_WINDOW: usize = 50;
+/// … and at least this fraction of the iterations made so far, so that a long solve that
+/// still converges slowly is given more patience.
+pub const STAGNATION_WINDOW_FRACTION: f64 = 0.25;
+/// … and at least this many residual checks.
+pub const STAGNATION_MIN_CHECKS: usize = 3;
+/// A solve whose recurrence residual reached the tolerance counts as converged when its true
+/// residual, recomputed from p, is within this factor of the tolerance. The recurrence is
+/// trusted that far because f32 arithmetic (the GPU backend) cannot bring the true residual
+/// below about 1e-7 whatever the recurrence says, and the default tolerance is 1e-8: over
+/// whole GPU pull-offs at 32² and 64² the worst true residual was 1.5e-7.
+pub const TRUE_RESIDUAL_SLACK: f64 = 100.0;
+/// The safer mode recomputes the true residual, and restarts CG from it, at least every
+/// this many iterations (and whenever the recurrence reaches the tolerance).
+pub const REPLACE_EVERY: usize = 50;
+
 /// The work fields CG needs, allocated once per run.
 pub struct CgWork<F> {
     /// Residual r (length).
@@ -28,8 +67,10 @@ pub struct CgWork<F> {
     pub z: F,
     /// Search direction s.
     pub s: F,
-    /// K s (length).
+    /// K s (length); K p after a solve that ended [`CgEnd::Converged`].
     pub q: F,
+    /// The pressure of the smallest true residual in the safer mode (force/length²).
+    best: F,
     /// A field that stays zero (to evaluate the right-hand side d − h).
     zero: F,
 }
@@ -42,7 +83,47 @@ impl<F> CgWork<F> {
             z: backend.field()?,
             s: backend.field()?,
             q: backend.field()?,
+            best: backend.field()?,
             zero: backend.field()?,
+        })
+    }
+
+    /// A field that is zero everywhere.
+    pub fn zero(&self) -> &F {
+        &self.zero
+    }
+}
+
+/// What ended a CG solve.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CgEnd {
+    /// The tolerance was reached, by the true residual within [`TRUE_RESIDUAL_SLACK`].
+    Converged,
+    /// The best residual stopped improving (see [`ResidualHistory`]).
+    Stagnated,
+    /// The residual grew above [`DIVERGENCE_FACTOR`] times its best.
+    Diverged,
+    /// A NaN or infinity appeared.
+    NonFinite,
+    /// The iteration limit was reached first.
+    IterationLimit,
+    /// The recurrence residual reached the tolerance but the true one, recomputed from p,
+    /// stayed above [`TRUE_RESIDUAL_SLACK`] times it: the arithmetic's precision floor.
+    ResidualGap,
+}
+
+impl fmt::Display for CgEnd {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            CgEnd::Converged => "converged",
+            CgEnd::Stagnated => "stagnated (its best residual stopped halving)",
+            CgEnd::Diverged => "diverged (its residual rose 1000 times above its best)",
+            CgEnd::NonFinite => "produced a non-finite value",
+            CgEnd::IterationLimit => "reached the iteration limit (--cg-max-iterations)",
+            CgEnd::ResidualGap => {
+                "reached the tolerance in its recurrence but not in the true residual \
+                 recomputed from p (the arithmetic's precision floor)"
+            }
         })
     }
 }
@@ -52,25 +133,175 @@ impl<F> CgWork<F> {
 pub struct CgReport {
     /// Iterations made (convolutions of a search direction).
     pub iterations: usize,
-    /// Final relative residual ‖r‖/‖(d − h)_C‖ (dimensionless).
+    /// Relative residual ‖r‖/‖(d − h)_C‖ of the p returned (dimensionless): the true
+    /// residual, recomputed from p, when the solve ended converged or with a residual gap
+    /// and always in the safer mode; otherwise the recurrence's at the last check.
     pub residual: f64,
-    /// Whether the tolerance was reached.
-    pub converged: bool,
-    /// Whether a non-finite value appeared.
-    pub non_finite: bool,
+    /// The smallest relative residual the solve's checks saw (dimensionless).
+    pub best: f64,
+    /// What ended the solve.
+    pub end: CgEnd,
 }
 
 impl CgReport {
-    /// Mark the report converged or non-finite from its residual; true if CG should stop.
-    fn finished(&mut self, tolerance: f64) -> bool {
-        self.non_finite = !self.residual.is_finite();
-        self.converged = self.residual <= tolerance;
-        self.non_finite || self.converged
+    /// Whether the tolerance was reached.
+    pub fn converged(&self) -> bool {
+        self.end == CgEnd::Converged
     }
 }
 
+/// The checked relative residuals of one solve, and the verdict they give. A check that is
+/// not finite ends the solve as [`CgEnd::NonFinite`]; one above [`DIVERGENCE_FACTOR`] times
+/// the best before it as [`CgEnd::Diverged`]; and the solve has [`CgEnd::Stagnated`] when
+/// the best residual has not fallen below [`STAGNATION_FACTOR`] times the best residual of a
+/// window earlier, the window being the largest of [`STAGNATION_MIN_WINDOW`] iterations,
+/// [`STAGNATION_WINDOW_FRACTION`] of the iterations made and [`STAGNATION_MIN_CHECKS`] checks.
+#[derive(Debug, Clone)]
+pub struct ResidualHistory {
+    /// (iteration, best relative residual up to it), one entry per check.
+    best: Vec<(usize, f64)>,
+    /// The smallest window (iterations).
+    min_window: usize,
+}
+
+impl ResidualHistory {
+    /// An empty history for checks every `check_every` iterations.
+    pub fn new(check_every: usize) -> Self {
+        ResidualHistory {
+            best: Vec::new(),
+            min_window: STAGNATION_MIN_WINDOW
+                .max(STAGNATION_MIN_CHECKS.saturating_mul(check_every)),
+        }
+    }
+
+    /// The smallest relative residual recorded (infinity before the first).
+    pub fn best(&self) -> f64 {
+        self.best.last().map_or(f64::INFINITY, |b| b.1)
+    }
+
+    /// The stagnation window (iterations) at `iteration`.
+    pub fn window(&self, iteration: usize) -> usize {
+        let fraction = (STAGNATION_WINDOW_FRACTION * iteration as f64).ceil() as usize;
+        self.min_window.max(fraction)
+    }
+
+    /// Record the relative residual checked after `iteration` iterations (iterations must
+    /// increase); returns what ends the solve, if the history says it should end.
+    pub fn push(&mut self, iteration: usize, residual: f64) -> Option<CgEnd> {
+        if !residual.is_finite() {
+            return Some(CgEnd::NonFinite);
+        }
+        let best = self.best();
+        if residual > DIVERGENCE_FACTOR * best {
+            return Some(CgEnd::Diverged);
+        }
+        let best = best.min(residual);
+        self.best.push((iteration, best));
+        let earlier = iteration.checked_sub(self.window(iteration))?;
+        let n = self.best.partition_point(|&(k, _)| k <= earlier);
+        let then = self.best[..n].last()?.1;
+        (best > STAGNATION_FACTOR * then).then_some(CgEnd::Stagnated)
+    }
+}
+
+/// Turns r·r into the relative residual ‖r‖/‖(d − h)_C‖ (the absolute one if d − h = 0 on C).
+#[derive(Debug, Clone, Copy)]
+struct Scale(f64);
+
+impl Scale {
+    fn relative(self, rr: f64) -> f64 {
+        if self.0 > 0.0 {
+            rr.sqrt() / self.0
+        } else {
+            rr.sqrt()
+        }
+    }
+}
+
+/// Start a solve at approach `d` (length): q = K p and r = (d − h − q)_C, the true residual
+/// of the warm start. Returns the scale ‖(d − h)_C‖ and that residual's relative norm, read
+/// back together.
+fn start<B: Backend>(
+    backend: &mut B,
+    work: &mut CgWork<B::Field>,
+    p: &B::Field,
+    d: f64,
+) -> Result<(Scale, f64), BackendError> {
+    backend.residual(&work.zero, d, &mut work.r)?;
+    backend.dot(&work.r, &work.r, BB)?;
+    backend.convolve(p, &mut work.q)?;
+    backend.residual(&work.q, d, &mut work.r)?;
+    backend.dot(&work.r, &work.r, RR)?;
+    let mut v = [0.0; 2];
+    backend.read_slots(&[RR, BB], &mut v)?;
+    let scale = Scale(v[1].sqrt());
+    Ok((scale, scale.relative(v[0])))
+}
+
+/// The relative residual of the recurrence's r, read back from the device.
+fn read_residual<B: Backend>(
+    backend: &mut B,
+    r: &B::Field,
+    scale: Scale,
+) -> Result<f64, BackendError> {
+    backend.dot(r, r, RR)?;
+    let mut rr = [0.0];
+    backend.read_slots(&[RR], &mut rr)?;
+    Ok(scale.relative(rr[0]))
+}
+
+/// q = K p and r = (d − h − q)_C, the true residual; returns its relative norm.
+fn true_residual<B: Backend>(
+    backend: &mut B,
+    p: &B::Field,
+    q: &mut B::Field,
+    r: &mut B::Field,
+    d: f64,
+    scale: Scale,
+) -> Result<f64, BackendError> {
+    backend.convolve(p, q)?;
+    backend.residual(q, d, r)?;
+    read_residual(backend, r, scale)
+}
+
+/// Start CG's directions from the residual in `work.r`: z = M r, s = z.
+fn start_directions<B: Backend>(
+    backend: &mut B,
+    work: &mut CgWork<B::Field>,
+) -> Result<(), BackendError> {
+    backend.precondition(&work.r, &mut work.z)?;
+    backend.dot(&work.r, &work.z, RZ)?;
+    // s = z (the ratio 0/0 counts as 0, so the old direction vanishes).
+    backend.xpay_ratio(&mut work.s, &work.z, ZERO, ZERO)
+}
+
+/// One step along s: q = K s, p += α s, r −= α q with α = r·z / s·q.
+fn step<B: Backend>(
+    backend: &mut B,
+    work: &mut CgWork<B::Field>,
+    p: &mut B::Field,
+) -> Result<(), BackendError> {
+    backend.convolve(&work.s, &mut work.q)?;
+    backend.dot(&work.s, &work.q, SQ)?;
+    backend.axpy_ratio(p, &work.s, RZ, SQ, 1.0)?;
+    backend.axpy_ratio(&mut work.r, &work.q, RZ, SQ, -1.0)
+}
+
+/// The next direction: z = M r, s = z + β s with β = r·z / (r·z)_old.
+fn next_direction<B: Backend>(
+    backend: &mut B,
+    work: &mut CgWork<B::Field>,
+) -> Result<(), BackendError> {
+    backend.copy_slot(RZ, RZ_OLD)?;
+    backend.precondition(&work.r, &mut work.z)?;
+    backend.dot(&work.r, &work.z, RZ)?;
+    backend.xpay_ratio(&mut work.s, &work.z, RZ, RZ_OLD)
+}
+
 /// Solve for p on the backend's contact set at approach `d` (length), warm-started from
-/// the p given (which must be zero off C).
+/// the p given (which must be zero off C), in the normal mode (see the module's notes).
+/// Ends converged, stagnated, diverged, non-finite, at the iteration limit or with a
+/// residual gap; after [`CgEnd::Converged`], `work.q` holds K p.
 pub fn solve<B: Backend>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
@@ -78,55 +309,227 @@ pub fn solve<B: Backend>(
     d: f64,
     settings: &CgSettings,
 ) -> Result<CgReport, BackendError> {
-    let CgWork { r, z, s, q, zero } = work;
-    // ‖(d − h)_C‖², and the initial residual r = (d − h − K p)_C.
-    backend.residual(zero, d, r)?;
-    backend.dot(r, r, BB)?;
-    backend.convolve(p, q)?;
-    backend.residual(q, d, r)?;
-    backend.dot(r, r, RR)?;
-    let mut v = [0.0; 2];
-    backend.read_slots(&[RR, BB], &mut v)?;
-    let norm_rhs = v[1].sqrt();
-    let relative = |rr: f64| {
-        if norm_rhs > 0.0 {
-            rr.sqrt() / norm_rhs
-        } else {
-            rr.sqrt()
-        }
-    };
+    let (scale, initial) = start(backend, work, p, d)?;
     let mut report = CgReport {
         iterations: 0,
-        residual: relative(v[0]),
-        converged: false,
-        non_finite: false,
+        residual: initial,
+        best: initial,
+        end: CgEnd::Converged,
     };
-    if report.finished(settings.tolerance) {
+    if initial <= settings.tolerance {
         return Ok(report);
     }
-    backend.precondition(r, z)?;
-    backend.dot(r, z, RZ)?;
-    // s = z (the ratio 0/0 counts as 0, so the old direction vanishes).
-    backend.xpay_ratio(s, z, ZERO, ZERO)?;
+    let mut history = ResidualHistory::new(settings.check_every);
+    if let Some(end) = history.push(0, initial) {
+        report.end = end;
+        return Ok(report);
+    }
+    start_directions(backend, work)?;
     for k in 1..=settings.max_iterations {
-        backend.convolve(s, q)?;
-        backend.dot(s, q, SQ)?;
-        backend.axpy_ratio(p, s, RZ, SQ, 1.0)?;
-        backend.axpy_ratio(r, q, RZ, SQ, -1.0)?;
+        step(backend, work, p)?;
         report.iterations = k;
         if k % settings.check_every == 0 || k == settings.max_iterations {
-            backend.dot(r, r, RR)?;
-            let mut rr = [0.0];
-            backend.read_slots(&[RR], &mut rr)?;
-            report.residual = relative(rr[0]);
-            if report.finished(settings.tolerance) {
+            report.residual = read_residual(backend, &work.r, scale)?;
+            report.best = report.best.min(report.residual);
+            if report.residual <= settings.tolerance {
+                return verify(backend, work, p, d, scale, settings, report);
+            }
+            if let Some(end) = history.push(k, report.residual) {
+                report.end = end;
                 return Ok(report);
             }
         }
-        backend.copy_slot(RZ, RZ_OLD)?;
-        backend.precondition(r, z)?;
-        backend.dot(r, z, RZ)?;
-        backend.xpay_ratio(s, z, RZ, RZ_OLD)?;
+        next_direction(backend, work)?;
+    }
+    report.end = CgEnd::IterationLimit;
+    Ok(report)
+}
+
+/// The recurrence reached the tolerance: recompute the true residual from p and end
+/// converged if it is within [`TRUE_RESIDUAL_SLACK`] of the tolerance, with a residual gap
+/// otherwise.
+fn verify<B: Backend>(
+    backend: &mut B,
+    work: &mut CgWork<B::Field>,
+    p: &B::Field,
+    d: f64,
+    scale: Scale,
+    settings: &CgSettings,
+    mut report: CgReport,
+) -> Result<CgReport, BackendError> {
+    let t = true_residual(backend, p, &mut work.q, &mut work.r, d, scale)?;
+    report.residual = t;
+    if t <= TRUE_RESIDUAL_SLACK * settings.tolerance {
+        report.end = CgEnd::Converged;
+    } else {
+        report.end = CgEnd::ResidualGap;
+        report.best = t;
     }
     Ok(report)
+}
+
+/// Solve as [`solve`] does, in the safer mode: the residual is read every iteration, and CG
+/// restarts from the true residual (d − h − K p)_C whenever the recurrence reaches the
+/// tolerance and at least every [`REPLACE_EVERY`] iterations, up to the iteration limit.
+/// The history judges the true residuals only. p is left at the smallest true residual
+/// seen, which the report gives; after [`CgEnd::Converged`], `work.q` holds K p.
+pub fn solve_safe<B: Backend>(
+    backend: &mut B,
+    work: &mut CgWork<B::Field>,
+    p: &mut B::Field,
+    d: f64,
+    settings: &CgSettings,
+) -> Result<CgReport, BackendError> {
+    let (scale, mut t) = start(backend, work, p, d)?;
+    let mut history = ResidualHistory::new(1);
+    let mut report = CgReport {
+        iterations: 0,
+        residual: f64::INFINITY,
+        best: f64::INFINITY,
+        end: CgEnd::IterationLimit,
+    };
+    loop {
+        if t < report.best {
+            report.best = t;
+            backend.copy(p, &mut work.best)?;
+        }
+        let end = if t <= settings.tolerance {
+            Some(CgEnd::Converged)
+        } else if let Some(end) = history.push(report.iterations, t) {
+            Some(end)
+        } else if report.iterations >= settings.max_iterations {
+            Some(CgEnd::IterationLimit)
+        } else {
+            None
+        };
+        if let Some(end) = end {
+            report.end = end;
+            report.residual = t;
+            if end != CgEnd::Converged && report.best.is_finite() {
+                backend.copy(&work.best, p)?;
+                report.residual = report.best;
+            }
+            return Ok(report);
+        }
+        let n = REPLACE_EVERY.min(settings.max_iterations - report.iterations);
+        report.iterations += segment(backend, work, p, scale, settings.tolerance, n)?;
+        t = true_residual(backend, p, &mut work.q, &mut work.r, d, scale)?;
+    }
+}
+
+/// Up to `n` CG iterations from the true residual in `work.r`, reading the recurrence
+/// residual every iteration; stops early when it reaches `tolerance` or is not finite.
+/// Returns the iterations made.
+fn segment<B: Backend>(
+    backend: &mut B,
+    work: &mut CgWork<B::Field>,
+    p: &mut B::Field,
+    scale: Scale,
+    tolerance: f64,
+    n: usize,
+) -> Result<usize, BackendError> {
+    start_directions(backend, work)?;
+    for k in 1..=n {
+        step(backend, work, p)?;
+        let rel = read_residual(backend, &work.r, scale)?;
+        if rel <= tolerance || !rel.is_finite() {
+            return Ok(k);
+        }
+        next_direction(backend, work)?;
+    }
+    Ok(n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Feed `residuals` (one per iteration from 0) to a history checked every
+    /// `check_every` iterations; returns the verdict and the iteration it came at.
+    fn judge(
+        residuals: impl Fn(usize) -> f64,
+        check_every: usize,
+        n: usize,
+    ) -> Option<(CgEnd, usize)> {
+        let mut h = ResidualHistory::new(check_every);
+        (0..=n)
+            .step_by(check_every)
+            .find_map(|k| h.push(k, residuals(k)).map(|e| (e, k)))
+    }
+
+    #[test]
+    fn steady_convergence_is_never_flagged() {
+        // Preconditioned CG: a factor 10 per iteration.
+        assert_eq!(judge(|k| 10f64.powi(-(k as i32)), 1, 300), None);
+        // Slow, unpreconditioned CG: a factor 2 every 40 iterations, for 2000 iterations.
+        assert_eq!(judge(|k| 0.5f64.powf(k as f64 / 40.0), 1, 2000), None);
+    }
+
+    #[test]
+    fn a_non_monotone_healthy_residual_is_not_flagged() {
+        // CG's residual norm rises and falls: spikes of ×30 above the trend, which itself
+        // falls by 2 every 20 iterations.
+        let spiky = |k: usize| 0.5f64.powf(k as f64 / 20.0) * if k % 7 == 3 { 30.0 } else { 1.0 };
+        assert_eq!(judge(spiky, 1, 1000), None);
+        assert_eq!(judge(spiky, 2, 1000), None);
+    }
+
+    #[test]
+    fn a_noisy_plateau_is_flagged_as_stagnation_one_window_after_it_starts() {
+        // f32-like: falls by 10 per iteration to 1e-7 at iteration 7, then wanders around
+        // 1e-7 by ±40 %.
+        let plateau = |k: usize| {
+            let noise = 1.0 + 0.4 * ((k * 2654435761) % 1000) as f64 / 1000.0 - 0.2;
+            10f64.powi(-(k.min(7) as i32)) * noise
+        };
+        let (end, at) = judge(plateau, 1, 5000).expect("flagged");
+        assert_eq!(end, CgEnd::Stagnated);
+        assert!((50..=60).contains(&at), "flagged at {at}");
+        // Checked every 2 iterations, as on the GPU: the same.
+        let (end, at) = judge(plateau, 2, 5000).expect("flagged");
+        assert_eq!(end, CgEnd::Stagnated);
+        assert!((50..=60).contains(&at), "flagged at {at}");
+    }
+
+    #[test]
+    fn a_late_plateau_is_given_a_window_of_a_quarter_of_the_iterations() {
+        // Converges slowly for 400 iterations (a factor 2 per 40), then stalls. The best
+        // residual of iteration 360 is twice the final one, so the verdict waits until the
+        // window, a quarter of the iterations, reaches back past 360: k − k/4 > 360, k = 482.
+        let late = |k: usize| 0.5f64.powf(k.min(400) as f64 / 40.0);
+        assert_eq!(judge(late, 1, 5000), Some((CgEnd::Stagnated, 482)));
+    }
+
+    #[test]
+    fn a_blow_up_is_flagged_as_divergence() {
+        let blow = |k: usize| {
+            if k < 20 {
+                0.5f64.powi(k as i32)
+            } else {
+                0.5f64.powi(20) * 10f64.powi(k as i32 - 20)
+            }
+        };
+        assert_eq!(judge(blow, 1, 100), Some((CgEnd::Diverged, 24)));
+    }
+
+    #[test]
+    fn a_nan_or_infinity_is_flagged_at_once() {
+        assert_eq!(
+            judge(|k| if k == 5 { f64::NAN } else { 0.1 }, 1, 100),
+            Some((CgEnd::NonFinite, 5))
+        );
+        assert_eq!(
+            judge(|k| if k == 3 { f64::INFINITY } else { 0.1 }, 1, 100),
+            Some((CgEnd::NonFinite, 3))
+        );
+    }
+
+    #[test]
+    fn rare_checks_widen_the_window_to_three_checks() {
+        // Checked every 40 iterations: the window is 120, not 50.
+        let h = ResidualHistory::new(40);
+        assert_eq!(h.window(0), 120);
+        let flat = |_| 1e-3;
+        assert_eq!(judge(flat, 40, 5000), Some((CgEnd::Stagnated, 120)));
+    }
 }

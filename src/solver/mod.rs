@@ -5,12 +5,14 @@
 pub mod cg;
 pub mod equilibrium;
 pub mod protocol;
+pub mod retry;
 pub mod state;
 
 pub use protocol::{run, run_with_contact, Outcome};
 pub use state::{Phase, State};
 
 use crate::backend::BackendError;
+use cg::CgEnd;
 use thiserror::Error;
 
 /// Why a run stopped before it was complete.
@@ -19,29 +21,29 @@ pub enum SolverError {
     /// The backend failed.
     #[error(transparent)]
     Backend(#[from] BackendError),
-    /// CG did not reach its tolerance.
+    /// CG did not reach an acceptable residual, even in its safer retry.
     #[error(
-        "conjugate gradients did not converge at d̄ = {d_bar:.5}: relative residual {residual:.3e} \
-         after {iterations} iterations (tolerance {tolerance:.1e}); try a looser --cg-tolerance or a \
-         higher --cg-max-iterations"
+        "conjugate gradients did not converge at d̄ = {d_bar:.5}: CG {first}; retried in the \
+         safer mode it {end}. The best relative residual reached was {residual:.2e} after \
+         {iterations} iterations in all, above --cg-tolerance {tolerance:.1e} and --cg-accept \
+         {accept:.1e}; {}",
+        retry::advice(*.end)
     )]
     CgNotConverged {
         /// Approach at which it failed (dimensionless).
         d_bar: f64,
-        /// Relative residual reached.
+        /// How the normal mode ended.
+        first: CgEnd,
+        /// How the safer retry ended.
+        end: CgEnd,
+        /// Best relative residual reached (dimensionless).
         residual: f64,
-        /// Iterations spent.
+        /// Iterations spent, both attempts.
         iterations: usize,
-        /// Tolerance asked for.
+        /// Tolerance asked for (dimensionless).
         tolerance: f64,
-    },
-    /// A NaN or infinity appeared in CG.
-    #[error("conjugate gradients produced a non-finite value at d̄ = {d_bar:.5} after {iterations} iterations")]
-    NonFinite {
-        /// Approach at which it failed (dimensionless).
-        d_bar: f64,
-        /// Iterations spent.
-        iterations: usize,
+        /// Acceptable relative residual (dimensionless).
+        accept: f64,
     },
     /// The contact reached the outer ring of the domain.
     #[error(

@@ -8,6 +8,7 @@
 //! confirmed; with `regrid` the grid is refined as the contact shrinks.
 
 use super::equilibrium::{equilibrate, solve_fixed, Equilibrium, Fields};
+use super::retry::{self, CgRetry};
 use super::state::{axis_half_lengths, Phase, State};
 use super::SolverError;
 use crate::backend::cpu::GridSetup;
@@ -27,6 +28,11 @@ pub struct Outcome {
     pub regrids: Vec<RegridEvent>,
     /// Whether the run stopped once the force minimum was confirmed ([`Measure::AdhesiveForce`]).
     pub stopped_after_minimum: bool,
+    /// The CG solves that needed the safer retry, in order (empty for a healthy run).
+    pub cg_retries: Vec<CgRetry>,
+    /// What the user should know about a run that went on: CG retries, and states accepted
+    /// above the CG tolerance (empty for a healthy run).
+    pub warnings: Vec<String>,
 }
 
 /// One change of grid during a run.
@@ -49,6 +55,12 @@ impl Outcome {
     /// Total CG iterations over all states.
     pub fn cg_iterations(&self) -> usize {
         self.states.iter().map(|s| s.cg_iterations).sum()
+    }
+
+    /// The largest relative CG residual of any recorded state (dimensionless), if any
+    /// state was recorded.
+    pub fn worst_cg_residual(&self) -> Option<f64> {
+        self.states.iter().map(|s| s.cg_residual).reduce(f64::max)
     }
 
     /// The state of minimum force (the adhesive force is its |F̄|), if any state was recorded.
@@ -97,6 +109,7 @@ fn record<B: Backend>(
         n_contact: n,
         cg_iterations: eq.cg_iterations,
         detach_sweeps: eq.sweeps,
+        cg_residual: eq.cg_residual,
         d_bar: d / sc.approach,
         f_bar: force / sc.force,
         c_bar: mean_radius / sc.length,
@@ -130,15 +143,20 @@ pub fn run_with_contact<B: Backend>(
         least: None,
         regrids: Vec::new(),
         stopped_after_minimum: false,
+        retries: Vec::new(),
     };
     let error = run_inner(backend, model, &mut out).err();
     out.flush(usize::MAX);
     let (regrids, stopped_after_minimum) = (out.regrids, out.stopped_after_minimum);
+    let cg_retries = out.retries;
+    let warnings = retry::warnings(&cg_retries, &model.cg);
     Outcome {
         states,
         error,
         regrids,
         stopped_after_minimum,
+        cg_retries,
+        warnings,
     }
 }
 
@@ -151,6 +169,8 @@ struct Emitter<'a> {
     least: Option<(f64, f64)>,
     regrids: Vec<RegridEvent>,
     stopped_after_minimum: bool,
+    /// The safer CG retries of every equilibrium so far.
+    retries: Vec<CgRetry>,
 }
 
 impl Emitter<'_> {
@@ -260,7 +280,8 @@ fn run_inner<B: Backend>(
     backend.set_contact(&mask)?;
     let mut fields = Fields::new(backend)?;
     // 1. Non-adhesive press to d0.
-    let eq = equilibrate(backend, model, &mut fields, model.d0, 0.0)?;
+    let mut eq = equilibrate(backend, model, &mut fields, model.d0, 0.0)?;
+    out.retries.append(&mut eq.retries);
     let state = record(
         backend,
         model,
@@ -304,8 +325,8 @@ fn run_inner<B: Backend>(
             Equilibrium::default()
         };
         let last = equilibrate(backend, &m, &mut run.fields, d, m.sigma_c)?;
-        eq.add(&last);
-        eq.n_contact = last.n_contact;
+        eq.absorb(last);
+        out.retries.append(&mut eq.retries);
         let state = record(
             backend,
             &m,
@@ -440,7 +461,8 @@ fn regrid_if_shrunk<B: Backend>(
     run.fields = fields;
     run.mask = mask;
     run.model = fine;
-    let eq = equilibrate(backend, &run.model, &mut run.fields, d, run.model.sigma_c)?;
+    let mut eq = equilibrate(backend, &run.model, &mut run.fields, d, run.model.sigma_c)?;
+    out.retries.append(&mut eq.retries);
     let state = record(
         backend,
         &run.model,
@@ -481,7 +503,13 @@ fn advance_through_onsets<B: Backend>(
     let fields = &mut run.fields;
     for _ in 0..MAX_ONSETS_PER_STEP {
         backend.copy(&fields.p, &mut fields.p_prev)?;
-        total.cg_iterations += solve_fixed(backend, model, fields, d_to)?;
+        let solve = solve_fixed(backend, model, fields, d_to)?;
+        // The onset state interpolates to this solve: no work of its own, its residual.
+        let onset = Equilibrium {
+            cg_residual: solve.residual,
+            ..Equilibrium::default()
+        };
+        total.add_solve(solve);
         let t = backend.first_crossing(&fields.p_prev, &fields.p, model.sigma_c)?;
         if t >= 1.0 {
             break;
@@ -496,7 +524,7 @@ fn advance_through_onsets<B: Backend>(
             step,
             Phase::Onset,
             d_on,
-            &Equilibrium::default(),
+            &onset,
         )?;
         out.emit(state, &run.mask, false);
         let t_push = (t + ONSET_PUSH).min(1.0);
@@ -504,8 +532,9 @@ fn advance_through_onsets<B: Backend>(
         backend.copy(&fields.p_onset, &mut fields.p)?;
         d_c += t_push * (d_to - d_c);
         let eq = equilibrate(backend, model, fields, d_c, model.sigma_c)?;
-        total.add(&eq);
-        if eq.n_contact == 0 || t_push >= 1.0 {
+        let vanished = eq.n_contact == 0;
+        total.absorb(eq);
+        if vanished || t_push >= 1.0 {
             break;
         }
     }

@@ -55,10 +55,21 @@ pub struct State {
     pub a_bar: f64,
     /// b̄ (dimensionless).
     pub b_bar: f64,
+    /// The largest relative residual ‖(d − h − K p)_C‖/‖(d − h)_C‖ of the CG solves behind
+    /// this state, recomputed from p (dimensionless). Normally below the CG tolerance (or
+    /// near 1e-7 in f32); above it, the state was accepted after CG's safer retry fell
+    /// short. NaN when read from a file written before the column existed.
+    #[serde(default = "not_recorded")]
+    pub cg_residual: f64,
     /// Element side Δx of the grid this state was computed on (length); it changes only
     /// when the run re-grids.
     #[serde(default)]
     pub dx: f64,
+}
+
+/// The value of a column missing from an older file.
+fn not_recorded() -> f64 {
+    f64::NAN
 }
 
 /// Half-lengths (in elements) of a contact mask along the two axes through the centre of an
