@@ -103,6 +103,9 @@ pub struct ModelOptions {
     pub measure: Measure,
     /// Re-grid as the contact shrinks: the same Nx × Ny on a smaller domain (finer Δx).
     pub regrid: bool,
+    /// Angle θ between the ellipsoid's major axis and the grid's x axis (degrees); 0 aligns
+    /// them. A rotated mesh checks results where crack fronts run along grid lines (SPEC §7).
+    pub mesh_angle_deg: f64,
 }
 
 impl Default for ModelOptions {
@@ -123,6 +126,7 @@ impl Default for ModelOptions {
             stepping: Stepping::Adaptive,
             measure: Measure::Curve,
             regrid: false,
+            mesh_angle_deg: 0.0,
         }
     }
 }
@@ -184,6 +188,77 @@ pub struct Model {
     pub measure: Measure,
     /// Whether to re-grid as the contact shrinks.
     pub regrid: bool,
+    /// The rotation of the ellipsoid against the grid.
+    pub mesh: MeshAngle,
+}
+
+/// The angle θ between the ellipsoid's major axis and the grid's x axis, with its cosine and
+/// sine. A grid point (x, y) lies at ξ = x cos θ + y sin θ along the major axis and at
+/// η = −x sin θ + y cos θ along the minor one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshAngle {
+    /// θ (degrees).
+    pub degrees: f64,
+    /// cos θ (dimensionless).
+    pub cos: f64,
+    /// sin θ (dimensionless).
+    pub sin: f64,
+}
+
+impl MeshAngle {
+    /// The angle of `degrees`. Multiples of 45° get exact values (0, ±1, ±1/√2 with
+    /// cos = ±sin), so that 90° is an exact swap of the axes and 45° an exact mirror in the
+    /// grid's diagonal.
+    pub fn from_degrees(degrees: f64) -> Self {
+        let r = degrees.rem_euclid(360.0);
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let table = [
+            (1.0, 0.0),
+            (h, h),
+            (0.0, 1.0),
+            (-h, h),
+            (-1.0, 0.0),
+            (-h, -h),
+            (0.0, -1.0),
+            (h, -h),
+        ];
+        let k = r / 45.0;
+        let (cos, sin) = if k.fract() == 0.0 && k < 8.0 {
+            table[k as usize]
+        } else {
+            let (s, c) = r.to_radians().sin_cos();
+            (c, s)
+        };
+        MeshAngle { degrees, cos, sin }
+    }
+
+    /// Whether the ellipsoid's axes lie along the grid's (θ = 0 exactly).
+    pub fn is_aligned(&self) -> bool {
+        self.degrees == 0.0
+    }
+
+    /// (ξ, η): the point (x, y) of the grid (length) in the ellipsoid's frame (length).
+    pub fn to_ellipsoid(&self, x: f64, y: f64) -> (f64, f64) {
+        if self.is_aligned() {
+            (x, y)
+        } else {
+            (x * self.cos + y * self.sin, -x * self.sin + y * self.cos)
+        }
+    }
+
+    /// Half-widths along the grid's x and y (length) of the box around an ellipse of
+    /// half-axes `a` along ξ and `b` along η (length).
+    pub fn bounding_half_widths(&self, a: f64, b: f64) -> (f64, f64) {
+        if self.is_aligned() {
+            (a, b)
+        } else {
+            let (c, s) = (self.cos, self.sin);
+            (
+                (a * a * c * c + b * b * s * s).sqrt(),
+                (a * a * s * s + b * b * c * c).sqrt(),
+            )
+        }
+    }
 }
 
 fn check_grid(flag: &'static str, n: usize) -> Result<(), ModelError> {
@@ -238,16 +313,26 @@ impl Model {
                 "a value in (0, 1) (default 1e-5)",
             ));
         }
+        if !opt.mesh_angle_deg.is_finite() {
+            return Err(invalid(
+                "--mesh-angle",
+                opt.mesh_angle_deg,
+                "a finite angle in degrees (e.g. 0 or 45)",
+            ));
+        }
+        let mesh = MeshAngle::from_degrees(opt.mesh_angle_deg);
         let scales = scene.scales();
         let c0_len = c0 * scales.length;
         let initial =
             theory::hertz::hertz_for_mean_radius(scene.r1, scene.r2, scene.e_star, c0_len)
                 .map_err(|e| invalid("--ratio", scene.ratio(), e.to_string()))?;
-        let half_x = initial.a * (1.0 + opt.margin);
+        // The box around the (rotated) initial contact, plus the margin.
+        let (box_x, box_y) = mesh.bounding_half_widths(initial.a, initial.b);
+        let half_x = box_x * (1.0 + opt.margin);
         let dx = 2.0 * half_x / opt.nx as f64;
         // Elements the initial contact and its margin span along y (the 1e-9 absorbs round-off
-        // when the contact is round and this equals nx).
-        let need_y = (2.0 * initial.b * (1.0 + opt.margin) / dx - 1e-9).ceil() as usize;
+        // when the box is square and this equals nx).
+        let need_y = (2.0 * box_y * (1.0 + opt.margin) / dx - 1e-9).ceil() as usize;
         let ny = match opt.ny {
             Some(ny) if ny < need_y => {
                 return Err(invalid(
@@ -304,6 +389,7 @@ impl Model {
             stepping: opt.stepping,
             measure: opt.measure,
             regrid: opt.regrid,
+            mesh,
         })
     }
 
@@ -371,19 +457,22 @@ impl Model {
         let mut h = Vec::with_capacity(self.nx * self.ny);
         for j in 0..self.ny {
             for i in 0..self.nx {
-                h.push(self.scene.profile(self.x(i), self.y(j)));
+                let (xi, eta) = self.mesh.to_ellipsoid(self.x(i), self.y(j));
+                h.push(self.scene.profile(xi, eta));
             }
         }
         h
     }
 
-    /// The initial guess of the contact set: the Hertz ellipse of the first press.
+    /// The initial guess of the contact set: the Hertz ellipse of the first press (rotated
+    /// with the ellipsoid).
     pub fn initial_contact(&self) -> Vec<bool> {
         let (a, b) = (self.initial.a, self.initial.b);
         let mut m = Vec::with_capacity(self.nx * self.ny);
         for j in 0..self.ny {
             for i in 0..self.nx {
-                let (x, y) = (self.x(i) / a, self.y(j) / b);
+                let (xi, eta) = self.mesh.to_ellipsoid(self.x(i), self.y(j));
+                let (x, y) = (xi / a, eta / b);
                 m.push(x * x + y * y < 1.0);
             }
         }
@@ -421,5 +510,141 @@ mod tests {
             let e = Model::build(&s, &opt).unwrap_err();
             assert!(e.to_string().contains("--grid"), "{e}");
         }
+    }
+
+    fn rotated(ratio: f64, nx: usize, degrees: f64) -> Model {
+        let s = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).unwrap();
+        let opt = ModelOptions {
+            nx,
+            mesh_angle_deg: degrees,
+            ..Default::default()
+        };
+        Model::build(&s, &opt).unwrap()
+    }
+
+    #[test]
+    fn mesh_angle_must_be_finite() {
+        let s = Scene::from_ratio(5.0, 1.0, 1.0, 1.0).unwrap();
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let opt = ModelOptions {
+                nx: 64,
+                mesh_angle_deg: bad,
+                ..Default::default()
+            };
+            let e = Model::build(&s, &opt).unwrap_err();
+            assert!(e.to_string().contains("--mesh-angle"), "{e}");
+        }
+    }
+
+    #[test]
+    fn rotated_profile_is_the_rotated_quadratic_form() {
+        // h = ½ xᵀ M x with M = Rᵀ diag(1/R1, 1/R2) R, written out element by element.
+        let m = rotated(5.0, 64, 30.0);
+        let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let (k1, k2) = (1.0 / m.scene.r1, 1.0 / m.scene.r2);
+        let (mxx, mxy, myy) = (
+            c * c * k1 + s * s * k2,
+            c * s * (k1 - k2),
+            s * s * k1 + c * c * k2,
+        );
+        let h = m.profile();
+        for j in 0..m.ny {
+            for i in 0..m.nx {
+                let (x, y) = (m.x(i), m.y(j));
+                let want = 0.5 * (mxx * x * x + 2.0 * mxy * x * y + myy * y * y);
+                let got = h[j * m.nx + i];
+                assert!(
+                    (got - want).abs() <= 1e-12 * (1.0 + want),
+                    "({i}, {j}): {got} vs {want}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn rotated_initial_contact_lies_along_the_rotated_major_axis() {
+        // At θ = 30° the element 0.9 a along (cos θ, sin θ) is in the Hertz ellipse, the one
+        // 0.9 a along the grid's x axis is not (R1/R2 = 5: b/a ≈ 0.3), and the box holds it.
+        let m = rotated(5.0, 128, 30.0);
+        let mask = m.initial_contact();
+        let at = |x: f64, y: f64| {
+            let i = (x / m.dx + m.nx as f64 / 2.0).floor() as usize;
+            let j = (y / m.dx + m.ny as f64 / 2.0).floor() as usize;
+            mask[j * m.nx + i]
+        };
+        let (a, t) = (m.initial.a, 30f64.to_radians());
+        assert!(at(0.9 * a * t.cos(), 0.9 * a * t.sin()));
+        assert!(at(-0.9 * a * t.cos(), -0.9 * a * t.sin()));
+        assert!(!at(0.9 * a, 0.0));
+        let ring = (0..m.nx * m.ny).filter(|&k| {
+            let (i, j) = (k % m.nx, k / m.nx);
+            mask[k] && (i == 0 || j == 0 || i == m.nx - 1 || j == m.ny - 1)
+        });
+        assert_eq!(ring.count(), 0);
+        let n = mask.iter().filter(|&&v| v).count() as f64;
+        let area = PI * m.initial.a * m.initial.b / (m.dx * m.dx);
+        assert!(
+            (n / area - 1.0).abs() < 0.02,
+            "{n} elements vs ellipse area {area}"
+        );
+    }
+
+    #[test]
+    fn a_quarter_turn_swaps_the_axes() {
+        // The aligned model's grid, transposed and turned by 90°: profile and initial
+        // contact are the aligned ones transposed, exactly.
+        let m0 = rotated(5.0, 64, 0.0);
+        let mut m90 = m0.clone();
+        (m90.nx, m90.ny) = (m0.ny, m0.nx);
+        m90.mesh = MeshAngle::from_degrees(90.0);
+        let (h0, h90) = (m0.profile(), m90.profile());
+        let (c0, c90) = (m0.initial_contact(), m90.initial_contact());
+        for j in 0..m90.ny {
+            for i in 0..m90.nx {
+                // (x, y) at 90° is (ξ, η) = (y, −x): column j, row ny0 − 1 − i of the aligned grid.
+                let k0 = (m0.ny - 1 - i) * m0.nx + j;
+                assert_eq!(h90[j * m90.nx + i], h0[k0]);
+                assert_eq!(c90[j * m90.nx + i], c0[k0]);
+            }
+        }
+        // Built from options, the box turns too: Δx follows the minor axis.
+        let b = rotated(5.0, 64, 90.0);
+        let (ha, hb) = (m0.initial.a * 1.08, m0.initial.b * 1.08);
+        assert!((b.dx * 32.0 / hb - 1.0).abs() < 1e-12);
+        assert!(b.ny as f64 * b.dx >= 2.0 * ha);
+    }
+
+    #[test]
+    fn at_45_degrees_the_grid_is_square_and_mirror_symmetric_in_its_diagonal() {
+        let m = rotated(25.0, 64, 45.0);
+        assert_eq!((m.nx, m.ny), (64, 64));
+        let (h, c) = (m.profile(), m.initial_contact());
+        let n = m.nx;
+        for j in 0..n {
+            for i in 0..n {
+                assert_eq!(h[j * n + i], h[i * n + j]);
+                assert_eq!(c[j * n + i], c[i * n + j]);
+                // Point symmetry about the apex.
+                assert_eq!(c[j * n + i], c[(n - 1 - j) * n + (n - 1 - i)]);
+            }
+        }
+        // The contact runs along the diagonal, not the anti-diagonal.
+        assert!(c[(n / 2 + 10) * n + n / 2 + 10]);
+        assert!(!c[(n / 2 + 10) * n + n / 2 - 11]);
+    }
+
+    #[test]
+    fn aligned_angle_leaves_the_model_unchanged() {
+        let s = Scene::from_ratio(25.0, 1.0, 1.0, 1.0).unwrap();
+        let m = Model::build(&s, &ModelOptions::default()).unwrap();
+        let a = MeshAngle::from_degrees(0.0);
+        assert_eq!(m.mesh, a);
+        assert_eq!(a.to_ellipsoid(0.3, -0.7), (0.3, -0.7));
+        assert_eq!(a.bounding_half_widths(2.0, 0.5), (2.0, 0.5));
+        assert_eq!(MeshAngle::from_degrees(-270.0).cos, 0.0);
+        assert_eq!(
+            MeshAngle::from_degrees(405.0).sin,
+            std::f64::consts::FRAC_1_SQRT_2
+        );
     }
 }

@@ -169,3 +169,59 @@ fn theory_writes_curves_and_refuses_jkr_for_an_ellipsoid() {
     assert_eq!(o.status.code(), Some(2));
     assert!(!dir.path().join("j.csv").exists());
 }
+
+#[test]
+fn mesh_angle_and_periodic_convolution_are_checked_and_reported() {
+    for (args, flag) in [
+        (&["--mesh-angle", "NaN"][..], "--mesh-angle"),
+        (&["--mesh-angle", "inf"][..], "--mesh-angle"),
+        (
+            &["--convolution", "periodic", "--backend", "gpu"][..],
+            "--convolution",
+        ),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let mut full = vec!["simulate", "--out", "out/s.csv"];
+        full.extend_from_slice(args);
+        let o = jkrbem(&full, dir.path());
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains(flag),
+            "{args:?}: message does not name {flag}: {err}"
+        );
+        assert!(!dir.path().join("out").exists(), "{args:?} wrote output");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let o = jkrbem(
+        &[
+            "simulate",
+            "--ratio",
+            "5",
+            "--grid",
+            "32",
+            "--steps",
+            "20",
+            "--backend",
+            "cpu",
+            "--mesh-angle",
+            "-45",
+            "--convolution",
+            "periodic",
+            "--summary",
+            "s.json",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("PERIODIC"), "{}", stderr(&o));
+    assert!(dir
+        .path()
+        .join("jkrbem-out/simulate-r5-n32-a-45.csv")
+        .exists());
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
+    assert_eq!(s["mesh_angle_deg"], -45.0);
+    assert_eq!(s["ny"], 32);
+    assert_eq!(s["backend"], "cpu-periodic");
+}

@@ -95,7 +95,7 @@ pub trait Backend {
     /// A real field of nx × ny values resident on the backend's device.
     type Field;
 
-    /// Short name for reports ("cpu", "gpu").
+    /// Short name for reports ("cpu", "gpu"; "cpu-periodic" for the unpadded CPU one).
     fn name(&self) -> &'static str;
     /// Arithmetic precision of the device fields ("f64", "f32").
     fn precision(&self) -> &'static str;

@@ -1,11 +1,11 @@
 //! `jkrbem simulate --extrapolate`: one scene on several grids, its adhesive force (and c̄, d̄
 //! at the minimum) extrapolated to Δx → 0.
 
-use super::simulate::{backend_error, pulloff_to_file, Args, GPU_CHECK_EVERY};
+use super::simulate::{open_backend, pulloff_to_file, Args, GPU_CHECK_EVERY};
 use super::{failed, input, CliError};
 use jkrbem::analysis::extrapolate::{extrapolate_first_order, Extrapolated};
 use jkrbem::backend::cpu::GridSetup;
-use jkrbem::backend::select::{self, AnyBackend};
+use jkrbem::backend::select::AnyBackend;
 use jkrbem::model::{Model, ModelOptions};
 use jkrbem::output::summary::Summary;
 use serde::Serialize;
@@ -55,13 +55,13 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let start = Instant::now();
     let mut summaries: Vec<Summary> = Vec::new();
     for mut model in models {
-        let opened = select::open(args.backend.kind(), &GridSetup::for_model(&model))
-            .map_err(backend_error)?;
+        let opened = open_backend(args, &GridSetup::for_model(&model))?;
         eprintln!(
-            "jkrbem: R1/R2 = {}, grid {}×{}, backend {}",
+            "jkrbem: R1/R2 = {}, grid {}×{}{}, backend {}",
             scene.ratio(),
             model.nx,
             model.ny,
+            super::simulate::angle_note(&model),
             opened.note
         );
         let mut any = opened.backend;

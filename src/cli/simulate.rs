@@ -4,8 +4,8 @@ use super::{failed, input, CliError};
 use clap::ValueEnum;
 use indicatif::{ProgressBar, ProgressStyle};
 use jkrbem::analysis::capture::ContactCapture;
-use jkrbem::backend::cpu::GridSetup;
-use jkrbem::backend::select::{self, BackendKind};
+use jkrbem::backend::cpu::{CpuBackend, GridSetup};
+use jkrbem::backend::select::{self, AnyBackend, BackendKind, Opened};
 use jkrbem::backend::{Backend, BackendError, Preconditioner};
 use jkrbem::model::{Measure, Model, ModelOptions, Stepping};
 use jkrbem::output::states_csv::StateWriter;
@@ -71,6 +71,16 @@ pub enum PreconditionerChoice {
     None,
 }
 
+/// How the displacements u = K ∗ p are convolved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ConvolutionChoice {
+    /// Zero-padded to 2Nx × 2Ny: the exact non-periodic sum (SPEC §4).
+    Padded,
+    /// Unpadded Nx × Ny: the contact feels its periodic images. Wrong on purpose, to show
+    /// what padding removes; CPU only.
+    Periodic,
+}
+
 /// Arguments of `jkrbem simulate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -122,6 +132,12 @@ pub struct Args {
     /// Free margin around the initial contact, relative to its half-axes.
     #[arg(long, default_value_t = 0.08)]
     pub margin: f64,
+    /// Angle between the ellipsoid's major axis and the grid's x axis (degrees). The domain
+    /// is the box around the turned initial contact (square at 45°), and ā, b̄ are measured
+    /// along the turned axes. Use it to check results where crack fronts run along grid
+    /// lines, at the ends of a slender ellipse's axes (e.g. 45).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub mesh_angle: f64,
     /// CG stops when its relative residual ‖(d − h − K p)_C‖/‖(d − h)_C‖ reaches this
     /// (dimensionless). A solve that stagnates, diverges, reaches --cg-max-iterations, or
     /// whose true residual (recomputed from p) stays above 100 × this is retried once in a
@@ -147,6 +163,10 @@ pub struct Args {
     /// as lavapipe included) or `auto` (a hardware GPU if present, else the CPU).
     #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
     pub backend: BackendChoice,
+    /// Convolution: `padded` (exact) or `periodic` (no padding, so the contact interacts with
+    /// its periodic images a margin away: only to see the error padding removes; CPU only).
+    #[arg(long, value_enum, default_value_t = ConvolutionChoice::Padded)]
+    pub convolution: ConvolutionChoice,
     /// States CSV [default: jkrbem-out/simulate-r<ratio>-n<grid>.csv]. While running it is named
     /// <stem>.incomplete.csv; a run that fails keeps that name.
     #[arg(long)]
@@ -204,6 +224,7 @@ impl Args {
             steps: self.steps,
             final_d_bar: self.final_d,
             margin: self.margin,
+            mesh_angle_deg: self.mesh_angle,
             cg_tolerance: self.cg_tolerance,
             cg_max_iterations: self.cg_max_iterations,
             cg_accept: self.cg_accept,
@@ -249,20 +270,26 @@ pub fn run(mut args: Args) -> Result<(), CliError> {
         return Err(input("--cg-check-every must be at least 1"));
     }
     let out = args.out.clone().unwrap_or_else(|| {
+        let angle = if model.mesh.is_aligned() {
+            String::new()
+        } else {
+            format!("-a{}", model.mesh.degrees)
+        };
         PathBuf::from(format!(
-            "jkrbem-out/simulate-r{}-n{}.csv",
+            "jkrbem-out/simulate-r{}-n{}{angle}.csv",
             scene.ratio(),
             model.nx
         ))
     });
     let setup = GridSetup::for_model(&model);
-    let opened = select::open(args.backend.kind(), &setup).map_err(backend_error)?;
+    let opened = open_backend(&args, &setup)?;
     eprintln!(
-        "jkrbem: R1/R2 = {}, grid {}×{}, Δx = {:.4e}, backend {}",
+        "jkrbem: R1/R2 = {}, grid {}×{}, Δx = {:.4e}{}, backend {}",
         scene.ratio(),
         model.nx,
         model.ny,
         model.dx,
+        angle_note(&model),
         opened.note
     );
     let mut any = opened.backend;
@@ -274,6 +301,32 @@ pub fn run(mut args: Args) -> Result<(), CliError> {
                 1
             });
     jkrbem::with_backend!(&mut any, backend => run_on(backend, &args, &model, &out))
+}
+
+/// ", mesh turned by θ°" for a rotated mesh, else nothing.
+pub fn angle_note(model: &Model) -> String {
+    if model.mesh.is_aligned() {
+        String::new()
+    } else {
+        format!(", mesh turned by {}°", model.mesh.degrees)
+    }
+}
+
+/// Open the backend the arguments ask for, with the periodic convolution if asked.
+pub fn open_backend(args: &Args, setup: &GridSetup) -> Result<Opened, CliError> {
+    match args.convolution {
+        ConvolutionChoice::Padded => {
+            select::open(args.backend.kind(), setup).map_err(backend_error)
+        }
+        ConvolutionChoice::Periodic if args.backend == BackendChoice::Gpu => Err(input(
+            "--convolution periodic runs on the CPU backend only: use --backend cpu",
+        )),
+        ConvolutionChoice::Periodic => Ok(Opened {
+            backend: AnyBackend::Cpu(Box::new(CpuBackend::new_periodic(setup))),
+            note: "cpu (f64, rustfft) with a PERIODIC convolution (no padding: wrong on purpose)"
+                .into(),
+        }),
+    }
 }
 
 /// A backend that could not be opened: a refused grid or a missing device is bad input.

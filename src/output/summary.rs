@@ -39,6 +39,8 @@ pub struct Summary {
     pub ny: usize,
     /// Element side Δx (length).
     pub dx: f64,
+    /// Angle between the ellipsoid's major axis and the grid's x axis (degrees).
+    pub mesh_angle_deg: f64,
     /// Detachment stress σ_c (force/length²).
     pub sigma_c: f64,
     /// Backend that ran the solver.
@@ -145,6 +147,7 @@ impl Summary {
             nx: model.nx,
             ny: model.ny,
             dx: model.dx,
+            mesh_angle_deg: model.mesh.degrees,
             sigma_c: model.sigma_c,
             backend: backend.0.to_string(),
             precision: backend.1.to_string(),
@@ -191,8 +194,13 @@ impl Summary {
             opt(self.a_bar_at_min, 4),
             opt(self.b_bar_at_min, 4)
         );
+        let angle = if self.mesh_angle_deg == 0.0 {
+            String::new()
+        } else {
+            format!(" turned by {}°", self.mesh_angle_deg)
+        };
         s += &format!(
-            "grid {}×{}, Δx = {:.5e}, σ_c = {:.5e}, {} elements across the minor axis at pull-off\n",
+            "grid {}×{}{angle}, Δx = {:.5e}, σ_c = {:.5e}, {} elements across the minor axis at pull-off\n",
             self.nx,
             self.ny,
             self.dx,

@@ -9,7 +9,7 @@
 
 use super::equilibrium::{equilibrate, solve_fixed, Equilibrium, Fields};
 use super::retry::{self, CgRetry};
-use super::state::{axis_half_lengths, Phase, State};
+use super::state::{axis_half_lengths, axis_half_lengths_along, Phase, State};
 use super::SolverError;
 use crate::backend::cpu::GridSetup;
 use crate::backend::Backend;
@@ -91,7 +91,12 @@ fn record<B: Backend>(
 ) -> Result<State, SolverError> {
     let (sum, n) = backend.sum_and_count(p)?;
     backend.contact(mask)?;
-    let (a_el, b_el) = axis_half_lengths(mask, model.nx, model.ny);
+    let (a_el, b_el) = if model.mesh.is_aligned() {
+        axis_half_lengths(mask, model.nx, model.ny)
+    } else {
+        let m = model.mesh;
+        axis_half_lengths_along(mask, model.nx, model.ny, m.cos, m.sin)
+    };
     let dx = model.dx;
     let sc = model.scene.scales();
     let area = n as f64 * dx * dx;

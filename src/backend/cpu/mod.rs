@@ -50,11 +50,11 @@ pub struct CpuBackend {
     preconditioner: Option<SpectralFilter>,
     profile: Vec<f64>,
     mask: Vec<bool>,
+    /// Whether the convolution is the unpadded, periodic one.
+    periodic: bool,
     /// Scratch for the masked preconditioner input.
     scratch: Vec<f64>,
     slots: [f64; N_SLOTS],
-    /// Whether the convolution is the (wrong) periodic one.
-    periodic: bool,
 }
 
 impl CpuBackend {
@@ -103,9 +103,9 @@ impl CpuBackend {
             preconditioner,
             profile: setup.profile.clone(),
             mask: vec![false; nx * ny],
+            periodic,
             scratch: vec![0.0; nx * ny],
             slots: [0.0; N_SLOTS],
-            periodic,
         }
     }
 
@@ -142,7 +142,11 @@ impl Backend for CpuBackend {
     type Field = Vec<f64>;
 
     fn name(&self) -> &'static str {
-        "cpu"
+        if self.periodic {
+            "cpu-periodic"
+        } else {
+            "cpu"
+        }
     }
     fn precision(&self) -> &'static str {
         "f64"
