@@ -230,16 +230,35 @@ fn accuracy_charts_error_against_cost_with_the_extrapolated_point() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "backend,precision,grid,n_d,f_ad_bar,error,wall_s,cg_iterations"
+        "variant,backend,precision,grid,n_d,f_ad_bar,error,wall_s,cg_iterations"
     );
-    let errors: Vec<f64> = lines
-        .map(|l| l.split(',').nth(5).unwrap().parse().unwrap())
+    // Per variant (plain, measure, regrid): two grids and the extrapolated point.
+    let rows: Vec<(String, f64, usize)> = lines
+        .map(|l| {
+            let c: Vec<&str> = l.split(',').collect();
+            (c[0].to_string(), c[6].parse().unwrap(), c[8].parse().unwrap())
+        })
         .collect();
-    // Two grids and the extrapolated point: the error falls with the grid, and extrapolation
-    // beats the finest grid.
-    assert_eq!(errors.len(), 3);
-    assert!(errors[0] > errors[1] && errors[1] > 0.0);
-    assert!(errors[2].abs() < errors[1]);
+    let of = |v: &str| -> Vec<(f64, usize)> {
+        rows.iter()
+            .filter(|r| r.0 == v)
+            .map(|r| (r.1, r.2))
+            .collect()
+    };
+    let (plain, measure, regrid) = (of("plain"), of("measure"), of("regrid"));
+    for e in [&plain, &measure, &regrid] {
+        // The error falls with the grid, and extrapolation beats the finest grid.
+        assert_eq!(e.len(), 3);
+        assert!(e[0].0 > e[1].0 && e[1].0 > 0.0);
+        assert!(e[2].0.abs() < e[1].0);
+    }
+    // Measuring only the adhesive force gives the same answers for fewer CG iterations;
+    // re-gridding gives smaller errors on the same grids.
+    for k in 0..2 {
+        assert!((measure[k].0 - plain[k].0).abs() < 1e-9);
+        assert!(measure[k].1 <= plain[k].1);
+        assert!(regrid[k].0 < plain[k].0);
+    }
     let svg = std::fs::read_to_string(dir.path().join("acc/accuracy.svg")).unwrap();
     assert!(svg.contains("exact JKR value"));
     let bad = jkrbem(&["accuracy", "--backends", "tpu", "--out", "z"], dir.path());
