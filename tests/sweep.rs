@@ -236,7 +236,11 @@ fn accuracy_charts_error_against_cost_with_the_extrapolated_point() {
     let rows: Vec<(String, f64, usize)> = lines
         .map(|l| {
             let c: Vec<&str> = l.split(',').collect();
-            (c[0].to_string(), c[6].parse().unwrap(), c[8].parse().unwrap())
+            (
+                c[0].to_string(),
+                c[6].parse().unwrap(),
+                c[8].parse().unwrap(),
+            )
         })
         .collect();
     let of = |v: &str| -> Vec<(f64, usize)> {
