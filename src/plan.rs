@@ -11,16 +11,23 @@ use crate::theory::{self, TheoryModel};
 /// regime (the observed order from 32/64/128 was 1.1, from 64/128/256 without re-gridding 0.6).
 pub const MIN_PLAN_GRID: usize = 32;
 
+/// Predicted elements across the minor axis at the minimum on the coarsest grid of an
+/// extrapolation: coarser grids are not yet first order (R1/R2 = 5 from 32×16, n_d = 12:
+/// observed order −0.8).
+pub const MIN_EXTRAPOLATION_N_D: f64 = 20.0;
+
 /// Largest grid side a plan runs directly; finer answers come from extrapolation.
 pub const MAX_DIRECT_GRID: usize = 256;
 
 /// Targets below this (relative) are met by extrapolating three grids to Δx → 0, whose
-/// finest grid alone is expected within 4× the target.
+/// finest grid alone is expected within 4× the target; so are larger ones when that finest
+/// grid is smaller than the single grid that would meet the target.
 pub const EXTRAPOLATE_BELOW: f64 = 0.03;
 
-/// Δx at the force minimum over the initial Δx with re-gridding: the last re-grid falls at
-/// c̄ ≤ 1.125 from c̄0 = 1.5 (measured 0.50–0.63 for R1/R2 = 1…25; 0.75 is the bound).
-pub const REGRID_DX_GAIN: f64 = 0.75;
+/// Δx at the force minimum over the initial Δx with re-gridding, from c̄0 = 1.5: measured
+/// 0.60–0.63 (R1/R2 = 1 and 5, 64²–256²) and 0.50 (R1/R2 = 25, 128×32); the last re-grid
+/// falls at c̄ ≤ 1.125, so 0.75 would be the bound.
+pub const REGRID_DX_GAIN: f64 = 0.65;
 
 /// Load steps of a plan: with adaptive stepping the force minimum does not depend on them
 /// (measured: 0.5155 with 100 and 200 steps, 128², re-gridded).
@@ -109,36 +116,39 @@ pub fn for_accuracy(scene: &Scene, target: f64, base: &ModelOptions) -> Result<P
         regrid: true,
         ..base.clone()
     };
-    let finest_target = if target < EXTRAPOLATE_BELOW {
-        4.0 * target
-    } else {
-        target
-    };
-    let needed = convergence::n_d_for(ratio, finest_target);
-    let mut nx = MIN_PLAN_GRID;
-    let n_d = loop {
-        let model = Model::build(
-            scene,
-            &ModelOptions {
-                nx,
-                ..options.clone()
-            },
-        )?;
-        let n_d = predicted_n_d(&model);
-        if n_d >= needed || nx >= 8 * MAX_DIRECT_GRID {
-            break n_d;
+    // The smallest grid whose predicted n_d meets a relative target, and that n_d.
+    let grid_for = |t: f64| -> Result<(usize, f64), ModelError> {
+        let needed = convergence::n_d_for(ratio, t);
+        let mut nx = MIN_PLAN_GRID;
+        loop {
+            let model = Model::build(
+                scene,
+                &ModelOptions {
+                    nx,
+                    ..options.clone()
+                },
+            )?;
+            let n_d = predicted_n_d(&model);
+            if n_d >= needed || nx >= 8 * MAX_DIRECT_GRID {
+                return Ok((nx, n_d));
+            }
+            nx *= 2;
         }
-        nx *= 2;
     };
-    let extrapolate = target < EXTRAPOLATE_BELOW || nx > MAX_DIRECT_GRID;
-    let grids = if extrapolate {
-        let finest = nx.max(4 * MIN_PLAN_GRID);
-        vec![finest / 4, finest / 2, finest]
+    let (direct, direct_n_d) = grid_for(target)?;
+    // Or three grids whose finest alone is expected within 4× the target, extrapolated.
+    let (nx, n_d) = grid_for(4.0 * target)?;
+    let (coarsest, _) = grid_for(convergence::coefficient(ratio).1 / MIN_EXTRAPOLATION_N_D)?;
+    let finest = nx.max(4 * coarsest);
+    let extrapolate = target < EXTRAPOLATE_BELOW || direct > MAX_DIRECT_GRID || finest < direct;
+    let (grids, n_d) = if extrapolate {
+        (
+            vec![finest / 4, finest / 2, finest],
+            n_d * finest as f64 / nx as f64,
+        )
     } else {
-        vec![nx]
+        (vec![direct], direct_n_d)
     };
-    let finest = *grids.last().unwrap_or(&nx);
-    let n_d = n_d * finest as f64 / nx as f64;
     Ok(Plan {
         grids,
         options,
