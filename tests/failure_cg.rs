@@ -63,6 +63,23 @@ fn describe(label: &str, o: &Outcome, wall: f64) {
     }
 }
 
+/// Run `model` on the GPU (None, test skipped, without an adapter) and describe it.
+fn gpu_run(model: &Model, label: &str) -> Option<Outcome> {
+    let mut gpu = gpu_backend(&GridSetup::for_model(model))?;
+    let t0 = Instant::now();
+    let o = solver::run(&mut gpu, model, &mut |_| {});
+    describe(label, &o, t0.elapsed().as_secs_f64());
+    Some(o)
+}
+
+/// Run `model` on the CPU and describe it.
+fn cpu_run(model: &Model, label: &str) -> Outcome {
+    let t0 = Instant::now();
+    let o = run_model(model.clone()).outcome;
+    describe(label, &o, t0.elapsed().as_secs_f64());
+    o
+}
+
 /// Check a run asked for a tolerance below its arithmetic's floor: every solve's recurrence
 /// reached the tolerance but its true residual did not (a residual gap, at about `floor`);
 /// the safer retry stagnated there within a few windows and was accepted; every state is
@@ -102,25 +119,12 @@ fn f32_asked_for_1e_11_detects_its_floor_retries_and_marks_the_states() {
     let mut model = short_run(64, tolerance);
     // As `jkrbem simulate --backend gpu` does: read the residual every 2 iterations.
     model.cg.check_every = 2;
-    let Some(mut gpu) = gpu_backend(&GridSetup::for_model(&model)) else {
+    let Some(g) = gpu_run(&model, "GPU f32, tolerance 1e-11, 64²") else {
         return;
     };
-    let t0 = Instant::now();
-    let g = solver::run(&mut gpu, &model, &mut |_| {});
-    describe(
-        "GPU f32, tolerance 1e-11, 64²",
-        &g,
-        t0.elapsed().as_secs_f64(),
-    );
     assert_floor_detected_and_marked(&g, tolerance, (1e-8, 1e-6));
     // The marked states are still right to the f32 floor: f64 reaches 1e-11 without help.
-    let t0 = Instant::now();
-    let c = run_model(model.clone()).outcome;
-    describe(
-        "CPU f64, tolerance 1e-11, 64²",
-        &c,
-        t0.elapsed().as_secs_f64(),
-    );
+    let c = cpu_run(&model, "CPU f64, tolerance 1e-11, 64²");
     assert!(c.complete() && c.cg_retries.is_empty() && c.warnings.is_empty());
     assert_eq!(g.states.len(), c.states.len());
     let dev = g
@@ -143,16 +147,9 @@ fn f32_at_the_default_tolerance_is_not_flagged() {
         },
     );
     model.cg.check_every = 2;
-    let Some(mut gpu) = gpu_backend(&GridSetup::for_model(&model)) else {
+    let Some(g) = gpu_run(&model, "GPU f32, default tolerance, 32²") else {
         return;
     };
-    let t0 = Instant::now();
-    let g = solver::run(&mut gpu, &model, &mut |_| {});
-    describe(
-        "GPU f32, default tolerance, 32²",
-        &g,
-        t0.elapsed().as_secs_f64(),
-    );
     assert!(g.complete(), "{:?}", g.error);
     assert!(g.cg_retries.is_empty() && g.warnings.is_empty());
     let worst = g.worst_cg_residual().unwrap();
@@ -166,13 +163,7 @@ fn f32_at_the_default_tolerance_is_not_flagged() {
 fn f64_asked_for_1e_19_detects_its_floor_the_same_way() {
     let tolerance = 1e-19;
     let model = short_run(64, tolerance);
-    let t0 = Instant::now();
-    let o = run_model(model).outcome;
-    describe(
-        "CPU f64, tolerance 1e-19, 64²",
-        &o,
-        t0.elapsed().as_secs_f64(),
-    );
+    let o = cpu_run(&model, "CPU f64, tolerance 1e-19, 64²");
     assert_floor_detected_and_marked(&o, tolerance, (1e-17, 1e-14));
 }
 
@@ -185,13 +176,7 @@ fn a_healthy_sphere_run_is_not_flagged() {
             ..ModelOptions::default()
         },
     );
-    let t0 = Instant::now();
-    let o = run_model(model.clone()).outcome;
-    describe(
-        "CPU f64, default tolerance, 64²",
-        &o,
-        t0.elapsed().as_secs_f64(),
-    );
+    let o = cpu_run(&model, "CPU f64, default tolerance, 64²");
     assert!(o.complete(), "{:?}", o.error);
     assert!(o.cg_retries.is_empty() && o.warnings.is_empty());
     let worst = o.worst_cg_residual().unwrap();
