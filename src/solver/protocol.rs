@@ -214,12 +214,11 @@ impl Emitter<'_> {
             .min_by(|a, b| a.0.total_cmp(&b.0))
     }
 
-    /// Whether a step-end state confirms the minimum: [`CONFIRM_D_BAR`] or more past it and
-    /// above it by [`CONFIRM_RISE`] of its size.
-    fn minimum_confirmed(&self, state: &State) -> bool {
+    /// Whether a step-end state of `force` (force) at `d_bar` confirms the minimum:
+    /// [`CONFIRM_D_BAR`] or more past it and above it by [`CONFIRM_RISE`] of its size.
+    fn minimum_confirmed(&self, force: f64, d_bar: f64) -> bool {
         self.minimum().is_some_and(|(f_min, d_min)| {
-            state.d_bar <= d_min - CONFIRM_D_BAR
-                && state.force - f_min >= CONFIRM_RISE * f_min.abs()
+            d_bar <= d_min - CONFIRM_D_BAR && force - f_min >= CONFIRM_RISE * f_min.abs()
         })
     }
 }
@@ -342,14 +341,13 @@ fn run_inner<B: Backend>(
             d,
             &eq,
         )?;
-        let force = state.force;
-        let state_copy = state.clone();
+        let (force, d_bar, c_bar) = (state.force, state.d_bar, state.c_bar);
         out.emit(state, &run.mask, hold);
         d_prev = d;
         if eq.n_contact == 0 {
             return Ok(());
         }
-        if out.minimum_confirmed(&state_copy) {
+        if out.minimum_confirmed(force, d_bar) {
             if measure && run.refine {
                 out.stopped_after_minimum = true;
                 return Ok(());
@@ -362,21 +360,12 @@ fn run_inner<B: Backend>(
                 .is_some_and(|(f_min, _)| force - f_min > CONFIRM_RISE * f_min.abs());
             if turned {
                 // The step-end force has turned: take the last steps again, refined.
-                let snap = run.window.pop_front();
-                run.window.clear();
-                run.refine = true;
-                if let Some(s) = snap {
-                    out.pending.truncate(s.held);
-                    backend.set_contact(&s.mask)?;
-                    backend.copy(&run.spare[s.field], &mut run.fields.p)?;
-                    run.mask = s.mask;
-                    step = s.step;
-                    d_prev = s.d;
+                if let Some((s, d_s)) = run.go_back(backend, out)? {
+                    (step, d_prev) = (s, d_s);
                 }
-                out.flush(usize::MAX);
                 continue;
             }
-            if state_copy.c_bar <= REFINE_BELOW_C_BAR {
+            if c_bar <= REFINE_BELOW_C_BAR {
                 run.refine = true;
                 run.window.clear();
                 out.flush(usize::MAX);
@@ -384,13 +373,38 @@ fn run_inner<B: Backend>(
                 run.keep(backend, step, d, out)?;
             }
         }
-        if run.model.regrid && run.may_regrid && state_copy.c_bar > REGRID_ABOVE_C_BAR {
+        if run.model.regrid && run.may_regrid && c_bar > REGRID_ABOVE_C_BAR {
             regrid_if_shrunk(backend, &mut run, step, d, out)?;
         }
     }
 }
 
 impl<F> Progress<F> {
+    /// Refine from now on, restarting from the oldest snapshot kept: its contact and p are
+    /// restored and the states held since are dropped. Returns the step and approach d
+    /// (length) to go on from, if there was a snapshot.
+    fn go_back<B: Backend<Field = F>>(
+        &mut self,
+        backend: &mut B,
+        out: &mut Emitter,
+    ) -> Result<Option<(usize, f64)>, SolverError> {
+        let snap = self.window.pop_front();
+        self.window.clear();
+        self.refine = true;
+        let resume = match snap {
+            Some(s) => {
+                out.pending.truncate(s.held);
+                backend.set_contact(&s.mask)?;
+                backend.copy(&self.spare[s.field], &mut self.fields.p)?;
+                self.mask = s.mask;
+                Some((s.step, s.d))
+            }
+            None => None,
+        };
+        out.flush(usize::MAX);
+        Ok(resume)
+    }
+
     /// Keep this step's end state as a snapshot, dropping (and handing on the states of) the
     /// oldest beyond [`WINDOW`].
     fn keep<B: Backend<Field = F>>(
