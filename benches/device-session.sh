@@ -237,11 +237,22 @@ for step in "${STEPS[@]}"; do
     say ""
     ;;
   parity)
-    say "## Parity: R1/R2 = 5 at ${PARITY_GRID} on both backends (limit ${PARITY_LIMIT_S} s each)"
+    say "## Parity: R1/R2 = 5 at ${PARITY_GRID} on both backends, run side by side (limit ${PARITY_LIMIT_S} s each)"
     say ""
     pulloff_header
+    pulloff "cpu-${PARITY_GRID}-measure" "$PARITY_LIMIT_S" --ratio 5 --grid "$PARITY_GRID" --backend cpu --measure adhesive-force >"$OUT/.cpu-row" &
+    cpu_job=$!
     pulloff "gpu-${PARITY_GRID}-measure" "$PARITY_LIMIT_S" --ratio 5 --grid "$PARITY_GRID" --backend gpu --measure adhesive-force
-    pulloff "cpu-${PARITY_GRID}-measure" "$PARITY_LIMIT_S" --ratio 5 --grid "$PARITY_GRID" --backend cpu --measure adhesive-force
+    wait $cpu_job
+    rm -f "$OUT/.cpu-row"
+    python3 - "$OUT/gpu-${PARITY_GRID}-measure.json" "$OUT/cpu-${PARITY_GRID}-measure.json" <<'EOF2' | tee -a "$REPORT"
+import json, sys
+try:
+    g, c = (json.load(open(p))["f_ad_bar"] for p in sys.argv[1:])
+    print(f"\n|min F̄| GPU {g:.7f}, CPU {c:.7f}: relative difference {abs(g - c) / c:.2e}")
+except Exception as e:
+    print(f"\n(no parity figure: {e})")
+EOF2
     say ""
     ;;
   accuracy)

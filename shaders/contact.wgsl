@@ -14,8 +14,6 @@ struct Params {
     sigma: f32,
 }
 
-const WG: u32 = 256u;
-
 @group(0) @binding(0) var<uniform> params: Params;
 @group(0) @binding(1) var<storage, read_write> p: array<f32>;
 @group(0) @binding(2) var<storage, read> u: array<f32>;

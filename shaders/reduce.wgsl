@@ -1,10 +1,11 @@
-// Reductions over the contact set C (mask = 1) into device slots, f32.
+// Reductions over the contact set C (mask = 1) read by the host once per state, f32: the
+// total pressure with the contact count, and the first-crossing fraction of a load step.
 //
 // Two passes: each of G workgroups reduces a strided share of the elements (every thread
 // keeps a compensated (Kahan) running sum, then the workgroup adds its 256 sums as a
-// pairwise tree) into partials[g]; one workgroup then adds the G partials as a pairwise
-// tree into slots[out]. The rounding error grows like log2(n) instead of n.
-// CPU twin: the f64 sums of `jkrbem::backend::cpu::CpuBackend` (dot, sum_and_count,
+// pairwise tree) into partials[g]; one workgroup then combines the G partials into a slot
+// (shared/slots.wgsl). The rounding error grows like log2(n) instead of n.
+// CPU twin: the f64 sums of `jkrbem::backend::cpu::CpuBackend` (sum_and_count,
 // first_crossing).
 
 // Must stay in sync with `ReduceParams` in src/backend/gpu/backend.rs.
@@ -23,8 +24,6 @@ struct Params {
     pad3: u32,
 }
 
-const WG: u32 = 256u;
-
 @group(0) @binding(0) var<uniform> params: Params;
 @group(0) @binding(1) var<storage, read> a: array<f32>;
 @group(0) @binding(2) var<storage, read> b: array<f32>;
@@ -32,16 +31,14 @@ const WG: u32 = 256u;
 @group(0) @binding(4) var<storage, read_write> partials: array<f32>;
 // Per-workgroup element counts; cell `groups` receives the total.
 @group(0) @binding(5) var<storage, read_write> counts: array<u32>;
-@group(0) @binding(6) var<storage, read_write> slots: array<f32>;
 
-var<workgroup> tree: array<f32, WG>;
 var<workgroup> tree_count: array<u32, WG>;
 
-// Pairwise sum of tree[0..WG] into tree[0].
-fn tree_sum(lid: u32) {
+// Pairwise sum of red[0..WG] and tree_count[0..WG] into their first cells.
+fn tree_sum_count(lid: u32) {
     for (var width = WG / 2u; width > 0u; width /= 2u) {
         if lid < width {
-            tree[lid] = tree[lid] + tree[lid + width];
+            red[lid] = red[lid] + red[lid + width];
             tree_count[lid] = tree_count[lid] + tree_count[lid + width];
         }
         workgroupBarrier();
@@ -51,52 +48,34 @@ fn tree_sum(lid: u32) {
 fn tree_min(lid: u32) {
     for (var width = WG / 2u; width > 0u; width /= 2u) {
         if lid < width {
-            tree[lid] = min(tree[lid], tree[lid + width]);
+            red[lid] = min(red[lid], red[lid + width]);
         }
         workgroupBarrier();
     }
 }
 
-// Compensated sum of the masked a·b (`product`) or a (`!product`) over this thread's share.
-fn share_sum(lid: u32, g: u32, product: bool) {
+// Σ_C a and |C| over this workgroup's share, into partials[g] and counts[g].
+@compute @workgroup_size(WG)
+fn sum_partials(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>) {
     var sum = 0.0;
     var carry = 0.0;
     var count = 0u;
     let step = params.groups * WG;
-    for (var i = g * WG + lid; i < params.n; i += step) {
+    for (var i = wid.x * WG + lid; i < params.n; i += step) {
         if mask[i] != 0u {
-            var v = a[i];
-            if product {
-                v = v * b[i];
-            }
-            let yv = v - carry;
-            let t = sum + yv;
-            carry = (t - sum) - yv;
+            let v = a[i] - carry;
+            let t = sum + v;
+            carry = (t - sum) - v;
             sum = t;
             count += 1u;
         }
     }
-    tree[lid] = sum;
+    red[lid] = sum;
     tree_count[lid] = count;
     workgroupBarrier();
-}
-
-@compute @workgroup_size(WG)
-fn dot_partials(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>) {
-    share_sum(lid, wid.x, true);
-    tree_sum(lid);
+    tree_sum_count(lid);
     if lid == 0u {
-        partials[wid.x] = tree[0];
-        counts[wid.x] = tree_count[0];
-    }
-}
-
-@compute @workgroup_size(WG)
-fn sum_partials(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>) {
-    share_sum(lid, wid.x, false);
-    tree_sum(lid);
-    if lid == 0u {
-        partials[wid.x] = tree[0];
+        partials[wid.x] = red[0];
         counts[wid.x] = tree_count[0];
     }
 }
@@ -114,15 +93,15 @@ fn crossing_partials(@builtin(local_invocation_index) lid: u32, @builtin(workgro
             t = min(t, clamp((-s - pa) / (pb - pa), 0.0, 1.0));
         }
     }
-    tree[lid] = t;
+    red[lid] = t;
     workgroupBarrier();
     tree_min(lid);
     if lid == 0u {
-        partials[wid.x] = tree[0];
+        partials[wid.x] = red[0];
     }
 }
 
-// slots[out] = Σ partials, counts[groups] = Σ counts (one workgroup).
+// slot out = Σ partials, counts[groups] = Σ counts (one workgroup).
 @compute @workgroup_size(WG)
 fn finish_sum(@builtin(local_invocation_index) lid: u32) {
     var sum = 0.0;
@@ -131,27 +110,27 @@ fn finish_sum(@builtin(local_invocation_index) lid: u32) {
         sum += partials[g];
         count += counts[g];
     }
-    tree[lid] = sum;
+    red[lid] = sum;
     tree_count[lid] = count;
     workgroupBarrier();
-    tree_sum(lid);
+    tree_sum_count(lid);
     if lid == 0u {
-        slots[params.out] = tree[0];
+        slot_set(params.out, red[0]);
         counts[params.groups] = tree_count[0];
     }
 }
 
-// slots[out] = min partials (one workgroup).
+// slot out = min partials (one workgroup).
 @compute @workgroup_size(WG)
 fn finish_min(@builtin(local_invocation_index) lid: u32) {
     var t = 1.0;
     for (var g = lid; g < params.groups; g += WG) {
         t = min(t, partials[g]);
     }
-    tree[lid] = t;
+    red[lid] = t;
     workgroupBarrier();
     tree_min(lid);
     if lid == 0u {
-        slots[params.out] = tree[0];
+        slot_set(params.out, red[0]);
     }
 }

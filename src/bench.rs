@@ -13,6 +13,7 @@
 //! of the samples is reported. Ratios between backends or grids are
 //! only meaningful within one run on one machine.
 
+use crate::backend::gpu::GpuBackend;
 use crate::backend::{Backend, BackendError, Counters, Slot};
 use crate::model::{CgSettings, Model};
 use crate::solver::cg::{self, CgWork};
@@ -65,6 +66,9 @@ pub struct WorkPerIteration {
     pub readbacks: f64,
     /// Queue submissions per iteration.
     pub submits: f64,
+    /// Bytes the kernels read and wrote per iteration, as counted from their code (0 on the
+    /// CPU).
+    pub bytes: f64,
 }
 
 /// One timed pull-off (the whole protocol of [`solver::run`]).
@@ -175,13 +179,24 @@ fn repeat_ms<E>(repeats: usize, mut f: impl FnMut() -> Result<Duration, E>) -> R
 }
 
 /// Difference `after − before` of two counter readings, per `n` (0 if `n` is 0).
-fn per(before: Counters, after: Counters, n: usize) -> [f64; 3] {
+fn per(before: Counters, after: Counters, n: usize) -> WorkPerIteration {
     let n = n.max(1) as f64;
-    [
-        after.dispatches.saturating_sub(before.dispatches) as f64 / n,
-        after.readbacks.saturating_sub(before.readbacks) as f64 / n,
-        after.submits.saturating_sub(before.submits) as f64 / n,
-    ]
+    WorkPerIteration {
+        dispatches: after.dispatches.saturating_sub(before.dispatches) as f64 / n,
+        readbacks: after.readbacks.saturating_sub(before.readbacks) as f64 / n,
+        submits: after.submits.saturating_sub(before.submits) as f64 / n,
+        bytes: after.bytes.saturating_sub(before.bytes) as f64 / n,
+    }
+}
+
+/// The counters' growth from `before` to `after`.
+fn delta(before: Counters, after: Counters) -> Counters {
+    Counters {
+        dispatches: after.dispatches - before.dispatches,
+        readbacks: after.readbacks - before.readbacks,
+        submits: after.submits - before.submits,
+        bytes: after.bytes - before.bytes,
+    }
 }
 
 /// Time the convolution: one call of `convolve` on a Hertz-like pressure, ended by a scalar
@@ -237,27 +252,86 @@ pub fn time_cg_iteration<B: Backend>(
             let elapsed = t0.elapsed();
             let after = backend.counters();
             *made = report.iterations;
-            *counted = Counters {
-                dispatches: after.dispatches - before.dispatches,
-                readbacks: after.readbacks - before.readbacks,
-                submits: after.submits - before.submits,
-            };
+            *counted = delta(before, after);
             Ok::<_, BackendError>(elapsed)
         })
     };
     let mut start = run(0, &mut 0, &mut counted[0])?;
     let mut full = run(iterations, &mut made, &mut counted[1])?;
     let t = (median(&mut full) - median(&mut start)).max(0.0) / made.max(1) as f64;
-    let [dispatches, readbacks, submits] = per(counted[0], counted[1], made);
-    Ok((
-        t,
-        made,
-        WorkPerIteration {
-            dispatches,
-            readbacks,
-            submits,
-        },
-    ))
+    Ok((t, made, per(counted[0], counted[1], made)))
+}
+
+/// One kernel's share of a CG iteration, from GPU timestamps.
+#[derive(Debug, Clone, PartialEq)]
+pub struct KernelProfile {
+    /// The kernel (its WGSL entry point).
+    pub kernel: &'static str,
+    /// Dispatches of it per CG iteration.
+    pub dispatches_per_iteration: f64,
+    /// GPU time per CG iteration, from each dispatch's start and end timestamps (ms).
+    pub ms_per_iteration: f64,
+    /// Bytes it reads and writes per CG iteration, as counted from its code.
+    pub bytes_per_iteration: f64,
+}
+
+impl KernelProfile {
+    /// Achieved bandwidth (GB/s = 1e9 bytes/s); 0 if no time was measured.
+    pub fn gb_per_s(&self) -> f64 {
+        if self.ms_per_iteration > 0.0 {
+            self.bytes_per_iteration / (self.ms_per_iteration * 1e-3) / 1e9
+        } else {
+            0.0
+        }
+    }
+}
+
+/// Profile CG iterations on the GPU with timestamp queries: every kernel of a solve of
+/// `iterations` iterations (from p = 0 at the model's first approach, on the backend's
+/// contact set, tolerance 0) less those of CG's start alone, per iteration, slowest first.
+/// Fails where the adapter cannot write timestamps.
+pub fn profile_cg_iteration(
+    gpu: &mut GpuBackend,
+    model: &Model,
+    iterations: usize,
+) -> Result<Vec<KernelProfile>, BackendError> {
+    let mut work = CgWork::new(gpu)?;
+    let mut p = gpu.field()?;
+    let zeros = vec![0.0; model.nx * model.ny];
+    let mut solve = |gpu: &mut GpuBackend, n: usize| {
+        gpu.upload(&mut p, &zeros)?;
+        gpu.set_profiling(true)?;
+        let settings = CgSettings {
+            tolerance: 0.0,
+            max_iterations: n,
+            check_every: usize::MAX,
+            accept: model.cg.accept,
+        };
+        let made = cg::solve(gpu, &mut work, &mut p, model.d0, &settings)?.iterations;
+        let profile = gpu.profile()?.unwrap_or_default();
+        gpu.set_profiling(false)?;
+        Ok::<_, BackendError>((made, profile))
+    };
+    // A warm-up solve first: pipelines, caches and clocks settle.
+    solve(gpu, iterations)?;
+    let (made, full) = solve(gpu, iterations)?;
+    let (_, start) = solve(gpu, 0)?;
+    let per = made.max(1) as f64;
+    let mut rows: Vec<KernelProfile> = full
+        .iter()
+        .map(|(&kernel, t)| {
+            let s = start.get(kernel).copied().unwrap_or_default();
+            KernelProfile {
+                kernel,
+                dispatches_per_iteration: t.dispatches.saturating_sub(s.dispatches) as f64 / per,
+                ms_per_iteration: (t.seconds - s.seconds).max(0.0) * 1e3 / per,
+                bytes_per_iteration: t.bytes.saturating_sub(s.bytes) as f64 / per,
+            }
+        })
+        .filter(|r| r.dispatches_per_iteration > 0.0)
+        .collect();
+    rows.sort_by(|a, b| b.ms_per_iteration.total_cmp(&a.ms_per_iteration));
+    Ok(rows)
 }
 
 /// Time one whole pull-off of `model` ([`solver::run`], which resets the contact set).
@@ -323,11 +397,16 @@ mod tests {
 
     #[test]
     fn counter_differences_per_iteration() {
-        let c = |d, r, s| Counters {
+        let c = |d, r, s, b| Counters {
             dispatches: d,
             readbacks: r,
             submits: s,
+            bytes: b,
         };
-        assert_eq!(per(c(4, 1, 2), c(204, 2, 22), 20), [10.0, 0.05, 1.0]);
+        let w = per(c(4, 1, 2, 100), c(204, 2, 22, 2100), 20);
+        assert_eq!(
+            [w.dispatches, w.readbacks, w.submits, w.bytes],
+            [10.0, 0.05, 1.0, 100.0]
+        );
     }
 }

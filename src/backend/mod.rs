@@ -63,6 +63,17 @@ pub enum Preconditioner {
     Stiffness,
 }
 
+/// When a guarded batch of CG iterations stops on the device (see [`Backend::guard_cg`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CgStop {
+    /// The slot the CG update writes r·r to.
+    pub rr: Slot,
+    /// The slot holding ‖(d − h)_C‖², the scale of the relative residual.
+    pub bb: Slot,
+    /// Stop once √(r·r) ≤ tolerance · √bb (dimensionless), or r·r is not finite.
+    pub tolerance: f64,
+}
+
 /// Changes made by one detachment/attachment sweep of the contact set.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct ContactChange {
@@ -85,6 +96,9 @@ pub struct Counters {
     pub readbacks: u64,
     /// Command submissions to the device queue.
     pub submits: u64,
+    /// Bytes the launched kernels read and wrote in device memory, as counted from their
+    /// code (`gpu::traffic`; 0 for the CPU backend).
+    pub bytes: u64,
 }
 
 /// The operations the solver needs, over fields resident on a device.
@@ -152,6 +166,66 @@ pub trait Backend {
     ) -> Result<(), BackendError>;
     /// slots\[dst\] = slots\[src\] (on the device).
     fn copy_slot(&mut self, src: Slot, dst: Slot) -> Result<(), BackendError>;
+
+    /// Guard the CG iterations recorded from now on (`Some`) or end the guard (`None`). A
+    /// device backend that queues iterations ahead of the host stops them on the device once
+    /// the stop condition holds after a step: the steps recorded after that change nothing,
+    /// and [`Backend::read_cg_progress`] tells how many steps were made. The guarded
+    /// iterations are: `convolve_dot`, `cg_update` (one step each), `precondition_dot` and
+    /// `xpay_ratio` (which tests the condition). The default does nothing: a backend that
+    /// runs each operation when called makes every step the solver asks for.
+    fn guard_cg(&mut self, stop: Option<CgStop>) -> Result<(), BackendError> {
+        let _ = stop;
+        Ok(())
+    }
+    /// slots\[rr\], and under a guard the CG steps made since it began (`None`: every step
+    /// recorded was made).
+    fn read_cg_progress(&mut self, rr: Slot) -> Result<(f64, Option<usize>), BackendError> {
+        let mut v = [0.0];
+        self.read_slots(&[rr], &mut v)?;
+        Ok((v[0], None))
+    }
+
+    /// dst = K src and slots\[out\] = Σ_C src·dst (CG's curvature s·Ks). A device backend
+    /// fuses the dot product into the convolution's last pass.
+    fn convolve_dot(
+        &mut self,
+        src: &Self::Field,
+        dst: &mut Self::Field,
+        out: Slot,
+    ) -> Result<(), BackendError> {
+        self.convolve(src, dst)?;
+        self.dot(src, dst, out)
+    }
+    /// dst = M src and slots\[out\] = Σ_C src·dst (CG's r·z). A device backend fuses the dot
+    /// product into the preconditioner's last pass.
+    fn precondition_dot(
+        &mut self,
+        src: &Self::Field,
+        dst: &mut Self::Field,
+        out: Slot,
+    ) -> Result<(), BackendError> {
+        self.precondition(src, dst)?;
+        self.dot(src, dst, out)
+    }
+    /// One CG step's updates with α = slots\[num\] / slots\[den\] (0 for a zero
+    /// denominator): x += α·s and r −= α·q on C; then slots\[rr\] = Σ_C r·r. A device backend
+    /// does all of it in one pass.
+    #[allow(clippy::too_many_arguments)]
+    fn cg_update(
+        &mut self,
+        x: &mut Self::Field,
+        r: &mut Self::Field,
+        s: &Self::Field,
+        q: &Self::Field,
+        num: Slot,
+        den: Slot,
+        rr: Slot,
+    ) -> Result<(), BackendError> {
+        self.axpy_ratio(x, s, num, den, 1.0)?;
+        self.axpy_ratio(r, q, num, den, -1.0)?;
+        self.dot(r, r, rr)
+    }
     /// Read scalar registers back to the host.
     fn read_slots(&mut self, slots: &[Slot], out: &mut [f64]) -> Result<(), BackendError>;
 

@@ -9,6 +9,7 @@ use jkrbem::backend::select::{self, AnyBackend, BackendKind, Opened};
 use jkrbem::bench::{self, BenchOptions, Measurement};
 use jkrbem::model::{Model, ModelOptions, MIN_GRID};
 use jkrbem::output::bench::{timing_chart, write_csv, BenchRow};
+use jkrbem::output::profile::{self, ProfileRow};
 use jkrbem::scene::Scene;
 use std::path::PathBuf;
 
@@ -70,7 +71,12 @@ pub struct Args {
     /// of the domain there unless this is about 0.2 or more.
     #[arg(long, default_value_t = 0.08)]
     pub margin: f64,
-    /// Folder for bench.csv and bench.svg.
+    /// Also profile the GPU's kernels with timestamp queries (where the adapter has them):
+    /// per kernel, its time, bytes and achieved bandwidth per CG iteration, printed and
+    /// written to profile.csv.
+    #[arg(long)]
+    pub profile: bool,
+    /// Folder for bench.csv and bench.svg (and profile.csv).
     #[arg(long, default_value = "jkrbem-out/bench")]
     pub out: PathBuf,
 }
@@ -171,6 +177,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
 
     let mut rows = Vec::new();
+    let mut profiles: Vec<ProfileRow> = Vec::new();
     let mut measured: Vec<Measurement> = Vec::new();
     let mut problems = Vec::new();
     for (which, first) in &mut backends {
@@ -198,6 +205,19 @@ pub fn run(args: Args) -> Result<(), CliError> {
             let mut progress = |what: &str| eprintln!("bench: {label}: timing {what}");
             let result = jkrbem::with_backend!(&mut any, b =>
                 bench::measure(b, model, &options, &mut progress));
+            if let (true, AnyBackend::Gpu(g), Ok(_)) = (args.profile, &mut any, &result) {
+                eprintln!("bench: {label}: profiling the kernels");
+                match bench::profile_cg_iteration(g, model, args.cg_iterations.max(20)) {
+                    Ok(p) => {
+                        print_profile(&label, &p, model);
+                        profiles.extend(profile::rows(grid, model.nx, model.ny, &p));
+                    }
+                    Err(e) => {
+                        eprintln!("bench: {label}: no profile: {e}");
+                        problems.push(format!("{label}: no profile: {e}"));
+                    }
+                }
+            }
             match result {
                 Ok(m) => {
                     if let Some(e) = m.pulloff.as_ref().and_then(|p| p.error.as_ref()) {
@@ -220,6 +240,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let csv = args.out.join("bench.csv");
     let svg = args.out.join("bench.svg");
     write_csv(&csv, &rows).map_err(failed)?;
+    if args.profile {
+        let path = args.out.join("profile.csv");
+        profile::write_csv(&path, &profiles).map_err(failed)?;
+        println!("written: {}", path.display());
+    }
     let title = format!(
         "jkrbem bench: R1/R2 = {}, medians of {} samples",
         scene.ratio(),
@@ -292,6 +317,37 @@ fn print_table(rows: &[BenchRow], measured: &[Measurement]) {
             opt(r.f_ad_bar, 4),
         );
     }
+}
+
+/// One grid's kernel profile: time, bytes and bandwidth per CG iteration, and the kernels'
+/// bytes against the iteration's floor.
+fn print_profile(label: &str, profile: &[jkrbem::bench::KernelProfile], model: &Model) {
+    let floor = jkrbem::backend::gpu::traffic::cg_iteration_floor(model.nx, model.ny, true) as f64;
+    let time: f64 = profile.iter().map(|k| k.ms_per_iteration).sum();
+    let bytes: f64 = profile.iter().map(|k| k.bytes_per_iteration).sum();
+    println!("profile {label}, per CG iteration (GPU timestamps around each dispatch):");
+    println!(
+        "  {:<18} {:>8} {:>10} {:>10} {:>9} {:>7}",
+        "kernel", "disp/it", "ms/it", "MB/it", "GB/s", "share"
+    );
+    for k in profile {
+        println!(
+            "  {:<18} {:>8.2} {:>10.4} {:>10.2} {:>9.0} {:>6.1}%",
+            k.kernel,
+            k.dispatches_per_iteration,
+            k.ms_per_iteration,
+            k.bytes_per_iteration / 1e6,
+            k.gb_per_s(),
+            100.0 * k.ms_per_iteration / time.max(f64::MIN_POSITIVE)
+        );
+    }
+    println!(
+        "  kernels: {time:.4} ms, {:.1} MB ({:.2}× the floor of {:.1} MB), {:.0} GB/s overall",
+        bytes / 1e6,
+        bytes / floor,
+        floor / 1e6,
+        bytes / (time * 1e-3).max(f64::MIN_POSITIVE) / 1e9
+    );
 }
 
 /// GPU/CPU time ratios per grid, when both ran in this invocation.

@@ -16,8 +16,10 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 
-/// Default CG readback interval on the GPU (iterations).
-pub const GPU_CHECK_EVERY: usize = 2;
+/// Default CG readback interval on the GPU (iterations). The GPU stops the iterations it has
+/// queued once CG has converged, so reading rarely costs no extra iterations, only the launches
+/// of the stopped ones.
+pub const GPU_CHECK_EVERY: usize = 8;
 
 /// Which backend runs the solver.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

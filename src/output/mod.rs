@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod chart;
 pub mod line_chart;
+pub mod profile;
 pub mod states_csv;
 pub mod study_charts;
 pub mod summary;

@@ -16,14 +16,13 @@
 //!   removes the drift of the recurrence); its history holds true residuals only, and it
 //!   returns the best p it saw.
 
-use crate::backend::{Backend, BackendError, Slot};
+use crate::backend::{Backend, BackendError, CgStop, Slot};
 use crate::model::CgSettings;
 use std::fmt;
 
-/// r·z of the current iteration.
-const RZ: Slot = Slot(0);
-/// r·z of the previous iteration.
-const RZ_OLD: Slot = Slot(1);
+/// r·z: the two slots take turns (the current iteration's and the previous one's), so that
+/// the new direction β = r·z / (r·z)_old needs no copy of a slot.
+const RZ: [Slot; 2] = [Slot(0), Slot(1)];
 /// s·(K s).
 const SQ: Slot = Slot(2);
 /// r·r.
@@ -238,16 +237,21 @@ fn start<B: Backend>(
     Ok((scale, scale.relative(v[0])))
 }
 
-/// The relative residual of the recurrence's r, read back from the device.
+/// The relative residual of r, with r·r already in its slot, read back from the device.
+fn read_rr<B: Backend>(backend: &mut B, scale: Scale) -> Result<f64, BackendError> {
+    let mut rr = [0.0];
+    backend.read_slots(&[RR], &mut rr)?;
+    Ok(scale.relative(rr[0]))
+}
+
+/// The relative residual of r, read back from the device.
 fn read_residual<B: Backend>(
     backend: &mut B,
     r: &B::Field,
     scale: Scale,
 ) -> Result<f64, BackendError> {
     backend.dot(r, r, RR)?;
-    let mut rr = [0.0];
-    backend.read_slots(&[RR], &mut rr)?;
-    Ok(scale.relative(rr[0]))
+    read_rr(backend, scale)
 }
 
 /// q = K p and r = (d − h − q)_C, the true residual; returns its relative norm.
@@ -264,38 +268,42 @@ fn true_residual<B: Backend>(
     read_residual(backend, r, scale)
 }
 
-/// Start CG's directions from the residual in `work.r`: z = M r, s = z.
+/// Start CG's directions from the residual in `work.r`: z = M r with r·z in `RZ[0]`, s = z.
+/// Returns the index of the r·z slot in use.
 fn start_directions<B: Backend>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
-) -> Result<(), BackendError> {
-    backend.precondition(&work.r, &mut work.z)?;
-    backend.dot(&work.r, &work.z, RZ)?;
+) -> Result<usize, BackendError> {
+    backend.precondition_dot(&work.r, &mut work.z, RZ[0])?;
     // s = z (the ratio 0/0 counts as 0, so the old direction vanishes).
-    backend.xpay_ratio(&mut work.s, &work.z, ZERO, ZERO)
+    backend.xpay_ratio(&mut work.s, &work.z, ZERO, ZERO)?;
+    Ok(0)
 }
 
-/// One step along s: q = K s, p += α s, r −= α q with α = r·z / s·q.
+/// One step along s: q = K s with s·q, then p += α s, r −= α q with α = r·z / s·q, and r·r
+/// into its slot. `rz` is the index of the r·z slot in use.
 fn step<B: Backend>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
     p: &mut B::Field,
+    rz: usize,
 ) -> Result<(), BackendError> {
-    backend.convolve(&work.s, &mut work.q)?;
-    backend.dot(&work.s, &work.q, SQ)?;
-    backend.axpy_ratio(p, &work.s, RZ, SQ, 1.0)?;
-    backend.axpy_ratio(&mut work.r, &work.q, RZ, SQ, -1.0)
+    backend.convolve_dot(&work.s, &mut work.q, SQ)?;
+    let CgWork { r, s, q, .. } = work;
+    backend.cg_update(p, r, s, q, RZ[rz], SQ, RR)
 }
 
-/// The next direction: z = M r, s = z + β s with β = r·z / (r·z)_old.
+/// The next direction: z = M r, s = z + β s with β = r·z / (r·z)_old; the new r·z goes to the
+/// other slot of the pair. Returns the index of the r·z slot now in use.
 fn next_direction<B: Backend>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
-) -> Result<(), BackendError> {
-    backend.copy_slot(RZ, RZ_OLD)?;
-    backend.precondition(&work.r, &mut work.z)?;
-    backend.dot(&work.r, &work.z, RZ)?;
-    backend.xpay_ratio(&mut work.s, &work.z, RZ, RZ_OLD)
+    rz: usize,
+) -> Result<usize, BackendError> {
+    let new = 1 - rz;
+    backend.precondition_dot(&work.r, &mut work.z, RZ[new])?;
+    backend.xpay_ratio(&mut work.s, &work.z, RZ[new], RZ[rz])?;
+    Ok(new)
 }
 
 /// Solve for p on the backend's contact set at approach `d` (length), warm-started from
@@ -324,25 +332,53 @@ pub fn solve<B: Backend>(
         report.end = end;
         return Ok(report);
     }
-    start_directions(backend, work)?;
-    for k in 1..=settings.max_iterations {
-        step(backend, work, p)?;
-        report.iterations = k;
+    let mut rz = start_directions(backend, work)?;
+    // A device backend stops the iterations it has queued once the tolerance is reached, so
+    // it can be read rarely without doing more iterations than the solve needs.
+    backend.guard_cg(Some(CgStop {
+        rr: RR,
+        bb: BB,
+        tolerance: settings.tolerance,
+    }))?;
+    let mut k = 0;
+    let end = loop {
+        if k == settings.max_iterations {
+            break None;
+        }
+        k += 1;
+        step(backend, work, p, rz)?;
         if k % settings.check_every == 0 || k == settings.max_iterations {
-            report.residual = read_residual(backend, &work.r, scale)?;
+            let (rr, made) = backend.read_cg_progress(RR)?;
+            // Under a guard the device stops before the k-th step once its test of the
+            // tolerance holds (in f32): the solve has then converged, which the true residual
+            // recomputed by `verify` confirms or not.
+            let stopped = made.is_some_and(|m| m < k);
+            k = made.unwrap_or(k);
+            report.iterations = k;
+            report.residual = scale.relative(rr);
             report.best = report.best.min(report.residual);
-            if report.residual <= settings.tolerance {
-                return verify(backend, work, p, d, scale, settings, report);
+            if report.residual.is_finite() && (report.residual <= settings.tolerance || stopped) {
+                break Some(None);
             }
             if let Some(end) = history.push(k, report.residual) {
-                report.end = end;
-                return Ok(report);
+                break Some(Some(end));
             }
         }
-        next_direction(backend, work)?;
+        rz = next_direction(backend, work, rz)?;
+    };
+    backend.guard_cg(None)?;
+    match end {
+        Some(None) => verify(backend, work, p, d, scale, settings, report),
+        Some(Some(end)) => {
+            report.end = end;
+            Ok(report)
+        }
+        None => {
+            report.iterations = k;
+            report.end = CgEnd::IterationLimit;
+            Ok(report)
+        }
     }
-    report.end = CgEnd::IterationLimit;
-    Ok(report)
 }
 
 /// The recurrence reached the tolerance: recompute the true residual from p and end
@@ -428,14 +464,14 @@ fn segment<B: Backend>(
     tolerance: f64,
     n: usize,
 ) -> Result<usize, BackendError> {
-    start_directions(backend, work)?;
+    let mut rz = start_directions(backend, work)?;
     for k in 1..=n {
-        step(backend, work, p)?;
-        let rel = read_residual(backend, &work.r, scale)?;
+        step(backend, work, p, rz)?;
+        let rel = read_rr(backend, scale)?;
         if rel <= tolerance || !rel.is_finite() {
             return Ok(k);
         }
-        next_direction(backend, work)?;
+        rz = next_direction(backend, work, rz)?;
     }
     Ok(n)
 }

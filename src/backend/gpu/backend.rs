@@ -1,18 +1,27 @@
 //! The GPU backend: f32 fields in wgpu storage buffers, the padded FFT convolution and CG's
-//! vector operations as WGSL kernels, CG's scalars in a device-side slot buffer.
+//! vector operations as WGSL kernels, CG's scalars in device-side slots (pending as partial
+//! sums until a kernel that needs them adds them up).
 //!
 //! Work is recorded into one open command encoder and submitted only when the host needs a
 //! result (a CG residual every `check_every` iterations, a contact sweep's counts, a state).
+//! A preconditioned CG iteration is eight dispatches: the convolution with s·Ks fused in (3),
+//! the update of p and r with r·r (1), the preconditioner with r·z (3) and the new direction
+//! (1).
+
+use std::collections::BTreeMap;
 
 use super::context::GpuContext;
-use super::fft::GpuFft;
-use super::recorder::{grid_for, module, storage, Kernel, Recorder, WORKGROUP};
+use super::profile::{KernelTime, Profiler};
+use super::recorder::{grid_for, module, storage, Binding, Kernel, Recorder, WORKGROUP};
+use super::shaders;
+use super::slots::{self, scalars_bytes, SLOTS};
 use super::spectral::{largest_buffer_bytes, GpuSpectralFilter, SpectralKernels};
+use super::traffic;
 use crate::backend::cpu::spectral::SpectralFilter;
 use crate::backend::cpu::GridSetup;
 use crate::backend::kernel::{padded_kernel, stiffness_spectrum};
 use crate::backend::{
-    Backend, BackendError, ContactChange, Counters, Preconditioner, Slot, N_SLOTS,
+    Backend, BackendError, CgStop, ContactChange, Counters, Preconditioner, Slot, N_SLOTS,
 };
 use wgpu::util::DeviceExt;
 
@@ -20,8 +29,6 @@ use wgpu::util::DeviceExt;
 const SUM_SLOT: u32 = N_SLOTS as u32;
 /// Device slot receiving the first-crossing fraction.
 const MIN_SLOT: u32 = N_SLOTS as u32 + 1;
-/// Slots on the device: the solver's and the two above.
-const DEVICE_SLOTS: u64 = N_SLOTS as u64 + 2;
 /// Most workgroups of a reduction's first pass.
 const MAX_REDUCE_GROUPS: usize = 1024;
 /// Elements each reduction thread adds at least (before the workgroup tree).
@@ -39,10 +46,11 @@ struct VectorParams {
     n: u32,
     num: u32,
     den: u32,
-    pad0: u32,
+    out: u32,
     sign: f32,
     scalar: f32,
-    pad1: [u32; 2],
+    guarded: u32,
+    aux: u32,
 }
 
 /// Uniform parameters of shaders/reduce.wgsl (`struct Params`).
@@ -70,8 +78,6 @@ struct ContactParams {
 /// Which reduction of reduce.wgsl to run.
 #[derive(Debug, Clone, Copy)]
 enum Reduction {
-    /// Σ_C a·b.
-    Dot,
     /// Σ_C a and |C|.
     Sum,
     /// The first-crossing fraction (a minimum).
@@ -81,11 +87,13 @@ enum Reduction {
 /// The compiled kernels of vector.wgsl, reduce.wgsl and contact.wgsl.
 struct Kernels {
     residual: Kernel,
+    lerp: Kernel,
+    cg_update: Kernel,
     axpy_ratio: Kernel,
     xpay_ratio: Kernel,
-    lerp: Kernel,
+    dot: Kernel,
+    finish_slots: Kernel,
     copy_slot: Kernel,
-    dot_partials: Kernel,
     sum_partials: Kernel,
     crossing_partials: Kernel,
     finish_sum: Kernel,
@@ -96,33 +104,115 @@ struct Kernels {
 
 impl Kernels {
     fn new(ctx: &GpuContext) -> Kernels {
-        let v = module(
-            ctx,
-            "vector.wgsl",
-            include_str!("../../../shaders/vector.wgsl"),
-        );
-        let r = module(
-            ctx,
-            "reduce.wgsl",
-            include_str!("../../../shaders/reduce.wgsl"),
-        );
-        let c = module(
-            ctx,
-            "contact.wgsl",
-            include_str!("../../../shaders/contact.wgsl"),
-        );
+        use Binding::*;
+        let v = module(ctx, "vector.wgsl", shaders::VECTOR);
+        let r = module(ctx, "reduce.wgsl", shaders::REDUCE);
+        let c = module(ctx, "contact.wgsl", shaders::CONTACT);
+        let k = |m: &wgpu::ShaderModule, entry, bindings: &[(u32, Binding)]| {
+            Kernel::new(ctx, m, entry, bindings, &[])
+        };
+        let ratio = [
+            (0, Uniform),
+            (1, Read),
+            (3, ReadWrite),
+            (4, Read),
+            (8, ReadWrite),
+        ];
         Kernels {
-            residual: Kernel::new(ctx, &v, "residual"),
-            axpy_ratio: Kernel::new(ctx, &v, "axpy_ratio"),
-            xpay_ratio: Kernel::new(ctx, &v, "xpay_ratio"),
-            lerp: Kernel::new(ctx, &v, "lerp"),
-            copy_slot: Kernel::new(ctx, &v, "copy_slot"),
-            dot_partials: Kernel::new(ctx, &r, "dot_partials"),
-            sum_partials: Kernel::new(ctx, &r, "sum_partials"),
-            crossing_partials: Kernel::new(ctx, &r, "crossing_partials"),
-            finish_sum: Kernel::new(ctx, &r, "finish_sum"),
-            finish_min: Kernel::new(ctx, &r, "finish_min"),
-            update_contact: Kernel::new(ctx, &c, "update_contact"),
+            residual: k(
+                &v,
+                "residual",
+                &[
+                    (0, Uniform),
+                    (1, Read),
+                    (3, ReadWrite),
+                    (4, Read),
+                    (5, Read),
+                ],
+            ),
+            lerp: k(
+                &v,
+                "lerp",
+                &[
+                    (0, Uniform),
+                    (1, Read),
+                    (2, Read),
+                    (3, ReadWrite),
+                    (4, Read),
+                ],
+            ),
+            cg_update: k(
+                &v,
+                "cg_update",
+                &[
+                    (0, Uniform),
+                    (1, Read),
+                    (2, Read),
+                    (3, ReadWrite),
+                    (4, Read),
+                    (6, ReadWrite),
+                    (8, ReadWrite),
+                ],
+            ),
+            axpy_ratio: k(&v, "axpy_ratio", &ratio),
+            xpay_ratio: k(&v, "xpay_ratio", &ratio),
+            dot: k(
+                &v,
+                "dot_masked",
+                &[
+                    (0, Uniform),
+                    (1, Read),
+                    (2, Read),
+                    (4, Read),
+                    (8, ReadWrite),
+                ],
+            ),
+            finish_slots: k(&v, "finish_slots", &[(8, ReadWrite)]),
+            copy_slot: k(&v, "copy_slot", &[(0, Uniform), (8, ReadWrite)]),
+            sum_partials: k(
+                &r,
+                "sum_partials",
+                &[
+                    (0, Uniform),
+                    (1, Read),
+                    (3, Read),
+                    (4, ReadWrite),
+                    (5, ReadWrite),
+                ],
+            ),
+            crossing_partials: k(
+                &r,
+                "crossing_partials",
+                &[
+                    (0, Uniform),
+                    (1, Read),
+                    (2, Read),
+                    (3, Read),
+                    (4, ReadWrite),
+                ],
+            ),
+            finish_sum: k(
+                &r,
+                "finish_sum",
+                &[(0, Uniform), (4, ReadWrite), (5, ReadWrite), (8, ReadWrite)],
+            ),
+            finish_min: k(
+                &r,
+                "finish_min",
+                &[(0, Uniform), (4, ReadWrite), (8, ReadWrite)],
+            ),
+            update_contact: k(
+                &c,
+                "update_contact",
+                &[
+                    (0, Uniform),
+                    (1, ReadWrite),
+                    (2, Read),
+                    (3, ReadWrite),
+                    (4, Read),
+                    (5, ReadWrite),
+                ],
+            ),
             spectral: SpectralKernels::new(ctx),
         }
     }
@@ -134,12 +224,16 @@ pub struct GpuBackend {
     nx: usize,
     ny: usize,
     kernels: Kernels,
-    fft: GpuFft,
     convolution: GpuSpectralFilter,
     preconditioner: Option<GpuSpectralFilter>,
     profile: wgpu::Buffer,
     mask: wgpu::Buffer,
-    slots: wgpu::Buffer,
+    /// CG's scalar slots with their pending partials (shaders/shared/slots.wgsl).
+    scalars: wgpu::Buffer,
+    /// Partials of each slot as last produced (for the byte counts of their consumers).
+    pending: [u32; SLOTS],
+    /// The stop condition of the guarded CG batch being recorded, if any.
+    guard: Option<CgStop>,
     partials: wgpu::Buffer,
     counts: wgpu::Buffer,
     contact_counters: wgpu::Buffer,
@@ -147,9 +241,10 @@ pub struct GpuBackend {
     rec: Recorder,
 }
 
-/// What a grid of nx × ny needs of an adapter: the largest single buffer (bytes), checked
-/// against the adapter's storage-binding and buffer-size limits. On failure, the message says
-/// which limit and the largest square grid that fits.
+/// What a grid of nx × ny needs of an adapter: its largest buffer (the padded half spectrum)
+/// within the storage-binding and buffer-size limits, and its FFT lines (its longer side)
+/// within what one workgroup's memory holds. On failure, the message says which limit and the
+/// largest square grid that fits.
 pub fn check_fits(limits: &wgpu::Limits, nx: usize, ny: usize) -> Result<(), BackendError> {
     let limit = limits
         .max_storage_buffer_binding_size
@@ -159,32 +254,43 @@ pub fn check_fits(limits: &wgpu::Limits, nx: usize, ny: usize) -> Result<(), Bac
     } else {
         "max_buffer_size"
     };
-    let need = largest_buffer_bytes(2 * nx, 2 * ny);
-    if need <= limit && nx * ny <= u32::MAX as usize / 4 {
-        return Ok(());
-    }
+    let need = largest_buffer_bytes(nx, ny);
+    let side = super::spectral::points_max(limits);
     let n = largest_square_grid(limits);
+    let reason = if nx.max(ny) > side {
+        format!(
+            "its FFT lines of {} values exceed the {side} that the adapter's {} KiB of workgroup \
+             memory holds; the largest square grid that fits is {n}×{n} (or use --backend cpu)",
+            nx.max(ny),
+            limits.max_compute_workgroup_storage_size >> 10
+        )
+    } else if need > limit || nx * ny > u32::MAX as usize / 4 {
+        format!(
+            "the padded half spectrum needs one buffer of {} MiB but the adapter's {which} is {} \
+             MiB; the largest square grid that fits is {n}×{n} (or use --backend cpu)",
+            need >> 20,
+            limit >> 20
+        )
+    } else {
+        return Ok(());
+    };
     Err(BackendError::GridTooLarge {
         nx,
         ny,
         backend: "gpu",
-        reason: format!(
-            "the padded spectrum needs one buffer of {} MiB but the adapter's {which} is {} MiB; \
-             the largest square grid that fits is {n}×{n} (or use --backend cpu)",
-            need >> 20,
-            limit >> 20
-        ),
+        reason,
     })
 }
 
-/// The largest square power-of-two grid N × N whose buffers the adapter's limits allow
-/// (its padded column spectrum, (N + 1)·2N complex f32 values, in one binding).
+/// The largest square power-of-two grid N × N the adapter's limits allow: its half spectrum,
+/// (N + 1)·N complex f32 values, in one binding, and lines of N values in one workgroup.
 pub fn largest_square_grid(limits: &wgpu::Limits) -> usize {
     let limit = limits
         .max_storage_buffer_binding_size
         .min(limits.max_buffer_size);
+    let side = super::spectral::points_max(limits);
     let mut n = 4usize;
-    while largest_buffer_bytes(4 * n, 4 * n) <= limit && n < 1 << 20 {
+    while 2 * n <= side && largest_buffer_bytes(2 * n, 2 * n) <= limit {
         n *= 2;
     }
     n
@@ -213,17 +319,17 @@ impl GpuBackend {
         }
         check_fits(ctx.limits(), nx, ny)?;
         let (dx, e) = (setup.dx, setup.e_star);
-        let fft = GpuFft::new(&ctx, nx.max(2 * ny))?;
+        let kernels = Kernels::new(&ctx);
         let mut conv = SpectralFilter::new(nx, ny, 2 * nx, 2 * ny);
         conv.set_symbol_from_kernel(&padded_kernel(nx, ny, dx, e));
-        let convolution = GpuSpectralFilter::new(&ctx, &fft, &conv, nx, ny)?;
+        let convolution = GpuSpectralFilter::new(&ctx, &kernels.spectral, &conv, nx, ny)?;
         drop(conv);
         let preconditioner = match setup.preconditioner {
             Preconditioner::None => None,
             Preconditioner::Stiffness => {
                 let mut f = SpectralFilter::new(nx, ny, nx, ny);
                 f.set_symbol(&stiffness_spectrum(nx, ny, dx, e));
-                Some(GpuSpectralFilter::new(&ctx, &fft, &f, nx, ny)?)
+                Some(GpuSpectralFilter::new(&ctx, &kernels.spectral, &f, nx, ny)?)
             }
         };
         let n = nx * ny;
@@ -241,13 +347,14 @@ impl GpuBackend {
         let backend = GpuBackend {
             nx,
             ny,
-            kernels: Kernels::new(&ctx),
-            fft,
+            kernels,
             convolution,
             preconditioner,
             profile,
             mask: storage(&ctx, "contact mask", n as u64 * 4),
-            slots: storage(&ctx, "slots", DEVICE_SLOTS * 4),
+            scalars: storage(&ctx, "scalars", scalars_bytes()),
+            pending: [0; SLOTS],
+            guard: None,
             partials: storage(&ctx, "partials", reduce_groups as u64 * 4),
             counts: storage(&ctx, "partial counts", (reduce_groups as u64 + 1) * 4),
             contact_counters: storage(&ctx, "contact counters", 16),
@@ -269,48 +376,32 @@ impl GpuBackend {
         &self.ctx
     }
 
+    /// Start or stop timing every kernel with timestamp queries (pending work is submitted
+    /// first). Fails where the adapter cannot write timestamps.
+    pub fn set_profiling(&mut self, on: bool) -> Result<(), BackendError> {
+        let profiler = if on {
+            Some(Profiler::new(&self.ctx)?)
+        } else {
+            None
+        };
+        self.rec.set_profiler(&self.ctx, profiler)
+    }
+
+    /// The per-kernel profile gathered since profiling started (after submitting pending
+    /// work), or `None` when not profiling.
+    pub fn profile(&mut self) -> Result<Option<BTreeMap<&'static str, KernelTime>>, BackendError> {
+        self.rec.flush(&self.ctx)?;
+        Ok(self.rec.profiler().map(|p| p.totals().clone()))
+    }
+
+    /// The longest FFT line (complex values) this device's kernels transform in workgroup
+    /// memory: the longest grid side it accepts.
+    pub fn longest_line(&self) -> usize {
+        self.kernels.spectral.points_max()
+    }
+
     fn n(&self) -> usize {
         self.nx * self.ny
-    }
-
-    /// Record an element-wise kernel of vector.wgsl over the grid; the parameters (binding 0)
-    /// and the contact mask (binding 4) are bound here, the fields by `entries`.
-    fn vector(
-        &mut self,
-        kernel: fn(&Kernels) -> &Kernel,
-        params: VectorParams,
-        entries: &[(u32, &wgpu::Buffer)],
-    ) -> Result<(), BackendError> {
-        let p = self.rec.uniform(&self.ctx, &params)?;
-        let mut all = vec![(0, &p), (4, &self.mask)];
-        all.extend_from_slice(entries);
-        let grid = grid_for(&self.ctx, self.n());
-        self.rec
-            .dispatch(&self.ctx, kernel(&self.kernels), &all, grid);
-        Ok(())
-    }
-
-    /// y ← kernel(y, x, slots[num] / slots[den], sign) for axpy_ratio and xpay_ratio.
-    fn ratio_update(
-        &mut self,
-        kernel: fn(&Kernels) -> &Kernel,
-        y: &mut GpuField,
-        x: &GpuField,
-        (num, den): (Slot, Slot),
-        sign: f64,
-    ) -> Result<(), BackendError> {
-        let params = VectorParams {
-            num: num.0 as u32,
-            den: den.0 as u32,
-            sign: sign as f32,
-            ..self.vector_params()
-        };
-        let slots = self.slots.clone();
-        self.vector(
-            kernel,
-            params,
-            &[(1, &x.buffer), (3, &y.buffer), (6, &slots)],
-        )
     }
 
     fn vector_params(&self) -> VectorParams {
@@ -318,11 +409,52 @@ impl GpuBackend {
             n: self.n() as u32,
             num: 0,
             den: 0,
-            pad0: 0,
+            out: slots::NO_SLOT,
             sign: 1.0,
             scalar: 0.0,
-            pad1: [0; 2],
+            guarded: 0,
+            aux: 0,
         }
+    }
+
+    /// Partials a consumer of slots `a` and `b` adds (for its byte count): the larger.
+    fn partials_of(&self, a: Slot, b: Slot) -> u32 {
+        self.pending[a.0].max(self.pending[b.0])
+    }
+
+    /// Record an element-wise kernel of vector.wgsl with one thread per element.
+    fn elementwise(
+        &mut self,
+        kernel: fn(&Kernels) -> &Kernel,
+        params: VectorParams,
+        entries: &[(u32, &wgpu::Buffer)],
+        fields: u64,
+    ) -> Result<(), BackendError> {
+        let p = self.rec.uniform(&self.ctx, &params)?;
+        let mut all = vec![(0, &p)];
+        all.extend_from_slice(entries);
+        let grid = grid_for(&self.ctx, self.n());
+        let bytes = traffic::elementwise(self.n(), fields);
+        self.rec
+            .dispatch(&self.ctx, kernel(&self.kernels), &all, grid, bytes)
+    }
+
+    /// Record a grid-stride kernel of vector.wgsl (the ones that read or produce slots);
+    /// returns its workgroups (the partials of a slot it produces).
+    fn strided(
+        &mut self,
+        kernel: fn(&Kernels) -> &Kernel,
+        params: VectorParams,
+        entries: &[(u32, &wgpu::Buffer)],
+        bytes: u64,
+    ) -> Result<u32, BackendError> {
+        let p = self.rec.uniform(&self.ctx, &params)?;
+        let mut all = vec![(0, &p), (8, &self.scalars)];
+        all.extend_from_slice(entries);
+        let groups = traffic::stride_groups(self.n());
+        self.rec
+            .dispatch(&self.ctx, kernel(&self.kernels), &all, (groups, 1), bytes)?;
+        Ok(groups)
     }
 
     /// Two-pass reduction of `kind` over the fields a, b: partials per workgroup, then one
@@ -345,33 +477,91 @@ impl GpuBackend {
         };
         let p = self.rec.uniform(&self.ctx, &params)?;
         let k = &self.kernels;
-        let (first, finish, counted) = match kind {
-            Reduction::Dot => (&k.dot_partials, &k.finish_sum, true),
-            Reduction::Sum => (&k.sum_partials, &k.finish_sum, true),
-            Reduction::Crossing => (&k.crossing_partials, &k.finish_min, false),
+        let n = self.n();
+        let (first, finish, bytes) = match kind {
+            Reduction::Sum => (k.sum_partials.clone(), k.finish_sum.clone(), 8 * n as u64),
+            Reduction::Crossing => (
+                k.crossing_partials.clone(),
+                k.finish_min.clone(),
+                12 * n as u64,
+            ),
         };
-        // Every first pass reads b (sum_partials statically, with b = a); sums also count.
-        let mut entries = vec![
-            (0, &p),
-            (1, a),
-            (2, b),
-            (3, &self.mask),
-            (4, &self.partials),
-        ];
-        let mut finishing = vec![(0, &p), (4, &self.partials), (6, &self.slots)];
-        if counted {
-            entries.push((5, &self.counts));
-            finishing.push((5, &self.counts));
+        let (first, finish) = (&first, &finish);
+        let g = self.reduce_groups as u64;
+        match kind {
+            Reduction::Sum => {
+                self.rec.dispatch(
+                    &self.ctx,
+                    first,
+                    &[
+                        (0, &p),
+                        (1, a),
+                        (3, &self.mask),
+                        (4, &self.partials),
+                        (5, &self.counts),
+                    ],
+                    (self.reduce_groups, 1),
+                    bytes + 8 * g,
+                )?;
+                self.rec.dispatch(
+                    &self.ctx,
+                    finish,
+                    &[
+                        (0, &p),
+                        (4, &self.partials),
+                        (5, &self.counts),
+                        (8, &self.scalars),
+                    ],
+                    (1, 1),
+                    8 * g + 12,
+                )?;
+            }
+            Reduction::Crossing => {
+                self.rec.dispatch(
+                    &self.ctx,
+                    first,
+                    &[
+                        (0, &p),
+                        (1, a),
+                        (2, b),
+                        (3, &self.mask),
+                        (4, &self.partials),
+                    ],
+                    (self.reduce_groups, 1),
+                    bytes + 4 * g,
+                )?;
+                self.rec.dispatch(
+                    &self.ctx,
+                    finish,
+                    &[(0, &p), (4, &self.partials), (8, &self.scalars)],
+                    (1, 1),
+                    4 * g + 8,
+                )?;
+            }
         }
-        self.rec
-            .dispatch(&self.ctx, first, &entries, (self.reduce_groups, 1));
-        self.rec.dispatch(&self.ctx, finish, &finishing, (1, 1));
+        self.pending[out as usize] = 0;
         Ok(())
     }
 
-    fn read_f32(&mut self, slot: u32) -> Result<f32, BackendError> {
-        let v: Vec<f32> = self.rec.read(&self.ctx, &self.slots, slot as u64 * 4, 4)?;
-        Ok(v[0])
+    /// Give every pending slot its value (one dispatch), then read slots `first..first+count`.
+    fn read_values(&mut self, first: usize, count: usize) -> Result<Vec<f32>, BackendError> {
+        if self.pending.iter().any(|&p| p > 0) {
+            let reads: u64 = self.pending.iter().map(|&p| 4 * p as u64).sum();
+            self.rec.dispatch(
+                &self.ctx,
+                &self.kernels.finish_slots,
+                &[(8, &self.scalars)],
+                (SLOTS as u32, 1),
+                reads + 8 * SLOTS as u64,
+            )?;
+            self.pending = [0; SLOTS];
+        }
+        self.rec.read(
+            &self.ctx,
+            &self.scalars,
+            slots::value_offset(first),
+            4 * count as u64,
+        )
     }
 
     fn check_len(&self, len: usize) -> Result<(), BackendError> {
@@ -454,12 +644,37 @@ impl Backend for GpuBackend {
             &self.ctx,
             &mut self.rec,
             &self.kernels.spectral,
-            &self.fft,
+            &self.scalars,
             &src.buffer,
             &dst.buffer,
             &self.mask,
             false,
+            None,
         )
+    }
+
+    fn convolve_dot(
+        &mut self,
+        src: &GpuField,
+        dst: &mut GpuField,
+        out: Slot,
+    ) -> Result<(), BackendError> {
+        self.convolution.set_guarded(self.guard.is_some());
+        let result = self.convolution.encode(
+            &self.ctx,
+            &mut self.rec,
+            &self.kernels.spectral,
+            &self.scalars,
+            &src.buffer,
+            &dst.buffer,
+            &self.mask,
+            false,
+            Some((out, &src.buffer)),
+        );
+        self.convolution.set_guarded(false);
+        result?;
+        self.pending[out.0] = self.convolution.row_groups();
+        Ok(())
     }
 
     fn precondition(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
@@ -469,12 +684,46 @@ impl Backend for GpuBackend {
                 &self.ctx,
                 &mut self.rec,
                 &self.kernels.spectral,
-                &self.fft,
+                &self.scalars,
                 &src.buffer,
                 &dst.buffer,
                 &self.mask,
                 true,
+                None,
             ),
+        }
+    }
+
+    fn precondition_dot(
+        &mut self,
+        src: &GpuField,
+        dst: &mut GpuField,
+        out: Slot,
+    ) -> Result<(), BackendError> {
+        let guarded = self.guard.is_some();
+        match &mut self.preconditioner {
+            None => {
+                self.copy(src, dst)?;
+                self.dot(src, dst, out)
+            }
+            Some(f) => {
+                f.set_guarded(guarded);
+                let result = f.encode(
+                    &self.ctx,
+                    &mut self.rec,
+                    &self.kernels.spectral,
+                    &self.scalars,
+                    &src.buffer,
+                    &dst.buffer,
+                    &self.mask,
+                    true,
+                    Some((out, &src.buffer)),
+                );
+                f.set_guarded(false);
+                result?;
+                self.pending[out.0] = f.row_groups();
+                Ok(())
+            }
         }
     }
 
@@ -483,16 +732,29 @@ impl Backend for GpuBackend {
             scalar: d as f32,
             ..self.vector_params()
         };
-        let profile = self.profile.clone();
-        self.vector(
+        let (mask, profile) = (self.mask.clone(), self.profile.clone());
+        self.elementwise(
             |k| &k.residual,
             params,
-            &[(1, &u.buffer), (3, &r.buffer), (5, &profile)],
+            &[(1, &u.buffer), (3, &r.buffer), (4, &mask), (5, &profile)],
+            4,
         )
     }
 
     fn dot(&mut self, a: &GpuField, b: &GpuField, out: Slot) -> Result<(), BackendError> {
-        self.reduce(Reduction::Dot, &a.buffer, &b.buffer, out.0 as u32, 0.0)
+        let params = VectorParams {
+            out: out.0 as u32,
+            ..self.vector_params()
+        };
+        let mask = self.mask.clone();
+        let bytes = traffic::dot(self.n());
+        self.pending[out.0] = self.strided(
+            |k| &k.dot,
+            params,
+            &[(1, &a.buffer), (2, &b.buffer), (4, &mask)],
+            bytes,
+        )?;
+        Ok(())
     }
 
     fn axpy_ratio(
@@ -503,7 +765,21 @@ impl Backend for GpuBackend {
         den: Slot,
         sign: f64,
     ) -> Result<(), BackendError> {
-        self.ratio_update(|k| &k.axpy_ratio, y, x, (num, den), sign)
+        let params = VectorParams {
+            num: num.0 as u32,
+            den: den.0 as u32,
+            sign: sign as f32,
+            ..self.vector_params()
+        };
+        let mask = self.mask.clone();
+        let bytes = traffic::axpy_ratio(self.n(), self.partials_of(num, den));
+        self.strided(
+            |k| &k.axpy_ratio,
+            params,
+            &[(1, &x.buffer), (3, &y.buffer), (4, &mask)],
+            bytes,
+        )?;
+        Ok(())
     }
 
     fn xpay_ratio(
@@ -513,7 +789,65 @@ impl Backend for GpuBackend {
         num: Slot,
         den: Slot,
     ) -> Result<(), BackendError> {
-        self.ratio_update(|k| &k.xpay_ratio, y, x, (num, den), 1.0)
+        let params = match self.guard {
+            Some(g) => VectorParams {
+                num: num.0 as u32,
+                den: den.0 as u32,
+                out: g.rr.0 as u32,
+                aux: g.bb.0 as u32,
+                scalar: (g.tolerance * g.tolerance) as f32,
+                guarded: 1,
+                ..self.vector_params()
+            },
+            None => VectorParams {
+                num: num.0 as u32,
+                den: den.0 as u32,
+                ..self.vector_params()
+            },
+        };
+        let mask = self.mask.clone();
+        let bytes = traffic::xpay_ratio(self.n(), self.partials_of(num, den));
+        self.strided(
+            |k| &k.xpay_ratio,
+            params,
+            &[(1, &x.buffer), (3, &y.buffer), (4, &mask)],
+            bytes,
+        )?;
+        Ok(())
+    }
+
+    fn cg_update(
+        &mut self,
+        x: &mut GpuField,
+        r: &mut GpuField,
+        s: &GpuField,
+        q: &GpuField,
+        num: Slot,
+        den: Slot,
+        rr: Slot,
+    ) -> Result<(), BackendError> {
+        let params = VectorParams {
+            num: num.0 as u32,
+            den: den.0 as u32,
+            out: rr.0 as u32,
+            guarded: self.guard.is_some() as u32,
+            ..self.vector_params()
+        };
+        let mask = self.mask.clone();
+        let bytes = traffic::cg_update(self.n(), self.partials_of(num, den));
+        self.pending[rr.0] = self.strided(
+            |k| &k.cg_update,
+            params,
+            &[
+                (1, &s.buffer),
+                (2, &q.buffer),
+                (3, &x.buffer),
+                (4, &mask),
+                (6, &r.buffer),
+            ],
+            bytes,
+        )?;
+        Ok(())
     }
 
     fn copy_slot(&mut self, src: Slot, dst: Slot) -> Result<(), BackendError> {
@@ -523,19 +857,41 @@ impl Backend for GpuBackend {
             ..self.vector_params()
         };
         let p = self.rec.uniform(&self.ctx, &params)?;
+        let bytes = 4 * self.pending[src.0] as u64 + 8;
         self.rec.dispatch(
             &self.ctx,
             &self.kernels.copy_slot,
-            &[(0, &p), (6, &self.slots)],
+            &[(0, &p), (8, &self.scalars)],
             (1, 1),
-        );
+            bytes,
+        )?;
+        self.pending[dst.0] = 0;
         Ok(())
     }
 
+    fn guard_cg(&mut self, stop: Option<CgStop>) -> Result<(), BackendError> {
+        if stop.is_some() {
+            // HALT_SLOT and STEPS_SLOT (14 and 15) back to 0.0.
+            self.rec.encoder(&self.ctx).clear_buffer(
+                &self.scalars,
+                slots::value_offset(slots::HALT_SLOT),
+                Some(8),
+            );
+            self.pending[slots::HALT_SLOT] = 0;
+            self.pending[slots::STEPS_SLOT] = 0;
+        }
+        self.guard = stop;
+        Ok(())
+    }
+
+    fn read_cg_progress(&mut self, rr: Slot) -> Result<(f64, Option<usize>), BackendError> {
+        let v = self.read_values(0, SLOTS)?;
+        let steps = self.guard.map(|_| v[slots::STEPS_SLOT] as usize);
+        Ok((v[rr.0] as f64, steps))
+    }
+
     fn read_slots(&mut self, slots: &[Slot], out: &mut [f64]) -> Result<(), BackendError> {
-        let v: Vec<f32> = self
-            .rec
-            .read(&self.ctx, &self.slots, 0, N_SLOTS as u64 * 4)?;
+        let v = self.read_values(0, N_SLOTS)?;
         for (o, s) in out.iter_mut().zip(slots) {
             *o = v[s.0] as f64;
         }
@@ -560,6 +916,7 @@ impl Backend for GpuBackend {
             .encoder(&self.ctx)
             .clear_buffer(&self.contact_counters, 0, None);
         let grid = grid_for(&self.ctx, self.n());
+        let bytes = traffic::elementwise(self.n(), 6) + 16;
         self.rec.dispatch(
             &self.ctx,
             &self.kernels.update_contact,
@@ -572,7 +929,8 @@ impl Backend for GpuBackend {
                 (5, &self.contact_counters),
             ],
             grid,
-        );
+            bytes,
+        )?;
         let c: Vec<u32> = self.rec.read(&self.ctx, &self.contact_counters, 0, 16)?;
         Ok(ContactChange {
             detached: c[0] as usize,
@@ -595,7 +953,7 @@ impl Backend for GpuBackend {
             MIN_SLOT,
             sigma_c as f32,
         )?;
-        Ok(self.read_f32(MIN_SLOT)? as f64)
+        Ok(self.read_values(MIN_SLOT as usize, 1)?[0] as f64)
     }
 
     fn lerp(
@@ -609,15 +967,18 @@ impl Backend for GpuBackend {
             scalar: t as f32,
             ..self.vector_params()
         };
-        self.vector(
+        let mask = self.mask.clone();
+        self.elementwise(
             |k| &k.lerp,
             params,
-            &[(1, &a.buffer), (2, &b.buffer), (3, &dst.buffer)],
+            &[(1, &a.buffer), (2, &b.buffer), (3, &dst.buffer), (4, &mask)],
+            4,
         )
     }
 
     fn copy(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
         let bytes = self.n() as u64 * 4;
+        self.rec.counters.bytes += 2 * bytes;
         self.rec
             .encoder(&self.ctx)
             .copy_buffer_to_buffer(&src.buffer, 0, &dst.buffer, 0, bytes);
@@ -626,7 +987,7 @@ impl Backend for GpuBackend {
 
     fn sum_and_count(&mut self, p: &GpuField) -> Result<(f64, usize), BackendError> {
         self.reduce(Reduction::Sum, &p.buffer, &p.buffer, SUM_SLOT, 0.0)?;
-        let sum = self.read_f32(SUM_SLOT)? as f64;
+        let sum = self.read_values(SUM_SLOT as usize, 1)?[0] as f64;
         let c: Vec<u32> =
             self.rec
                 .read(&self.ctx, &self.counts, self.reduce_groups as u64 * 4, 4)?;
@@ -647,6 +1008,7 @@ mod tests {
         let limits = wgpu::Limits {
             max_storage_buffer_binding_size: 128 << 20,
             max_buffer_size: 256 << 20,
+            max_compute_workgroup_storage_size: 48 << 10,
             ..wgpu::Limits::default()
         };
         assert!(check_fits(&limits, 2048, 2048).is_ok());
@@ -655,5 +1017,16 @@ mod tests {
         assert!(err.contains("max_storage_buffer_binding_size"), "{err}");
         assert!(err.contains("2048×2048"), "{err}");
         assert!(check_fits(&limits, 4096, 1024).is_ok());
+        // 32 KiB of workgroup memory (lavapipe's) hold FFT lines of 2048 values.
+        let small = wgpu::Limits {
+            max_compute_workgroup_storage_size: 32 << 10,
+            ..limits
+        };
+        assert_eq!(largest_square_grid(&small), 2048);
+        let err = check_fits(&small, 4096, 1024).unwrap_err().to_string();
+        assert!(
+            err.contains("workgroup memory") && err.contains("2048×2048"),
+            "{err}"
+        );
     }
 }

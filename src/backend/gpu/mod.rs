@@ -4,11 +4,13 @@
 
 pub mod backend;
 pub mod context;
-pub mod fft;
+pub mod profile;
 pub mod recorder;
+pub mod shaders;
+pub mod slots;
 pub mod spectral;
 pub mod traffic;
+pub mod twin;
 
 pub use backend::{GpuBackend, GpuField};
 pub use context::{list_adapters, test_context, AdapterInfoLine, AdapterPreference, GpuContext};
-pub use fft::GpuFft;
