@@ -96,6 +96,7 @@ if [ -n "${PYVKFFT_SRC:-}" ] && [[ " ${STEPS[*]} " == *" floors "* ]]; then
     echo ok >>"$OUT/pyvkfft-build.txt") &
   VKFFT_BUILD=$!
 fi
+VKFFT_WAITED=
 
 # Sample a growing states CSV every 10 s: elapsed s, states, CG iterations, last d̄ and c̄.
 watch_states() {
@@ -168,6 +169,7 @@ for step in "${STEPS[@]}"; do
     say "| --- | --- | ---: |"
     # The binaries run side by side (each with 4 test threads) to keep the step short.
     names=()
+    pids=()
     for entry in "${TEST_BINS[@]}"; do
       name=${entry%%=*}
       exe=${entry#*=}
@@ -176,8 +178,9 @@ for step in "${STEPS[@]}"; do
       (start=$(date +%s)
         JKRBEM_REQUIRE_GPU=1 timeout -k 10 "$TESTS_LIMIT_S" "$exe" --test-threads 4 >"$OUT/test-$name.txt" 2>&1
         echo "exit $? after $(($(date +%s) - start)) s" >>"$OUT/test-$name.txt") &
+      pids+=($!)
     done
-    wait
+    wait "${pids[@]}"
     for name in "${names[@]}"; do
       summary=$(grep -E "^test result" "$OUT/test-$name.txt" | tail -1)
       ended=$(tail -n 1 "$OUT/test-$name.txt")

@@ -8,7 +8,8 @@
 //! Skips with a message when no GPU adapter exists, unless `JKRBEM_REQUIRE_GPU=1`.
 
 use jkrbem::backend::cpu::spectral::SpectralFilter;
-use jkrbem::backend::gpu::recorder::Recorder;
+use jkrbem::backend::gpu::recorder::{module, Kernel, Recorder};
+use jkrbem::backend::gpu::shaders;
 use jkrbem::backend::gpu::slots::{scalars_bytes, value_offset};
 use jkrbem::backend::gpu::spectral::{GpuSpectralFilter, SpectralKernels};
 use jkrbem::backend::gpu::twin::SpectralTwin;
@@ -156,16 +157,11 @@ fn every_spectral_pass_matches_its_twin_padded_and_periodic_masked_and_not() {
             | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    let finish = jkrbem::backend::gpu::recorder::Kernel::new(
+    let finish = Kernel::new(
         &ctx,
-        &jkrbem::backend::gpu::recorder::module(
-            &ctx,
-            "vector",
-            jkrbem::backend::gpu::shaders::VECTOR,
-        ),
+        &module(&ctx, "vector", shaders::VECTOR),
         "finish_slots",
-        &[(8, jkrbem::backend::gpu::recorder::Binding::ReadWrite)],
-        &[],
+        shaders::bindings(shaders::VECTOR_KERNELS, "finish_slots"),
     );
     for (nx, ny) in [(16, 16), (64, 8), (8, 64), (128, 32), (32, 256), (256, 256)] {
         for padded in [true, false] {

@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
 
 use super::context::GpuContext;
 use super::profile::{KernelTime, Profiler};
-use super::recorder::{grid_for, module, storage, Binding, Kernel, Recorder, WORKGROUP};
+use super::recorder::{grid_for, module, storage, Kernel, Recorder, WORKGROUP};
 use super::shaders;
 use super::slots::{self, scalars_bytes, SLOTS};
 use super::spectral::{largest_buffer_bytes, GpuSpectralFilter, SpectralKernels};
@@ -104,115 +104,28 @@ struct Kernels {
 
 impl Kernels {
     fn new(ctx: &GpuContext) -> Kernels {
-        use Binding::*;
         let v = module(ctx, "vector.wgsl", shaders::VECTOR);
         let r = module(ctx, "reduce.wgsl", shaders::REDUCE);
         let c = module(ctx, "contact.wgsl", shaders::CONTACT);
-        let k = |m: &wgpu::ShaderModule, entry, bindings: &[(u32, Binding)]| {
-            Kernel::new(ctx, m, entry, bindings, &[])
+        let k = |m: &wgpu::ShaderModule, table, entry| {
+            Kernel::new(ctx, m, entry, shaders::bindings(table, entry))
         };
-        let ratio = [
-            (0, Uniform),
-            (1, Read),
-            (3, ReadWrite),
-            (4, Read),
-            (8, ReadWrite),
-        ];
+        let vector = |entry| k(&v, shaders::VECTOR_KERNELS, entry);
+        let reduce = |entry| k(&r, shaders::REDUCE_KERNELS, entry);
         Kernels {
-            residual: k(
-                &v,
-                "residual",
-                &[
-                    (0, Uniform),
-                    (1, Read),
-                    (3, ReadWrite),
-                    (4, Read),
-                    (5, Read),
-                ],
-            ),
-            lerp: k(
-                &v,
-                "lerp",
-                &[
-                    (0, Uniform),
-                    (1, Read),
-                    (2, Read),
-                    (3, ReadWrite),
-                    (4, Read),
-                ],
-            ),
-            cg_update: k(
-                &v,
-                "cg_update",
-                &[
-                    (0, Uniform),
-                    (1, Read),
-                    (2, Read),
-                    (3, ReadWrite),
-                    (4, Read),
-                    (6, ReadWrite),
-                    (8, ReadWrite),
-                ],
-            ),
-            axpy_ratio: k(&v, "axpy_ratio", &ratio),
-            xpay_ratio: k(&v, "xpay_ratio", &ratio),
-            dot: k(
-                &v,
-                "dot_masked",
-                &[
-                    (0, Uniform),
-                    (1, Read),
-                    (2, Read),
-                    (4, Read),
-                    (8, ReadWrite),
-                ],
-            ),
-            finish_slots: k(&v, "finish_slots", &[(8, ReadWrite)]),
-            copy_slot: k(&v, "copy_slot", &[(0, Uniform), (8, ReadWrite)]),
-            sum_partials: k(
-                &r,
-                "sum_partials",
-                &[
-                    (0, Uniform),
-                    (1, Read),
-                    (3, Read),
-                    (4, ReadWrite),
-                    (5, ReadWrite),
-                ],
-            ),
-            crossing_partials: k(
-                &r,
-                "crossing_partials",
-                &[
-                    (0, Uniform),
-                    (1, Read),
-                    (2, Read),
-                    (3, Read),
-                    (4, ReadWrite),
-                ],
-            ),
-            finish_sum: k(
-                &r,
-                "finish_sum",
-                &[(0, Uniform), (4, ReadWrite), (5, ReadWrite), (8, ReadWrite)],
-            ),
-            finish_min: k(
-                &r,
-                "finish_min",
-                &[(0, Uniform), (4, ReadWrite), (8, ReadWrite)],
-            ),
-            update_contact: k(
-                &c,
-                "update_contact",
-                &[
-                    (0, Uniform),
-                    (1, ReadWrite),
-                    (2, Read),
-                    (3, ReadWrite),
-                    (4, Read),
-                    (5, ReadWrite),
-                ],
-            ),
+            residual: vector("residual"),
+            lerp: vector("lerp"),
+            cg_update: vector("cg_update"),
+            axpy_ratio: vector("axpy_ratio"),
+            xpay_ratio: vector("xpay_ratio"),
+            dot: vector("dot_masked"),
+            finish_slots: vector("finish_slots"),
+            copy_slot: vector("copy_slot"),
+            sum_partials: reduce("sum_partials"),
+            crossing_partials: reduce("crossing_partials"),
+            finish_sum: reduce("finish_sum"),
+            finish_min: reduce("finish_min"),
+            update_contact: k(&c, shaders::CONTACT_KERNELS, "update_contact"),
             spectral: SpectralKernels::new(ctx),
         }
     }

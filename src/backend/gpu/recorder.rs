@@ -39,15 +39,14 @@ pub struct Kernel {
 }
 
 impl Kernel {
-    /// Compile `entry` of `module` with the bindings of group 0 it uses, and values for the
-    /// module's override constants. Workgroup memory is not zeroed first: every kernel writes
-    /// what it reads.
+    /// Compile `entry` of `module` with the bindings of group 0 it uses (see
+    /// [`super::shaders::KernelLayout`]). Workgroup memory is not zeroed first: every kernel
+    /// writes what it reads.
     pub fn new(
         ctx: &GpuContext,
         module: &wgpu::ShaderModule,
         entry: &'static str,
         bindings: &[(u32, Binding)],
-        constants: &[(&str, f64)],
     ) -> Kernel {
         let device = ctx.device();
         let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
@@ -82,7 +81,7 @@ impl Kernel {
             module,
             entry_point: Some(entry),
             compilation_options: wgpu::PipelineCompilationOptions {
-                constants,
+                constants: &[],
                 zero_initialize_workgroup_memory: false,
             },
             cache: None,

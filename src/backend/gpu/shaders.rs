@@ -1,6 +1,189 @@
-//! The WGSL modules of the GPU backend. Each module is its own file in `shaders/` preceded by
-//! the shared files it uses from `shaders/shared/` (WGSL has no imports, so they are joined
-//! here at compile time; nothing is patched as text).
+//! The WGSL modules of the GPU backend and the explicit bind group layout of each of their
+//! kernels. Each module is its own file in `shaders/` preceded by the shared files it uses
+//! from `shaders/shared/` (WGSL has no imports, so they are joined here at compile time;
+//! nothing is patched as text). A test checks every layout against what naga finds that the
+//! kernel uses.
+
+use super::recorder::Binding::{self, Read, ReadWrite, Uniform};
+
+/// A kernel (a module's entry point) and the group-0 bindings it uses.
+#[derive(Debug, Clone, Copy)]
+pub struct KernelLayout {
+    /// The WGSL entry point.
+    pub entry: &'static str,
+    /// (binding, what it holds), in binding order.
+    pub bindings: &'static [(u32, Binding)],
+}
+
+/// The kernels of both spectral variants.
+pub const SPECTRAL_KERNELS: &[KernelLayout] = &[
+    KernelLayout {
+        entry: "rows_forward",
+        bindings: &[
+            (0, Uniform),
+            (1, Read),
+            (2, Read),
+            (3, ReadWrite),
+            (4, Read),
+            (8, ReadWrite),
+        ],
+    },
+    KernelLayout {
+        entry: "columns",
+        bindings: &[
+            (0, Uniform),
+            (3, ReadWrite),
+            (4, Read),
+            (5, Read),
+            (8, ReadWrite),
+        ],
+    },
+    KernelLayout {
+        entry: "rows_inverse",
+        bindings: &[
+            (0, Uniform),
+            (2, Read),
+            (3, ReadWrite),
+            (4, Read),
+            (6, ReadWrite),
+            (7, Read),
+            (8, ReadWrite),
+        ],
+    },
+    KernelLayout {
+        entry: "fft_lines",
+        bindings: &[(0, Uniform), (3, ReadWrite), (4, Read)],
+    },
+];
+
+/// The kernels of vector.wgsl.
+pub const VECTOR_KERNELS: &[KernelLayout] = &[
+    KernelLayout {
+        entry: "residual",
+        bindings: &[
+            (0, Uniform),
+            (1, Read),
+            (3, ReadWrite),
+            (4, Read),
+            (5, Read),
+        ],
+    },
+    KernelLayout {
+        entry: "lerp",
+        bindings: &[
+            (0, Uniform),
+            (1, Read),
+            (2, Read),
+            (3, ReadWrite),
+            (4, Read),
+        ],
+    },
+    KernelLayout {
+        entry: "cg_update",
+        bindings: &[
+            (0, Uniform),
+            (1, Read),
+            (2, Read),
+            (3, ReadWrite),
+            (4, Read),
+            (6, ReadWrite),
+            (8, ReadWrite),
+        ],
+    },
+    KernelLayout {
+        entry: "axpy_ratio",
+        bindings: &[
+            (0, Uniform),
+            (1, Read),
+            (3, ReadWrite),
+            (4, Read),
+            (8, ReadWrite),
+        ],
+    },
+    KernelLayout {
+        entry: "xpay_ratio",
+        bindings: &[
+            (0, Uniform),
+            (1, Read),
+            (3, ReadWrite),
+            (4, Read),
+            (8, ReadWrite),
+        ],
+    },
+    KernelLayout {
+        entry: "dot_masked",
+        bindings: &[
+            (0, Uniform),
+            (1, Read),
+            (2, Read),
+            (4, Read),
+            (8, ReadWrite),
+        ],
+    },
+    KernelLayout {
+        entry: "finish_slots",
+        bindings: &[(8, ReadWrite)],
+    },
+    KernelLayout {
+        entry: "copy_slot",
+        bindings: &[(0, Uniform), (8, ReadWrite)],
+    },
+];
+
+/// The kernels of reduce.wgsl.
+pub const REDUCE_KERNELS: &[KernelLayout] = &[
+    KernelLayout {
+        entry: "sum_partials",
+        bindings: &[
+            (0, Uniform),
+            (1, Read),
+            (3, Read),
+            (4, ReadWrite),
+            (5, ReadWrite),
+        ],
+    },
+    KernelLayout {
+        entry: "crossing_partials",
+        bindings: &[
+            (0, Uniform),
+            (1, Read),
+            (2, Read),
+            (3, Read),
+            (4, ReadWrite),
+        ],
+    },
+    KernelLayout {
+        entry: "finish_sum",
+        bindings: &[(0, Uniform), (4, ReadWrite), (5, ReadWrite), (8, ReadWrite)],
+    },
+    KernelLayout {
+        entry: "finish_min",
+        bindings: &[(0, Uniform), (4, ReadWrite), (8, ReadWrite)],
+    },
+];
+
+/// The kernel of contact.wgsl.
+pub const CONTACT_KERNELS: &[KernelLayout] = &[KernelLayout {
+    entry: "update_contact",
+    bindings: &[
+        (0, Uniform),
+        (1, ReadWrite),
+        (2, Read),
+        (3, ReadWrite),
+        (4, Read),
+        (5, ReadWrite),
+    ],
+}];
+
+/// The bindings of `entry` in `kernels`. Panics if it is not there (a programming error that
+/// every GPU test would show).
+pub fn bindings(kernels: &[KernelLayout], entry: &str) -> &'static [(u32, Binding)] {
+    kernels
+        .iter()
+        .find(|k| k.entry == entry)
+        .unwrap_or_else(|| panic!("no layout for kernel {entry}"))
+        .bindings
+}
 
 /// Workgroup size (`WG`).
 pub const COMMON: &str = include_str!("../../../shaders/shared/common.wgsl");
@@ -49,11 +232,12 @@ pub const CONTACT: &str = concat!(
     include_str!("../../../shaders/contact.wgsl"),
 );
 
-/// Every module, by the name of its own file: what a validation test compiles.
-pub const MODULES: [(&str, &str); 5] = [
-    ("spectral.wgsl (2048)", SPECTRAL_2048),
-    ("spectral.wgsl (4096)", SPECTRAL_4096),
-    ("vector.wgsl", VECTOR),
-    ("reduce.wgsl", REDUCE),
-    ("contact.wgsl", CONTACT),
+/// Every module, by the name of its own file, with its kernels: what a validation test
+/// compiles and checks.
+pub const MODULES: [(&str, &str, &[KernelLayout]); 5] = [
+    ("spectral.wgsl (2048)", SPECTRAL_2048, SPECTRAL_KERNELS),
+    ("spectral.wgsl (4096)", SPECTRAL_4096, SPECTRAL_KERNELS),
+    ("vector.wgsl", VECTOR, VECTOR_KERNELS),
+    ("reduce.wgsl", REDUCE, REDUCE_KERNELS),
+    ("contact.wgsl", CONTACT, CONTACT_KERNELS),
 ];

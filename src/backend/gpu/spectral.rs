@@ -5,7 +5,7 @@
 //! whose f64 symbol this filter uploads.
 
 use super::context::GpuContext;
-use super::recorder::{groups_grid, module, storage, Binding, Kernel, Recorder};
+use super::recorder::{groups_grid, module, storage, Kernel, Recorder};
 use super::shaders;
 use super::slots::NO_SLOT;
 use super::traffic;
@@ -85,51 +85,26 @@ impl SpectralKernels {
     /// Compile the variants that fit the adapter's workgroup memory and upload the twiddle
     /// table (computed in f64).
     pub fn new(ctx: &GpuContext) -> SpectralKernels {
-        use Binding::*;
         let limit = ctx.limits().max_compute_workgroup_storage_size as u64;
         let variants = VARIANTS
             .iter()
             .filter(|&&(p, _)| workgroup_bytes(p) <= limit)
             .map(|&(points, source)| {
                 let m = module(ctx, "spectral.wgsl", source);
-                let kernel =
-                    |entry, bindings: &[(u32, Binding)]| Kernel::new(ctx, &m, entry, bindings, &[]);
+                let kernel = |entry| {
+                    Kernel::new(
+                        ctx,
+                        &m,
+                        entry,
+                        shaders::bindings(shaders::SPECTRAL_KERNELS, entry),
+                    )
+                };
                 Variant {
                     points,
-                    rows_forward: kernel(
-                        "rows_forward",
-                        &[
-                            (0, Uniform),
-                            (1, Read),
-                            (2, Read),
-                            (3, ReadWrite),
-                            (4, Read),
-                            (8, ReadWrite),
-                        ],
-                    ),
-                    columns: kernel(
-                        "columns",
-                        &[
-                            (0, Uniform),
-                            (3, ReadWrite),
-                            (4, Read),
-                            (5, Read),
-                            (8, ReadWrite),
-                        ],
-                    ),
-                    rows_inverse: kernel(
-                        "rows_inverse",
-                        &[
-                            (0, Uniform),
-                            (2, Read),
-                            (3, ReadWrite),
-                            (4, Read),
-                            (6, ReadWrite),
-                            (7, Read),
-                            (8, ReadWrite),
-                        ],
-                    ),
-                    fft_lines: kernel("fft_lines", &[(0, Uniform), (3, ReadWrite), (4, Read)]),
+                    rows_forward: kernel("rows_forward"),
+                    columns: kernel("columns"),
+                    rows_inverse: kernel("rows_inverse"),
+                    fft_lines: kernel("fft_lines"),
                 }
             })
             .collect();
