@@ -4,7 +4,6 @@
 
 use super::OutputError;
 use plotters::prelude::*;
-use std::fs;
 use std::path::Path;
 
 /// Most distinct x values that still get one tick each.
@@ -168,19 +167,18 @@ pub(crate) fn render_svg(
     Ok(svg)
 }
 
-/// Write a rendered SVG document (or the renderer's error) to `path`, creating its folder.
+/// Write a rendered SVG document (or the renderer's error) to `path`, creating its folder,
+/// atomically ([`super::file`]).
 pub(crate) fn write_svg_document(
     path: &Path,
     svg: Result<String, String>,
 ) -> Result<(), OutputError> {
     let svg = svg.map_err(|reason| OutputError::Chart {
         path: path.display().to_string(),
+        flag: None,
         reason,
     })?;
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        fs::create_dir_all(dir).map_err(|e| OutputError::io(dir, e))?;
-    }
-    fs::write(path, svg).map_err(|e| OutputError::io(path, e))
+    super::file::write_bytes(path, svg.as_bytes())
 }
 
 /// The points of a series that have a place on log axes.
