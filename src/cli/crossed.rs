@@ -180,15 +180,21 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
 }
 
-/// Adhesive force against crossing angle: the runs beside JG over (θ_min, 90°].
+/// Adhesive force against crossing angle: the runs beside JG over (θ_min, 90°]. The title
+/// gives the inputs in SI units (the documented use: m, Pa, J/m², so forces in N); other
+/// consistent units work the same, as the y label says.
 fn chart(args: &Args, rows: &[CrossedRow]) -> LineChart {
+    use jkrbem::text::compact;
     let mut chart = LineChart::new(
         &format!(
-            "Crossed cylinders: R = {}, E = {}, ν = {}, Δγ = {}",
-            args.radius, args.young, args.poisson, args.work_of_adhesion
+            "Crossed cylinders: R = {} m, E = {} Pa, ν = {}, Δγ = {} J/m²",
+            compact(args.radius),
+            compact(args.young),
+            compact(args.poisson),
+            compact(args.work_of_adhesion)
         ),
         "crossing angle θ (degrees)",
-        "adhesive force |F_min| (force unit of E·R²)",
+        "adhesive force |F_min| (N; in the unit of E·R² for non-SI inputs)",
     );
     let lo = rows.iter().map(|r| r.angle_deg).fold(90.0, f64::min);
     let jg: Vec<(f64, f64)> = (0..=200)

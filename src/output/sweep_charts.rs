@@ -91,7 +91,7 @@ pub fn pulloff_curves_chart(dir: &Path, rows: &[SweepRow]) -> Result<LineChart, 
 /// |min F̄| against R1/R2 (log axis): the sweep's points beside JG's pull-off force.
 pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
     let mut chart = LineChart::new(
-        "Adhesive force against axis ratio",
+        "Adhesive force against axis ratio (normalised: F̄ = F/(3π Re Δγ))",
         "R1/R2",
         "adhesive force |min F̄|",
     );
@@ -114,8 +114,9 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
             .collect();
         chart.push(
             &format!(
-                "fit {:.3}·(R1/R2)^{:.3} + {:.3} (R² = {:.4})",
-                law.k1, law.k2, law.k3, law.quality.r_squared
+                "fit {} (R² = {:.4})",
+                crate::text::power_law(law.k1, law.k2, law.k3),
+                law.quality.r_squared
             ),
             curve,
             0,
@@ -136,4 +137,45 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
 pub fn write_sweep_charts(dir: &Path, rows: &[SweepRow]) -> Result<(), OutputError> {
     force_vs_ratio_chart(rows).write_svg(&dir.join("force_vs_ratio.svg"))?;
     pulloff_curves_chart(dir, rows)?.write_svg(&dir.join("pulloff_curves.svg"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_fitted_law_is_written_with_proper_signs() {
+        // Before: laws were printed as "… + -1.010".
+        let rows: Vec<SweepRow> = [1.0, 2.0, 5.0, 10.0, 25.0, 50.0]
+            .iter()
+            .map(|&ratio: &f64| SweepRow {
+                ratio,
+                f_ad_bar: Some(0.3 + 0.25 * ratio.powf(-0.4)),
+                c_bar_at_min: Some(0.8),
+                d_bar_at_min: Some(-0.2),
+                jg_f_ad_bar: Some(0.5),
+                n_d: Some(30.0),
+                grid: 64,
+                dx: 0.1,
+                wall_s: 1.0,
+                ny: 64,
+                backend: "cpu-f64".into(),
+                complete: true,
+                min_reached: true,
+                error: None,
+            })
+            .collect();
+        let chart = force_vs_ratio_chart(&rows);
+        let law = chart
+            .curves
+            .iter()
+            .find(|c| c.label.starts_with("fit "))
+            .expect("a fitted law");
+        assert!(
+            !law.label.contains("+ -") && !law.label.contains("^-"),
+            "{}",
+            law.label
+        );
+        assert!(law.label.contains('−'), "{}", law.label);
+    }
 }
