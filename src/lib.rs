@@ -15,4 +15,5 @@ pub mod output;
 pub mod plan;
 pub mod scene;
 pub mod solver;
+pub mod text;
 pub mod theory;

@@ -3,6 +3,7 @@
 
 use crate::backend::Preconditioner;
 use crate::scene::Scene;
+use crate::text::compact;
 use crate::theory::{self, hertz::HertzContact, TheoryModel};
 use std::f64::consts::PI;
 use thiserror::Error;
@@ -10,11 +11,62 @@ use thiserror::Error;
 /// Smallest grid side accepted (elements).
 pub const MIN_GRID: usize = 16;
 
+/// Largest grid side accepted (elements); the machine's memory usually refuses smaller ones
+/// first ([`crate::plan::check_memory`]).
+pub const MAX_GRID: usize = 65_536;
+
+/// Valid mean radii c̄0 of the first contact (dimensionless). The lower end lies above the
+/// contact radius at the force minimum (c̄ = 0.63–0.79 in the closed forms, 0.74–0.84 in our
+/// runs), since the contact cannot grow past its first, pinned size: the branch must start
+/// above the minimum to pass through it.
+pub const START_RADIUS_RANGE: (f64, f64) = (1.0, 20.0);
+
+/// Most load steps.
+pub const MAX_STEPS: usize = 100_000;
+
+/// Largest relative margin around the first contact.
+pub const MAX_MARGIN: f64 = 10.0;
+
+/// Most CG iterations per solve.
+pub const MAX_CG_ITERATIONS: usize = 10_000_000;
+
+/// Largest |mesh angle| (degrees).
+pub const MAX_MESH_ANGLE: f64 = 360.0;
+
+/// Lowest final approach d̄ accepted (dimensionless; the contact jumps off at d̄ ≈ −0.44
+/// for the sphere, so anything far below only means "run to the end").
+pub const MIN_FINAL_D_BAR: f64 = -1000.0;
+
+/// Fewest elements the first (Hertz) contact may span across its minor axis.
+pub const MIN_ELEMENTS_FIRST_CONTACT: f64 = 8.0;
+
+/// Fewest elements the contact is expected to span across its minor axis at the force
+/// minimum (from the closed form's b̄ there). Below this the detachment front is a couple of
+/// elements: the answer would be noise, not an adhesive force.
+pub const MIN_ELEMENTS_AT_MINIMUM: f64 = 4.0;
+
+/// Memory a model needs per grid element (bytes), measured on the CPU backend: the padded
+/// 2Nx × 2Ny spectra of the convolution and the Nx × Ny ones of the preconditioner, CG's
+/// fields, masks and snapshots; about 200 B at 1024², doubled while a re-grid builds the
+/// finer backend beside the old one.
+pub const BYTES_PER_ELEMENT: u64 = 320;
+
+/// Memory a model needs whatever its grid (bytes): the program, its threads and buffers.
+pub const BYTES_FIXED: u64 = 64 << 20;
+
+/// The range within which the numbers a backend holds must lie: σ_c, the element side, the
+/// approach and the Hertz pressure. For f64 any scene within the input ranges fits; the f32
+/// GPU backend needs [`F32_SAFE_RANGE`].
+pub const F64_SAFE_RANGE: (f64, f64) = (1e-150, 1e150);
+
+/// [`F64_SAFE_RANGE`] for f32 fields, whose squares must stay inside f32's 1e-38 … 3e38.
+pub const F32_SAFE_RANGE: (f64, f64) = (1e-15, 1e15);
+
 /// An invalid model choice, named as the flag that sets it.
 #[derive(Debug, Error, PartialEq)]
 pub enum ModelError {
-    /// A grid side that is not a power of two ≥ [`MIN_GRID`].
-    #[error("{flag} = {value} is invalid: the grid must be a power of two ≥ {MIN_GRID} (e.g. 64, 128, 256, 512)")]
+    /// A grid side that is not a power of two in [[`MIN_GRID`], [`MAX_GRID`]].
+    #[error("{flag} = {value} is invalid: the grid must be a power of two from {MIN_GRID} to {MAX_GRID} (e.g. 64, 128, 256, 512)")]
     Grid {
         /// The flag.
         flag: &'static str,
@@ -31,6 +83,48 @@ pub enum ModelError {
         /// What is accepted, and what to change.
         expected: String,
     },
+    /// The grid resolves the scene's contact by too few elements.
+    #[error(
+        "--grid {nx} is too coarse for this scene (R1/R2 = {ratio}): the first contact spans \
+         {} elements across its minor axis (at least {MIN_ELEMENTS_FIRST_CONTACT} needed) and \
+         the contact at the force minimum about {} (at least {MIN_ELEMENTS_AT_MINIMUM}); {advice}",
+        compact_count(*first), compact_count(*at_minimum)
+    )]
+    TooCoarse {
+        /// R1/R2.
+        ratio: String,
+        /// Elements along x.
+        nx: usize,
+        /// Elements across the first contact's minor axis.
+        first: f64,
+        /// Predicted elements across the minor axis at the force minimum.
+        at_minimum: f64,
+        /// The grid that resolves it, or what else to change.
+        advice: String,
+    },
+    /// A scale of the problem is not a number the backend can hold.
+    #[error(
+        "{quantity} = {} is out of the range the {precision} arithmetic holds safely \
+         [{}, {}]: {advice}",
+        compact(*value), compact(range.0), compact(range.1)
+    )]
+    Scale {
+        /// The quantity, with its unit.
+        quantity: &'static str,
+        /// Its value.
+        value: f64,
+        /// "f64" or "f32".
+        precision: &'static str,
+        /// The range accepted.
+        range: (f64, f64),
+        /// What to change.
+        advice: String,
+    },
+}
+
+/// A count of elements for messages: one decimal.
+fn compact_count(v: f64) -> String {
+    format!("{:.1}", v)
 }
 
 /// κ = (2/π)·(ln(1+√2) − (√2−1)/3) (dimensionless): the mean displacement of a uniformly
@@ -261,8 +355,69 @@ impl MeshAngle {
     }
 }
 
+/// The memory a run on an nx × ny grid needs (bytes), see [`BYTES_PER_ELEMENT`].
+pub fn memory_estimate(nx: usize, ny: usize) -> u64 {
+    BYTES_FIXED.saturating_add(
+        BYTES_PER_ELEMENT
+            .saturating_mul(nx as u64)
+            .saturating_mul(ny as u64),
+    )
+}
+
+/// Refuse a grid that resolves the contact by too few elements: fewer than
+/// [`MIN_ELEMENTS_FIRST_CONTACT`] across the first contact's minor axis (half-axis `b0`,
+/// length), or an expected fewer than [`MIN_ELEMENTS_AT_MINIMUM`] at the force minimum (the
+/// closed form's b̄ there). The error names the grid that would resolve it.
+fn check_resolution(scene: &Scene, opt: &ModelOptions, b0: f64, dx: f64) -> Result<(), ModelError> {
+    let ratio = scene.ratio();
+    let b_min_bar = theory::pull_off(TheoryModel::adhesive_reference(ratio), ratio)
+        .map(|p| p.force_min.b_bar)
+        .unwrap_or(0.5);
+    let first = 2.0 * b0 / dx;
+    let at_minimum = 2.0 * b_min_bar * scene.scales().length / dx;
+    if first >= MIN_ELEMENTS_FIRST_CONTACT && at_minimum >= MIN_ELEMENTS_AT_MINIMUM {
+        return Ok(());
+    }
+    let factor = (MIN_ELEMENTS_FIRST_CONTACT / first).max(MIN_ELEMENTS_AT_MINIMUM / at_minimum);
+    let needed = (opt.nx as f64 * factor).ceil();
+    let mut others = Vec::new();
+    if opt.start_radius_bar > 1.5 {
+        others.push("a smaller --start-radius (default 1.5)");
+    }
+    if opt.margin > 0.5 {
+        others.push("a smaller --margin (default 0.08)");
+    }
+    let others = if others.is_empty() {
+        String::new()
+    } else {
+        format!(", or {}", others.join(", or "))
+    };
+    let advice = if needed <= MAX_GRID as f64 {
+        let nx = (needed as usize).next_power_of_two().max(MIN_GRID);
+        let ny = opt
+            .ny
+            .map(|ny| {
+                format!(
+                    " (and --grid-y {})",
+                    ((ny as f64 * factor).ceil() as usize).next_power_of_two()
+                )
+            })
+            .unwrap_or_default();
+        format!("use --grid {nx}{ny} or finer{others}")
+    } else {
+        format!("no grid up to --grid {MAX_GRID} resolves it: use a smaller --ratio{others}")
+    };
+    Err(ModelError::TooCoarse {
+        ratio: compact(ratio),
+        nx: opt.nx,
+        first,
+        at_minimum,
+        advice,
+    })
+}
+
 fn check_grid(flag: &'static str, n: usize) -> Result<(), ModelError> {
-    if n >= MIN_GRID && n.is_power_of_two() {
+    if (MIN_GRID..=MAX_GRID).contains(&n) && n.is_power_of_two() {
         Ok(())
     } else {
         Err(ModelError::Grid { flag, value: n })
@@ -286,38 +441,59 @@ impl Model {
             check_grid("--grid-y", ny)?;
         }
         let c0 = opt.start_radius_bar;
-        if !(c0.is_finite() && c0 > 0.0) {
+        let (c_lo, c_hi) = START_RADIUS_RANGE;
+        if !(c_lo..=c_hi).contains(&c0) {
             return Err(invalid(
                 "--start-radius",
-                c0,
-                "a positive finite c̄0 (default 1.5)",
+                compact(c0),
+                format!(
+                    "c̄0 must be in [{c_lo}, {c_hi}] (default 1.5): above the contact radius \
+                     at the force minimum (about 0.8), so that the pull-off passes through it"
+                ),
             ));
         }
-        if opt.steps == 0 {
-            return Err(invalid("--steps", 0, "at least 1 load step"));
+        if !(1..=MAX_STEPS).contains(&opt.steps) {
+            return Err(invalid(
+                "--steps",
+                opt.steps,
+                format!("from 1 to {MAX_STEPS} load steps (default 200)"),
+            ));
         }
-        if !(opt.margin.is_finite() && opt.margin >= 0.0) {
-            return Err(invalid("--margin", opt.margin, "a finite margin ≥ 0"));
+        if !(0.0..=MAX_MARGIN).contains(&opt.margin) {
+            return Err(invalid(
+                "--margin",
+                compact(opt.margin),
+                format!("a relative margin in [0, {MAX_MARGIN}] (default 0.08)"),
+            ));
         }
         if !(opt.cg_tolerance > 0.0 && opt.cg_tolerance < 1.0) {
             return Err(invalid(
                 "--cg-tolerance",
-                opt.cg_tolerance,
-                "a value in (0, 1)",
+                compact(opt.cg_tolerance),
+                "a value in (0, 1) (default 1e-8)",
             ));
         }
         if !(opt.cg_accept > 0.0 && opt.cg_accept < 1.0) {
             return Err(invalid(
                 "--cg-accept",
-                opt.cg_accept,
+                compact(opt.cg_accept),
                 "a value in (0, 1) (default 1e-5)",
             ));
         }
-        if !opt.mesh_angle_deg.is_finite() {
+        if !(1..=MAX_CG_ITERATIONS).contains(&opt.cg_max_iterations) {
+            return Err(invalid(
+                "--cg-max-iterations",
+                opt.cg_max_iterations,
+                format!("from 1 to {MAX_CG_ITERATIONS} (default 5000)"),
+            ));
+        }
+        if !(-MAX_MESH_ANGLE..=MAX_MESH_ANGLE).contains(&opt.mesh_angle_deg) {
             return Err(invalid(
                 "--mesh-angle",
-                opt.mesh_angle_deg,
-                "a finite angle in degrees (e.g. 0 or 45)",
+                compact(opt.mesh_angle_deg),
+                format!(
+                    "an angle in degrees in [−{MAX_MESH_ANGLE}, {MAX_MESH_ANGLE}] (e.g. 0 or 45)"
+                ),
             ));
         }
         let mesh = MeshAngle::from_degrees(opt.mesh_angle_deg);
@@ -357,17 +533,18 @@ impl Model {
         let d0 = initial.d;
         let d0_bar = d0 / scales.approach;
         if let Some(f) = opt.final_d_bar {
-            if !(f.is_finite() && f < d0_bar) {
+            if !(f >= MIN_FINAL_D_BAR && f < d0_bar) {
                 return Err(invalid(
                     "--final-d",
-                    f,
-                    format!("a finite d̄ below the initial approach d̄0 = {d0_bar:.4}"),
+                    compact(f),
+                    format!("a d̄ in [{MIN_FINAL_D_BAR}, d̄0) below the initial approach d̄0 = {d0_bar:.4}"),
                 ));
             }
         }
+        check_resolution(scene, opt, initial.b, dx)?;
         let d_step = (d0_bar - end) / opt.steps as f64 * scales.approach;
         let d_final = opt.final_d_bar.unwrap_or(end - 2.0 * (d0_bar - end)) * scales.approach;
-        Ok(Model {
+        let model = Model {
             scene: *scene,
             nx: opt.nx,
             ny,
@@ -390,7 +567,84 @@ impl Model {
             measure: opt.measure,
             regrid: opt.regrid,
             mesh,
-        })
+        };
+        model.check_scales("f64", F64_SAFE_RANGE)?;
+        Ok(model)
+    }
+
+    /// The characteristic numbers a backend holds, with their names and units: σ_c, the
+    /// element side, the first approach, the load step and the first contact's peak pressure.
+    pub fn scales(&self) -> [(&'static str, f64); 5] {
+        let p0 = self.initial.p0;
+        [
+            ("σ_c, the detachment stress (force/length²)", self.sigma_c),
+            ("Δx, the element side (length)", self.dx),
+            ("d0, the first approach (length)", self.d0),
+            ("the load step (length)", self.d_step),
+            ("the first contact's peak pressure (force/length²)", p0),
+        ]
+    }
+
+    /// Check that every scale of [`Model::scales`] is finite and within `range`, as the
+    /// arithmetic `precision` ("f64" or "f32") needs. The error names the quantity (e.g.
+    /// "σ_c … = inf") rather than a symptom further down (a contact at the domain's edge, a
+    /// non-finite CG value).
+    pub fn check_scales(
+        &self,
+        precision: &'static str,
+        range: (f64, f64),
+    ) -> Result<(), ModelError> {
+        for (quantity, value) in self.scales() {
+            let magnitude = value.abs();
+            if !(magnitude.is_finite() && magnitude >= range.0 && magnitude <= range.1) {
+                return Err(ModelError::Scale {
+                    quantity,
+                    value,
+                    precision,
+                    range,
+                    advice: format!(
+                        "it follows from E* = {}, Δγ = {}, R1 = {}, R2 = {} and the grid; \
+                         rescale --e-star, --work-of-adhesion and the radii to units nearer 1 \
+                         (the normalised results do not depend on the units){}",
+                        compact(self.scene.e_star),
+                        compact(self.scene.work_of_adhesion),
+                        compact(self.scene.r1),
+                        compact(self.scene.r2),
+                        if precision == "f32" {
+                            ", or use --backend cpu (f64)"
+                        } else {
+                            ""
+                        }
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Load steps the pull-off is expected to take: [`ModelOptions::steps`] reach the closed
+    /// form's end of contact, fewer if the final approach comes first (for a progress line;
+    /// a run can take a few more, or stop earlier with `--measure adhesive-force`).
+    pub fn expected_steps(&self) -> usize {
+        let planned = (self.d0 - self.d_final) / self.d_step;
+        let to_end = self.steps_to_end();
+        (planned.floor() as usize).clamp(1, to_end.max(1))
+    }
+
+    /// Steps from d0 to the closed form's end of contact.
+    fn steps_to_end(&self) -> usize {
+        let ratio = self.scene.ratio();
+        let end = theory::pull_off(TheoryModel::adhesive_reference(ratio), ratio)
+            .map(|p| p.end_of_contact.d_bar)
+            .unwrap_or(-0.5)
+            * self.scene.scales().approach;
+        ((self.d0 - end) / self.d_step).round().max(1.0) as usize
+    }
+
+    /// The memory this model's run needs (bytes): [`BYTES_FIXED`] plus
+    /// [`BYTES_PER_ELEMENT`] per element.
+    pub fn memory_estimate(&self) -> u64 {
+        memory_estimate(self.nx, self.ny)
     }
 
     /// The same model on a domain scaled by `factor` (< 1 refines): Δx scales with it, the
@@ -646,5 +900,83 @@ mod tests {
             MeshAngle::from_degrees(405.0).sin,
             std::f64::consts::FRAC_1_SQRT_2
         );
+    }
+
+    #[test]
+    fn scales_out_of_range_are_diagnosed_by_their_cause() {
+        // Before: E* = 1e300 (σ_c = ∞) failed later as "the contact reached the edge of the
+        // domain", and E* = 1e-300 as "CG produced a non-finite value". The CLI's input ranges
+        // refuse those values; a scene built past them is refused here, naming σ_c.
+        let s = Scene {
+            r1: 1.0,
+            r2: 1.0,
+            e_star: 1e300,
+            work_of_adhesion: 1.0,
+        };
+        let e = Model::build(
+            &s,
+            &ModelOptions {
+                nx: 64,
+                ..Default::default()
+            },
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("σ_c") && e.contains("inf"), "{e}");
+        // Inputs within their ranges whose scales f32 cannot hold: refused for the GPU only.
+        let s = Scene::new(1e-20, 1e-20, 1e25, 1e-25).unwrap();
+        let m = Model::build(
+            &s,
+            &ModelOptions {
+                nx: 64,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert!(m.check_scales("f64", F64_SAFE_RANGE).is_ok());
+        let e = m
+            .check_scales("f32", F32_SAFE_RANGE)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("f32") && e.contains("--backend cpu"), "{e}");
+    }
+
+    #[test]
+    fn too_coarse_grids_are_refused_with_the_grid_that_resolves_them() {
+        // Before: R1/R2 = 1000 on 64 columns ran with 2 elements across the contact, and
+        // c̄0 = 1e12 with none at all.
+        let s = Scene::from_ratio(1000.0, 1.0, 1.0, 1.0).unwrap();
+        let e = Model::build(
+            &s,
+            &ModelOptions {
+                nx: 64,
+                ..Default::default()
+            },
+        )
+        .unwrap_err();
+        assert!(matches!(e, ModelError::TooCoarse { .. }), "{e}");
+        let text = e.to_string();
+        let suggested: usize = text
+            .split("use --grid ")
+            .nth(1)
+            .and_then(|r| r.split_whitespace().next())
+            .and_then(|n| n.parse().ok())
+            .expect("a suggested grid");
+        assert!(Model::build(
+            &s,
+            &ModelOptions {
+                nx: suggested,
+                ..Default::default()
+            }
+        )
+        .is_ok());
+        assert!(Model::build(
+            &s,
+            &ModelOptions {
+                nx: suggested / 2,
+                ..Default::default()
+            }
+        )
+        .is_err());
     }
 }

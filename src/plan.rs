@@ -3,8 +3,9 @@
 //! (SPEC §7, [`crate::analysis::convergence`]).
 
 use crate::analysis::convergence;
-use crate::model::{Measure, Model, ModelError, ModelOptions, Stepping};
+use crate::model::{self, Measure, Model, ModelError, ModelOptions, Stepping, MAX_GRID};
 use crate::scene::Scene;
+use crate::text::compact;
 use crate::theory::{self, TheoryModel};
 
 /// Smallest grid side a plan uses (elements): coarser grids are not yet in the first-order
@@ -116,18 +117,26 @@ pub fn for_accuracy(scene: &Scene, target: f64, base: &ModelOptions) -> Result<P
         regrid: true,
         ..base.clone()
     };
-    // The smallest grid whose predicted n_d meets a relative target, and that n_d.
+    // The smallest grid whose predicted n_d meets a relative target, and that n_d. Grids too
+    // coarse to resolve the contact at all are skipped.
     let grid_for = |t: f64| -> Result<(usize, f64), ModelError> {
         let needed = convergence::n_d_for(ratio, t);
         let mut nx = MIN_PLAN_GRID;
         loop {
-            let model = Model::build(
+            let built = Model::build(
                 scene,
                 &ModelOptions {
                     nx,
                     ..options.clone()
                 },
-            )?;
+            );
+            let model = match built {
+                Err(ModelError::TooCoarse { .. }) if nx < MAX_GRID => {
+                    nx *= 2;
+                    continue;
+                }
+                other => other?,
+            };
             let n_d = predicted_n_d(&model);
             if n_d >= needed || nx >= 8 * MAX_DIRECT_GRID {
                 return Ok((nx, n_d));
@@ -158,6 +167,113 @@ pub fn for_accuracy(scene: &Scene, target: f64, base: &ModelOptions) -> Result<P
     })
 }
 
+/// The memory this machine can give a run (bytes): the smaller of the memory available now
+/// (`MemAvailable` in /proc/meminfo) and what the process's control group may still use; or
+/// the value of the environment variable `JKRBEM_MEMORY_LIMIT` (bytes) if set, to plan for
+/// less. `None` where neither can be read (the check is then skipped).
+pub fn available_memory() -> Option<u64> {
+    if let Some(v) = std::env::var("JKRBEM_MEMORY_LIMIT")
+        .ok()
+        .and_then(|v| v.trim().parse::<f64>().ok())
+    {
+        return Some(v.max(0.0) as u64);
+    }
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok();
+    let available = meminfo.as_deref().and_then(|m| {
+        m.lines()
+            .find(|l| l.starts_with("MemAvailable:"))
+            .and_then(|l| l.split_whitespace().nth(1))
+            .and_then(|kb| kb.parse::<u64>().ok())
+            .map(|kb| kb * 1024)
+    });
+    let read = |p: &str| {
+        std::fs::read_to_string(p)
+            .ok()
+            .and_then(|t| t.trim().parse::<u64>().ok())
+    };
+    let cgroup = read("/sys/fs/cgroup/memory.max")
+        .map(|max| max.saturating_sub(read("/sys/fs/cgroup/memory.current").unwrap_or(0)));
+    match (available, cgroup) {
+        (Some(a), Some(c)) => Some(a.min(c)),
+        (a, c) => a.or(c),
+    }
+}
+
+/// Bytes in words: "8.8 TB", "420 MB".
+pub fn bytes_text(b: u64) -> String {
+    let b = b as f64;
+    let (v, unit) = if b >= 1e12 {
+        (b / 1e12, "TB")
+    } else if b >= 1e9 {
+        (b / 1e9, "GB")
+    } else {
+        (b / 1e6, "MB")
+    };
+    format!("{} {unit}", compact(((v * 10.0).round() / 10.0).max(0.1)))
+}
+
+/// Refuse runs whose memory estimate exceeds what the machine has ([`available_memory`]):
+/// `models` run `jobs` at a time, so the `jobs` largest must fit together. `flag` names the
+/// grid flag in the message, which gives the estimate and the largest grid that fits.
+pub fn check_memory(models: &[&Model], jobs: usize, flag: &'static str) -> Result<(), ModelError> {
+    check_memory_within(models, jobs, flag, available_memory())
+}
+
+/// [`check_memory`] against `available` bytes (no check if `None`).
+pub fn check_memory_within(
+    models: &[&Model],
+    jobs: usize,
+    flag: &'static str,
+    available: Option<u64>,
+) -> Result<(), ModelError> {
+    let Some(available) = available else {
+        return Ok(());
+    };
+    let mut needs: Vec<(u64, &Model)> = models.iter().map(|m| (m.memory_estimate(), *m)).collect();
+    needs.sort_by_key(|n| std::cmp::Reverse(n.0));
+    let jobs = jobs.max(1).min(needs.len().max(1));
+    let total: u64 = needs.iter().take(jobs).map(|n| n.0).sum();
+    if total <= available {
+        return Ok(());
+    }
+    let (_, big) = needs[0];
+    // The largest power-of-two Nx (same aspect) whose `jobs` runs fit.
+    let aspect = big.ny as f64 / big.nx as f64;
+    let mut fits = None;
+    let mut nx = model::MIN_GRID;
+    while nx <= MAX_GRID {
+        let ny = ((nx as f64 * aspect).round() as usize).max(model::MIN_GRID);
+        if model::memory_estimate(nx, ny).saturating_mul(jobs as u64) <= available {
+            fits = Some((nx, ny));
+        }
+        nx *= 2;
+    }
+    let at_a_time = if jobs > 1 {
+        format!(" ({jobs} runs at a time with --jobs {jobs})")
+    } else {
+        String::new()
+    };
+    Err(ModelError::Invalid {
+        flag,
+        value: format!("{}", big.nx),
+        expected: format!(
+            "a {}×{} grid needs about {}{at_a_time}, more than the {} this machine has \
+             available; {}",
+            big.nx,
+            big.ny,
+            bytes_text(total),
+            bytes_text(available),
+            match fits {
+                Some((n, _)) if flag.starts_with("--grid") => {
+                    format!("the largest grid that fits is {flag} {n}")
+                }
+                Some((n, ny)) => format!("the largest grid that fits is {n}×{ny}"),
+                None => "no grid fits".to_string(),
+            }
+        ),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -184,6 +300,50 @@ mod tests {
         assert_eq!(p.grids.len(), 3);
         assert!(p.finest_error.1 <= 0.04, "{p:?}");
         assert!(p.options.regrid && p.options.measure == Measure::AdhesiveForce);
+    }
+
+    #[test]
+    fn a_grid_larger_than_memory_is_refused_with_the_largest_that_fits() {
+        let m = Model::build(
+            &sphere(),
+            &ModelOptions {
+                nx: 4096,
+                ..ModelOptions::default()
+            },
+        )
+        .unwrap();
+        let available = 1_000_000_000;
+        let e = check_memory_within(&[&m], 1, "--grid", Some(available))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("--grid") && e.contains("4096×4096"), "{e}");
+        // 1024² needs 64 MiB + 320 B × 1024² = 403 MB; 2048² 1.4 GB.
+        assert!(
+            e.contains("the largest grid that fits is --grid 1024"),
+            "{e}"
+        );
+        assert!(e.contains("5.4 GB") && e.contains("1 GB"), "{e}");
+        assert!(check_memory_within(&[&m], 1, "--grid", Some(u64::MAX)).is_ok());
+        // Two at a time need twice as much.
+        let small = Model::build(
+            &sphere(),
+            &ModelOptions {
+                nx: 1024,
+                ..ModelOptions::default()
+            },
+        )
+        .unwrap();
+        let room = 700_000_000;
+        assert!(check_memory_within(&[&small, &small], 1, "--grid", Some(room)).is_ok());
+        let e = check_memory_within(&[&small, &small], 2, "--grid", Some(room)).unwrap_err();
+        assert!(e.to_string().contains("--jobs 2"), "{e}");
+    }
+
+    #[test]
+    fn slender_scenes_skip_grids_too_coarse_to_resolve_them() {
+        let s = Scene::from_ratio(50.0, 1.0, 1.0, 1.0).unwrap();
+        let p = for_accuracy(&s, 0.05, &ModelOptions::default()).unwrap();
+        assert!(p.grids[0] >= 64, "{p:?}");
     }
 
     #[test]

@@ -1,21 +1,35 @@
 //! What the user described: the indenter's radii, the material and the adhesion, and the
 //! normalisation (SPEC §2) that every output uses. Knows nothing of grids or FFTs.
 
+use crate::text::compact;
 use std::f64::consts::PI;
 use thiserror::Error;
+
+/// Largest axis ratio R1/R2 accepted (dimensionless). The study goes to 50; beyond about
+/// 1000 the contact is a thin strip that no grid of [`crate::model::MAX_GRID`] columns
+/// resolves across its minor axis from the default c̄0.
+pub const MAX_RATIO: f64 = 1000.0;
+
+/// Smallest dimensional input accepted (R1, R2, E*, Δγ, in the user's units). With every
+/// input in [`MIN_INPUT`, `MAX_INPUT`] every scale of the problem (c_r, the approach scale,
+/// σ_c, forces) and its square stay far inside the range of f64.
+pub const MIN_INPUT: f64 = 1e-30;
+
+/// Largest dimensional input accepted (see [`MIN_INPUT`]).
+pub const MAX_INPUT: f64 = 1e30;
 
 /// An invalid scene parameter, named as the command-line flag that sets it.
 #[derive(Debug, Error, PartialEq)]
 pub enum SceneError {
     /// A parameter is outside its valid range.
-    #[error("{flag} = {value} is invalid: {expected}")]
+    #[error("{flag} = {} is invalid: {expected}", compact(*value))]
     Invalid {
         /// The flag that sets the parameter.
         flag: &'static str,
         /// The value given.
         value: f64,
         /// The valid range, in words.
-        expected: &'static str,
+        expected: String,
     },
 }
 
@@ -35,28 +49,37 @@ pub struct Scene {
     pub work_of_adhesion: f64,
 }
 
-fn check(
-    flag: &'static str,
-    value: f64,
-    ok: bool,
-    expected: &'static str,
-) -> Result<(), SceneError> {
+fn check(flag: &'static str, value: f64, ok: bool, expected: &str) -> Result<(), SceneError> {
     if ok && value.is_finite() {
         Ok(())
     } else {
         Err(SceneError::Invalid {
             flag,
             value,
-            expected,
+            expected: expected.to_string(),
         })
     }
+}
+
+/// Whether a dimensional input lies in [`MIN_INPUT`, `MAX_INPUT`].
+pub fn input_in_range(v: f64) -> bool {
+    (MIN_INPUT..=MAX_INPUT).contains(&v)
+}
+
+/// The valid range of a dimensional input, in words.
+fn input_range(what: &str) -> String {
+    format!(
+        "{what} in [{}, {}] (any consistent units; the normalised results do not depend on them)",
+        compact(MIN_INPUT),
+        compact(MAX_INPUT)
+    )
 }
 
 impl Scene {
     /// A scene from the two radii (length), E* (force/length²) and Δγ (force/length).
     pub fn new(r1: f64, r2: f64, e_star: f64, work_of_adhesion: f64) -> Result<Self, SceneError> {
-        check("--r2", r2, r2 > 0.0, "a positive finite radius")?;
-        check("--r1", r1, r1 > 0.0, "a positive finite radius")?;
+        check("--r2", r2, input_in_range(r2), &input_range("a radius"))?;
+        check("--r1", r1, input_in_range(r1), &input_range("a radius"))?;
         check(
             "--r1",
             r1,
@@ -64,16 +87,22 @@ impl Scene {
             "R1 must be ≥ R2 (x is the major axis)",
         )?;
         check(
+            "--r1",
+            r1,
+            r1 / r2 <= MAX_RATIO,
+            &format!("R1/R2 = {} must be ≤ {MAX_RATIO}", compact(r1 / r2)),
+        )?;
+        check(
             "--e-star",
             e_star,
-            e_star > 0.0,
-            "a positive finite modulus",
+            input_in_range(e_star),
+            &input_range("a modulus"),
         )?;
         check(
             "--work-of-adhesion",
             work_of_adhesion,
-            work_of_adhesion > 0.0,
-            "a positive finite energy per area",
+            input_in_range(work_of_adhesion),
+            &input_range("an energy per area"),
         )?;
         Ok(Scene {
             r1,
@@ -93,8 +122,8 @@ impl Scene {
         check(
             "--ratio",
             ratio,
-            ratio >= 1.0,
-            "R1/R2 must be a finite number ≥ 1",
+            (1.0..=MAX_RATIO).contains(&ratio),
+            &format!("R1/R2 must be in [1, {MAX_RATIO}]"),
         )?;
         Scene::new(ratio * r2, r2, e_star, work_of_adhesion)
     }
@@ -162,5 +191,28 @@ mod tests {
         assert!(e.to_string().contains("--work-of-adhesion"));
         let e = Scene::from_ratio(2.0, 0.0, 1.0, 1.0).unwrap_err();
         assert!(e.to_string().contains("--r2"));
+    }
+
+    #[test]
+    fn inputs_are_bounded_and_echoed_short() {
+        for (e, flag) in [
+            (Scene::from_ratio(1e8, 1.0, 1.0, 1.0), "--ratio"),
+            (Scene::from_ratio(2.0, 1.0, 1e300, 1.0), "--e-star"),
+            (Scene::from_ratio(2.0, 1.0, 1e-300, 1.0), "--e-star"),
+            (
+                Scene::from_ratio(2.0, 1.0, 1.0, 1e-300),
+                "--work-of-adhesion",
+            ),
+            (Scene::new(2e3, 1.0, 1.0, 1.0), "--r1"),
+        ] {
+            let e = e.unwrap_err().to_string();
+            assert!(e.contains(flag), "{e}");
+            assert!(e.len() < 200, "{e}");
+        }
+        let e = Scene::from_ratio(2.0, 1.0, 1e300, 1.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("--e-star = 1e300 is invalid"), "{e}");
+        assert!(Scene::from_ratio(MAX_RATIO, 1.0, MAX_INPUT, MIN_INPUT).is_ok());
     }
 }

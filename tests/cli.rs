@@ -75,7 +75,13 @@ fn a_run_that_fails_midway_leaves_only_an_incomplete_file() {
         !dir.path().join("s.csv").exists(),
         "a failed run must not look complete"
     );
-    assert!(dir.path().join("s.incomplete.csv").exists());
+    // The partial states carry a name unique to the run: s.incomplete-<pid>.csv.
+    let partial: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("s.incomplete-") && n.ends_with(".csv"))
+        .collect();
+    assert_eq!(partial.len(), 1, "{partial:?}");
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
     assert_eq!(summary["complete"], false);

@@ -145,7 +145,12 @@ fn crossed_cylinders_give_forces_in_newtons_beside_jg() {
     // θ = 50°: R1/R2 = cot²(25°).
     let cot = 1.0 / 25f64.to_radians().tan();
     assert!((rows[1][col("ratio")] / (cot * cot) - 1.0).abs() < 1e-9);
-    assert!(dir.path().join("cr/crossed.svg").exists());
+    // The chart's title gives the inputs with their units (issue 12: it had none).
+    let svg = std::fs::read_to_string(dir.path().join("cr/crossed.svg")).unwrap();
+    assert!(
+        svg.contains("R = 0.01 m, E = 1e6 Pa, ν = 0.5, Δγ = 0.05 J/m²"),
+        "title without units"
+    );
 
     let bad = jkrbem(&["crossed", "--nu", "0.7", "--out", "x"], dir.path());
     assert_eq!(bad.status.code(), Some(2));

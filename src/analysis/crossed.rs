@@ -1,7 +1,12 @@
 //! Two identical elastic cylinders crossed at an angle, as the equivalent ellipsoid scene
 //! (SPEC §1, §8.7).
 
-use crate::scene::{Scene, SceneError};
+use crate::scene::{self, Scene, SceneError, MAX_RATIO};
+use crate::text::compact;
+
+/// Smallest Poisson's ratio accepted (dimensionless): ν → −1 makes E* = E/(2(1 − ν²))
+/// unbounded.
+pub const MIN_POISSON: f64 = -0.99;
 
 /// Two identical elastic cylinders of radius R whose axes cross at angle θ, with JKR
 /// adhesion between them. Units as for [`Scene`]: with R in m, E in Pa and Δγ in J/m²,
@@ -20,47 +25,71 @@ pub struct CrossedCylinders {
     pub work_of_adhesion: f64,
 }
 
-fn invalid(flag: &'static str, value: f64, expected: &'static str) -> SceneError {
+fn invalid(flag: &'static str, value: f64, expected: impl ToString) -> SceneError {
     SceneError::Invalid {
         flag,
         value,
-        expected,
+        expected: expected.to_string(),
     }
+}
+
+/// Smallest crossing angle accepted (degrees): the one at which R1/R2 = cot²(θ/2) reaches
+/// [`MAX_RATIO`], θ = 2 arctan(1/√MAX_RATIO) ≈ 3.62°.
+pub fn min_angle_deg() -> f64 {
+    2.0 * MAX_RATIO.recip().sqrt().atan().to_degrees()
+}
+
+/// The range of crossing angles, in words.
+fn angle_range() -> String {
+    format!(
+        "a crossing angle in degrees in [{}, 90] (90 is sphere-like; smaller angles than that \
+         give R1/R2 > {MAX_RATIO})",
+        compact_angle(min_angle_deg())
+    )
+}
+
+/// An angle rounded up to 0.01° for messages.
+fn compact_angle(a: f64) -> String {
+    compact((a * 100.0).ceil() / 100.0)
 }
 
 impl CrossedCylinders {
     /// Checks every parameter, naming the offending one as `--radius`, `--angle`, `--young`,
     /// `--poisson` or `--work-of-adhesion`.
     pub fn validate(&self) -> Result<(), SceneError> {
-        let positive = |flag, v: f64, what| {
-            if v.is_finite() && v > 0.0 {
+        let bounded = |flag, v: f64, what: &str| {
+            if scene::input_in_range(v) {
                 Ok(())
             } else {
-                Err(invalid(flag, v, what))
+                Err(invalid(
+                    flag,
+                    v,
+                    format!(
+                        "{what} in [{}, {}] (any consistent units)",
+                        compact(scene::MIN_INPUT),
+                        compact(scene::MAX_INPUT)
+                    ),
+                ))
             }
         };
-        positive("--radius", self.radius, "a positive finite radius")?;
+        bounded("--radius", self.radius, "a radius")?;
         let t = self.angle_deg;
-        if !(t > 0.0 && t <= 90.0) {
-            return Err(invalid(
-                "--angle",
-                t,
-                "a crossing angle in degrees in (0, 90] (90 is sphere-like)",
-            ));
+        if !(t >= min_angle_deg() && t <= 90.0) {
+            return Err(invalid("--angle", t, angle_range()));
         }
-        positive("--young", self.young, "a positive finite Young's modulus")?;
+        bounded("--young", self.young, "a Young's modulus")?;
         let nu = self.poisson;
-        if !(nu > -1.0 && nu <= 0.5) {
+        if !((MIN_POISSON..=0.5).contains(&nu)) {
             return Err(invalid(
                 "--poisson",
                 nu,
-                "a Poisson's ratio in (−1, 0.5] (0.5 is incompressible)",
+                format!("a Poisson's ratio in [{MIN_POISSON}, 0.5] (0.5 is incompressible)"),
             ));
         }
-        positive(
+        bounded(
             "--work-of-adhesion",
             self.work_of_adhesion,
-            "a positive finite energy per area",
+            "an energy per area",
         )
     }
 
@@ -78,10 +107,30 @@ impl CrossedCylinders {
         Ok(self.young / (2.0 * (1.0 - self.poisson * self.poisson)))
     }
 
-    /// The equivalent rigid ellipsoid on an elastic half-space.
+    /// The equivalent rigid ellipsoid on an elastic half-space. An error names this pair's
+    /// parameters (`--radius`, `--young`, …), never the ellipsoid's (`--r1`, `--e-star`).
     pub fn scene(&self) -> Result<Scene, SceneError> {
         let (r1, r2) = self.radii()?;
-        Scene::new(r1, r2, self.e_star()?, self.work_of_adhesion)
+        Scene::new(r1, r2, self.e_star()?, self.work_of_adhesion).map_err(|e| {
+            let SceneError::Invalid {
+                flag,
+                value,
+                expected,
+            } = e;
+            let (flag, value) = match flag {
+                "--e-star" => ("--young", self.young),
+                "--work-of-adhesion" => (flag, value),
+                _ => ("--radius", self.radius),
+            };
+            invalid(
+                flag,
+                value,
+                format!(
+                    "{expected} (for the equivalent ellipsoid at {}°)",
+                    self.angle_deg
+                ),
+            )
+        })
     }
 
     /// The force scale 3π Re Δγ (force; N for SI inputs) with Re = R/sin θ: F = F̄ · scale.
@@ -238,5 +287,26 @@ mod tests {
         .scene()
         .is_ok());
         assert!(ratio_for_angle(0.0).is_err() && angle_for_ratio(0.5).is_err());
+    }
+
+    #[test]
+    fn a_tiny_angle_is_blamed_on_the_angle_not_on_a_radius() {
+        // Before: θ = 1e-10° gave R1 = inf and the message named --r1, a flag `crossed` lacks.
+        for angle in [1e-10, 1.0, 3.6] {
+            let e = pair(angle).scene().unwrap_err().to_string();
+            assert!(e.starts_with("--angle = "), "{e}");
+            assert!(!e.contains("--r1") && !e.contains("inf"), "{e}");
+        }
+        assert!(pair(3.63).scene().is_ok());
+        // A modulus out of range after the pair's E* = E/(2(1 − ν²)) names --young.
+        let e = CrossedCylinders {
+            young: 1e30,
+            poisson: -0.99,
+            ..pair(45.0)
+        }
+        .scene()
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("--young"), "{e}");
     }
 }

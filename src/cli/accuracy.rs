@@ -1,9 +1,10 @@
 //! `jkrbem accuracy`: one scene on several grids and backends; the error of the adhesive force
 //! against the wall time it cost, as CSV and a log–log chart.
 
+use super::outputs::{named, write_error, Outputs};
 use super::simulate::BackendChoice;
-use super::sweep::run_all;
-use super::{failed, input, CliError};
+use super::sweep::{run_all, run_files};
+use super::{count_in, failed, input, no_repeats, CliError};
 use jkrbem::analysis::extrapolate::extrapolate_first_order;
 use jkrbem::model::{Measure, Model, ModelOptions};
 use jkrbem::output::chart::{LogLogChart, Series};
@@ -15,19 +16,20 @@ use std::path::PathBuf;
 /// Arguments of `jkrbem accuracy`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Axis ratio R1/R2 (≥ 1; 1 is the sphere, whose exact answer is JKR's 1/2).
+    /// Axis ratio R1/R2, in [1, 1000] (1 is the sphere, whose exact answer is JKR's 1/2).
     #[arg(long, default_value_t = 1.0)]
     pub ratio: f64,
-    /// Grids Nx, coarse to fine (powers of two ≥ 16).
+    /// Grids Nx, coarse to fine: 2 to 12 increasing powers of two from 16 to 65536.
     #[arg(long, value_delimiter = ',', default_value = "32,64,128")]
     pub grids: Vec<usize>,
-    /// Backends, comma-separated: `cpu` (f64) and/or `gpu` (f32). The precision follows the
-    /// backend.
+    /// Backends, comma-separated, none repeated: `cpu` (f64) and/or `gpu` (f32). The
+    /// precision follows the backend.
     #[arg(long, value_delimiter = ',', default_value = "cpu")]
     pub backends: Vec<String>,
     /// Ways of running each grid, comma-separated: `plain` (the whole curve on a fixed grid),
     /// `measure` (--measure adhesive-force: stop once the minimum is confirmed) and `regrid`
-    /// (--measure adhesive-force --regrid: also refine Δx as the contact shrinks).
+    /// (--measure adhesive-force --regrid: also refine Δx as the contact shrinks). None
+    /// repeated.
     #[arg(long, value_delimiter = ',', default_value = "plain,measure,regrid")]
     pub variants: Vec<String>,
     /// Output folder: states per run, accuracy.csv and accuracy.svg.
@@ -86,6 +88,9 @@ impl Variant {
     }
 }
 
+/// The header of accuracy.csv, one column per [`Row`] field.
+const ROW_HEADER: &str = "variant,backend,precision,grid,n_d,f_ad_bar,error,wall_s,cg_iterations";
+
 /// One run of the chart.
 #[derive(Debug, Clone, Serialize)]
 struct Row {
@@ -103,11 +108,16 @@ struct Row {
 
 /// Run `jkrbem accuracy`.
 pub fn run(args: Args) -> Result<(), CliError> {
-    if args.grids.len() < 2 || args.grids.windows(2).any(|w| w[1] <= w[0]) {
+    count_in("--grids", args.grids.len(), 2, 12)?;
+    if args.grids.windows(2).any(|w| w[1] <= w[0]) {
         return Err(input(
-            "--grids: give at least two increasing grids, e.g. 32,64,128",
+            "--grids: give 2 to 12 increasing grids, e.g. 32,64,128",
         ));
     }
+    let names: Vec<String> = args.backends.iter().map(|b| b.trim().to_string()).collect();
+    no_repeats("--backends", &names)?;
+    let variant_names: Vec<String> = args.variants.iter().map(|v| v.trim().to_string()).collect();
+    no_repeats("--variants", &variant_names)?;
     let mut choices = Vec::new();
     for b in &args.backends {
         choices.push(match b.trim() {
@@ -131,22 +141,41 @@ pub fn run(args: Args) -> Result<(), CliError> {
         ));
     }
     let scene = Scene::from_ratio(args.ratio, 1.0, 1.0, 1.0).map_err(input)?;
-    let mut per_backend: Vec<(String, Variant, Vec<Summary>)> = Vec::new();
-    let mut failures = Vec::new();
-    for (name, choice) in args.backends.iter().zip(&choices) {
+    // Every model is built, and every output claimed, before any work.
+    let mut plan = Vec::new();
+    for (name, choice) in names.iter().zip(&choices) {
         for &variant in &variants {
             let mut work = Vec::new();
             for &nx in &args.grids {
                 let model = Model::build(&scene, &variant.options(nx))
                     .map_err(|e| input(format!("--grids {nx}: {e}")))?;
-                let file = format!("{}-{}-n{nx}.csv", name.trim(), variant.name());
+                let file = format!("{name}-{}-n{nx}.csv", variant.name());
                 work.push((model, args.out.join(file)));
             }
-            let (mut summaries, f) = run_all(work, 1, *choice);
-            summaries.sort_by_key(|s| s.nx);
-            failures.extend(f);
-            per_backend.push((name.trim().to_string(), variant, summaries));
+            plan.push((name.clone(), *choice, variant, work));
         }
+    }
+    let refs: Vec<&Model> = plan
+        .iter()
+        .flat_map(|p| p.3.iter().map(|(m, _)| m))
+        .collect();
+    jkrbem::plan::check_memory(&refs, 1, "--grids").map_err(input)?;
+    let csv_path = args.out.join("accuracy.csv");
+    let svg_path = args.out.join("accuracy.svg");
+    let mut targets: Vec<PathBuf> = plan
+        .iter()
+        .flat_map(|p| p.3.iter().flat_map(|(_, out)| run_files(out)))
+        .collect();
+    targets.extend([csv_path.clone(), svg_path.clone()]);
+    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    let mut per_backend: Vec<(String, Variant, Vec<Summary>)> = Vec::new();
+    let mut failures = Vec::new();
+    for (name, choice, variant, work) in plan {
+        let results = run_all(work, 1, choice);
+        failures.extend(results.iter().filter_map(|r| r.error.clone()));
+        let mut summaries: Vec<Summary> = results.into_iter().filter_map(|r| r.summary).collect();
+        summaries.sort_by_key(|s| s.nx);
+        per_backend.push((name, variant, summaries));
     }
     // The reference: JKR's exact 1/2 for the sphere, else the first backend extrapolated.
     let (reference, reference_text) = if args.ratio == 1.0 {
@@ -177,7 +206,6 @@ pub fn run(args: Args) -> Result<(), CliError> {
         "|relative error of |min F̄||",
     );
     chart.x_data_ticks = false;
-    chart.legend = plotters::prelude::SeriesLabelPosition::UpperRight;
     for (i, (name, variant, summaries)) in per_backend.iter().enumerate() {
         let mut points = Vec::new();
         for s in summaries {
@@ -246,16 +274,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
             });
         }
     }
-    std::fs::create_dir_all(&args.out).map_err(failed)?;
-    let csv_path = args.out.join("accuracy.csv");
-    let mut w = csv::Writer::from_path(&csv_path).map_err(failed)?;
-    for r in &rows {
-        w.serialize(r).map_err(failed)?;
-    }
-    w.flush().map_err(failed)?;
-    chart
-        .write_svg(&args.out.join("accuracy.svg"))
-        .map_err(failed)?;
+    jkrbem::output::file::write_csv(&csv_path, Some(ROW_HEADER), &rows)
+        .map_err(write_error("--out"))?;
+    chart.write_svg(&svg_path).map_err(write_error("--out"))?;
     println!("reference: {reference_text}");
     println!("variant  backend  grid                         |min F̄|   error      wall (s)");
     for r in &rows {
@@ -270,11 +291,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             r.wall_s
         );
     }
-    println!(
-        "written {} and {}",
-        csv_path.display(),
-        args.out.join("accuracy.svg").display()
-    );
+    println!("written {} and {}", csv_path.display(), svg_path.display());
     if failures.is_empty() {
         Ok(())
     } else {

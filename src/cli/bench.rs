@@ -1,6 +1,7 @@
 //! `jkrbem bench`: time the convolution, one CG iteration and whole pull-offs per backend and
 //! grid; print a table and GPU/CPU ratios, write a CSV and an SVG chart.
 
+use super::outputs::{named, write_error, Outputs};
 use super::simulate::backend_error;
 use super::{failed, input, CliError};
 use clap::ValueEnum;
@@ -154,6 +155,16 @@ pub fn run(args: Args) -> Result<(), CliError> {
             Model::build(&scene, &opt).map_err(input)
         })
         .collect::<Result<Vec<_>, _>>()?;
+    let refs: Vec<&Model> = models.iter().collect();
+    jkrbem::plan::check_memory(&refs, 1, "--grids").map_err(input)?;
+    let csv = args.out.join("bench.csv");
+    let svg = args.out.join("bench.svg");
+    let profile_csv = args.out.join("profile.csv");
+    let mut targets = vec![csv.clone(), svg.clone()];
+    if args.profile {
+        targets.push(profile_csv.clone());
+    }
+    let _claimed = Outputs::claim(&named("--out", &targets))?;
 
     // Open every backend on the first grid before any work, so a missing one is refused
     // up front; the default takes the GPU only if it opens.
@@ -237,13 +248,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
 
     print_table(&rows, &measured);
     print_ratios(&rows);
-    let csv = args.out.join("bench.csv");
-    let svg = args.out.join("bench.svg");
-    write_csv(&csv, &rows).map_err(failed)?;
+    write_csv(&csv, &rows).map_err(write_error("--out"))?;
     if args.profile {
-        let path = args.out.join("profile.csv");
-        profile::write_csv(&path, &profiles).map_err(failed)?;
-        println!("written: {}", path.display());
+        profile::write_csv(&profile_csv, &profiles).map_err(write_error("--out"))?;
+        println!("written: {}", profile_csv.display());
     }
     let title = format!(
         "jkrbem bench: R1/R2 = {}, medians of {} samples",
@@ -252,7 +260,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     );
     timing_chart(&rows, &title)
         .write_svg(&svg)
-        .map_err(failed)?;
+        .map_err(write_error("--out"))?;
     println!("written: {} and {}", csv.display(), svg.display());
     if problems.is_empty() {
         Ok(())

@@ -1,8 +1,9 @@
 //! `jkrbem simulate --extrapolate`: one scene on several grids, its adhesive force (and c̄, d̄
 //! at the minimum) extrapolated to Δx → 0.
 
-use super::simulate::{open_backend, pulloff_to_file, Args, GPU_CHECK_EVERY};
-use super::{failed, input, CliError};
+use super::outputs::{write_error, Outputs};
+use super::simulate::{check_precision, open_backend, pulloff_to_file, Args, GPU_CHECK_EVERY};
+use super::{count_in, failed, input, CliError};
 use jkrbem::analysis::extrapolate::{extrapolate_first_order, Extrapolated};
 use jkrbem::backend::cpu::GridSetup;
 use jkrbem::backend::select::AnyBackend;
@@ -31,9 +32,10 @@ struct Report {
 /// Run the extrapolation.
 pub fn run(args: &Args) -> Result<(), CliError> {
     let grids = &args.extrapolate_grids;
-    if grids.len() < 2 || grids.windows(2).any(|w| w[1] <= w[0]) {
+    count_in("--extrapolate-grids", grids.len(), 2, 8)?;
+    if grids.windows(2).any(|w| w[1] <= w[0]) {
         return Err(input(
-            "--extrapolate-grids: give at least two increasing grids, e.g. 64,128,256",
+            "--extrapolate-grids: give 2 to 8 increasing grids, e.g. 64,128,256",
         ));
     }
     let scene = args.scene()?;
@@ -48,14 +50,33 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             .map_err(|e| input(format!("--extrapolate-grids {nx}: {e}")))?;
         models.push(m);
     }
+    // The grids run one after another: the largest must fit.
+    let refs: Vec<&Model> = models.iter().collect();
+    jkrbem::plan::check_memory(&refs, 1, "--extrapolate-grids").map_err(input)?;
     let stem = args
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("jkrbem-out/extrapolate-r{}.csv", scene.ratio())));
+    let name = stem
+        .file_stem()
+        .map_or("states".into(), |s| s.to_string_lossy().into_owned());
+    let outs: Vec<PathBuf> = models
+        .iter()
+        .map(|m| stem.with_file_name(format!("{name}-n{}.csv", m.nx)))
+        .collect();
+    let mut targets: Vec<(PathBuf, String)> = outs
+        .iter()
+        .map(|p| (p.clone(), "--out".to_string()))
+        .collect();
+    if let Some(p) = &args.summary {
+        targets.push((p.clone(), "--summary".to_string()));
+    }
+    let _claimed = Outputs::claim(&targets)?;
     let start = Instant::now();
     let mut summaries: Vec<Summary> = Vec::new();
-    for mut model in models {
+    for (mut model, out) in models.into_iter().zip(outs) {
         let opened = open_backend(args, &GridSetup::for_model(&model))?;
+        check_precision(&opened.backend, &model)?;
         eprintln!(
             "jkrbem: R1/R2 = {}, grid {}×{}{}, backend {}",
             scene.ratio(),
@@ -68,13 +89,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         if matches!(any, AnyBackend::Gpu(_)) {
             model.cg.check_every = args.cg_check_every.unwrap_or(GPU_CHECK_EVERY);
         }
-        let name = stem
-            .file_stem()
-            .map_or("states".into(), |s| s.to_string_lossy().into_owned());
-        let out = stem.with_file_name(format!("{name}-n{}.csv", model.nx));
         let (summary, outcome, path) = jkrbem::with_backend!(
             &mut any,
-            backend => pulloff_to_file(backend, &model, &out, None)
+            backend => pulloff_to_file(backend, &model, &out, "--out", None)
         )?;
         if let Some(e) = outcome.error {
             return Err(failed(format!(
@@ -82,6 +99,17 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                 model.nx,
                 model.ny,
                 path.display()
+            )));
+        }
+        if !summary.min_reached {
+            return Err(failed(format!(
+                "the {}×{} run did not reach the force minimum (lowest F̄ {}), so there is no \
+                 adhesive force to extrapolate; lower --final-d or leave it out",
+                model.nx,
+                model.ny,
+                summary
+                    .lowest_f_bar
+                    .map_or("—".into(), |f| jkrbem::text::fixed(f, 4))
             )));
         }
         println!(
@@ -145,11 +173,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     }
     println!("{:.1} s in all", report.wall_s);
     if let Some(p) = &args.summary {
-        let text = serde_json::to_string_pretty(&report).map_err(failed)?;
-        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(failed)?;
-        }
-        std::fs::write(p, text).map_err(failed)?;
+        let text = serde_json::to_string_pretty(&report).map_err(failed)? + "\n";
+        jkrbem::output::file::write_bytes(p, text.as_bytes()).map_err(write_error("--summary"))?;
     }
     Ok(())
 }

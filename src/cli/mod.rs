@@ -6,6 +6,7 @@ pub mod collect;
 pub mod crossed;
 pub mod devices;
 pub mod extrapolate;
+pub mod outputs;
 pub mod reproduce;
 pub mod simulate;
 pub mod sweep;
@@ -49,4 +50,31 @@ pub fn input(e: impl fmt::Display) -> CliError {
 /// A failed run, from any layer's error.
 pub fn failed(e: impl fmt::Display) -> CliError {
     CliError::Run(e.to_string())
+}
+
+/// Most pull-offs a command runs at the same time (`--jobs`).
+pub const MAX_JOBS: usize = 256;
+
+/// Refuse a list flag with a repeated value, naming the flag and the value.
+pub fn no_repeats<T: PartialEq + fmt::Display>(flag: &str, values: &[T]) -> Result<(), CliError> {
+    for (i, v) in values.iter().enumerate() {
+        if values[..i].contains(v) {
+            return Err(input(format!(
+                "{flag}: {v} is given more than once; each value may appear only once \
+                 (a repeat would run the same work twice over the same files)"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Refuse a list flag with fewer than `min` or more than `max` values.
+pub fn count_in(flag: &str, len: usize, min: usize, max: usize) -> Result<(), CliError> {
+    if (min..=max).contains(&len) {
+        Ok(())
+    } else {
+        Err(input(format!(
+            "{flag}: {len} values given; give {min} to {max}"
+        )))
+    }
 }

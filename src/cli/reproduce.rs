@@ -1,9 +1,10 @@
 //! `jkrbem reproduce`: the whole study of SPEC §8 from one command — the sweep over R1/R2, the
 //! fits, the crossed cylinders — with every chart as SVG and an index.html that shows them.
 
+use super::outputs::{named, write_error, Outputs};
 use super::simulate::BackendChoice;
-use super::sweep::{contours_path, run_all, states_path};
-use super::{crossed, failed, input, CliError};
+use super::sweep::{contours_path, run_all, run_files, states_path, RunResult};
+use super::{crossed, failed, input, CliError, MAX_JOBS};
 use jkrbem::analysis::capture::ContourRow;
 use jkrbem::model::{Model, ModelOptions};
 use jkrbem::output::line_chart::LineChart;
@@ -39,10 +40,28 @@ pub struct Args {
     /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.
     #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
     pub backend: BackendChoice,
-    /// Pull-offs run at the same time.
-    #[arg(long, default_value_t = 1)]
+    /// Pull-offs run at the same time (1 to 256).
+    #[arg(long, default_value_t = 1, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_JOBS as u64))]
     pub jobs: usize,
 }
+
+/// The files `reproduce` writes in its --out folder itself (beside sweep/ and crossed/).
+const FILES: [&str; 14] = [
+    "fits.csv",
+    "coefficient_laws.csv",
+    "pulloff_curves.svg",
+    "axis_ratio.svg",
+    "d_of_c.svg",
+    "f_of_c.svg",
+    "f_of_d.svg",
+    "coefficients.svg",
+    "force_vs_ratio.svg",
+    "contours_r1.svg",
+    "contours_r5.svg",
+    "contours_r25.svg",
+    "crossed.svg",
+    "index.html",
+];
 
 /// One chart of the report: file name, caption.
 struct Figure {
@@ -52,9 +71,6 @@ struct Figure {
 
 /// Run `jkrbem reproduce`.
 pub fn run(args: Args) -> Result<(), CliError> {
-    if args.jobs == 0 {
-        return Err(input("--jobs must be at least 1"));
-    }
     let start = Instant::now();
     let grids = if args.quick { QUICK_GRIDS } else { FULL_GRIDS };
     let sweep_dir = args.out.join("sweep");
@@ -71,16 +87,40 @@ pub fn run(args: Args) -> Result<(), CliError> {
         .map_err(input)?;
         work.push((model, states_path(&sweep_dir, ratio, grid)));
     }
+    let refs: Vec<&Model> = work.iter().map(|(m, _)| m).collect();
+    jkrbem::plan::check_memory(&refs, args.jobs, "--quick").map_err(|e| {
+        let why = match e {
+            jkrbem::model::ModelError::Invalid { expected, .. } => expected,
+            other => other.to_string(),
+        };
+        input(format!(
+            "the study's grids do not fit in this machine's memory{}: {why}",
+            if args.quick {
+                ""
+            } else {
+                " (use --quick for grids of 64 to 256, or a machine with more memory)"
+            }
+        ))
+    })?;
+    // The files of this command (crossed/ claims its own when it runs).
+    let mut targets: Vec<PathBuf> = work.iter().flat_map(|(_, out)| run_files(out)).collect();
+    targets.push(sweep_csv::sweep_csv_path(&sweep_dir));
+    for file in FILES {
+        targets.push(args.out.join(file));
+    }
+    let _claimed = Outputs::claim(&named("--out", &targets))?;
     eprintln!(
         "jkrbem reproduce: {} ratios on grids {:?}{}",
         RATIOS.len(),
         grids,
         if args.quick { " (quick)" } else { "" }
     );
-    let (summaries, mut failures) = run_all(work, args.jobs, args.backend);
-    let mut rows: Vec<SweepRow> = summaries.iter().map(SweepRow::from_summary).collect();
+    let results = run_all(work, args.jobs, args.backend);
+    let mut failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
+    let mut rows: Vec<SweepRow> = results.iter().map(RunResult::row).collect();
     rows.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
-    sweep_csv::write_rows(&sweep_csv::sweep_csv_path(&sweep_dir, None), &rows).map_err(failed)?;
+    sweep_csv::write_rows(&sweep_csv::sweep_csv_path(&sweep_dir), &rows)
+        .map_err(write_error("--out"))?;
     let backend = rows.first().map_or("?".to_string(), |r| r.backend.clone());
     let sweep_wall: f64 = rows.iter().map(|r| r.wall_s).sum();
     let grid_text = rows
@@ -120,7 +160,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
     };
     let mut figures = Vec::new();
     let mut chart = |file: &str, chart: LineChart, caption: String| -> Result<(), CliError> {
-        chart.write_svg(&args.out.join(file)).map_err(failed)?;
+        chart
+            .write_svg(&args.out.join(file))
+            .map_err(write_error("--out"))?;
         figures.push(Figure {
             file: file.into(),
             caption,
@@ -129,7 +171,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     };
     chart(
         "pulloff_curves.svg",
-        pulloff_curves_chart(&sweep_dir, &rows).map_err(failed)?,
+        pulloff_curves_chart(&sweep_dir, &rows).map_err(write_error("--out"))?,
         format!("§8.1 Pull-off curves F̄(d̄) beside JKR (sphere) and JG. {what}."),
     )?;
     let (r2, _) = pick(&[2.0, 5.0, 10.0, 25.0]);
@@ -158,7 +200,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let law_text = laws
         .iter()
         .map(|(n, _, l)| match l {
-            Some(l) => format!("{n} = {:.3}·(R1/R2)^{:.3} + {:.3}", l.k1, l.k2, l.k3),
+            Some(l) => format!("{n} = {}", jkrbem::text::power_law(l.k1, l.k2, l.k3)),
             None => format!("{n}: no fit"),
         })
         .collect::<Vec<_>>()
@@ -237,7 +279,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
     let crossed_svg = crossed_dir.join("crossed.svg");
     if crossed_svg.exists() {
-        std::fs::copy(&crossed_svg, args.out.join("crossed.svg")).map_err(failed)?;
+        let svg = std::fs::read(&crossed_svg)
+            .map_err(|e| failed(format!("cannot read {}: {e}", crossed_svg.display())))?;
+        jkrbem::output::file::write_bytes(&args.out.join("crossed.svg"), &svg)
+            .map_err(write_error("--out"))?;
         figures.push(Figure {
             file: "crossed.svg".into(),
             caption: format!(
@@ -307,7 +352,6 @@ fn write_fit_tables(
     dir: &Path,
     fits: &[jkrbem::output::study_charts::BranchFits],
 ) -> Result<(), CliError> {
-    std::fs::create_dir_all(dir).map_err(failed)?;
     write_csv(
         &dir.join("fits.csv"),
         fits.iter().map(|f| {
@@ -345,16 +389,12 @@ fn write_fit_tables(
     )
 }
 
-/// Write serialisable rows as a CSV file.
+/// Write serialisable rows as a CSV file, atomically.
 fn write_csv<T: serde::Serialize>(
     path: &Path,
     rows: impl Iterator<Item = T>,
 ) -> Result<(), CliError> {
-    let mut w = csv::Writer::from_path(path).map_err(failed)?;
-    for r in rows {
-        w.serialize(r).map_err(failed)?;
-    }
-    w.flush().map_err(failed)
+    jkrbem::output::file::write_csv(path, None, rows).map_err(write_error("--out"))
 }
 
 /// index.html: every chart with its caption, and the sweep's table.
@@ -411,6 +451,6 @@ fn write_index(
         );
     }
     html.push_str("</body></html>\n");
-    let path = dir.join("index.html");
-    std::fs::write(&path, html).map_err(|e| failed(format!("{}: {e}", path.display())))
+    jkrbem::output::file::write_bytes(&dir.join("index.html"), html.as_bytes())
+        .map_err(write_error("--out"))
 }

@@ -1,5 +1,6 @@
 //! `jkrbem simulate`: one pull-off of one scene.
 
+use super::outputs::{write_error, Outputs};
 use super::{failed, input, CliError};
 use clap::ValueEnum;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -11,7 +12,7 @@ use jkrbem::model::{Measure, Model, ModelOptions, Stepping};
 use jkrbem::output::states_csv::StateWriter;
 use jkrbem::output::summary::Summary;
 use jkrbem::scene::Scene;
-use jkrbem::solver;
+use jkrbem::solver::{self, Phase, State};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -86,33 +87,39 @@ pub enum ConvolutionChoice {
 /// Arguments of `jkrbem simulate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Axis ratio R1/R2 of the ellipsoid (≥ 1; 1 is a sphere). Ignored if --r1 is given.
+    /// Axis ratio R1/R2 of the ellipsoid, in [1, 1000] (1 is a sphere). Ignored if --r1 is
+    /// given.
     #[arg(long, default_value_t = 5.0)]
     pub ratio: f64,
-    /// Radius of curvature along x, the major axis (length L). Overrides --ratio.
+    /// Radius of curvature along x, the major axis (length L, in [1e-30, 1e30], R2 ≤ R1 ≤
+    /// 1000 R2). Overrides --ratio.
     #[arg(long)]
     pub r1: Option<f64>,
-    /// Radius of curvature along y, the minor axis (length L).
+    /// Radius of curvature along y, the minor axis (length L, in [1e-30, 1e30]).
     #[arg(long, default_value_t = 1.0)]
     pub r2: f64,
-    /// Effective modulus E* = E/(1−ν²) of the half-space (force/length², F/L²).
+    /// Effective modulus E* = E/(1−ν²) of the half-space (force/length², F/L², in
+    /// [1e-30, 1e30]).
     #[arg(long, default_value_t = 1.0)]
     pub e_star: f64,
-    /// Work of adhesion Δγ (energy per area, F/L).
+    /// Work of adhesion Δγ (energy per area, F/L, in [1e-30, 1e30]).
     #[arg(long, default_value_t = 1.0)]
     pub work_of_adhesion: f64,
-    /// Elements along x, Nx (a power of two ≥ 16). The domain is the initial contact plus the
-    /// margin, so Δx = 2·a0·(1 + margin)/Nx.
+    /// Elements along x, Nx (a power of two from 16 to 65536, within the machine's memory).
+    /// The domain is the initial contact plus the margin, so Δx = 2·a0·(1 + margin)/Nx. A grid
+    /// that leaves fewer than 8 elements across the first contact's minor axis (or an
+    /// expected 4 at the force minimum) is refused with the grid that resolves it.
     #[arg(long, default_value_t = 256)]
     pub grid: usize,
-    /// Elements along y, Ny (a power of two ≥ 16); by default fitted to the contact's aspect.
+    /// Elements along y, Ny (a power of two from 16 to 65536); by default fitted to the
+    /// contact's aspect.
     #[arg(long)]
     pub grid_y: Option<usize>,
-    /// Mean radius c̄0 of the initial non-adhesive contact (in c_r): the JKR branch is traced
-    /// for all c̄ ≤ c̄0.
+    /// Mean radius c̄0 of the initial non-adhesive contact (in c_r, in [1, 20]): the JKR
+    /// branch is traced for all c̄ ≤ c̄0.
     #[arg(long, default_value_t = 1.5)]
     pub start_radius: f64,
-    /// Load steps from the initial approach d̄0 to the expected end of contact.
+    /// Load steps from the initial approach d̄0 to the expected end of contact (1 to 100000).
     #[arg(long, default_value_t = 200)]
     pub steps: usize,
     /// How load steps are taken: `adaptive` refines each step to every detachment onset in it
@@ -128,16 +135,18 @@ pub struct Args {
     /// the contact carried over and re-equilibrated).
     #[arg(long)]
     pub regrid: bool,
-    /// Stop at this approach d̄ if the contact has not vanished by then (dimensionless).
+    /// Stop at this approach d̄ if the contact has not vanished by then (dimensionless, in
+    /// [−1000, d̄0)). A run stopped before the force minimum says so and reports no adhesive
+    /// force (`min_reached: false`).
     #[arg(long, allow_hyphen_values = true)]
     pub final_d: Option<f64>,
-    /// Free margin around the initial contact, relative to its half-axes.
+    /// Free margin around the initial contact, relative to its half-axes (in [0, 10]).
     #[arg(long, default_value_t = 0.08)]
     pub margin: f64,
     /// Angle between the ellipsoid's major axis and the grid's x axis (degrees). The domain
     /// is the box around the turned initial contact (square at 45°), and ā, b̄ are measured
     /// along the turned axes. Use it to check results where crack fronts run along grid
-    /// lines, at the ends of a slender ellipse's axes (e.g. 45).
+    /// lines, at the ends of a slender ellipse's axes (e.g. 45). In [−360, 360].
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub mesh_angle: f64,
     /// CG stops when its relative residual ‖(d − h − K p)_C‖/‖(d − h)_C‖ reaches this
@@ -146,7 +155,7 @@ pub struct Args {
     /// safer mode; f32 (the GPU backend) cannot bring the true residual much below 1e-7.
     #[arg(long, default_value_t = 1e-8)]
     pub cg_tolerance: f64,
-    /// CG iteration limit per solve (its safer retry gets as many again).
+    /// CG iteration limit per solve, 1 to 10000000 (its safer retry gets as many again).
     #[arg(long, default_value_t = 5000)]
     pub cg_max_iterations: usize,
     /// Relative residual (dimensionless) up to which a CG solve that missed --cg-tolerance
@@ -154,9 +163,9 @@ pub struct Args {
     /// of each state in the cg_residual column. Above it the run stops with an error.
     #[arg(long, default_value_t = 1e-5)]
     pub cg_accept: f64,
-    /// Read CG's residual back to the host every this many iterations [default: 1 on the CPU,
-    /// 2 on the GPU, where each readback waits for the device].
-    #[arg(long)]
+    /// Read CG's residual back to the host every this many iterations, 1 to 100000 [default:
+    /// 1 on the CPU, 2 on the GPU, where each readback waits for the device].
+    #[arg(long, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=100_000))]
     pub cg_check_every: Option<usize>,
     /// CG preconditioner.
     #[arg(long, value_enum, default_value_t = PreconditionerChoice::Stiffness)]
@@ -169,11 +178,14 @@ pub struct Args {
     /// its periodic images a margin away: only to see the error padding removes; CPU only).
     #[arg(long, value_enum, default_value_t = ConvolutionChoice::Padded)]
     pub convolution: ConvolutionChoice,
-    /// States CSV [default: jkrbem-out/simulate-r<ratio>-n<grid>.csv]. While running it is named
-    /// <stem>.incomplete.csv; a run that fails keeps that name.
+    /// States CSV [default: jkrbem-out/simulate-r<ratio>-n<grid>.csv]. While running, the
+    /// states go to <stem>.incomplete-<pid>.csv beside it (unique to the run); only a complete
+    /// run renames that to this name, and an existing file here is untouched until then. A
+    /// run that fails keeps the partial name. A second run on the same file is refused while
+    /// this one holds it.
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Also write the summary as JSON to this file.
+    /// Also write the summary as JSON to this file (not the --out file).
     #[arg(long)]
     pub summary: Option<PathBuf>,
     /// Run the scene on the grids of --extrapolate-grids (instead of --grid) and extrapolate
@@ -181,10 +193,12 @@ pub struct Args {
     /// from the spread of the two finest pairs.
     #[arg(long)]
     pub extrapolate: bool,
-    /// Grids Nx for --extrapolate, coarse to fine (powers of two, at least two).
+    /// Grids Nx for --extrapolate, coarse to fine (2 to 8 increasing powers of two, each as
+    /// --grid).
     #[arg(long, value_delimiter = ',', default_value = "64,128,256")]
     pub extrapolate_grids: Vec<usize>,
-    /// Reach this relative accuracy of the adhesive force |min F̄| (a percentage: `5%`, `1%`)
+    /// Reach this relative accuracy of the adhesive force |min F̄| (a percentage in
+    /// [0.1 %, 50 %]: `5%`, `1%`)
     /// at the least cost: chooses the grid (or grids to extrapolate), the domain, the load
     /// steps and what to compute from the convergence law (SPEC §7), says what it chose, and
     /// overrides --grid, --grid-y, --steps, --stepping, --measure, --regrid and --extrapolate.
@@ -198,11 +212,12 @@ fn parse_percentage(text: &str) -> Result<f64, String> {
     let v: f64 = number
         .parse()
         .map_err(|_| format!("{text:?} is not a percentage (e.g. 5% or 1%)"))?;
-    if v.is_finite() && v > 0.0 && v < 100.0 {
+    if (0.1..=50.0).contains(&v) {
         Ok(v / 100.0)
     } else {
         Err(format!(
-            "{text:?}: give a percentage in (0, 100), e.g. 5% or 1%"
+            "{}: give a percentage in [0.1, 50], e.g. 5% or 1%",
+            jkrbem::text::compact(v)
         ))
     }
 }
@@ -268,9 +283,7 @@ pub fn run(mut args: Args) -> Result<(), CliError> {
     }
     let scene = args.scene()?;
     let mut model = Model::build(&scene, &args.options()).map_err(input)?;
-    if args.cg_check_every == Some(0) {
-        return Err(input("--cg-check-every must be at least 1"));
-    }
+    jkrbem::plan::check_memory(&[&model], 1, "--grid").map_err(input)?;
     let out = args.out.clone().unwrap_or_else(|| {
         let angle = if model.mesh.is_aligned() {
             String::new()
@@ -283,8 +296,15 @@ pub fn run(mut args: Args) -> Result<(), CliError> {
             model.nx
         ))
     });
+    let mut targets = vec![(out.clone(), "--out".to_string())];
+    if let Some(p) = &args.summary {
+        targets.push((p.clone(), "--summary".to_string()));
+    }
+    Outputs::check(&targets)?;
     let setup = GridSetup::for_model(&model);
     let opened = open_backend(&args, &setup)?;
+    check_precision(&opened.backend, &model)?;
+    let _claimed = Outputs::claim(&targets)?;
     eprintln!(
         "jkrbem: R1/R2 = {}, grid {}×{}, Δx = {:.4e}{}, backend {}",
         scene.ratio(),
@@ -303,6 +323,16 @@ pub fn run(mut args: Args) -> Result<(), CliError> {
                 1
             });
     jkrbem::with_backend!(&mut any, backend => run_on(backend, &args, &model, &out))
+}
+
+/// Refuse a model whose scales the opened backend's arithmetic cannot hold (the GPU's f32).
+pub fn check_precision(backend: &AnyBackend, model: &Model) -> Result<(), CliError> {
+    if matches!(backend, AnyBackend::Gpu(_)) {
+        model
+            .check_scales("f32", jkrbem::model::F32_SAFE_RANGE)
+            .map_err(input)?;
+    }
+    Ok(())
 }
 
 /// ", mesh turned by θ°" for a rotated mesh, else nothing.
@@ -346,11 +376,11 @@ fn run_on<B: Backend>(
     model: &Model,
     out: &std::path::Path,
 ) -> Result<(), CliError> {
-    let (summary, outcome, path) = pulloff_to_file(backend, model, out, None)?;
+    let (summary, outcome, path) = pulloff_to_file(backend, model, out, "--out", None)?;
     print!("{}", summary.to_text());
     println!("states written to {}", path.display());
     if let Some(p) = &args.summary {
-        summary.write_json(p).map_err(failed)?;
+        summary.write_json(p).map_err(write_error("--summary"))?;
     }
     match outcome.error {
         None => Ok(()),
@@ -362,46 +392,53 @@ fn run_on<B: Backend>(
     }
 }
 
-/// Run a model's pull-off on an opened backend, streaming its states to `out` (named
-/// `<stem>.incomplete.csv` until the run completes), with a progress line on a terminal.
-/// `capture`, if given, sees every state with its contact mask. Returns the summary, the
-/// outcome and the path the states ended up at.
+/// Run a model's pull-off on an opened backend, streaming its states to `out` (under this
+/// run's partial name `<stem>.incomplete-<pid>.csv` until the run completes; `flag` names
+/// `out` in messages), with a progress line on a terminal. `capture`, if given, sees every
+/// state with its contact mask. Returns the summary, the outcome and the path the states
+/// ended up at. If the states cannot be written, the run stops and this is the error.
 pub fn pulloff_to_file<B: Backend>(
     backend: &mut B,
     model: &Model,
     out: &std::path::Path,
+    flag: &str,
     mut capture: Option<&mut ContactCapture>,
 ) -> Result<(Summary, solver::Outcome, PathBuf), CliError> {
-    let mut writer = StateWriter::create(out).map_err(failed)?;
-    let progress = progress_bar();
-    let mut write_error = None;
+    let mut writer = StateWriter::create(out).map_err(write_error(flag))?;
+    let progress = progress_bar(model.expected_steps());
+    let mut write_error_at = None;
     let start = Instant::now();
-    let outcome = solver::run_with_contact(backend, model, &mut |s, mask| {
+    let outcome = solver::run_until(backend, model, &mut |s, mask| {
         if let Some(c) = capture.as_deref_mut() {
             c.observe(s, mask);
         }
-        progress.set_message(format!(
-            "R1/R2 = {}, state {}: d̄ = {:+.4}, F̄ = {:+.4}, c̄ = {:.4}",
-            model.scene.ratio(),
-            s.step,
-            s.d_bar,
-            s.f_bar,
-            s.c_bar
-        ));
-        progress.tick();
+        progress.set_position(s.step as u64);
+        progress.set_message(progress_message(model, s));
         if let Err(e) = writer.write(s) {
-            write_error.get_or_insert(e);
+            write_error_at.get_or_insert(e);
+            return false;
         }
+        true
     });
     let wall = start.elapsed().as_secs_f64();
     progress.finish_and_clear();
     for w in &outcome.warnings {
         eprintln!("jkrbem: warning: {w}");
     }
-    if let Some(e) = write_error {
-        return Err(failed(e));
+    if let Some(e) = write_error_at {
+        let partial = writer.partial_path().display().to_string();
+        let _ = writer.finish(false);
+        return Err(failed(format!(
+            "{}; the run stopped after {} states, and what could be written is in {partial} \
+             (incomplete); nothing was written to {}",
+            e.with_flag(flag),
+            outcome.states.len(),
+            out.display()
+        )));
     }
-    let path = writer.finish(outcome.complete()).map_err(failed)?;
+    let path = writer
+        .finish(outcome.complete())
+        .map_err(write_error(flag))?;
     let summary = Summary::new(
         model,
         &outcome,
@@ -412,18 +449,119 @@ pub fn pulloff_to_file<B: Backend>(
     Ok((summary, outcome, path))
 }
 
+/// The progress line's text for the latest state: the load step of all expected, and where
+/// the pull-off is (the bar, percentage and ETA are drawn beside it).
+pub fn progress_message(model: &Model, s: &State) -> String {
+    let phase = match s.phase {
+        Phase::Approach => "approach",
+        Phase::Pulloff => "pull-off",
+        Phase::Onset => "onset",
+        Phase::Regrid => "re-grid",
+    };
+    format!(
+        "R1/R2 = {}, step {}/{} ({phase}): d̄ = {}, F̄ = {}, c̄ = {}",
+        jkrbem::text::compact(model.scene.ratio()),
+        s.step,
+        model.expected_steps(),
+        jkrbem::text::fixed(s.d_bar, 4),
+        jkrbem::text::fixed(s.f_bar, 4),
+        jkrbem::text::fixed(s.c_bar, 4)
+    )
+}
+
+/// The progress line's layout: elapsed time, a bar of the load steps, the fraction done and
+/// the estimated time left, then [`progress_message`].
+pub const PROGRESS_TEMPLATE: &str = "[{elapsed_precise}] {bar:20} {percent:>3}% ETA {eta} {msg}";
+
 /// Mean contact radii c̄ at which the pull-off's contact is kept for contours.
 pub const SNAPSHOT_RADII: [f64; 4] = [1.4, 1.1, 0.8, 0.5];
 
-/// A spinner with the current state on stderr, hidden when stderr is not a terminal.
-fn progress_bar() -> ProgressBar {
+/// A progress bar of `steps` load steps on stderr, hidden when stderr is not a terminal.
+fn progress_bar(steps: usize) -> ProgressBar {
     if !std::io::stderr().is_terminal() {
         return ProgressBar::hidden();
     }
-    let pb = ProgressBar::new_spinner();
+    let pb = ProgressBar::new(steps as u64);
     pb.set_style(
-        ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+        ProgressStyle::with_template(PROGRESS_TEMPLATE)
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     pb
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_progress_line_shows_the_step_of_all_and_an_eta() {
+        // Before: "state 57" (the load step, repeated by its onsets), no fraction, no ETA.
+        let scene = Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap();
+        let model = Model::build(
+            &scene,
+            &ModelOptions {
+                nx: 32,
+                steps: 200,
+                ..ModelOptions::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(model.expected_steps(), 200);
+        let state = State {
+            step: 57,
+            phase: Phase::Onset,
+            d: 0.1,
+            force: -0.3,
+            area: 1.0,
+            mean_radius: 1.0,
+            a_axis: 1.0,
+            b_axis: 1.0,
+            n_contact: 100,
+            cg_iterations: 5,
+            detach_sweeps: 1,
+            d_bar: -0.00001,
+            f_bar: -0.4321,
+            c_bar: 0.9,
+            a_bar: 0.9,
+            b_bar: 0.9,
+            cg_residual: 1e-9,
+            dx: 0.1,
+        };
+        let text = progress_message(&model, &state);
+        assert!(text.contains("step 57/200 (onset)"), "{text}");
+        assert!(
+            text.contains("d̄ = 0.0000") && text.contains("F̄ = -0.4321"),
+            "{text}"
+        );
+        assert!(!text.contains("state"), "{text}");
+        for part in ["{bar", "{percent", "{eta}"] {
+            assert!(PROGRESS_TEMPLATE.contains(part), "{part}");
+        }
+        assert!(ProgressStyle::with_template(PROGRESS_TEMPLATE).is_ok());
+        // A final approach stops the bar's length early.
+        let short = Model::build(
+            &scene,
+            &ModelOptions {
+                nx: 32,
+                steps: 200,
+                final_d_bar: Some(0.0),
+                ..ModelOptions::default()
+            },
+        )
+        .unwrap();
+        assert!(short.expected_steps() < 200);
+    }
+
+    #[test]
+    fn percentages_are_bounded() {
+        assert_eq!(parse_percentage("5%"), Ok(0.05));
+        for bad in ["0%", "0.01", "60%", "-5", "NaN", "1e300"] {
+            let e = parse_percentage(bad).unwrap_err();
+            assert!(
+                e.contains("[0.1, 50]") || e.contains("not a percentage"),
+                "{e}"
+            );
+            assert!(e.len() < 100, "{e}");
+        }
+    }
 }

@@ -1,6 +1,7 @@
 //! `jkrbem theory`: closed-form curves.
 
-use super::{failed, input, CliError};
+use super::outputs::{write_error, Outputs};
+use super::{input, CliError};
 use clap::ValueEnum;
 use jkrbem::theory::{self, TheoryModel};
 use std::path::PathBuf;
@@ -22,11 +23,11 @@ pub struct Args {
     /// The closed form.
     #[arg(long, value_enum)]
     pub model: ModelChoice,
-    /// Axis ratio R1/R2 (≥ 1).
+    /// Axis ratio R1/R2, in [1, 1000] (exactly 1 for JKR).
     #[arg(long, default_value_t = 1.0)]
     pub ratio: f64,
-    /// Number of points on the curve.
-    #[arg(long, default_value_t = 400)]
+    /// Number of points on the curve, 2 to 1000000.
+    #[arg(long, default_value_t = 400, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(2..=1_000_000))]
     pub points: usize,
     /// Output CSV with columns c_bar,f_bar,d_bar,a_bar,b_bar [default:
     /// jkrbem-out/theory-<model>-r<ratio>.csv].
@@ -41,28 +42,25 @@ pub fn run(args: Args) -> Result<(), CliError> {
         ModelChoice::Jkr => (TheoryModel::Jkr, "jkr"),
         ModelChoice::Jg => (TheoryModel::Jg, "jg"),
     };
-    if args.points < 2 {
-        return Err(input(format!(
-            "--points = {} is invalid: at least 2",
-            args.points
-        )));
-    }
-    let curve = theory::curve(model, args.ratio, args.points).map_err(input)?;
+    jkrbem::scene::Scene::from_ratio(args.ratio, 1.0, 1.0, 1.0).map_err(input)?;
+    let curve = theory::curve(model, args.ratio, args.points).map_err(|e| {
+        input(format!(
+            "--ratio {}: {e}",
+            jkrbem::text::compact(args.ratio)
+        ))
+    })?;
     let out = args
         .out
         .unwrap_or_else(|| PathBuf::from(format!("jkrbem-out/theory-{name}-r{}.csv", args.ratio)));
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| failed(format!("cannot create {}: {e}", dir.display())))?;
-    }
-    let mut w = csv::Writer::from_path(&out).map_err(failed)?;
-    w.write_record(["c_bar", "f_bar", "d_bar", "a_bar", "b_bar"])
-        .map_err(failed)?;
-    for p in &curve {
-        w.serialize((p.c_bar, p.f_bar, p.d_bar, p.a_bar, p.b_bar))
-            .map_err(failed)?;
-    }
-    w.flush().map_err(failed)?;
+    let _claimed = Outputs::claim(&[(out.clone(), "--out".into())])?;
+    jkrbem::output::file::write_csv(
+        &out,
+        Some("c_bar,f_bar,d_bar,a_bar,b_bar"),
+        curve
+            .iter()
+            .map(|p| (p.c_bar, p.f_bar, p.d_bar, p.a_bar, p.b_bar)),
+    )
+    .map_err(write_error("--out"))?;
     println!(
         "{} points of {} at R1/R2 = {} written to {}",
         curve.len(),

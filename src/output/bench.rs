@@ -5,7 +5,6 @@ use super::chart::{LogLogChart, Series};
 use super::OutputError;
 use crate::bench::Measurement;
 use serde::Serialize;
-use std::fs;
 use std::path::Path;
 
 /// The CSV header, one column per [`BenchRow`] field.
@@ -66,23 +65,9 @@ impl BenchRow {
     }
 }
 
-/// Write `rows` as CSV to `path` (creating its folder).
+/// Write `rows` as CSV to `path` (creating its folder), atomically ([`super::file`]).
 pub fn write_csv(path: &Path, rows: &[BenchRow]) -> Result<(), OutputError> {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        fs::create_dir_all(dir).map_err(|e| OutputError::io(dir, e))?;
-    }
-    let err = |source| OutputError::Csv {
-        path: path.display().to_string(),
-        source,
-    };
-    let mut w = csv::Writer::from_path(path).map_err(err)?;
-    if rows.is_empty() {
-        w.write_record(HEADER.split(',')).map_err(err)?;
-    }
-    for r in rows {
-        w.serialize(r).map_err(err)?;
-    }
-    w.flush().map_err(|e| OutputError::io(path, e))
+    super::file::write_csv(path, Some(HEADER), rows)
 }
 
 /// Time (ms) against grid size Nx on log–log axes: per backend one colour, a solid line for
@@ -121,6 +106,7 @@ pub fn timing_chart(rows: &[BenchRow], title: &str) -> LogLogChart {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::fs;
 
     fn row(backend: &str, nx: usize, pulloff: Option<f64>) -> BenchRow {
         BenchRow {

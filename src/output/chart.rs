@@ -1,11 +1,15 @@
 //! Line charts on log–log axes, written as SVG with `plotters`: any number of labelled series
 //! of (x, y) points, each drawn as a line through markers. Ticks sit at the series' own x
-//! values when there are few of them (grid sizes), otherwise on a 1–2–5 sequence.
+//! values when there are few of them (grid sizes), otherwise on a 1–2–5 sequence. The legend
+//! sits in a panel to the right of the plot, so that it never covers data, and shows each
+//! series as it is drawn (the helpers here serve the linear charts too).
 
 use super::OutputError;
 use plotters::prelude::*;
-use std::fs;
 use std::path::Path;
+
+/// Dash and gap (pixels) of dashed series, in the plot and in the legend alike.
+pub(crate) const DASH: (u32, u32) = (9, 6);
 
 /// Most distinct x values that still get one tick each.
 const MAX_DATA_TICKS: usize = 12;
@@ -52,8 +56,6 @@ pub struct LogLogChart {
     /// Put x ticks at the data's own x values when there are few (grid sizes); otherwise on
     /// a 1–2–5 sequence (times).
     pub x_data_ticks: bool,
-    /// Corner of the legend.
-    pub legend: SeriesLabelPosition,
 }
 
 impl LogLogChart {
@@ -70,7 +72,6 @@ impl LogLogChart {
             series: Vec::new(),
             size: (900, 600),
             x_data_ticks: true,
-            legend: SeriesLabelPosition::UpperLeft,
         }
     }
 
@@ -79,9 +80,34 @@ impl LogLogChart {
         self.series.push(series);
     }
 
-    /// The chart as an SVG document.
+    /// The chart as an SVG document: the plot at [`LogLogChart::size`], with the legend in a
+    /// panel to its right.
     pub fn to_svg(&self) -> Result<String, String> {
-        render_svg(self.size, |root| self.draw(root).map_err(|e| e.to_string()))
+        let width = legend_width(self.series.iter().map(|s| s.label.as_str()));
+        let size = with_legend(self.size, width, self.series.len());
+        render_svg(size, |root| {
+            root.fill(&WHITE).map_err(|e| e.to_string())?;
+            let (plot, legend) = root.split_horizontally(size.0 - width);
+            self.draw(&plot).map_err(|e| e.to_string())?;
+            draw_legend(&legend, &self.legend_entries()).map_err(|e| e.to_string())
+        })
+    }
+
+    /// The legend's entries: a line through a marker, dashed and hollow for dashed series.
+    fn legend_entries(&self) -> Vec<(String, Sample)> {
+        self.series
+            .iter()
+            .map(|s| {
+                (
+                    s.label.clone(),
+                    Sample {
+                        color: PALETTE[s.color % PALETTE.len()],
+                        line: Some(s.dashed.then_some(DASH)),
+                        marker: Some((4, !s.dashed)),
+                    },
+                )
+            })
+            .collect()
     }
 
     /// Write the chart as SVG to `path`, creating its folder.
@@ -125,33 +151,109 @@ impl LogLogChart {
             let color = PALETTE[s.color % PALETTE.len()];
             let line = color.stroke_width(2);
             let pts: Vec<(f64, f64)> = plottable(&s.points).collect();
-            let anno = if s.dashed {
-                chart.draw_series(DashedLineSeries::new(pts.clone(), 9, 6, line))?
+            if s.dashed {
+                chart.draw_series(DashedLineSeries::new(pts.clone(), DASH.0, DASH.1, line))?;
             } else {
-                chart.draw_series(LineSeries::new(pts.clone(), line))?
-            };
+                chart.draw_series(LineSeries::new(pts.clone(), line))?;
+            }
             let marker = if s.dashed { line } else { color.filled() };
-            // A short line through a marker, as the series is drawn.
-            let (l, r) = if s.dashed { (-5, 5) } else { (0, 0) };
-            anno.label(s.label.as_str()).legend(move |(x, y)| {
-                EmptyElement::at((x + 12, y))
-                    + PathElement::new(vec![(-14, 0), (l, 0)], line)
-                    + PathElement::new(vec![(r, 0), (14, 0)], line)
-                    + Circle::new((0, 0), 4, marker)
-            });
             chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, marker)))?;
-        }
-        if !self.series.is_empty() {
-            chart
-                .configure_series_labels()
-                .position(self.legend.clone())
-                .label_font(("sans-serif", 14))
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK.mix(0.4))
-                .draw()?;
         }
         Ok(())
     }
+}
+
+/// How a legend entry shows its series, drawn exactly as the series is: a line (solid, or
+/// dashed with the series' own dash and gap), a marker (filled or hollow), or both.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Sample {
+    /// The series' colour.
+    pub color: RGBColor,
+    /// A line, solid (`None`) or dashed (dash, gap in pixels).
+    pub line: Option<Option<(u32, u32)>>,
+    /// A marker of this radius (pixels), filled or hollow.
+    pub marker: Option<(u32, bool)>,
+}
+
+/// Height of one legend row (pixels).
+const LEGEND_ROW: i32 = 20;
+
+/// Width of a legend's line sample (pixels).
+const LEGEND_SAMPLE: i32 = 36;
+
+/// Legend font size (pixels).
+const LEGEND_FONT: u32 = 14;
+
+/// The width (pixels) of a legend panel holding `labels`: the sample, and the text at an
+/// estimate of 0.5 em per character of a sans-serif font (a little above its mean).
+pub(crate) fn legend_width<'a>(labels: impl Iterator<Item = &'a str>) -> u32 {
+    let chars = labels.map(|l| l.chars().count()).max().unwrap_or(0);
+    if chars == 0 {
+        return 0;
+    }
+    let text = (chars as f64 * 0.5 * LEGEND_FONT as f64).ceil() as u32;
+    (12 + LEGEND_SAMPLE as u32 + 8 + text + 16).min(900)
+}
+
+/// The picture's size for a chart area of `size` with a legend panel of `width` beside it,
+/// tall enough for `rows` legend rows.
+pub(crate) fn with_legend(size: (u32, u32), width: u32, rows: usize) -> (u32, u32) {
+    let needed = 40 + LEGEND_ROW as u32 * rows as u32 + 20;
+    (size.0 + width, size.1.max(needed))
+}
+
+/// Draw the legend in its own panel `area`, to the right of the plot, so that it never covers
+/// data: one row per entry, the sample drawn as the series is, then its label.
+pub(crate) fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    entries: &[(String, Sample)],
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    if entries.is_empty() {
+        return Ok(());
+    }
+    let (w, _) = area.dim_in_pixel();
+    let top = 40;
+    let bottom = top + LEGEND_ROW * entries.len() as i32 + 8;
+    area.draw(&Rectangle::new(
+        [(4, top - 8), (w as i32 - 6, bottom)],
+        BLACK.mix(0.4).stroke_width(1),
+    ))?;
+    for (k, (label, sample)) in entries.iter().enumerate() {
+        let y = top + LEGEND_ROW * k as i32 + LEGEND_ROW / 2 - 4;
+        let x0 = 12;
+        let style = sample.color.stroke_width(2);
+        match sample.line {
+            Some(None) => {
+                area.draw(&PathElement::new(
+                    vec![(x0, y), (x0 + LEGEND_SAMPLE, y)],
+                    style,
+                ))?;
+            }
+            Some(Some((dash, gap))) => {
+                let mut x = x0;
+                while x < x0 + LEGEND_SAMPLE {
+                    let end = (x + dash as i32).min(x0 + LEGEND_SAMPLE);
+                    area.draw(&PathElement::new(vec![(x, y), (end, y)], style))?;
+                    x = end + gap as i32;
+                }
+            }
+            None => {}
+        }
+        if let Some((r, filled)) = sample.marker {
+            let at = (x0 + LEGEND_SAMPLE / 2, y);
+            if filled {
+                area.draw(&Circle::new(at, r, sample.color.filled()))?;
+            } else {
+                area.draw(&Circle::new(at, r, style))?;
+            }
+        }
+        area.draw(&Text::new(
+            label.clone(),
+            (x0 + LEGEND_SAMPLE + 8, y - LEGEND_FONT as i32 / 2 + 1),
+            ("sans-serif", LEGEND_FONT).into_font(),
+        ))?;
+    }
+    Ok(())
 }
 
 /// Render a chart drawn by `draw` into an SVG document of `size` pixels.
@@ -175,12 +277,10 @@ pub(crate) fn write_svg_document(
 ) -> Result<(), OutputError> {
     let svg = svg.map_err(|reason| OutputError::Chart {
         path: path.display().to_string(),
+        flag: None,
         reason,
     })?;
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        fs::create_dir_all(dir).map_err(|e| OutputError::io(dir, e))?;
-    }
-    fs::write(path, svg).map_err(|e| OutputError::io(path, e))
+    super::file::write_bytes(path, svg.as_bytes())
 }
 
 /// The points of a series that have a place on log axes.

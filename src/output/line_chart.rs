@@ -1,7 +1,11 @@
 //! Charts on linear axes (optionally a logarithmic x axis), written as SVG with `plotters`:
-//! simulated states as markers, closed forms and fits as lines, each with a legend entry.
+//! simulated states as markers, closed forms and fits as lines, each with a legend entry drawn
+//! as its curve is, in a panel beside the plot (never over the data). Shapes (contours) can be
+//! drawn with equal scales on both axes.
 
-use super::chart::{render_svg, write_svg_document, PALETTE};
+use super::chart::{
+    draw_legend, legend_width, render_svg, with_legend, write_svg_document, Sample, PALETTE,
+};
 use super::OutputError;
 use plotters::prelude::*;
 use std::path::Path;
@@ -43,11 +47,20 @@ pub struct LineChart {
     pub x_log: bool,
     /// The curves, drawn in order.
     pub curves: Vec<Curve>,
-    /// Corner of the legend.
-    pub legend: SeriesLabelPosition,
-    /// Size of the picture (pixels).
+    /// Size of the plot (pixels); the legend panel is added to its right.
     pub size: (u32, u32),
+    /// Draw x and y on the same scale (one unit is as long on both axes), for shapes such as
+    /// contours; the ranges are widened to fill the plot.
+    pub equal_scales: bool,
 }
+
+/// Dash and gap (pixels) of [`Style::Dashed`] curves, in the plot and in the legend alike.
+const DASH: (u32, u32) = (8, 5);
+
+/// Margin around the plot, and the widths of the axis label areas (pixels).
+const MARGIN: u32 = 20;
+const X_LABELS: u32 = 50;
+const Y_LABELS: u32 = 70;
 
 impl LineChart {
     /// An empty 900 × 600 chart with linear axes.
@@ -58,8 +71,8 @@ impl LineChart {
             y_label: y_label.into(),
             x_log: false,
             curves: Vec::new(),
-            legend: SeriesLabelPosition::UpperRight,
             size: (900, 600),
+            equal_scales: false,
         }
     }
 
@@ -73,9 +86,55 @@ impl LineChart {
         });
     }
 
-    /// The chart as an SVG document.
+    /// The chart as an SVG document: the plot at [`LineChart::size`], with the legend in a
+    /// panel to its right.
     pub fn to_svg(&self) -> Result<String, String> {
-        render_svg(self.size, |root| self.draw(root).map_err(|e| e.to_string()))
+        let width = legend_width(self.curves.iter().map(|c| c.label.as_str()));
+        let size = with_legend(self.size, width, self.curves.len());
+        render_svg(size, |root| {
+            root.fill(&WHITE).map_err(|e| e.to_string())?;
+            let (plot, legend) = root.split_horizontally(size.0 - width);
+            self.draw(&plot).map_err(|e| e.to_string())?;
+            draw_legend(&legend, &self.legend_entries()).map_err(|e| e.to_string())
+        })
+    }
+
+    /// The legend's entries, each drawn as its curve is.
+    fn legend_entries(&self) -> Vec<(String, Sample)> {
+        self.curves
+            .iter()
+            .map(|c| {
+                let color = PALETTE[c.color % PALETTE.len()];
+                let (line, marker) = match c.style {
+                    Style::Line => (Some(None), None),
+                    Style::Dashed => (Some(Some(DASH)), None),
+                    Style::Markers => (None, Some((4, true))),
+                };
+                (
+                    c.label.clone(),
+                    Sample {
+                        color,
+                        line,
+                        marker,
+                    },
+                )
+            })
+            .collect()
+    }
+
+    /// Widen `xr` and `yr` so that one unit spans as many pixels on both axes of a plot of
+    /// `pixels` (width, height), keeping their lower ends.
+    fn equalised(
+        xr: std::ops::Range<f64>,
+        yr: std::ops::Range<f64>,
+        pixels: (u32, u32),
+    ) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
+        let (pw, ph) = (pixels.0.max(1) as f64, pixels.1.max(1) as f64);
+        let per_pixel = ((xr.end - xr.start) / pw).max((yr.end - yr.start) / ph);
+        (
+            xr.start..xr.start + per_pixel * pw,
+            yr.start..yr.start + per_pixel * ph,
+        )
     }
 
     /// Write the chart as SVG to `path`, creating its folder.
@@ -146,6 +205,19 @@ impl LineChart {
             let ticks = self.x_ticks(&(lo.log10()..hi.log10()));
             let ticks: Vec<f64> = ticks.iter().map(|t| 10f64.powf(*t)).collect();
             self.draw_on(root, (lo..hi).log_scale().with_key_points(ticks), yr)
+        } else if self.equal_scales {
+            // The plot's size in pixels: the area less the title, margins and label areas.
+            let (w, h) = root.dim_in_pixel();
+            let font: TextStyle = ("sans-serif", 20).into();
+            let title = root
+                .estimate_text_size(&self.title, &font)
+                .map_or(24, |(_, th)| th + 2 * (th / 2).min(5));
+            let pixels = (
+                w.saturating_sub(2 * MARGIN + Y_LABELS),
+                h.saturating_sub(2 * MARGIN + X_LABELS + title),
+            );
+            let (xr, yr) = Self::equalised(xr, yr, pixels);
+            self.draw_on(root, plotters::coord::types::RangedCoordf64::from(xr), yr)
         } else {
             self.draw_on(root, plotters::coord::types::RangedCoordf64::from(xr), yr)
         }
@@ -163,9 +235,9 @@ impl LineChart {
     {
         let mut chart = ChartBuilder::on(root)
             .caption(&self.title, ("sans-serif", 20))
-            .margin(20)
-            .x_label_area_size(50)
-            .y_label_area_size(70)
+            .margin(MARGIN)
+            .x_label_area_size(X_LABELS)
+            .y_label_area_size(Y_LABELS)
             .build_cartesian_2d(xr, yr)?;
         let x_fmt = |v: &f64| format!("{}", (v * 1000.0).round() / 1000.0);
         let y_fmt = |v: &f64| format!("{}", (v * 1000.0).round() / 1000.0);
@@ -183,34 +255,15 @@ impl LineChart {
             let color = PALETTE[c.color % PALETTE.len()];
             let line = color.stroke_width(2);
             let pts = self.plotted(c);
-            let anno = match c.style {
+            match c.style {
                 Style::Line => chart.draw_series(LineSeries::new(pts, line))?,
-                Style::Dashed => chart.draw_series(DashedLineSeries::new(pts, 8, 5, line))?,
+                Style::Dashed => {
+                    chart.draw_series(DashedLineSeries::new(pts, DASH.0, DASH.1, line))?
+                }
                 Style::Markers => {
                     chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))?
                 }
             };
-            let style = c.style;
-            let markers = style == Style::Markers;
-            anno.label(c.label.as_str()).legend(move |(x, y)| {
-                let path = if markers {
-                    vec![]
-                } else {
-                    vec![(0, 0), (20, 0)]
-                };
-                EmptyElement::at((x, y))
-                    + PathElement::new(path, line)
-                    + Circle::new((10, 0), if markers { 4 } else { 0 }, color.filled())
-            });
-        }
-        if !self.curves.is_empty() {
-            chart
-                .configure_series_labels()
-                .position(self.legend.clone())
-                .label_font(("sans-serif", 14))
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK.mix(0.4))
-                .draw()?;
         }
         Ok(())
     }
@@ -242,5 +295,120 @@ mod tests {
         assert!(svg.matches("<circle").count() >= 2);
         c.x_log = true;
         assert!(c.to_svg().unwrap().contains("<svg"));
+    }
+
+    /// (x, y, text) of every text element of an SVG written by plotters.
+    fn texts(svg: &str) -> Vec<(f64, f64, String)> {
+        let mut out = Vec::new();
+        for part in svg.split("<text ").skip(1) {
+            let attr = |name: &str| -> f64 {
+                let key = format!("{name}=\"");
+                part.split_once(&key)
+                    .and_then(|(_, r)| r.split_once('"'))
+                    .and_then(|(v, _)| v.parse().ok())
+                    .unwrap_or(f64::NAN)
+            };
+            let body = part
+                .split_once('>')
+                .map(|(_, r)| r.split("</text>").next().unwrap_or("").trim().to_string())
+                .unwrap_or_default();
+            out.push((attr("x"), attr("y"), body));
+        }
+        out
+    }
+
+    /// (x, y) of every circle of radius `r` in an SVG written by plotters.
+    fn circles(svg: &str, r: u32) -> Vec<(f64, f64)> {
+        svg.split("<circle ")
+            .skip(1)
+            .filter(|c| c.contains(&format!("r=\"{r}\"")))
+            .map(|c| {
+                let attr = |name: &str| -> f64 {
+                    let key = format!("{name}=\"");
+                    c.split_once(&key)
+                        .and_then(|(_, r)| r.split_once('"'))
+                        .and_then(|(v, _)| v.parse().ok())
+                        .unwrap()
+                };
+                (attr("cx"), attr("cy"))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_legend_sits_beside_the_plot_never_on_the_data() {
+        // Before: the legend box was drawn in a corner of the plot, over data points.
+        let mut c = LineChart::new("t", "x", "y");
+        let pts: Vec<(f64, f64)> = (0..=20)
+            .flat_map(|i| (0..=20).map(move |j| (i as f64, j as f64)))
+            .collect();
+        c.push("everywhere", pts, 0, Style::Markers);
+        c.push("a line", vec![(0.0, 0.0), (20.0, 20.0)], 1, Style::Line);
+        let svg = c.to_svg().unwrap();
+        let plot_right = c.size.0 as f64;
+        for label in ["everywhere", "a line"] {
+            let (x, _, _) = texts(&svg)
+                .into_iter()
+                .find(|t| t.2 == label)
+                .unwrap_or_else(|| panic!("no legend text {label}"));
+            assert!(
+                x > plot_right,
+                "{label} at x = {x}, inside the plot (< {plot_right})"
+            );
+        }
+        // Every data marker lies left of the panel.
+        assert!(circles(&svg, 3).iter().all(|&(x, _)| x < plot_right));
+    }
+
+    #[test]
+    fn legend_samples_are_drawn_as_their_curves() {
+        // Before: a dashed curve (JKR/JG in the pull-off chart) had a solid legend sample.
+        let mut c = LineChart::new("t", "x", "y");
+        c.push("solid", vec![(0.0, 0.0), (1.0, 1.0)], 0, Style::Line);
+        c.push("dashed", vec![(0.0, 1.0), (1.0, 0.0)], 1, Style::Dashed);
+        let svg = c.to_svg().unwrap();
+        let right = c.size.0 as f64;
+        // Line pieces in the legend panel, by colour.
+        let pieces = |color: RGBColor| {
+            let hex = format!("#{:02X}{:02X}{:02X}", color.0, color.1, color.2);
+            svg.split("<polyline ")
+                .skip(1)
+                .filter(|p| p.contains(&hex))
+                .filter(|p| {
+                    p.split_once("points=\"")
+                        .and_then(|(_, r)| r.split(',').next())
+                        .and_then(|x| x.trim().parse::<f64>().ok())
+                        .is_some_and(|x| x > right)
+                })
+                .count()
+        };
+        assert_eq!(pieces(PALETTE[0]), 1, "the solid sample is one line");
+        assert!(pieces(PALETTE[1]) >= 3, "the dashed sample is dashed");
+    }
+
+    #[test]
+    fn equal_scales_draw_a_unit_as_long_on_both_axes() {
+        // Before: contours were drawn with unequal scales, so a slender contact looked round.
+        let mut c = LineChart::new("contours", "x", "y");
+        c.push(
+            "points",
+            vec![(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (4.0, 0.3)],
+            0,
+            Style::Markers,
+        );
+        c.equal_scales = true;
+        let svg = c.to_svg().unwrap();
+        let p = circles(&svg, 3);
+        assert_eq!(p.len(), 4, "{p:?}");
+        let along_x = p[1].0 - p[0].0;
+        let along_y = p[0].1 - p[2].1;
+        assert!(along_x > 20.0, "{along_x}");
+        assert!(
+            (along_x - along_y).abs() <= 1.5,
+            "one unit is {along_x} px along x and {along_y} px along y"
+        );
+        c.equal_scales = false;
+        let p = circles(&c.to_svg().unwrap(), 3);
+        assert!(((p[1].0 - p[0].0) - (p[0].1 - p[2].1)).abs() > 10.0);
     }
 }

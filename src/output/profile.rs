@@ -3,7 +3,6 @@
 use super::OutputError;
 use crate::bench::KernelProfile;
 use serde::Serialize;
-use std::fs;
 use std::path::Path;
 
 /// The CSV header, one column per [`ProfileRow`] field.
@@ -56,22 +55,7 @@ pub fn rows(grid: usize, nx: usize, ny: usize, profile: &[KernelProfile]) -> Vec
         .collect()
 }
 
-/// Write `rows` as CSV to `path` (creating its folder).
+/// Write `rows` as CSV to `path` (creating its folder), atomically.
 pub fn write_csv(path: &Path, rows: &[ProfileRow]) -> Result<(), OutputError> {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        fs::create_dir_all(dir).map_err(|e| OutputError::io(dir, e))?;
-    }
-    let err = |source| OutputError::Csv {
-        path: path.display().to_string(),
-        source,
-    };
-    let mut w = csv::WriterBuilder::new()
-        .has_headers(false)
-        .from_path(path)
-        .map_err(err)?;
-    w.write_record(HEADER.split(',')).map_err(err)?;
-    for r in rows {
-        w.serialize(r).map_err(err)?;
-    }
-    w.flush().map_err(|e| OutputError::io(path, e))
+    super::file::write_csv(path, Some(HEADER), rows)
 }

@@ -191,7 +191,6 @@ pub fn coefficients_chart(fits: &[BranchFits]) -> LineChart {
         "coefficient",
     );
     chart.x_log = true;
-    chart.legend = plotters::prelude::SeriesLabelPosition::LowerRight;
     for (i, (name, pts, law)) in coefficient_laws(fits).into_iter().enumerate() {
         let hi = pts.iter().map(|p| p.0).fold(1.0, f64::max);
         chart.push(name, pts, i, Style::Markers);
@@ -202,8 +201,8 @@ pub fn coefficients_chart(fits: &[BranchFits]) -> LineChart {
                 .collect();
             chart.push(
                 &format!(
-                    "{name} = {:.3}·(R1/R2)^{:.3} + {:.3}",
-                    law.k1, law.k2, law.k3
+                    "{name} = {}",
+                    crate::text::power_law(law.k1, law.k2, law.k3)
                 ),
                 curve,
                 i,
@@ -218,10 +217,14 @@ pub fn coefficients_chart(fits: &[BranchFits]) -> LineChart {
 /// ellipses with the same half-axes (lines), in c_r units (SPEC §8.1 snapshots, §8.3).
 pub fn contour_chart(ratio: f64, rows: &[crate::analysis::capture::ContourRow]) -> LineChart {
     let mut chart = LineChart::new(
-        &format!("Quarter contours during pull-off, R1/R2 = {ratio} (lines: ellipses ā, b̄)"),
+        &format!(
+            "Quarter contours during pull-off, R1/R2 = {ratio} (x, y in c_r, equal scales; \
+             lines: ellipses ā, b̄)"
+        ),
         "x / c_r",
         "y / c_r",
     );
+    chart.equal_scales = true;
     let mut labels: Vec<&str> = rows.iter().map(|r| r.label.as_str()).collect();
     labels.dedup();
     for (i, label) in labels.iter().enumerate() {

@@ -5,6 +5,7 @@ use super::OutputError;
 use crate::analysis::convergence;
 use crate::model::{Model, Stepping};
 use crate::solver::{protocol::RegridEvent, Outcome};
+use crate::text::fixed;
 use crate::theory::{self, TheoryModel};
 use serde::Serialize;
 use std::path::Path;
@@ -14,8 +15,18 @@ use std::path::Path;
 pub struct Summary {
     /// R1/R2 (dimensionless).
     pub ratio: f64,
-    /// Adhesive force |min F̄| (dimensionless); null if no state was recorded.
+    /// Adhesive force |min F̄| (dimensionless); null if the run did not reach the force
+    /// minimum (`min_reached` false).
     pub f_ad_bar: Option<f64>,
+    /// Whether the run reached the force minimum: after it the contact jumped off, or the
+    /// approach went 0.1 past it with the force 2 % above it (`Outcome::min_reached`). When
+    /// false, no adhesive force is reported and `lowest_f_bar` is only the lowest force seen.
+    pub min_reached: bool,
+    /// The lowest F̄ recorded (dimensionless; on the last grid after re-grids), whether or not
+    /// it is the minimum; null if no state was recorded.
+    pub lowest_f_bar: Option<f64>,
+    /// d̄ of that state.
+    pub d_bar_at_lowest: Option<f64>,
     /// c̄ at the force minimum.
     pub c_bar_at_min: Option<f64>,
     /// d̄ at the force minimum.
@@ -74,6 +85,16 @@ pub struct Summary {
     pub warnings: Vec<String>,
 }
 
+/// `v` with `decimals` decimals and its sign ("+2.05", "-0.31"), never "-0.00".
+fn signed(v: f64, decimals: usize) -> String {
+    let s = fixed(v, decimals);
+    if s.starts_with('-') {
+        s
+    } else {
+        format!("+{s}")
+    }
+}
+
 /// With [`Stepping::Fixed`], a warning if the steps around the force minimum detached
 /// elements: the minimum then lies at an onset inside a step, which whole steps do not see.
 fn step_warning(model: &Model, outcome: &Outcome) -> Option<String> {
@@ -124,9 +145,13 @@ impl Summary {
         let reference = theory::pull_off(which, ratio)
             .ok()
             .map(|p| -p.force_min.f_bar);
-        let min = outcome.force_minimum();
+        let lowest = outcome.force_minimum();
+        let min_reached = outcome.min_reached();
+        let min = lowest.filter(|_| min_reached);
         let f_ad = min.map(|s| -s.f_bar);
-        let n_d = min.map(|s| 2.0 * s.b_axis / s.dx);
+        // 2b/Δx is a count of elements (half-integers on an aligned mesh): rounded to 1e-6 so
+        // that it does not read 25.999999999999996.
+        let n_d = min.map(|s| (2e6 * s.b_axis / s.dx).round() / 1e6);
         let warnings = n_d
             .and_then(|n| convergence::coarse_grid_warning(ratio, n))
             .into_iter()
@@ -136,6 +161,9 @@ impl Summary {
         Summary {
             ratio,
             f_ad_bar: f_ad,
+            min_reached,
+            lowest_f_bar: lowest.map(|s| s.f_bar),
+            d_bar_at_lowest: lowest.map(|s| s.d_bar),
             c_bar_at_min: min.map(|s| s.c_bar),
             d_bar_at_min: min.map(|s| s.d_bar),
             a_bar_at_min: min.map(|s| s.a_bar),
@@ -168,32 +196,49 @@ impl Summary {
 
     /// Write as pretty JSON.
     pub fn write_json(&self, path: &Path) -> Result<(), OutputError> {
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|e| OutputError::io(dir, e))?;
-        }
         let text = serde_json::to_string_pretty(self).expect("a summary always serialises");
-        std::fs::write(path, text + "\n").map_err(|e| OutputError::io(path, e))
+        super::file::write_bytes(path, (text + "\n").as_bytes())
     }
 
     /// Human-readable lines.
     pub fn to_text(&self) -> String {
-        let opt = |v: Option<f64>, p: usize| v.map_or("—".into(), |x| format!("{x:.p$}"));
+        let opt = |v: Option<f64>, p: usize| v.map_or("—".into(), |x| fixed(x, p));
         let mut s = String::new();
-        s += &format!(
-            "adhesive force |min F̄| = {}  ({} value {}, error {})\n",
-            opt(self.f_ad_bar, 4),
-            self.reference_model.to_uppercase(),
-            opt(self.reference_f_ad_bar, 4),
-            self.relative_error
-                .map_or("—".into(), |e| format!("{:+.2} %", 100.0 * e))
-        );
-        s += &format!(
-            "  at c̄ = {}, d̄ = {}, ā = {}, b̄ = {}\n",
-            opt(self.c_bar_at_min, 4),
-            opt(self.d_bar_at_min, 4),
-            opt(self.a_bar_at_min, 4),
-            opt(self.b_bar_at_min, 4)
-        );
+        if self.min_reached {
+            s += &format!(
+                "adhesive force |min F̄| = {}  ({} value {}, error {})\n",
+                opt(self.f_ad_bar, 4),
+                self.reference_model.to_uppercase(),
+                opt(self.reference_f_ad_bar, 4),
+                self.relative_error
+                    .map_or("—".into(), |e| format!("{} %", signed(100.0 * e, 2)))
+            );
+            s += &format!(
+                "  at c̄ = {}, d̄ = {}, ā = {}, b̄ = {}\n",
+                opt(self.c_bar_at_min, 4),
+                opt(self.d_bar_at_min, 4),
+                opt(self.a_bar_at_min, 4),
+                opt(self.b_bar_at_min, 4)
+            );
+        } else {
+            let seen = match (self.lowest_f_bar, self.d_bar_at_lowest) {
+                (Some(f), Some(d)) => format!(
+                    "the lowest F̄ recorded is {} at d̄ = {}, and the force had not turned after it",
+                    fixed(f, 4),
+                    fixed(d, 4)
+                ),
+                _ => "no state was recorded".to_string(),
+            };
+            let why = if self.complete {
+                "the run stopped at its final approach: lower --final-d (or leave it out) to \
+                 pass the minimum"
+            } else {
+                "the run stopped early (see INCOMPLETE below)"
+            };
+            s += &format!(
+                "NO ADHESIVE FORCE: the run did not reach the force minimum; {seen}; {why}\n"
+            );
+        }
         let angle = if self.mesh_angle_deg == 0.0 {
             String::new()
         } else {
@@ -243,5 +288,106 @@ impl Summary {
             s += &format!("INCOMPLETE: {e}\n");
         }
         s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::ModelOptions;
+    use crate::scene::Scene;
+    use crate::solver::{Phase, State};
+
+    fn state(model: &Model, force: f64, b_elements: f64, n_contact: usize) -> State {
+        let dx = model.dx;
+        State {
+            step: 1,
+            phase: Phase::Pulloff,
+            d: 0.0,
+            force,
+            area: 1.0,
+            mean_radius: 1.0,
+            a_axis: b_elements * dx,
+            b_axis: b_elements * dx,
+            n_contact,
+            cg_iterations: 1,
+            detach_sweeps: 0,
+            d_bar: 0.0,
+            f_bar: force,
+            c_bar: 0.8,
+            a_bar: 0.8,
+            b_bar: 0.8,
+            cg_residual: 1e-9,
+            dx,
+        }
+    }
+
+    fn outcome(states: Vec<State>) -> Outcome {
+        Outcome {
+            states,
+            error: None,
+            regrids: Vec::new(),
+            stopped_after_minimum: false,
+            cg_retries: Vec::new(),
+            warnings: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn n_d_is_a_count_of_elements_without_round_off() {
+        // Before: n_d = 2 b / Δx came out as 25.999999999999996.
+        let scene = Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap();
+        let model = Model::build(
+            &scene,
+            &ModelOptions {
+                nx: 32,
+                ..ModelOptions::default()
+            },
+        )
+        .unwrap();
+        let k = (1..200)
+            .map(f64::from)
+            .find(|k| 2.0 * (k * model.dx) / model.dx != 2.0 * k)
+            .expect("some count has round-off in 2 k Δx / Δx");
+        let min = state(&model, -1.0, k, 100);
+        let gone = state(&model, -0.3, 0.0, 0);
+        let s = Summary::new(
+            &model,
+            &outcome(vec![min, gone]),
+            ("cpu", "f64"),
+            0.0,
+            Path::new("s.csv"),
+        );
+        assert!(s.min_reached);
+        assert_eq!(s.n_d, Some(2.0 * k));
+    }
+
+    #[test]
+    fn without_a_minimum_there_is_no_adhesive_force_line() {
+        let scene = Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap();
+        let model = Model::build(
+            &scene,
+            &ModelOptions {
+                nx: 32,
+                ..ModelOptions::default()
+            },
+        )
+        .unwrap();
+        // The force still falls at the last state.
+        let states = vec![state(&model, -0.2, 10.0, 80), state(&model, -0.49, 9.0, 70)];
+        let s = Summary::new(
+            &model,
+            &outcome(states),
+            ("cpu", "f64"),
+            0.0,
+            Path::new("s.csv"),
+        );
+        assert!(!s.min_reached);
+        assert_eq!(s.f_ad_bar, None);
+        assert_eq!(s.lowest_f_bar, Some(-0.49));
+        let text = s.to_text();
+        assert!(!text.contains("adhesive force |min F̄|"), "{text}");
+        assert!(text.contains("NO ADHESIVE FORCE"), "{text}");
+        assert!(!text.contains("-0.0000"), "{text}");
     }
 }

@@ -16,10 +16,7 @@ pub fn pulloff_points(states_csv: &Path) -> Result<Vec<(f64, f64)>, OutputError>
     let records = read_states(states_csv)?;
     let header = csv::Reader::from_path(states_csv)
         .and_then(|mut r| r.headers().cloned())
-        .map_err(|source| OutputError::Csv {
-            path: states_csv.display().to_string(),
-            source,
-        })?;
+        .map_err(|e| OutputError::csv(states_csv, e))?;
     let col = |name: &str| header.iter().position(|h| h == name);
     let (Some(phase), Some(d), Some(f)) = (col("phase"), col("d_bar"), col("f_bar")) else {
         return Ok(Vec::new());
@@ -29,6 +26,17 @@ pub fn pulloff_points(states_csv: &Path) -> Result<Vec<(f64, f64)>, OutputError>
         .filter(|r| r.get(phase) != Some("approach"))
         .filter_map(|r| Some((r.get(d)?.parse().ok()?, r.get(f)?.parse().ok()?)))
         .collect())
+}
+
+/// The newest partial states file of `target_name` in `dir` (see
+/// [`super::file::PartialFile`]), if any.
+fn newest_partial(dir: &Path, target_name: &str) -> Option<std::path::PathBuf> {
+    std::fs::read_dir(dir)
+        .ok()?
+        .filter_map(Result::ok)
+        .filter(|e| super::file::is_partial_of(&e.file_name().to_string_lossy(), target_name))
+        .max_by_key(|e| e.metadata().and_then(|m| m.modified()).ok())
+        .map(|e| e.path())
 }
 
 /// The closed form for a ratio: JKR for the sphere, JG otherwise, as (d̄, F̄) on its adhesive
@@ -52,17 +60,16 @@ pub fn pulloff_curves_chart(dir: &Path, rows: &[SweepRow]) -> Result<LineChart, 
         "approach d̄ = d·Re/c_r²",
         "force F̄ = F/(3π Re Δγ)",
     );
-    chart.legend = plotters::prelude::SeriesLabelPosition::LowerRight;
     for (i, r) in rows.iter().enumerate() {
-        let name = format!("r{}-n{}", r.ratio, r.grid);
-        let complete = dir.join(format!("{name}.csv"));
+        let name = format!("r{}-n{}.csv", r.ratio, r.grid);
+        let complete = dir.join(&name);
         let path = if complete.exists() {
-            complete
+            Some(complete)
         } else {
-            dir.join(format!("{name}.incomplete.csv"))
+            newest_partial(dir, &name)
         };
         let mut d_max = 1.0;
-        if path.exists() {
+        if let Some(path) = path {
             let label = format!("R1/R2 = {} ({}×{})", r.ratio, r.grid, r.ny);
             let points = pulloff_points(&path)?;
             d_max = points.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
@@ -84,12 +91,11 @@ pub fn pulloff_curves_chart(dir: &Path, rows: &[SweepRow]) -> Result<LineChart, 
 /// |min F̄| against R1/R2 (log axis): the sweep's points beside JG's pull-off force.
 pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
     let mut chart = LineChart::new(
-        "Adhesive force against axis ratio",
+        "Adhesive force against axis ratio (normalised: F̄ = F/(3π Re Δγ))",
         "R1/R2",
         "adhesive force |min F̄|",
     );
     chart.x_log = true;
-    chart.legend = plotters::prelude::SeriesLabelPosition::LowerLeft;
     let hi = rows.iter().map(|r| r.ratio).fold(2.0, f64::max);
     let jg: Vec<(f64, f64)> = (0..=200)
         .map(|i| hi.powf(i as f64 / 200.0))
@@ -108,8 +114,9 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
             .collect();
         chart.push(
             &format!(
-                "fit {:.3}·(R1/R2)^{:.3} + {:.3} (R² = {:.4})",
-                law.k1, law.k2, law.k3, law.quality.r_squared
+                "fit {} (R² = {:.4})",
+                crate::text::power_law(law.k1, law.k2, law.k3),
+                law.quality.r_squared
             ),
             curve,
             0,
@@ -130,4 +137,45 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
 pub fn write_sweep_charts(dir: &Path, rows: &[SweepRow]) -> Result<(), OutputError> {
     force_vs_ratio_chart(rows).write_svg(&dir.join("force_vs_ratio.svg"))?;
     pulloff_curves_chart(dir, rows)?.write_svg(&dir.join("pulloff_curves.svg"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_fitted_law_is_written_with_proper_signs() {
+        // Before: laws were printed as "… + -1.010".
+        let rows: Vec<SweepRow> = [1.0, 2.0, 5.0, 10.0, 25.0, 50.0]
+            .iter()
+            .map(|&ratio: &f64| SweepRow {
+                ratio,
+                f_ad_bar: Some(0.3 + 0.25 * ratio.powf(-0.4)),
+                c_bar_at_min: Some(0.8),
+                d_bar_at_min: Some(-0.2),
+                jg_f_ad_bar: Some(0.5),
+                n_d: Some(30.0),
+                grid: 64,
+                dx: 0.1,
+                wall_s: 1.0,
+                ny: 64,
+                backend: "cpu-f64".into(),
+                complete: true,
+                min_reached: true,
+                error: None,
+            })
+            .collect();
+        let chart = force_vs_ratio_chart(&rows);
+        let law = chart
+            .curves
+            .iter()
+            .find(|c| c.label.starts_with("fit "))
+            .expect("a fitted law");
+        assert!(
+            !law.label.contains("+ -") && !law.label.contains("^-"),
+            "{}",
+            law.label
+        );
+        assert!(law.label.contains('−'), "{}", law.label);
+    }
 }

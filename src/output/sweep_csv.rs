@@ -1,6 +1,14 @@
-//! The summary CSV of a sweep over R1/R2: one row per ratio; shard files that separate
-//! machines write, and their merge.
+//! The summary CSV of a sweep over R1/R2: one row per ratio; the shard files that separate
+//! machines write, and their checked merge.
+//!
+//! A shard file, `sweep-shard-K-of-N.json`, records the whole sweep it belongs to (every ratio
+//! of `--ratios` in order, the grid, the load steps, c̄0 and the margin), its own position K of
+//! N, the ratios it was given, and one row per ratio it ran. A shard given no ratio (more
+//! shards than ratios) writes the same file with no rows, so it is told apart from a truncated
+//! one. [`collect`] refuses shards of different sweeps, a ratio found twice, and files that are
+//! not shards, and names the ratios that are missing or incomplete.
 
+use super::file;
 use super::summary::Summary;
 use super::OutputError;
 use serde::{Deserialize, Serialize};
@@ -11,7 +19,7 @@ use std::path::{Path, PathBuf};
 pub struct SweepRow {
     /// R1/R2.
     pub ratio: f64,
-    /// Adhesive force |min F̄| (dimensionless); empty if the run failed before a minimum.
+    /// Adhesive force |min F̄| (dimensionless); empty if the run did not reach the minimum.
     pub f_ad_bar: Option<f64>,
     /// c̄ at the force minimum.
     pub c_bar_at_min: Option<f64>,
@@ -33,6 +41,17 @@ pub struct SweepRow {
     pub backend: String,
     /// Whether the pull-off completed.
     pub complete: bool,
+    /// Whether the run reached (and confirmed) the force minimum, so that `f_ad_bar` is an
+    /// adhesive force.
+    #[serde(default = "yes")]
+    pub min_reached: bool,
+    /// Why the run failed, if it did.
+    #[serde(default)]
+    pub error: Option<String>,
+}
+
+fn yes() -> bool {
+    true
 }
 
 impl SweepRow {
@@ -51,53 +70,144 @@ impl SweepRow {
             ny: s.ny,
             backend: format!("{}-{}", s.backend, s.precision),
             complete: s.complete,
+            min_reached: s.min_reached,
+            error: s.error.clone(),
         }
     }
-}
 
-/// The summary file of shard `k` of `n` (1-based), or of a whole sweep when `shard` is None.
-pub fn sweep_csv_path(dir: &Path, shard: Option<(usize, usize)>) -> PathBuf {
-    match shard {
-        None => dir.join("sweep.csv"),
-        Some((k, n)) => dir.join(format!("sweep-shard-{k}-of-{n}.csv")),
+    /// The row of a pull-off that failed before it produced a summary (e.g. its backend did
+    /// not open, or its states could not be written): incomplete, with the reason.
+    pub fn failed(ratio: f64, grid: (usize, usize), dx: f64, error: String) -> SweepRow {
+        SweepRow {
+            ratio,
+            f_ad_bar: None,
+            c_bar_at_min: None,
+            d_bar_at_min: None,
+            jg_f_ad_bar: crate::theory::reference_adhesive_force(ratio).ok(),
+            n_d: None,
+            grid: grid.0,
+            dx,
+            wall_s: 0.0,
+            ny: grid.1,
+            backend: String::new(),
+            complete: false,
+            min_reached: false,
+            error: Some(error),
+        }
+    }
+
+    /// Whether the row holds a usable adhesive force: complete, minimum reached, and every
+    /// number finite.
+    pub fn is_usable(&self) -> bool {
+        let finite = |v: Option<f64>| v.is_some_and(f64::is_finite);
+        self.complete
+            && self.min_reached
+            && finite(self.f_ad_bar)
+            && finite(self.c_bar_at_min)
+            && finite(self.d_bar_at_min)
+            && self.dx.is_finite()
     }
 }
 
-/// Write rows (sorted by ratio) to `path`, through a temporary name so that the file is
-/// never half-written.
+/// The CSV header of a sweep's summary, one column per [`SweepRow`] field.
+pub const HEADER: &str = "ratio,f_ad_bar,c_bar_at_min,d_bar_at_min,jg_f_ad_bar,n_d,grid,dx,\
+wall_s,ny,backend,complete,min_reached,error";
+
+/// The summary file of a whole sweep: `dir/sweep.csv`.
+pub fn sweep_csv_path(dir: &Path) -> PathBuf {
+    dir.join("sweep.csv")
+}
+
+/// The file of shard `k` of `n` (1-based): `dir/sweep-shard-K-of-N.json`.
+pub fn shard_path(dir: &Path, (k, n): (usize, usize)) -> PathBuf {
+    dir.join(format!("sweep-shard-{k}-of-{n}.json"))
+}
+
+/// Write rows (sorted by ratio) to `path` atomically, header first even without rows.
 pub fn write_rows(path: &Path, rows: &[SweepRow]) -> Result<(), OutputError> {
     let mut rows = rows.to_vec();
     rows.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| OutputError::io(dir, e))?;
-    }
-    let tmp = path.with_extension("csv.tmp");
-    let csv_err = |source| OutputError::Csv {
-        path: tmp.display().to_string(),
-        source,
-    };
-    let mut w = csv::Writer::from_path(&tmp).map_err(csv_err)?;
-    for r in &rows {
-        w.serialize(r).map_err(csv_err)?;
-    }
-    w.flush().map_err(|e| OutputError::io(&tmp, e))?;
-    std::fs::rename(&tmp, path).map_err(|e| OutputError::io(path, e))
+    file::write_csv(path, Some(HEADER), &rows)
 }
 
-/// Read the rows of a sweep or shard CSV.
+/// Read the rows of a sweep CSV.
 pub fn read_rows(path: &Path) -> Result<Vec<SweepRow>, csv::Error> {
     csv::Reader::from_path(path)?.deserialize().collect()
+}
+
+/// What makes one sweep: every shard of it records these, and [`collect`] merges only shards
+/// that agree on them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SweepSettings {
+    /// Every ratio R1/R2 of the sweep, in the order of `--ratios`.
+    pub ratios: Vec<f64>,
+    /// Elements along x, Nx (`--grid`).
+    pub grid: usize,
+    /// Load steps (`--steps`).
+    pub steps: usize,
+    /// Mean radius c̄0 of the first contact (`--start-radius`, dimensionless).
+    pub start_radius: f64,
+    /// Free margin around the first contact (`--margin`, dimensionless).
+    pub margin: f64,
+}
+
+/// What a shard file says of its format.
+pub const SHARD_FORMAT: &str = "jkrbem sweep shard 1";
+
+/// One shard's file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Shard {
+    /// [`SHARD_FORMAT`].
+    pub format: String,
+    /// The sweep it is part of.
+    pub sweep: SweepSettings,
+    /// Its position K (1-based).
+    pub shard: usize,
+    /// The number of shards N.
+    pub of: usize,
+    /// The ratios it was given ([`shard_ratios`]).
+    pub ratios: Vec<f64>,
+    /// One row per ratio it ran.
+    pub rows: Vec<SweepRow>,
+}
+
+impl Shard {
+    /// Shard `k` of `n` of `sweep`, with its rows.
+    pub fn new(sweep: SweepSettings, (k, n): (usize, usize), rows: Vec<SweepRow>) -> Self {
+        let ratios = shard_ratios(&sweep.ratios, Some((k, n)));
+        Shard {
+            format: SHARD_FORMAT.into(),
+            sweep,
+            shard: k,
+            of: n,
+            ratios,
+            rows,
+        }
+    }
+
+    /// Write it as JSON, atomically. Non-finite numbers are written as null.
+    pub fn write(&self, path: &Path) -> Result<(), OutputError> {
+        let text = serde_json::to_string_pretty(self).expect("a shard always serialises");
+        file::write_bytes(path, (text + "\n").as_bytes())
+    }
 }
 
 /// What `collect` found in a folder of shard files.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Collected {
-    /// All rows, sorted by ratio.
+    /// The sweep the shards belong to.
+    pub sweep: SweepSettings,
+    /// All rows found, sorted by ratio.
     pub rows: Vec<SweepRow>,
-    /// Shard count n of the files found.
+    /// Shard count N.
     pub shards: usize,
     /// Shards (1-based) whose file is missing.
-    pub missing: Vec<usize>,
+    pub missing_shards: Vec<usize>,
+    /// Ratios with no row (their shard is missing, or it did not record them).
+    pub missing: Vec<f64>,
+    /// Ratios whose row is not usable ([`SweepRow::is_usable`]): failed, no minimum reached,
+    /// or not finite.
+    pub incomplete: Vec<f64>,
 }
 
 /// Errors of [`collect`].
@@ -107,76 +217,216 @@ pub enum CollectError {
     #[error("cannot read {0}: {1}")]
     Io(String, std::io::Error),
     /// No shard file was found.
-    #[error("no sweep-shard-K-of-N.csv files in {0}")]
+    #[error("no sweep-shard-K-of-N.json files in {0} (a sweep run with --shard K/N writes them)")]
     Empty(String),
-    /// Shard files of different sweeps were found.
-    #[error("shard files of different shard counts in {0}: {1:?}")]
-    Mixed(String, Vec<usize>),
-    /// A shard file could not be parsed.
-    #[error("cannot read {0}: {1}")]
-    Csv(String, csv::Error),
+    /// A file named as a shard is not a valid shard.
+    #[error("{0} is not a valid shard file: {1}")]
+    Corrupt(String, String),
+    /// Shards of different sweeps were found.
+    #[error("the shards in {0} are not of one sweep: {1}")]
+    Mixed(String, String),
+    /// A ratio was found more than once.
+    #[error("R1/R2 = {ratio} appears more than once: {where_}")]
+    Duplicate {
+        /// The ratio.
+        ratio: f64,
+        /// The files (and how often) it appears in.
+        where_: String,
+    },
 }
 
-/// Gather the shard files `sweep-shard-K-of-N.csv` in `dir` and merge their rows.
-pub fn collect(dir: &Path) -> Result<Collected, CollectError> {
-    let shown = dir.display().to_string();
-    let entries = std::fs::read_dir(dir).map_err(|e| CollectError::Io(shown.clone(), e))?;
-    let mut found: Vec<(usize, usize, PathBuf)> = Vec::new();
-    for entry in entries {
-        let path = entry
-            .map_err(|e| CollectError::Io(shown.clone(), e))?
-            .path();
-        let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-        if let Some((k, n)) = name.as_deref().and_then(parse_shard_name) {
-            found.push((k, n, path));
-        }
-    }
-    if found.is_empty() {
-        return Err(CollectError::Empty(shown));
-    }
-    let mut counts: Vec<usize> = found.iter().map(|f| f.1).collect();
-    counts.sort_unstable();
-    counts.dedup();
-    if counts.len() > 1 {
-        return Err(CollectError::Mixed(shown, counts));
-    }
-    let n = counts[0];
-    let mut rows = Vec::new();
-    for (_, _, path) in &found {
-        rows.extend(read_rows(path).map_err(|e| CollectError::Csv(path.display().to_string(), e))?);
-    }
-    rows.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
-    let missing = (1..=n)
-        .filter(|k| !found.iter().any(|f| f.0 == *k))
-        .collect();
-    Ok(Collected {
-        rows,
-        shards: n,
-        missing,
-    })
-}
-
-/// (k, n) from "sweep-shard-K-of-N.csv".
+/// (k, n) from "sweep-shard-K-of-N.json".
 fn parse_shard_name(name: &str) -> Option<(usize, usize)> {
-    let rest = name.strip_prefix("sweep-shard-")?.strip_suffix(".csv")?;
+    let rest = name.strip_prefix("sweep-shard-")?.strip_suffix(".json")?;
     let (k, n) = rest.split_once("-of-")?;
     let (k, n) = (k.parse().ok()?, n.parse().ok()?);
     (1..=n).contains(&k).then_some((k, n))
 }
 
-/// Parse a shard "K/N" (1 ≤ K ≤ N).
+/// The settings that differ between two sweeps, in words.
+fn difference(a: &SweepSettings, b: &SweepSettings) -> String {
+    let mut d = Vec::new();
+    if a.ratios != b.ratios {
+        d.push(format!("--ratios {:?} against {:?}", a.ratios, b.ratios));
+    }
+    if a.grid != b.grid {
+        d.push(format!("--grid {} against {}", a.grid, b.grid));
+    }
+    if a.steps != b.steps {
+        d.push(format!("--steps {} against {}", a.steps, b.steps));
+    }
+    if a.start_radius != b.start_radius {
+        d.push(format!(
+            "--start-radius {} against {}",
+            a.start_radius, b.start_radius
+        ));
+    }
+    if a.margin != b.margin {
+        d.push(format!("--margin {} against {}", a.margin, b.margin));
+    }
+    d.join(", ")
+}
+
+/// Read and check one shard file named as shard `(k, n)`.
+fn read_shard(path: &Path, (k, n): (usize, usize)) -> Result<Shard, CollectError> {
+    let shown = path.display().to_string();
+    let corrupt = |why: String| CollectError::Corrupt(shown.clone(), why);
+    let text = std::fs::read_to_string(path).map_err(|e| corrupt(e.to_string()))?;
+    if text.trim().is_empty() {
+        return Err(corrupt(
+            "the file is empty (a shard with no ratios still records its sweep); run the shard again"
+                .into(),
+        ));
+    }
+    let shard: Shard = serde_json::from_str(&text)
+        .map_err(|e| corrupt(format!("{e} (truncated or edited?); run the shard again")))?;
+    if shard.format != SHARD_FORMAT {
+        return Err(corrupt(format!("unknown format {:?}", shard.format)));
+    }
+    if (shard.shard, shard.of) != (k, n) {
+        return Err(corrupt(format!(
+            "named shard {k} of {n} but holds shard {} of {}",
+            shard.shard, shard.of
+        )));
+    }
+    if shard.ratios != shard_ratios(&shard.sweep.ratios, Some((k, n))) {
+        return Err(corrupt(format!(
+            "its ratios {:?} are not those of shard {k} of {n} of --ratios {:?}",
+            shard.ratios, shard.sweep.ratios
+        )));
+    }
+    if let Some(r) = shard.rows.iter().find(|r| !shard.ratios.contains(&r.ratio)) {
+        return Err(corrupt(format!(
+            "it has a row for R1/R2 = {}, which is not one of its ratios {:?}",
+            r.ratio, shard.ratios
+        )));
+    }
+    if let Some(r) = shard.rows.iter().find(|r| r.grid != shard.sweep.grid) {
+        return Err(corrupt(format!(
+            "its row for R1/R2 = {} has grid {}, the sweep's is {}",
+            r.ratio, r.grid, shard.sweep.grid
+        )));
+    }
+    Ok(shard)
+}
+
+/// Gather the shard files `sweep-shard-K-of-N.json` in `dir`, check that they are of one
+/// sweep and that no ratio appears twice, and merge their rows.
+pub fn collect(dir: &Path) -> Result<Collected, CollectError> {
+    let shown = dir.display().to_string();
+    let entries = std::fs::read_dir(dir).map_err(|e| CollectError::Io(shown.clone(), e))?;
+    let mut found: Vec<((usize, usize), PathBuf)> = Vec::new();
+    for entry in entries {
+        let path = entry
+            .map_err(|e| CollectError::Io(shown.clone(), e))?
+            .path();
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+        if let Some(kn) = name.as_deref().and_then(parse_shard_name) {
+            found.push((kn, path));
+        }
+    }
+    if found.is_empty() {
+        return Err(CollectError::Empty(shown));
+    }
+    found.sort();
+    let mut counts: Vec<usize> = found.iter().map(|f| f.0 .1).collect();
+    counts.dedup();
+    if counts.len() > 1 {
+        return Err(CollectError::Mixed(
+            shown,
+            format!("shard files of different shard counts N: {counts:?}"),
+        ));
+    }
+    let n = counts[0];
+    let mut shards = Vec::new();
+    for (kn, path) in &found {
+        shards.push((read_shard(path, *kn)?, path));
+    }
+    let (first, first_path) = (&shards[0].0, shards[0].1);
+    for (s, path) in &shards[1..] {
+        if s.sweep != first.sweep {
+            return Err(CollectError::Mixed(
+                shown,
+                format!(
+                    "{} and {} differ in {}",
+                    first_path.display(),
+                    path.display(),
+                    difference(&first.sweep, &s.sweep)
+                ),
+            ));
+        }
+    }
+    let sweep = first.sweep.clone();
+    let mut listed = sweep.ratios.clone();
+    listed.sort_by(f64::total_cmp);
+    if let Some(w) = listed.windows(2).find(|w| w[0] == w[1]) {
+        return Err(CollectError::Duplicate {
+            ratio: w[0],
+            where_: format!("twice in the sweep's --ratios {:?}", sweep.ratios),
+        });
+    }
+    let mut rows: Vec<SweepRow> = Vec::new();
+    for &ratio in &sweep.ratios {
+        let holders: Vec<String> = shards
+            .iter()
+            .flat_map(|(s, p)| {
+                s.rows
+                    .iter()
+                    .filter(move |r| r.ratio == ratio)
+                    .map(move |_| p.display().to_string())
+            })
+            .collect();
+        if holders.len() > 1 {
+            return Err(CollectError::Duplicate {
+                ratio,
+                where_: holders.join(", "),
+            });
+        }
+    }
+    for (s, _) in &shards {
+        rows.extend(s.rows.iter().cloned());
+    }
+    rows.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
+    let missing_shards = (1..=n)
+        .filter(|k| !shards.iter().any(|(s, _)| s.shard == *k))
+        .collect();
+    let missing = sweep
+        .ratios
+        .iter()
+        .copied()
+        .filter(|r| !rows.iter().any(|row| row.ratio == *r))
+        .collect();
+    let incomplete = rows
+        .iter()
+        .filter(|r| !r.is_usable())
+        .map(|r| r.ratio)
+        .collect();
+    Ok(Collected {
+        sweep,
+        rows,
+        shards: n,
+        missing_shards,
+        missing,
+        incomplete,
+    })
+}
+
+/// Parse a shard "K/N" (1 ≤ K ≤ N ≤ [`MAX_SHARDS`]).
 pub fn parse_shard(text: &str) -> Result<(usize, usize), String> {
-    let err = || format!("--shard {text:?}: expected K/N with 1 ≤ K ≤ N, e.g. 2/8");
+    let err = || format!("--shard {text:?}: expected K/N with 1 ≤ K ≤ N ≤ {MAX_SHARDS}, e.g. 2/8");
     let (k, n) = text.split_once('/').ok_or_else(err)?;
     let (k, n): (usize, usize) = (
         k.trim().parse().map_err(|_| err())?,
         n.trim().parse().map_err(|_| err())?,
     );
-    if k == 0 || k > n {
+    if k == 0 || k > n || n > MAX_SHARDS {
         return Err(err());
     }
     Ok((k, n))
 }
+
+/// The most shards a sweep is split into.
+pub const MAX_SHARDS: usize = 10_000;
 
 /// The ratios (by position) that shard K of N runs: positions j with j mod N = K − 1.
 pub fn shard_ratios(ratios: &[f64], shard: Option<(usize, usize)>) -> Vec<f64> {
@@ -200,7 +450,7 @@ mod tests {
             ratio,
             f_ad_bar: Some(0.5 / ratio.sqrt()),
             c_bar_at_min: Some(0.8),
-            d_bar_at_min: None,
+            d_bar_at_min: Some(-0.2),
             jg_f_ad_bar: Some(0.5),
             n_d: Some(60.0),
             grid: 128,
@@ -209,36 +459,112 @@ mod tests {
             ny: 64,
             backend: "cpu-f64".into(),
             complete: true,
+            min_reached: true,
+            error: None,
         }
+    }
+
+    fn settings(ratios: &[f64]) -> SweepSettings {
+        SweepSettings {
+            ratios: ratios.to_vec(),
+            grid: 128,
+            steps: 200,
+            start_radius: 1.5,
+            margin: 0.08,
+        }
+    }
+
+    fn write_shard(dir: &Path, sweep: &SweepSettings, kn: (usize, usize), rows: Vec<SweepRow>) {
+        Shard::new(sweep.clone(), kn, rows)
+            .write(&shard_path(dir, kn))
+            .unwrap();
     }
 
     #[test]
     fn shards_partition_the_ratios_and_collect_merges_them() {
         let ratios = [1.0, 2.0, 5.0, 10.0, 25.0, 50.0];
+        let sweep = settings(&ratios);
         let dir = tempfile::tempdir().unwrap();
         let mut all = Vec::new();
         for k in 1..=4 {
             let mine = shard_ratios(&ratios, Some((k, 4)));
             all.extend(mine.clone());
-            let rows: Vec<SweepRow> = mine.iter().map(|&r| row(r)).collect();
             if k != 3 {
-                write_rows(&sweep_csv_path(dir.path(), Some((k, 4))), &rows).unwrap();
+                write_shard(
+                    dir.path(),
+                    &sweep,
+                    (k, 4),
+                    mine.iter().map(|&r| row(r)).collect(),
+                );
             }
         }
         all.sort_by(f64::total_cmp);
         assert_eq!(all, ratios);
         let c = collect(dir.path()).unwrap();
         assert_eq!(c.shards, 4);
-        assert_eq!(c.missing, vec![3]);
+        assert_eq!(c.missing_shards, vec![3]);
+        assert_eq!(c.missing, vec![5.0]);
+        assert!(c.incomplete.is_empty());
         let got: Vec<f64> = c.rows.iter().map(|r| r.ratio).collect();
         assert_eq!(got, vec![1.0, 2.0, 10.0, 25.0, 50.0]);
         assert_eq!(c.rows[0], row(1.0));
     }
 
     #[test]
+    fn an_empty_shard_is_a_valid_file_and_an_empty_file_is_not() {
+        let sweep = settings(&[1.0, 2.0]);
+        let dir = tempfile::tempdir().unwrap();
+        write_shard(dir.path(), &sweep, (1, 3), vec![row(1.0)]);
+        write_shard(dir.path(), &sweep, (2, 3), vec![row(2.0)]);
+        write_shard(dir.path(), &sweep, (3, 3), vec![]);
+        let c = collect(dir.path()).unwrap();
+        assert!(c.missing.is_empty() && c.missing_shards.is_empty());
+        std::fs::write(shard_path(dir.path(), (3, 3)), "").unwrap();
+        let e = collect(dir.path()).unwrap_err();
+        assert!(matches!(e, CollectError::Corrupt(..)), "{e}");
+        assert!(e.to_string().contains("empty"), "{e}");
+    }
+
+    #[test]
+    fn shards_of_different_sweeps_and_repeated_ratios_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        write_shard(dir.path(), &settings(&[1.0, 2.0]), (1, 2), vec![row(1.0)]);
+        let mut other = settings(&[1.0, 2.0]);
+        other.grid = 64;
+        let mut r2 = row(2.0);
+        r2.grid = 64;
+        write_shard(dir.path(), &other, (2, 2), vec![r2]);
+        let e = collect(dir.path()).unwrap_err();
+        assert!(e.to_string().contains("--grid 128 against 64"), "{e}");
+
+        let dir = tempfile::tempdir().unwrap();
+        let sweep = settings(&[1.0, 2.0]);
+        write_shard(dir.path(), &sweep, (1, 2), vec![row(1.0), row(1.0)]);
+        write_shard(dir.path(), &sweep, (2, 2), vec![row(2.0)]);
+        let e = collect(dir.path()).unwrap_err();
+        assert!(
+            matches!(e, CollectError::Duplicate { ratio, .. } if ratio == 1.0),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn incomplete_and_non_finite_rows_are_named() {
+        let dir = tempfile::tempdir().unwrap();
+        let sweep = settings(&[1.0, 2.0, 5.0]);
+        let mut failed = row(2.0);
+        failed.complete = false;
+        let mut nan = row(5.0);
+        nan.f_ad_bar = Some(f64::NAN);
+        write_shard(dir.path(), &sweep, (1, 1), vec![row(1.0), failed, nan]);
+        let c = collect(dir.path()).unwrap();
+        assert_eq!(c.incomplete, vec![2.0, 5.0]);
+    }
+
+    #[test]
     fn shard_text_is_checked() {
         assert_eq!(parse_shard("2/8"), Ok((2, 8)));
-        for bad in ["0/4", "5/4", "x/4", "3", "1/0"] {
+        for bad in ["0/4", "5/4", "x/4", "3", "1/0", "1/100000"] {
             assert!(parse_shard(bad).is_err(), "{bad}");
         }
     }

@@ -8,7 +8,7 @@ pub mod protocol;
 pub mod retry;
 pub mod state;
 
-pub use protocol::{run, run_with_contact, Outcome};
+pub use protocol::{run, run_until, run_with_contact, Outcome};
 pub use state::{Phase, State};
 
 use crate::backend::BackendError;
@@ -71,7 +71,7 @@ pub enum SolverError {
         /// Elements attached in the last sweep.
         attached: usize,
     },
-    /// The user stopped the run.
-    #[error("interrupted")]
+    /// The run was stopped from outside (the observer of its states asked to stop).
+    #[error("interrupted: the run was asked to stop")]
     Interrupted,
 }

@@ -75,6 +75,34 @@ impl Outcome {
             .filter(|s| s.dx == last_dx)
             .min_by(|a, b| a.force.total_cmp(&b.force))
     }
+
+    /// Whether the run reached the force minimum, so that [`Outcome::force_minimum`] is the
+    /// adhesive force and not just the lowest force recorded: the minimum state is in contact,
+    /// and after it the contact jumped off, or the run stopped once the minimum was confirmed,
+    /// or the approach went [`CONFIRM_D_BAR`] past it with the force [`CONFIRM_RISE`] of its
+    /// size above it. A run stopped by `--final-d` (or an error) while the force was still
+    /// falling has not.
+    pub fn min_reached(&self) -> bool {
+        let Some(min) = self.force_minimum() else {
+            return false;
+        };
+        if min.n_contact == 0 || !min.force.is_finite() {
+            return false;
+        }
+        if self.stopped_after_minimum {
+            return true;
+        }
+        let k = self
+            .states
+            .iter()
+            .rposition(|s| std::ptr::eq(s, min))
+            .unwrap_or(self.states.len());
+        self.states[k + 1..].iter().any(|s| {
+            s.n_contact == 0
+                || (s.d_bar <= min.d_bar - CONFIRM_D_BAR
+                    && s.force - min.force >= CONFIRM_RISE * min.force.abs())
+        })
+    }
 }
 
 /// Measure and normalise the state of pressure `p` on the backend's contact set.
@@ -138,12 +166,30 @@ pub fn run_with_contact<B: Backend>(
     model: &Model,
     observe: &mut dyn FnMut(&State, &[bool]),
 ) -> Outcome {
+    run_until(backend, model, &mut |s, mask| {
+        observe(s, mask);
+        true
+    })
+}
+
+/// Like [`run_with_contact`], but `observe` returns whether to go on: once it returns false
+/// (say, its states can no longer be written), the run stops at the next load step with
+/// [`SolverError::Interrupted`], keeping the states recorded so far.
+pub fn run_until<B: Backend>(
+    backend: &mut B,
+    model: &Model,
+    observe: &mut dyn FnMut(&State, &[bool]) -> bool,
+) -> Outcome {
     let mut states = Vec::new();
+    let go_on = std::cell::Cell::new(true);
     let mut out = Emitter {
         push: &mut |s: State, mask: &[bool]| {
-            observe(&s, mask);
+            if !observe(&s, mask) {
+                go_on.set(false);
+            }
             states.push(s);
         },
+        go_on: &go_on,
         pending: Vec::new(),
         least: None,
         regrids: Vec::new(),
@@ -169,6 +215,8 @@ pub fn run_with_contact<B: Backend>(
 /// still be taken again.
 struct Emitter<'a> {
     push: &'a mut dyn FnMut(State, &[bool]),
+    /// False once the observer asked to stop.
+    go_on: &'a std::cell::Cell<bool>,
     pending: Vec<(State, Vec<bool>)>,
     /// Least force (force) handed on since the last re-grid, and its d̄.
     least: Option<(f64, f64)>,
@@ -316,6 +364,9 @@ fn run_inner<B: Backend>(
     let mut d_prev = model.d0;
     let mut step = 0;
     loop {
+        if !out.go_on.get() {
+            return Err(SolverError::Interrupted);
+        }
         step += 1;
         let d = model.d0 - step as f64 * model.d_step;
         if d < model.d_final {
