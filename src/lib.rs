@@ -4,7 +4,7 @@
 //!
 //! Data flows one way: [`scene`] → [`model`] → [`solver`] (over a [`backend`]) → states →
 //! [`output`]. [`theory`] holds the closed forms the results are checked against,
-//! [`analysis`] the fits and contours of the study made from the states, and [`bench`] times
+//! [`analysis`] the fits and contours of the study made from the states, and [`bench`](mod@bench) times
 //! the backend operations and whole pull-offs (`jkrbem bench`).
 
 pub mod analysis;

@@ -1,5 +1,5 @@
 //! Outputs: state CSVs, run summaries for people and scripts, log–log and linear charts, and
-//! the timings of `jkrbem bench`. Every file is written through [`file`]: never half-written,
+//! the timings of `jkrbem bench`. Every file is written through [`file`](mod@file): never half-written,
 //! never over a file that is not a regular one, and never over another run's.
 
 pub mod bench;
