@@ -200,6 +200,12 @@ pub struct ModelOptions {
     /// Angle θ between the ellipsoid's major axis and the grid's x axis (degrees); 0 aligns
     /// them. A rotated mesh checks results where crack fronts run along grid lines (SPEC §7).
     pub mesh_angle_deg: f64,
+    /// Where the apex lies within the element grid (elements along x and y, each in
+    /// [−0.5, 0.5], so that it moves by half an element at most): (0, 0) puts it on the
+    /// corner between the four middle elements, (0.5, 0.5) on the centre of one. Changing it changes
+    /// where the contact's edge falls between element centres (the grid phase) and nothing
+    /// else; the extrapolation in Δx averages over it.
+    pub apex_offset: (f64, f64),
 }
 
 impl Default for ModelOptions {
@@ -221,6 +227,7 @@ impl Default for ModelOptions {
             measure: Measure::Curve,
             regrid: false,
             mesh_angle_deg: 0.0,
+            apex_offset: (0.0, 0.0),
         }
     }
 }
@@ -284,6 +291,9 @@ pub struct Model {
     pub regrid: bool,
     /// The rotation of the ellipsoid against the grid.
     pub mesh: MeshAngle,
+    /// The apex's position within the element grid (elements along x and y, in [−0.5, 0.5]):
+    /// element centres lie at x = (i + ½ − nx/2 − offset.0)·Δx from the apex.
+    pub apex_offset: (f64, f64),
 }
 
 /// The angle θ between the ellipsoid's major axis and the grid's x axis, with its cosine and
@@ -497,6 +507,14 @@ impl Model {
             ));
         }
         let mesh = MeshAngle::from_degrees(opt.mesh_angle_deg);
+        let (ox, oy) = opt.apex_offset;
+        if !((-0.5..=0.5).contains(&ox) && (-0.5..=0.5).contains(&oy)) {
+            return Err(invalid(
+                "--apex-offset",
+                format!("{},{}", compact(ox), compact(oy)),
+                "two fractions of an element in [−0.5, 0.5], e.g. 0.25,-0.5".to_string(),
+            ));
+        }
         let scales = scene.scales();
         let c0_len = c0 * scales.length;
         let initial =
@@ -567,6 +585,7 @@ impl Model {
             measure: opt.measure,
             regrid: opt.regrid,
             mesh,
+            apex_offset: opt.apex_offset,
         };
         model.check_scales("f64", F64_SAFE_RANGE)?;
         Ok(model)
@@ -677,15 +696,16 @@ impl Model {
     /// each element of the new grid takes the value of the element of this grid that holds
     /// its centre (`outside` where none does).
     pub fn resample<T: Copy>(&self, fine: &Model, values: &[T], outside: T) -> Vec<T> {
-        let index = |x: f64, n: usize| {
-            let k = (x / self.dx + n as f64 / 2.0).floor();
+        let index = |x: f64, n: usize, offset: f64| {
+            let k = (x / self.dx + n as f64 / 2.0 + offset).floor();
             (k >= 0.0 && k < n as f64).then_some(k as usize)
         };
+        let (ox, oy) = self.apex_offset;
         let mut out = Vec::with_capacity(fine.nx * fine.ny);
         for j in 0..fine.ny {
             for i in 0..fine.nx {
                 out.push(
-                    match (index(fine.x(i), self.nx), index(fine.y(j), self.ny)) {
+                    match (index(fine.x(i), self.nx, ox), index(fine.y(j), self.ny, oy)) {
                         (Some(ic), Some(jc)) => values[jc * self.nx + ic],
                         _ => outside,
                     },
@@ -698,12 +718,12 @@ impl Model {
     /// x coordinate (length) of the centre of column `i`; the apex lies between the two
     /// middle columns.
     pub fn x(&self, i: usize) -> f64 {
-        (i as f64 + 0.5 - self.nx as f64 / 2.0) * self.dx
+        (i as f64 + 0.5 - self.nx as f64 / 2.0 - self.apex_offset.0) * self.dx
     }
 
     /// y coordinate (length) of the centre of row `j`.
     pub fn y(&self, j: usize) -> f64 {
-        (j as f64 + 0.5 - self.ny as f64 / 2.0) * self.dx
+        (j as f64 + 0.5 - self.ny as f64 / 2.0 - self.apex_offset.1) * self.dx
     }
 
     /// The indenter profile h at element centres (length), row-major nx × ny.
