@@ -6,9 +6,9 @@
 //!     JKRBEM_BENCH_GRIDS=256,512,1024,2048 cargo bench --bench backends
 
 use criterion::{BenchmarkId, Criterion};
-use jkrbem::backend::cpu::{CpuBackend, GridSetup};
+use jkrbem::backend::cpu::CpuBackend;
 use jkrbem::backend::gpu::{AdapterPreference, GpuBackend, GpuContext};
-use jkrbem::backend::{Backend, Slot};
+use jkrbem::backend::Backend;
 use jkrbem::model::{Model, ModelOptions};
 use jkrbem::scene::Scene;
 
@@ -36,11 +36,12 @@ fn convolution<B: Backend>(c: &mut Criterion, backend: &mut B, model: &Model) {
         .expect("contact");
     let name = format!("convolution/{}-{}", backend.name(), backend.precision());
     let mut out = [0.0];
+    let sync = backend.slot().expect("a register");
     c.bench_with_input(BenchmarkId::new(name, model.nx), &model.nx, |b, _| {
         b.iter(|| {
             backend.convolve(&p, &mut u).expect("convolve");
-            backend.dot(&u, &u, Slot(5)).expect("dot");
-            backend.read_slots(&[Slot(5)], &mut out).expect("read");
+            backend.dot(&u, &u, sync).expect("dot");
+            backend.read_slots(&[sync], &mut out).expect("read");
         })
     });
 }
@@ -53,7 +54,7 @@ fn main() {
     let mut c = Criterion::default().configure_from_args().sample_size(10);
     for &n in &grids {
         let m = model(n);
-        let setup = GridSetup::for_model(&m);
+        let setup = m.grid_setup();
         let mut cpu = CpuBackend::new(&setup).expect("cpu backend");
         convolution(&mut c, &mut cpu, &m);
         match GpuContext::new(AdapterPreference::Best).and_then(|ctx| GpuBackend::new(ctx, &setup))

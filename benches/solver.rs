@@ -15,8 +15,9 @@
 
 use criterion::Criterion;
 use jkrbem::backend::cpu::spectral::SpectralFilter;
-use jkrbem::backend::cpu::{CpuBackend, GridSetup};
-use jkrbem::backend::{Backend, Preconditioner, Slot};
+use jkrbem::backend::cpu::CpuBackend;
+use jkrbem::backend::prelude::*;
+use jkrbem::backend::{Preconditioner, Slot};
 use jkrbem::model::{Model, ModelOptions};
 use jkrbem::scene::Scene;
 use jkrbem::solver::{self, Phase};
@@ -28,12 +29,14 @@ const PRECONDITIONERS: [(Preconditioner, &str); 2] = [
     (Preconditioner::None, "none"),
     (Preconditioner::Stiffness, "stiffness"),
 ];
-/// CG's slots (as in `solver::cg`): r·z, previous r·z, s·Ks, r·r, and one never written.
-const RZ: Slot = Slot(0);
-const RZ_OLD: Slot = Slot(1);
-const SQ: Slot = Slot(2);
-const RR: Slot = Slot(3);
-const ZERO: Slot = Slot(7);
+/// CG's registers (as in `solver::cg`): r·z, previous r·z, s·Ks, r·r, and one never written.
+struct Registers {
+    rz: Slot,
+    rz_old: Slot,
+    sq: Slot,
+    rr: Slot,
+    zero: Slot,
+}
 /// Iterations after which the CG state is restarted (so it never runs into round-off).
 const RESTART: usize = 50;
 
@@ -48,7 +51,7 @@ fn model(n: usize, preconditioner: Preconditioner) -> Model {
 }
 
 fn backend(model: &Model) -> CpuBackend {
-    let setup = GridSetup::for_model(model);
+    let setup = model.grid_setup();
     CpuBackend::new(&setup).expect("the profile fits the grid")
 }
 
@@ -62,6 +65,7 @@ struct CgState {
     s: Vec<f64>,
     q: Vec<f64>,
     done: usize,
+    slots: Registers,
 }
 
 impl CgState {
@@ -72,7 +76,16 @@ impl CgState {
             .set_contact(&model.initial_contact())
             .expect("mask fits");
         let zero = vec![0.0; model.nx * model.ny];
+        let mut slot = || backend.slot().expect("the CPU has registers");
+        let slots = Registers {
+            rz: slot(),
+            rz_old: slot(),
+            sq: slot(),
+            rr: slot(),
+            zero: slot(),
+        };
         let mut st = CgState {
+            slots,
             backend,
             d: model.d0,
             p: zero.clone(),
@@ -88,12 +101,12 @@ impl CgState {
 
     /// CG's start from p = 0: r = (d − h)_C, z = M r, s = z.
     fn restart(&mut self) {
-        let b = &mut self.backend;
+        let (b, k) = (&mut self.backend, &self.slots);
         self.p.iter_mut().for_each(|v| *v = 0.0);
         b.residual(&self.p, self.d, &mut self.r).unwrap();
         b.precondition(&self.r, &mut self.z).unwrap();
-        b.dot(&self.r, &self.z, RZ).unwrap();
-        b.xpay_ratio(&mut self.s, &self.z, ZERO, ZERO).unwrap();
+        b.dot(&self.r, &self.z, k.rz).unwrap();
+        b.xpay_ratio(&mut self.s, &self.z, k.zero, k.zero).unwrap();
         self.done = 0;
     }
 
@@ -103,19 +116,20 @@ impl CgState {
             self.restart();
         }
         self.done += 1;
-        let (b, t0) = (&mut self.backend, Instant::now());
+        let (b, k, t0) = (&mut self.backend, &self.slots, Instant::now());
         b.convolve(&self.s, &mut self.q).unwrap();
-        b.dot(&self.s, &self.q, SQ).unwrap();
-        b.axpy_ratio(&mut self.p, &self.s, RZ, SQ, 1.0).unwrap();
-        b.axpy_ratio(&mut self.r, &self.q, RZ, SQ, -1.0).unwrap();
-        b.dot(&self.r, &self.r, RR).unwrap();
+        b.dot(&self.s, &self.q, k.sq).unwrap();
+        b.axpy_ratio(&mut self.p, &self.s, k.rz, k.sq, 1.0).unwrap();
+        b.axpy_ratio(&mut self.r, &self.q, k.rz, k.sq, -1.0)
+            .unwrap();
+        b.dot(&self.r, &self.r, k.rr).unwrap();
         let mut rr = [0.0];
-        b.read_slots(&[RR], &mut rr).unwrap();
+        b.read_slots(&[k.rr], &mut rr).unwrap();
         black_box(rr);
-        b.copy_slot(RZ, RZ_OLD).unwrap();
+        b.copy_slot(k.rz, k.rz_old).unwrap();
         b.precondition(&self.r, &mut self.z).unwrap();
-        b.dot(&self.r, &self.z, RZ).unwrap();
-        b.xpay_ratio(&mut self.s, &self.z, RZ, RZ_OLD).unwrap();
+        b.dot(&self.r, &self.z, k.rz).unwrap();
+        b.xpay_ratio(&mut self.s, &self.z, k.rz, k.rz_old).unwrap();
         t0.elapsed()
     }
 }

@@ -52,6 +52,8 @@ struct Params {
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
+// rows_forward's parameters, the same struct in a storage buffer (see rows_forward).
+@group(0) @binding(9) var<storage, read> forward_params: Params;
 // Real field nx × ny as pairs (x[2k], x[2k+1]) (rows_forward's input).
 @group(0) @binding(1) var<storage, read> src: array<vec2<f32>>;
 // Contact mask as pairs (1 = in contact).
@@ -70,40 +72,41 @@ fn group_index(wid: vec3<u32>, nwg: vec3<u32>) -> u32 {
     return wid.x + wid.y * nwg.x;
 }
 
-// x pairs (k) of row j, masked if asked.
-fn load_pair(j: u32, k: u32) -> vec2<f32> {
-    let idx = j * (params.nx >> 1u) + k;
-    var z = src[idx];
-    if params.masked != 0u {
-        let m = mask[idx];
-        z = vec2<f32>(select(0.0, z.x, m.x != 0u), select(0.0, z.y, m.y != 0u));
-    }
-    return z;
-}
-
 @compute @workgroup_size(WG)
 fn rows_forward(
     @builtin(local_invocation_index) lid: u32,
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) nwg: vec3<u32>,
 ) {
-    if params.guarded != 0u && cg_halted(lid) {
+    // The parameters come from a storage buffer: Mesa's lavapipe (22.3) compiled a new
+    // variant of this kernel, inlining its uniform parameters, at every dispatch and never
+    // freed it (0.7 MB per dispatch at 64²).
+    let prm = forward_params;
+    if prm.guarded != 0u && cg_halted(lid) {
         return;
     }
-    let log_l = params.log_l;
+    let log_l = prm.log_l;
     let l = 1u << log_l;
-    let log_g = params.log_rows;
+    let log_g = prm.log_rows;
     let npts = l << log_g;
     let row0 = group_index(wid, nwg) << log_g;
-    let pairs = params.nx >> 1u;
+    let pairs = prm.nx >> 1u;
     for (var c = 0u; c < VPT; c++) {
         let p = lid + c * WG;
         if p < npts {
             let j = row0 + (p >> log_l);
             let k = p & (l - 1u);
             var z = vec2<f32>(0.0, 0.0);
-            if j < params.ny && k < pairs {
-                z = load_pair(j, k);
+            if j < prm.ny && k < pairs {
+                // The pair (x[2k], x[2k+1]) of row j, zero off the contact when masked. (Written
+                // out here rather than in a function: Mesa's lavapipe leaked memory at every
+                // dispatch of the function form.)
+                let idx = j * pairs + k;
+                z = src[idx];
+                if prm.masked != 0u {
+                    let m = mask[idx];
+                    z = vec2<f32>(select(0.0, z.x, m.x != 0u), select(0.0, z.y, m.y != 0u));
+                }
             }
             buf[at(p)] = z;
         }
@@ -112,7 +115,7 @@ fn rows_forward(
     fft_lines_in_buf(lid, log_l, npts, false);
     // X[k] = E + e^{−2πik/2L}·O, E = (Z[k] + conj Z[L−k])/2, O = (Z[k] − conj Z[L−k])/(2i);
     // consecutive threads take consecutive rows of one column (runs of 2^log_g values).
-    let ny = params.ny;
+    let ny = prm.ny;
     let nout = (l + 1u) << log_g;
     for (var q = lid; q < nout; q += WG) {
         let g = q & ((1u << log_g) - 1u);

@@ -4,7 +4,7 @@
 //!
 //! **Synchronisation.** A device backend may queue work and return before it has run. Every
 //! timed repetition therefore ends with a blocking readback of one scalar (a masked dot
-//! product into a spare slot, then [`Backend::read_slots`]): when the clock stops, the work
+//! product into a spare slot, then [`Scalars::read_slots`](crate::backend::Scalars::read_slots)): when the clock stops, the work
 //! has finished. Each timing thus includes one small reduction and one scalar readback.
 //!
 //! **Statistics.** Each short measurement (a convolution, a CG solve) is repeated untimed for
@@ -13,16 +13,15 @@
 //! of the samples is reported. Ratios between backends or grids are
 //! only meaningful within one run on one machine.
 
+#[cfg(feature = "gpu")]
 use crate::backend::gpu::GpuBackend;
+#[cfg(feature = "gpu")]
+use crate::backend::Device;
 use crate::backend::{Backend, BackendError, Counters, Slot};
 use crate::model::{CgSettings, Model};
 use crate::solver::cg::{self, CgWork};
 use crate::solver::{self, SolverError};
 use std::time::{Duration, Instant};
-
-/// The scalar register the end-of-repetition readback writes: not one of CG's (`solver::cg`
-/// uses slots 0–4, and slot 7 must stay zero).
-const SYNC: Slot = Slot(5);
 
 /// How long each short measurement is repeated untimed first (thread pools, FFT plans, GPU
 /// pipelines and caches settle).
@@ -55,7 +54,7 @@ impl Default for BenchOptions {
     }
 }
 
-/// Backend work per CG iteration: differences of [`Backend::counters`] over a solve, less
+/// Backend work per CG iteration: differences of [`Device::counters`] over a solve, less
 /// those of CG's start, divided by the iterations made.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct WorkPerIteration {
@@ -140,11 +139,12 @@ pub fn hertz_like_pressure(model: &Model) -> Vec<f64> {
     p
 }
 
-/// Wait until the backend has finished the work queued so far, by reading back Σ_C f·f.
-fn sync<B: Backend>(backend: &mut B, f: &B::Field) -> Result<(), BackendError> {
-    backend.dot(f, f, SYNC)?;
+/// Wait until the backend has finished the work queued so far, by reading back Σ_C f·f into
+/// the register `sync` (one of the bench's own, not CG's).
+fn sync<B: Backend>(backend: &mut B, f: &B::Field, sync: Slot) -> Result<(), BackendError> {
+    backend.dot(f, f, sync)?;
     let mut v = [0.0];
-    backend.read_slots(&[SYNC], &mut v)?;
+    backend.read_slots(&[sync], &mut v)?;
     std::hint::black_box(v);
     Ok(())
 }
@@ -209,10 +209,11 @@ pub fn time_convolution<B: Backend>(
     let mut p = backend.field()?;
     backend.upload(&mut p, &hertz_like_pressure(model))?;
     let mut u = backend.field()?;
+    let slot = backend.slot()?;
     let mut t = repeat_ms(repeats, || {
         let t0 = Instant::now();
         backend.convolve(&p, &mut u)?;
-        sync(backend, &u)?;
+        sync(backend, &u, slot)?;
         Ok(t0.elapsed())
     })?;
     Ok(median(&mut t))
@@ -231,6 +232,7 @@ pub fn time_cg_iteration<B: Backend>(
 ) -> Result<(f64, usize, WorkPerIteration), BackendError> {
     let mut work = CgWork::new(backend)?;
     let mut p = backend.field()?;
+    let slot = backend.slot()?;
     let zeros = vec![0.0; model.nx * model.ny];
     // Tolerance 0: never converged, so CG makes `max_iterations` iterations and reads its
     // residual back once, at the end.
@@ -248,7 +250,7 @@ pub fn time_cg_iteration<B: Backend>(
             let before = backend.counters();
             let t0 = Instant::now();
             let report = cg::solve(backend, &mut work, &mut p, model.d0, &settings(n))?;
-            sync(backend, &p)?;
+            sync(backend, &p, slot)?;
             let elapsed = t0.elapsed();
             let after = backend.counters();
             *made = report.iterations;
@@ -290,6 +292,7 @@ impl KernelProfile {
 /// `iterations` iterations (from p = 0 at the model's first approach, on the backend's
 /// contact set, tolerance 0) less those of CG's start alone, per iteration, slowest first.
 /// Fails where the adapter cannot write timestamps.
+#[cfg(feature = "gpu")]
 pub fn profile_cg_iteration(
     gpu: &mut GpuBackend,
     model: &Model,
@@ -382,6 +385,17 @@ pub fn measure<B: Backend>(
         work_per_iteration,
         pulloff,
     })
+}
+
+/// One grid's kernel profile.
+#[derive(Debug, Clone)]
+pub struct GridProfile {
+    /// "--backends gpu 256×256".
+    pub label: String,
+    /// Per kernel, per CG iteration.
+    pub kernels: Vec<KernelProfile>,
+    /// The bytes one CG iteration must move at least (its floor).
+    pub floor_bytes: f64,
 }
 
 #[cfg(test)]

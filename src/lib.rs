@@ -4,8 +4,11 @@
 //!
 //! Data flows one way: [`scene`] → [`model`] → [`solver`] (over a [`backend`]) → states →
 //! [`output`]. [`theory`] holds the closed forms the results are checked against,
-//! [`analysis`] the fits and contours of the study made from the states, and [`bench`](mod@bench) times
-//! the backend operations and whole pull-offs (`jkrbem bench`).
+//! [`analysis`] every number derived from the states (estimates and their uncertainties, fits,
+//! contours), [`run`] the session layer that plans, runs and hands results to `output`, and
+//! [`bench`](mod@bench) times the backend operations and whole pull-offs (`jkrbem bench`).
+
+#![warn(missing_docs)]
 
 pub mod analysis;
 pub mod backend;
@@ -13,6 +16,7 @@ pub mod bench;
 pub mod model;
 pub mod output;
 pub mod plan;
+pub mod run;
 pub mod scene;
 pub mod solver;
 pub mod text;

@@ -38,6 +38,9 @@ enum Command {
     /// index.html.
     #[command(allow_negative_numbers = true)]
     Reproduce(cli::reproduce::Args),
+    /// The reference table of converged adhesive forces per R1/R2 (|min F̄|, c̄ and d̄ at the
+    /// minimum at Δx → 0, with uncertainties), from ladders of grids.
+    Reference(cli::reference::Args),
     /// One scene on several grids and backends: the error of the adhesive force against its
     /// wall time, as CSV and a log–log chart.
     #[command(allow_negative_numbers = true)]
@@ -98,6 +101,7 @@ fn main() -> ExitCode {
         Command::Collect(a) => cli::collect::run(a),
         Command::Accuracy(a) => cli::accuracy::run(a),
         Command::Reproduce(a) => cli::reproduce::run(a),
+        Command::Reference(a) => cli::reference::run(a),
         Command::Crossed(a) => cli::crossed::run(a),
         Command::Devices(a) => cli::devices::run(a),
         Command::Bench(a) => cli::bench::run(a),

@@ -128,7 +128,7 @@ fn compact_count(v: f64) -> String {
 }
 
 /// κ = (2/π)·(ln(1+√2) − (√2−1)/3) (dimensionless): the mean displacement of a uniformly
-/// loaded square is 2κ p Δx / E* (SPEC §5).
+/// loaded square is 2κ p Δx / E* (physics §5).
 pub fn kappa() -> f64 {
     let s2 = 2f64.sqrt();
     2.0 / PI * ((1.0 + s2).ln() - (s2 - 1.0) / 3.0)
@@ -141,7 +141,7 @@ pub fn critical_stress(scene: &Scene, dx: f64) -> f64 {
 }
 
 /// How the approach is decreased from one recorded state to the next.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum Stepping {
     /// Fixed steps, each refined to the exact approach of every detachment onset inside it
     /// (the sawtooth's local minima), so the force minimum does not depend on the step size.
@@ -153,7 +153,7 @@ pub enum Stepping {
 }
 
 /// What a run is for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum Measure {
     /// The whole pull-off curve, to the end of contact.
     #[default]
@@ -198,7 +198,7 @@ pub struct ModelOptions {
     /// Re-grid as the contact shrinks: the same Nx × Ny on a smaller domain (finer Δx).
     pub regrid: bool,
     /// Angle θ between the ellipsoid's major axis and the grid's x axis (degrees); 0 aligns
-    /// them. A rotated mesh checks results where crack fronts run along grid lines (SPEC §7).
+    /// them. A rotated mesh checks results where crack fronts run along grid lines (physics §7).
     pub mesh_angle_deg: f64,
     /// Where the apex lies within the element grid (elements along x and y, each in
     /// [−0.5, 0.5], so that it moves by half an element at most): (0, 0) puts it on the
@@ -726,6 +726,19 @@ impl Model {
         (j as f64 + 0.5 - self.ny as f64 / 2.0 - self.apex_offset.1) * self.dx
     }
 
+    /// What a backend for this model is built from: its grid, element size, material,
+    /// profile and preconditioner.
+    pub fn grid_setup(&self) -> crate::backend::GridSetup {
+        crate::backend::GridSetup {
+            nx: self.nx,
+            ny: self.ny,
+            dx: self.dx,
+            e_star: self.scene.e_star,
+            profile: self.profile(),
+            preconditioner: self.preconditioner,
+        }
+    }
+
     /// The indenter profile h at element centres (length), row-major nx × ny.
     pub fn profile(&self) -> Vec<f64> {
         let mut h = Vec::with_capacity(self.nx * self.ny);
@@ -765,7 +778,7 @@ mod tests {
 
     #[test]
     fn critical_stress_balances_energy() {
-        // ½ σ_c² Δx³ · 2κ/E* = Δγ Δx²  (SPEC §5).
+        // ½ σ_c² Δx³ · 2κ/E* = Δγ Δx²  (physics §5).
         let s = Scene::new(1.0, 1.0, 2.0, 0.3).unwrap();
         let dx = 0.01;
         let sc = critical_stress(&s, dx);

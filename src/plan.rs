@@ -1,8 +1,8 @@
 //! Modelling no more than a scene needs: from a requested accuracy of the adhesive force,
 //! choose the grid, the domain, the load steps and what to compute, by the convergence law
-//! (SPEC §7, [`crate::analysis::convergence`]).
+//! (physics §7, [`crate::analysis::convergence`]).
 
-use crate::analysis::convergence;
+use crate::analysis::estimate;
 use crate::model::{self, Measure, Model, ModelError, ModelOptions, Stepping, MAX_GRID};
 use crate::scene::Scene;
 use crate::text::compact;
@@ -12,18 +12,14 @@ use crate::theory::{self, TheoryModel};
 /// regime (the observed order from 32/64/128 was 1.1, from 64/128/256 without re-gridding 0.6).
 pub const MIN_PLAN_GRID: usize = 32;
 
-/// Predicted elements across the minor axis at the minimum on the coarsest grid of an
-/// extrapolation: coarser grids are not yet first order (R1/R2 = 5 from 32×16, n_d = 12:
-/// observed order −0.8).
-pub const MIN_EXTRAPOLATION_N_D: f64 = 20.0;
+/// Predicted elements across the minor axis at the minimum below which a grid is not used:
+/// coarser grids are not yet first order (R1/R2 = 5 from 32×16, n_d = 12: observed order −0.8).
+pub const MIN_PLAN_N_D: f64 = 20.0;
 
-/// Largest grid side a plan runs directly; finer answers come from extrapolation.
-pub const MAX_DIRECT_GRID: usize = 256;
-
-/// Targets below this (relative) are met by extrapolating three grids to Δx → 0, whose
-/// finest grid alone is expected within 4× the target; so are larger ones when that finest
-/// grid is smaller than the single grid that would meet the target.
-pub const EXTRAPOLATE_BELOW: f64 = 0.03;
+/// A plan aims its predicted uncertainty at this fraction of the target, since the stated one
+/// also grows where the runs scatter more than the law expects, or n_d falls short of its
+/// prediction.
+pub const PLAN_MARGIN: f64 = 0.85;
 
 /// Δx at the force minimum over the initial Δx with re-gridding, from c̄0 = 1.5: measured
 /// 0.60–0.63 (R1/R2 = 1 and 5, 64²–256²) and 0.50 (R1/R2 = 25, 128×32); the last re-grid
@@ -37,14 +33,14 @@ pub const PLAN_STEPS: usize = 100;
 /// What a requested accuracy led to.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plan {
-    /// Grids Nx to run, coarse to fine (one: a direct answer; three: extrapolated).
+    /// Grids Nx to run, coarse to fine (one: a single grid; two: both fitted together).
     pub grids: Vec<usize>,
     /// The options each grid is run with (nx set per grid).
     pub options: ModelOptions,
     /// Predicted elements across the minor axis at the minimum on the finest grid.
     pub n_d: f64,
-    /// Predicted relative error range of the finest grid alone (first order).
-    pub finest_error: (f64, f64),
+    /// The relative uncertainty the estimate is predicted to state (dimensionless).
+    pub predicted_uncertainty: f64,
     /// The target (relative).
     pub target: f64,
 }
@@ -57,29 +53,23 @@ impl Plan {
 
     /// What was chosen and why, for the user.
     pub fn describe(&self, ratio: f64) -> String {
-        let (lo, hi) = self.finest_error;
         let how = if self.extrapolates() {
-            format!(
-                "extrapolate |min F̄| to Δx → 0 from grids {:?} (the finest alone: +{:.1}…{:.1} %)",
-                self.grids,
-                100.0 * lo,
-                100.0 * hi
-            )
+            format!("grids {:?}, fitted together to Δx → 0", self.grids)
         } else {
             format!(
-                "grid {} directly (expected error +{:.1}…{:.1} %)",
-                self.grids[0],
-                100.0 * lo,
-                100.0 * hi
+                "grid {}, corrected to Δx → 0 by the convergence law",
+                self.grids[0]
             )
         };
         format!(
-            "--accuracy {:.3} %: R1/R2 = {ratio}: {how}; about {:.0} elements across the minor \
-             axis at the minimum; domain: the initial contact c̄0 = {} plus {} % margin, re-gridded \
-             to the shrinking contact (finer Δx, same grid); load steps: {} adaptive, stopped once \
-             the force minimum is confirmed (--measure adhesive-force); precision: the backend's \
-             (f32 on a GPU is 1e-6 relative, far below the target)",
+            "--accuracy {:.3} %: R1/R2 = {ratio}: {how}; predicted uncertainty ± {:.2} %; about \
+             {:.0} elements across the minor axis at the minimum; domain: the initial contact \
+             c̄0 = {} plus {} % margin, re-gridded to the shrinking contact (finer Δx, same \
+             grid); load steps: {} adaptive, stopped once the force minimum is confirmed \
+             (--measure adhesive-force); precision: the backend's (f32 on a GPU is 1e-6 \
+             relative, far below the target)",
             100.0 * self.target,
+            100.0 * self.predicted_uncertainty,
             self.n_d,
             self.options.start_radius_bar,
             100.0 * self.options.margin,
@@ -98,9 +88,44 @@ fn predicted_n_d(model: &Model) -> f64 {
     2.0 * b_bar * model.scene.scales().length / (model.dx * REGRID_DX_GAIN)
 }
 
-/// The cheapest plan expected to reach relative accuracy `target` (e.g. 0.01) on `scene`,
-/// starting from the user's `base` options (CG settings, start radius, margin are kept).
+/// The cheapest plan whose estimate is predicted to state a relative uncertainty within
+/// `target` (e.g. 0.01) on `scene`, starting from the user's `base` options (CG settings,
+/// start radius, margin are kept). Grids double from [`MIN_PLAN_GRID`]: the first whose run
+/// alone is predicted within the target is taken, or it and the grid before it fitted
+/// together if that pair is and the grid alone is not. A target that no grid fitting in
+/// memory (or up to the largest grid) reaches is refused, naming the finest reachable.
 pub fn for_accuracy(scene: &Scene, target: f64, base: &ModelOptions) -> Result<Plan, ModelError> {
+    plan(scene, target, base, available_memory(), true)
+}
+
+/// [`for_accuracy`] restricted to one grid (for batches, where each scene is one run).
+pub fn for_accuracy_one_grid(
+    scene: &Scene,
+    target: f64,
+    base: &ModelOptions,
+) -> Result<Plan, ModelError> {
+    plan(scene, target, base, available_memory(), false)
+}
+
+/// [`for_accuracy`] with the memory available given (bytes; `None`: unlimited).
+pub fn for_accuracy_within(
+    scene: &Scene,
+    target: f64,
+    base: &ModelOptions,
+    available: Option<u64>,
+) -> Result<Plan, ModelError> {
+    plan(scene, target, base, available, true)
+}
+
+/// The planner: grids double from [`MIN_PLAN_GRID`] until one (or, with `pairs`, it and the
+/// one before) is predicted within the target, or memory runs out.
+fn plan(
+    scene: &Scene,
+    target: f64,
+    base: &ModelOptions,
+    available: Option<u64>,
+    pairs: bool,
+) -> Result<Plan, ModelError> {
     if !(target.is_finite() && target > 0.0 && target < 1.0) {
         return Err(ModelError::Invalid {
             flag: "--accuracy",
@@ -117,53 +142,67 @@ pub fn for_accuracy(scene: &Scene, target: f64, base: &ModelOptions) -> Result<P
         regrid: true,
         ..base.clone()
     };
-    // The smallest grid whose predicted n_d meets a relative target, and that n_d. Grids too
-    // coarse to resolve the contact at all are skipped.
-    let grid_for = |t: f64| -> Result<(usize, f64), ModelError> {
-        let needed = convergence::n_d_for(ratio, t);
-        let mut nx = MIN_PLAN_GRID;
-        loop {
-            let built = Model::build(
-                scene,
-                &ModelOptions {
-                    nx,
-                    ..options.clone()
-                },
-            );
-            let model = match built {
-                Err(ModelError::TooCoarse { .. }) if nx < MAX_GRID => {
-                    nx *= 2;
-                    continue;
-                }
-                other => other?,
-            };
-            let n_d = predicted_n_d(&model);
-            if n_d >= needed || nx >= 8 * MAX_DIRECT_GRID {
-                return Ok((nx, n_d));
+    let aim = PLAN_MARGIN * target;
+    // (nx, predicted n_d) of the grid before, once it resolves the contact.
+    let mut previous: Option<(usize, f64)> = None;
+    let mut finest: Option<(usize, f64)> = None;
+    let mut nx = MIN_PLAN_GRID;
+    while nx <= MAX_GRID {
+        let model = match Model::build(
+            scene,
+            &ModelOptions {
+                nx,
+                ..options.clone()
+            },
+        ) {
+            Err(ModelError::TooCoarse { .. }) => {
+                nx *= 2;
+                continue;
             }
-            nx *= 2;
+            other => other?,
+        };
+        if available.is_some_and(|a| model.memory_estimate() > a) {
+            break;
         }
-    };
-    let (direct, direct_n_d) = grid_for(target)?;
-    // Or three grids whose finest alone is expected within 4× the target, extrapolated.
-    let (nx, n_d) = grid_for(4.0 * target)?;
-    let (coarsest, _) = grid_for(convergence::coefficient(ratio).1 / MIN_EXTRAPOLATION_N_D)?;
-    let finest = nx.max(4 * coarsest);
-    let extrapolate = target < EXTRAPOLATE_BELOW || direct > MAX_DIRECT_GRID || finest < direct;
-    let (grids, n_d) = if extrapolate {
-        (
-            vec![finest / 4, finest / 2, finest],
-            n_d * finest as f64 / nx as f64,
-        )
-    } else {
-        (vec![direct], direct_n_d)
-    };
-    Ok(Plan {
-        grids,
-        options,
-        n_d,
-        finest_error: convergence::expected_error(ratio, n_d),
-        target,
+        let n_d = predicted_n_d(&model);
+        if n_d >= MIN_PLAN_N_D {
+            let alone = estimate::predicted_relative_uncertainty(ratio, &[n_d]);
+            let plan = |grids: Vec<usize>, u: f64| Plan {
+                grids,
+                options: options.clone(),
+                n_d,
+                predicted_uncertainty: u,
+                target,
+            };
+            if alone <= aim {
+                return Ok(plan(vec![nx], alone));
+            }
+            if let Some((coarse, coarse_n_d)) = previous.filter(|_| pairs) {
+                let pair = estimate::predicted_relative_uncertainty(ratio, &[coarse_n_d, n_d]);
+                if pair <= aim {
+                    return Ok(plan(vec![coarse, nx], pair));
+                }
+            }
+            finest = Some((nx, alone));
+            previous = Some((nx, n_d));
+        }
+        nx *= 2;
+    }
+    Err(ModelError::Invalid {
+        flag: "--accuracy",
+        value: format!("{}%", compact(100.0 * target)),
+        expected: match finest {
+            Some((nx, u)) => format!(
+                "an accuracy this machine can reach: the finest is about {:.2} % (grid {nx}, \
+                 the largest that fits in {}), so ask for {}% or more",
+                100.0 * u / PLAN_MARGIN,
+                available.map_or("the grid limit".into(), bytes_text),
+                compact((100.0 * u / PLAN_MARGIN * 100.0).ceil() / 100.0)
+            ),
+            None => "an accuracy this machine can reach: no grid that fits in memory \
+                     resolves the contact"
+                .into(),
+        },
     })
 }
 
@@ -283,23 +322,44 @@ mod tests {
     }
 
     #[test]
-    fn looser_targets_take_coarser_grids() {
+    fn looser_targets_take_coarser_grids_and_every_plan_predicts_its_target() {
         let base = ModelOptions::default();
-        let p10 = for_accuracy(&sphere(), 0.10, &base).unwrap();
-        let p5 = for_accuracy(&sphere(), 0.05, &base).unwrap();
-        assert_eq!(p10.grids.len(), 1);
-        assert_eq!(p5.grids.len(), 1);
-        assert!(p10.grids[0] < p5.grids[0], "{p10:?} {p5:?}");
-        assert!(p5.finest_error.1 <= 0.05);
+        for ratio in [1.0, 2.0, 5.0, 10.0, 25.0, 50.0] {
+            let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).unwrap();
+            let mut last = 0;
+            for target in [0.1, 0.05, 0.02, 0.01, 0.005] {
+                let p = for_accuracy_within(&scene, target, &base, None).unwrap();
+                assert!(
+                    p.predicted_uncertainty <= PLAN_MARGIN * target,
+                    "{ratio} {p:?}"
+                );
+                assert!(p.n_d >= MIN_PLAN_N_D);
+                let finest = *p.grids.last().unwrap();
+                assert!(finest >= last, "{ratio} {target}: {p:?}");
+                last = finest;
+                assert!(p.options.regrid && p.options.measure == Measure::AdhesiveForce);
+            }
+        }
     }
 
     #[test]
-    fn one_percent_extrapolates_three_grids() {
-        let p = for_accuracy(&sphere(), 0.01, &ModelOptions::default()).unwrap();
-        assert!(p.extrapolates());
-        assert_eq!(p.grids.len(), 3);
-        assert!(p.finest_error.1 <= 0.04, "{p:?}");
-        assert!(p.options.regrid && p.options.measure == Measure::AdhesiveForce);
+    fn a_target_no_grid_in_memory_reaches_is_refused_naming_the_finest() {
+        let e = for_accuracy_within(
+            &sphere(),
+            0.001,
+            &ModelOptions::default(),
+            Some(100_000_000),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("--accuracy") && e.contains("the finest is about"),
+            "{e}"
+        );
+        assert!(
+            for_accuracy_within(&sphere(), 0.02, &ModelOptions::default(), Some(100_000_000))
+                .is_ok()
+        );
     }
 
     #[test]
@@ -342,7 +402,7 @@ mod tests {
     #[test]
     fn slender_scenes_skip_grids_too_coarse_to_resolve_them() {
         let s = Scene::from_ratio(50.0, 1.0, 1.0, 1.0).unwrap();
-        let p = for_accuracy(&s, 0.05, &ModelOptions::default()).unwrap();
+        let p = for_accuracy_within(&s, 0.05, &ModelOptions::default(), None).unwrap();
         assert!(p.grids[0] >= 64, "{p:?}");
     }
 

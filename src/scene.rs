@@ -1,5 +1,5 @@
 //! What the user described: the indenter's radii, the material and the adhesion, and the
-//! normalisation (SPEC §2) that every output uses. Knows nothing of grids or FFTs.
+//! normalisation (physics §2) that every output uses. Knows nothing of grids or FFTs.
 
 use crate::text::compact;
 use std::f64::consts::PI;
@@ -31,6 +31,24 @@ pub enum SceneError {
         /// The valid range, in words.
         expected: String,
     },
+}
+
+impl SceneError {
+    /// The same error naming its parameter by the front end's flag (`rename` maps the
+    /// library's name, e.g. "--angle", to the flag that sets it there, e.g. "--angles").
+    pub fn renamed(self, rename: &dyn Fn(&'static str) -> &'static str) -> SceneError {
+        match self {
+            SceneError::Invalid {
+                flag,
+                value,
+                expected,
+            } => SceneError::Invalid {
+                flag: rename(flag),
+                value,
+                expected,
+            },
+        }
+    }
 }
 
 /// A rigid ellipsoid h = x²/(2 R1) + y²/(2 R2) on an elastic half-space, with JKR adhesion.
@@ -143,7 +161,7 @@ impl Scene {
         x * x / (2.0 * self.r1) + y * y / (2.0 * self.r2)
     }
 
-    /// The normalisation scales of SPEC §2.
+    /// The normalisation scales of physics §2.
     pub fn scales(&self) -> Scales {
         let re = self.re();
         let c_r = (9.0 * PI * re * re * self.work_of_adhesion / (4.0 * self.e_star)).cbrt();

@@ -50,10 +50,23 @@ fn a_quick_cpu_bench_writes_one_row_per_grid_and_a_chart() {
             assert!(v.is_finite() && v > 0.0, "{t} = {v}");
         }
     }
-    // The pull-off ran on 16² only; a sphere's adhesive force is near 1/2 (coarse grids
-    // over-predict it).
+    // The pull-off ran on 16² only. It is the same deterministic f64 run as `simulate` builds
+    // for that grid and margin, so its |min F̄| matches an in-process run to the CSV's 4
+    // decimals.
     let f: f64 = col(&rows[0], "f_ad_bar").parse().unwrap();
-    assert!(f > 0.4 && f < 0.8, "|min F̄| = {f}");
+    let reference = common::run_ratio(
+        1.0,
+        jkrbem::model::ModelOptions {
+            nx: 16,
+            margin: 0.2,
+            ..Default::default()
+        },
+    );
+    let expected = reference.outcome.force_minimum().unwrap().f_bar.abs();
+    assert!(
+        (f - expected).abs() <= 0.5e-4 + 1e-12,
+        "|min F̄| = {f}, in-process run {expected}"
+    );
     let its: usize = col(&rows[0], "pulloff_cg_iterations").parse().unwrap();
     assert!(its > 0);
     for empty in ["pulloff_s", "pulloff_cg_iterations", "f_ad_bar"] {

@@ -132,23 +132,25 @@ fn a_good_run_writes_the_documented_csv_and_summary() {
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
     for key in [
+        "estimate",
         "f_ad_bar",
+        "f_ad_bar_uncertainty",
         "c_bar_at_min",
         "d_bar_at_min",
-        "n_d",
-        "nx",
-        "ny",
-        "dx",
-        "backend",
-        "precision",
+        "jg_f_ad_bar",
+        "jg_deviation",
         "cg_iterations",
         "wall_s",
         "complete",
     ] {
         assert!(!s[key].is_null(), "summary lacks {key}: {s}");
     }
+    let run = &s["runs"][0];
+    for key in ["f_ad_bar", "n_d", "nx", "ny", "dx", "backend", "precision"] {
+        assert!(!run[key].is_null(), "the run lacks {key}: {s}");
+    }
     assert_eq!(s["complete"], true);
-    assert_eq!(s["backend"], "cpu");
+    assert_eq!(run["backend"], "cpu");
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("adhesive force"), "{stdout}");
 }
@@ -227,7 +229,51 @@ fn mesh_angle_and_periodic_convolution_are_checked_and_reported() {
         .exists());
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
-    assert_eq!(s["mesh_angle_deg"], -45.0);
-    assert_eq!(s["ny"], 32);
-    assert_eq!(s["backend"], "cpu-periodic");
+    assert_eq!(s["runs"][0]["mesh_angle_deg"], -45.0);
+    assert_eq!(s["runs"][0]["ny"], 32);
+    assert_eq!(s["runs"][0]["backend"], "cpu-periodic");
+}
+
+#[test]
+fn a_bare_simulate_states_the_adhesive_force_to_two_percent() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = jkrbem(
+        &[
+            "simulate",
+            "--ratio",
+            "1",
+            "--backend",
+            "cpu",
+            "--summary",
+            "s.json",
+        ],
+        dir.path(),
+    );
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("--accuracy 2.000 %"),
+        "it says what it chose: {err}"
+    );
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
+    assert_eq!(s["target"], 0.02, "{s}");
+    assert_eq!(s["target_met"], true, "{s}");
+    assert_eq!(s["estimate"], "single-grid", "{s}");
+    let (f, u) = (
+        s["f_ad_bar"].as_f64().unwrap(),
+        s["f_ad_bar_uncertainty"].as_f64().unwrap(),
+    );
+    assert!((f - 0.5).abs() <= u && u / f <= 0.02, "{f} ± {u}");
+    // The one grid's states are under the default name, and its own value is biased high.
+    let run = &s["runs"][0];
+    let states = run["states_csv"].as_str().unwrap();
+    assert!(states.starts_with("jkrbem-out/simulate-r1-n"), "{states}");
+    assert!(dir.path().join(states).exists(), "{states}");
+    assert!(run["f_ad_bar"].as_f64().unwrap() > f + 0.5 * s["f_ad_bar_bias"].as_f64().unwrap());
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("deviation from JG") && !stdout.contains("error +"),
+        "{stdout}"
+    );
 }

@@ -16,7 +16,6 @@ fn have_gpu() -> bool {
     jkrbem::backend::gpu::test_context().is_some()
 }
 
-#[test]
 fn devices_lists_adapters_with_their_limits() {
     let dir = tempfile::tempdir().unwrap();
     let o = jkrbem(&["devices"], dir.path());
@@ -34,7 +33,6 @@ fn devices_lists_adapters_with_their_limits() {
     }
 }
 
-#[test]
 fn gpu_backend_runs_a_pulloff_from_the_command_line() {
     if !have_gpu() {
         return;
@@ -64,13 +62,12 @@ fn gpu_backend_runs_a_pulloff_from_the_command_line() {
     assert!(out.contains("gpu backend (f32)"), "{out}");
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("g.json")).unwrap()).unwrap();
-    assert_eq!(summary["backend"], "gpu");
-    assert_eq!(summary["precision"], "f32");
+    assert_eq!(summary["runs"][0]["backend"], "gpu");
+    assert_eq!(summary["runs"][0]["precision"], "f32");
     assert_eq!(summary["complete"], true);
     assert!(dir.path().join("g.csv").exists());
 }
 
-#[test]
 fn auto_says_which_backend_it_took() {
     let dir = tempfile::tempdir().unwrap();
     let o = jkrbem(
@@ -84,7 +81,6 @@ fn auto_says_which_backend_it_took() {
     assert!(err.contains("(auto:"), "auto must say why it chose: {err}");
 }
 
-#[test]
 fn a_zero_readback_interval_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let o = jkrbem(
@@ -94,4 +90,28 @@ fn a_zero_readback_interval_is_refused() {
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o.stderr).contains("--cg-check-every"));
     assert!(!dir.path().join("out").exists());
+}
+
+fn main() {
+    common::run_gpu_tests(
+        &[
+            (
+                "devices_lists_adapters_with_their_limits",
+                devices_lists_adapters_with_their_limits,
+            ),
+            (
+                "gpu_backend_runs_a_pulloff_from_the_command_line",
+                gpu_backend_runs_a_pulloff_from_the_command_line,
+            ),
+            (
+                "auto_says_which_backend_it_took",
+                auto_says_which_backend_it_took,
+            ),
+            (
+                "a_zero_readback_interval_is_refused",
+                a_zero_readback_interval_is_refused,
+            ),
+        ],
+        &[],
+    )
 }

@@ -1,10 +1,11 @@
-//! The padded FFT convolution against the direct O(N⁴) influence sum (SPEC §4).
+//! The padded FFT convolution against the direct O(N⁴) influence sum (physics §4).
 
 mod common;
 
-use jkrbem::backend::cpu::{CpuBackend, GridSetup};
 use jkrbem::backend::kernel::direct_convolution;
-use jkrbem::backend::{Backend, Preconditioner};
+use jkrbem::backend::prelude::*;
+use jkrbem::backend::Preconditioner;
+use jkrbem::backend::{cpu::CpuBackend, GridSetup};
 
 fn setup(nx: usize, ny: usize, dx: f64, e_star: f64) -> GridSetup {
     GridSetup {

@@ -1,5 +1,5 @@
 //! Issue 5: grid-aligned crack fronts at the tips of slender ellipses (R1/R2 = 25, 50).
-//! SPEC §7 suspects the Pohrt–Popov criterion degrades where a crack front runs along grid
+//! physics §7 suspects the Pohrt–Popov criterion degrades where a crack front runs along grid
 //! lines. Here the same scene runs on the aligned mesh and on a mesh turned by 45° with the
 //! same element size Δx (the turned grid's margin is widened so that its square box has the
 //! aligned Δx), and both adhesive forces are set against Johnson–Greenwood.

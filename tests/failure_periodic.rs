@@ -1,4 +1,4 @@
-//! What zero padding buys (SPEC §4): whole pull-offs of the sphere with the periodic
+//! What zero padding buys (physics §4): whole pull-offs of the sphere with the periodic
 //! (unpadded) convolution against the padded one.
 //!
 //! The periodic kernel is the true one at offsets wrapped into ±half the domain, so it is
@@ -9,7 +9,7 @@
 
 mod common;
 
-use jkrbem::backend::cpu::{CpuBackend, GridSetup};
+use jkrbem::backend::cpu::CpuBackend;
 use jkrbem::model::ModelOptions;
 use jkrbem::solver::{self, Outcome, Phase};
 
@@ -42,7 +42,7 @@ fn padded_and_periodic(c0: f64) -> (Errors, Errors) {
         }
     };
     let padded = solver::run(&mut common::cpu_backend(&model), &model, &mut |_| {});
-    let mut periodic_backend = CpuBackend::new_periodic(&GridSetup::for_model(&model));
+    let mut periodic_backend = CpuBackend::new_periodic(&model.grid_setup());
     let periodic = solver::run(&mut periodic_backend, &model, &mut |_| {});
     let (p, q) = (errors(padded), errors(periodic));
     println!(

@@ -126,9 +126,16 @@ fn too_coarse_a_grid_is_reported_with_n_d_and_the_expected_error() {
         (String::from_utf8_lossy(&o.stdout).into_owned(), s)
     };
     let (text, s) = run("32", "c.json");
-    let n_d = s["n_d"].as_f64().unwrap();
-    let error = s["relative_error"].as_f64().unwrap();
+    let run0 = &s["runs"][0];
+    let n_d = run0["n_d"].as_f64().unwrap();
+    let error = run0["f_ad_bar"].as_f64().unwrap() / 0.5 - 1.0;
     println!("32²: n_d = {n_d}, error {error:+.4}\n{text}");
+    // The single-grid estimate's stated interval holds JKR's exact 1/2.
+    let (f, u) = (
+        s["f_ad_bar"].as_f64().unwrap(),
+        s["f_ad_bar_uncertainty"].as_f64().unwrap(),
+    );
+    assert!((f - 0.5).abs() <= u, "{f} ± {u} misses 1/2");
     assert!(text.contains("too coarse a grid"), "{text}");
     assert!(text.contains(&format!("only {n_d:.0} elements")), "{text}");
     // The law's range brackets the error actually made.
@@ -218,9 +225,10 @@ fn regridding_a_shrinking_contact_buys_the_accuracy_of_a_finer_grid() {
 }
 
 #[test]
+#[ignore = "slow tier (about 2 minutes): cargo test --release -- --ignored"]
 fn accuracy_target_chooses_a_model_that_reaches_it() {
     let dir = tempfile::tempdir().unwrap();
-    for (target, bound) in [("10%", 0.10), ("1%", 0.01)] {
+    for (target, bound) in [("5%", 0.05), ("2%", 0.02), ("1%", 0.01), ("0.5%", 0.005)] {
         let o = jkrbem(
             &[
                 "simulate",
@@ -243,10 +251,61 @@ fn accuracy_target_chooses_a_model_that_reaches_it() {
         let s: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.path().join("a.json")).unwrap())
                 .unwrap();
-        let error = s["relative_error"].as_f64().unwrap();
-        println!("--accuracy {target}: error {:+.3} %\n{err}", 100.0 * error);
+        let error = s["jkr_error"].as_f64().unwrap();
+        let (f, u) = (
+            s["f_ad_bar"].as_f64().unwrap(),
+            s["f_ad_bar_uncertainty"].as_f64().unwrap(),
+        );
+        println!(
+            "--accuracy {target}: {f} ± {u}, error {:+.3} %\n{err}",
+            100.0 * error
+        );
+        // The stated interval holds the exact value, and target_met says whether the stated
+        // uncertainty is within the target.
+        assert!((f - 0.5).abs() <= u, "{f} ± {u} misses 1/2");
+        assert_eq!(s["target_met"], u / f <= bound, "{s}");
+        assert_eq!(s["target_met"], true, "the plan keeps its word: {s}");
+        assert_eq!(
+            s["estimate"], "single-grid",
+            "one grid suffices for the sphere: {s}"
+        );
         assert!(error.abs() <= bound, "{target}: {error}");
     }
     let o = jkrbem(&["simulate", "--accuracy", "0%"], dir.path());
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+#[test]
+fn accuracy_targets_out_of_reach_or_without_a_unit_are_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    // 100 MB hold a 256² run at most: 0.1 % for the sphere needs more.
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"))
+        .args([
+            "simulate",
+            "--ratio",
+            "1",
+            "--backend",
+            "cpu",
+            "--accuracy",
+            "0.1%",
+        ])
+        .env("JKRBEM_MEMORY_LIMIT", "100000000")
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--accuracy") && err.contains("the finest is about"),
+        "{err}"
+    );
+    let o = jkrbem(&["simulate", "--accuracy", "0.05"], dir.path());
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("write the unit"), "{err}");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "nothing is written"
+    );
 }

@@ -8,9 +8,10 @@
 mod common;
 
 use common::{gpu_backend, pseudo_random};
-use jkrbem::backend::cpu::{CpuBackend, GridSetup};
 use jkrbem::backend::gpu::GpuBackend;
-use jkrbem::backend::{Backend, Preconditioner, Slot};
+use jkrbem::backend::prelude::*;
+use jkrbem::backend::{cpu::CpuBackend, GridSetup};
+use jkrbem::backend::{Preconditioner, Slot};
 
 fn setup(nx: usize, ny: usize, preconditioner: Preconditioner) -> GridSetup {
     GridSetup {
@@ -66,7 +67,6 @@ fn relative(a: &[f64], b: &[f64]) -> f64 {
         / scale
 }
 
-#[test]
 fn convolution_matches_cpu_on_square_and_rectangular_grids() {
     // (16, 2048) pads to 32 × 4096: the column FFTs need global-memory stages.
     for (nx, ny) in [
@@ -91,7 +91,6 @@ fn convolution_matches_cpu_on_square_and_rectangular_grids() {
     }
 }
 
-#[test]
 fn preconditioner_matches_cpu_with_a_mask() {
     for (nx, ny) in [(16, 16), (64, 32), (32, 128)] {
         let Some((mut cpu, mut gpu)) = pair(nx, ny, Preconditioner::Stiffness) else {
@@ -113,12 +112,14 @@ fn preconditioner_matches_cpu_with_a_mask() {
     }
 }
 
-#[test]
 fn cg_vector_operations_match_cpu() {
     let (nx, ny) = (64, 32);
     let Some((mut cpu, mut gpu)) = pair(nx, ny, Preconditioner::None) else {
         return;
     };
+    // Eight registers on each backend; the last is never written, so it stays 0.
+    let cs: Vec<Slot> = (0..8).map(|_| cpu.slot().unwrap()).collect();
+    let gs: Vec<Slot> = (0..8).map(|_| gpu.slot().unwrap()).collect();
     let n = nx * ny;
     let m = mask(n, 7, 0.5);
     cpu.set_contact(&m).unwrap();
@@ -137,27 +138,25 @@ fn cg_vector_operations_match_cpu() {
     check("residual", download(&mut gpu, &gy), &cy);
 
     // Slots 0 = a·b, 1 = a·a: ratios computed on the device.
-    cpu.dot(&ca, &cb, Slot(0)).unwrap();
-    cpu.dot(&ca, &ca, Slot(1)).unwrap();
-    gpu.dot(&ga, &gb, Slot(0)).unwrap();
-    gpu.dot(&ga, &ga, Slot(1)).unwrap();
-    cpu.axpy_ratio(&mut cy, &cb, Slot(0), Slot(1), -1.0)
-        .unwrap();
-    gpu.axpy_ratio(&mut gy, &gb, Slot(0), Slot(1), -1.0)
-        .unwrap();
+    cpu.dot(&ca, &cb, cs[0]).unwrap();
+    cpu.dot(&ca, &ca, cs[1]).unwrap();
+    gpu.dot(&ga, &gb, gs[0]).unwrap();
+    gpu.dot(&ga, &ga, gs[1]).unwrap();
+    cpu.axpy_ratio(&mut cy, &cb, cs[0], cs[1], -1.0).unwrap();
+    gpu.axpy_ratio(&mut gy, &gb, gs[0], gs[1], -1.0).unwrap();
     check("axpy_ratio", download(&mut gpu, &gy), &cy);
-    cpu.xpay_ratio(&mut cy, &ca, Slot(1), Slot(0)).unwrap();
-    gpu.xpay_ratio(&mut gy, &ga, Slot(1), Slot(0)).unwrap();
+    cpu.xpay_ratio(&mut cy, &ca, cs[1], cs[0]).unwrap();
+    gpu.xpay_ratio(&mut gy, &ga, gs[1], gs[0]).unwrap();
     check("xpay_ratio", download(&mut gpu, &gy), &cy);
     // A zero denominator gives a zero step: y = x.
-    cpu.xpay_ratio(&mut cy, &cb, Slot(0), Slot(7)).unwrap();
-    gpu.xpay_ratio(&mut gy, &gb, Slot(0), Slot(7)).unwrap();
+    cpu.xpay_ratio(&mut cy, &cb, cs[0], cs[7]).unwrap();
+    gpu.xpay_ratio(&mut gy, &gb, gs[0], gs[7]).unwrap();
     check("xpay_ratio 0/0", download(&mut gpu, &gy), &cy);
-    cpu.copy_slot(Slot(0), Slot(5)).unwrap();
-    gpu.copy_slot(Slot(0), Slot(5)).unwrap();
+    cpu.copy_slot(cs[0], cs[5]).unwrap();
+    gpu.copy_slot(gs[0], gs[5]).unwrap();
     let (mut c5, mut g5) = ([0.0; 2], [0.0; 2]);
-    cpu.read_slots(&[Slot(5), Slot(1)], &mut c5).unwrap();
-    gpu.read_slots(&[Slot(5), Slot(1)], &mut g5).unwrap();
+    cpu.read_slots(&[cs[5], cs[1]], &mut c5).unwrap();
+    gpu.read_slots(&[gs[5], gs[1]], &mut g5).unwrap();
     for (g, c) in g5.iter().zip(c5) {
         assert!((g - c).abs() <= 1e-6 * c.abs(), "slots {g5:?} vs {c5:?}");
     }
@@ -173,12 +172,14 @@ fn cg_vector_operations_match_cpu() {
     assert!((gs - cs).abs() <= 1e-5 * ca.iter().map(|v| v.abs()).sum::<f64>());
 }
 
-#[test]
 fn reductions_match_f64_sums_on_a_large_grid() {
     let (nx, ny) = (1024, 512);
     let Some((mut cpu, mut gpu)) = pair(nx, ny, Preconditioner::None) else {
         return;
     };
+    // Eight registers on each backend; the last is never written, so it stays 0.
+    let cs: Vec<Slot> = (0..8).map(|_| cpu.slot().unwrap()).collect();
+    let gs: Vec<Slot> = (0..8).map(|_| gpu.slot().unwrap()).collect();
     let n = nx * ny;
     let m = mask(n, 13, 0.8);
     cpu.set_contact(&m).unwrap();
@@ -196,10 +197,10 @@ fn reductions_match_f64_sums_on_a_large_grid() {
         .filter(|(_, &on)| on)
         .map(|((x, y), _)| (*x as f32 as f64) * (*y as f32 as f64))
         .sum();
-    gpu.dot(&ga, &gb, Slot(2)).unwrap();
-    cpu.dot(&ca, &cb, Slot(2)).unwrap();
+    gpu.dot(&ga, &gb, gs[2]).unwrap();
+    cpu.dot(&ca, &cb, cs[2]).unwrap();
     let mut g = [0.0];
-    gpu.read_slots(&[Slot(2)], &mut g).unwrap();
+    gpu.read_slots(&[gs[2]], &mut g).unwrap();
     let naive = a
         .iter()
         .zip(&b)
@@ -215,7 +216,6 @@ fn reductions_match_f64_sums_on_a_large_grid() {
     assert!(err < 1e-6, "{err:e}");
 }
 
-#[test]
 fn contact_sweep_and_first_crossing_match_cpu() {
     let (nx, ny) = (64, 64);
     let Some((mut cpu, mut gpu)) = pair(nx, ny, Preconditioner::None) else {
@@ -251,4 +251,81 @@ fn contact_sweep_and_first_crossing_match_cpu() {
         download(&mut gpu, &g_new),
         c_new.iter().map(|&v| v as f32 as f64).collect::<Vec<_>>()
     );
+}
+
+/// Resident memory of this process (KiB), from /proc (Linux).
+fn resident_kib() -> Option<u64> {
+    let statm = std::fs::read_to_string("/proc/self/statm").ok()?;
+    Some(statm.split_whitespace().nth(1)?.parse::<u64>().ok()? * 4)
+}
+
+/// Before the fix, Mesa's lavapipe compiled a new variant of `rows_forward` at every dispatch,
+/// inlining its uniform parameters, and never freed it: 0.7 MB per convolution at 64², 17 GB
+/// over the pull-off tests. A thousand convolutions must leave memory where it was.
+fn repeated_convolutions_do_not_grow_memory() {
+    let Some((_, mut gpu)) = pair(64, 64, Preconditioner::Stiffness) else {
+        return;
+    };
+    let Some(before) = resident_kib() else {
+        println!("no /proc/self/statm: memory not checked");
+        return;
+    };
+    let a = gpu.field().unwrap();
+    let mut b = gpu.field().unwrap();
+    let slot = gpu.slot().unwrap();
+    let mut v = [0.0];
+    // Warm-up: pipelines, caches and the allocator settle.
+    for _ in 0..100 {
+        gpu.convolve(&a, &mut b).unwrap();
+        gpu.precondition(&a, &mut b).unwrap();
+        gpu.read_slots(&[slot], &mut v).unwrap();
+    }
+    let settled = resident_kib().unwrap();
+    for _ in 0..1000 {
+        gpu.convolve(&a, &mut b).unwrap();
+        gpu.precondition(&a, &mut b).unwrap();
+        gpu.read_slots(&[slot], &mut v).unwrap();
+    }
+    let after = resident_kib().unwrap();
+    println!(
+        "resident memory: {before} KiB at the start, {settled} after 100 convolutions, {after} \
+         after 1000 more"
+    );
+    assert!(
+        after.saturating_sub(settled) < 64 * 1024,
+        "1000 convolutions grew memory by {} KiB",
+        after - settled
+    );
+}
+
+fn main() {
+    common::run_gpu_tests(
+        &[
+            (
+                "convolution_matches_cpu_on_square_and_rectangular_grids",
+                convolution_matches_cpu_on_square_and_rectangular_grids,
+            ),
+            (
+                "preconditioner_matches_cpu_with_a_mask",
+                preconditioner_matches_cpu_with_a_mask,
+            ),
+            (
+                "cg_vector_operations_match_cpu",
+                cg_vector_operations_match_cpu,
+            ),
+            (
+                "reductions_match_f64_sums_on_a_large_grid",
+                reductions_match_f64_sums_on_a_large_grid,
+            ),
+            (
+                "contact_sweep_and_first_crossing_match_cpu",
+                contact_sweep_and_first_crossing_match_cpu,
+            ),
+            (
+                "repeated_convolutions_do_not_grow_memory",
+                repeated_convolutions_do_not_grow_memory,
+            ),
+        ],
+        &[],
+    )
 }

@@ -7,6 +7,8 @@
 //!
 //! Skips with a message when no GPU adapter exists, unless `JKRBEM_REQUIRE_GPU=1`.
 
+mod common;
+
 use jkrbem::backend::cpu::spectral::SpectralFilter;
 use jkrbem::backend::gpu::recorder::{module, Kernel, Recorder};
 use jkrbem::backend::gpu::shaders;
@@ -71,7 +73,6 @@ fn relative_error<'a>(
     diff / scale
 }
 
-#[test]
 fn gpu_line_fft_matches_rustfft_within_f32_rounding_times_log2n() {
     let Some(ctx) = test_context() else { return };
     println!("adapter: {}", ctx.adapter_summary());
@@ -144,7 +145,6 @@ fn case(ctx: &GpuContext, kernels: &SpectralKernels, nx: usize, ny: usize, padde
     }
 }
 
-#[test]
 fn every_spectral_pass_matches_its_twin_padded_and_periodic_masked_and_not() {
     let Some(ctx) = test_context() else { return };
     let kernels = SpectralKernels::new(&ctx);
@@ -215,7 +215,7 @@ fn every_spectral_pass_matches_its_twin_padded_and_periodic_masked_and_not() {
                         &dst_b,
                         &mask_b,
                         masked,
-                        Some((Slot(3), &other_b)),
+                        Some((Slot::new(3), &other_b)),
                     )
                     .unwrap();
                 rec.dispatch(&ctx, &finish, &[(8, &scalars)], (16, 1), 0)
@@ -268,4 +268,20 @@ fn every_spectral_pass_matches_its_twin_padded_and_periodic_masked_and_not() {
             }
         }
     }
+}
+
+fn main() {
+    common::run_gpu_tests(
+        &[
+            (
+                "gpu_line_fft_matches_rustfft_within_f32_rounding_times_log2n",
+                gpu_line_fft_matches_rustfft_within_f32_rounding_times_log2n,
+            ),
+            (
+                "every_spectral_pass_matches_its_twin_padded_and_periodic_masked_and_not",
+                every_spectral_pass_matches_its_twin_padded_and_periodic_masked_and_not,
+            ),
+        ],
+        &[],
+    )
 }

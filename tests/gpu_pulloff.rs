@@ -8,8 +8,8 @@
 mod common;
 
 use common::{gpu_backend, model_for, run_model};
-use jkrbem::backend::cpu::GridSetup;
-use jkrbem::backend::{Backend, BackendError};
+use jkrbem::backend::prelude::*;
+use jkrbem::backend::BackendError;
 use jkrbem::model::{Measure, ModelOptions};
 use jkrbem::solver::{self, SolverError};
 
@@ -25,7 +25,7 @@ fn compare(ratio: f64, nx: usize) {
 
 fn compare_with(ratio: f64, options: ModelOptions) {
     let model = model_for(ratio, options);
-    let Some(mut gpu) = gpu_backend(&GridSetup::for_model(&model)) else {
+    let Some(mut gpu) = gpu_backend(&model.grid_setup()) else {
         return;
     };
     let g = solver::run(&mut gpu, &model, &mut |_| {});
@@ -60,10 +60,16 @@ fn compare_with(ratio: f64, options: ModelOptions) {
         g.cg_iterations(),
         c.cg_iterations()
     );
-    assert!(rel < 2e-3, "GPU and CPU adhesive forces differ by {rel:e}");
+    // f32 against f64: measured 2e-7 … 9e-7 here and 1.8e-6 at 512×256 on an H100.
+    assert!(rel < 1e-5, "GPU and CPU adhesive forces differ by {rel:e}");
+    assert!(max_dev < 1e-5, "matched states differ by {max_dev:e} in F̄");
+    assert!(
+        matched * 2 > c.states.len(),
+        "only {matched} of {} states matched",
+        c.states.len()
+    );
 }
 
-#[test]
 fn regridded_adhesive_force_measurement_matches_cpu() {
     // The GPU backend makes its sibling on the same device when the contact is re-gridded.
     compare_with(
@@ -77,17 +83,14 @@ fn regridded_adhesive_force_measurement_matches_cpu() {
     );
 }
 
-#[test]
 fn sphere_pulloff_matches_cpu_within_0_2_percent() {
     compare(1.0, 64);
 }
 
-#[test]
 fn ellipsoid_5_to_1_pulloff_matches_cpu_within_0_2_percent() {
     compare(5.0, 64);
 }
 
-#[test]
 fn losing_the_device_mid_run_keeps_the_states_and_says_so() {
     let model = model_for(
         1.0,
@@ -97,7 +100,7 @@ fn losing_the_device_mid_run_keeps_the_states_and_says_so() {
             ..ModelOptions::default()
         },
     );
-    let Some(mut gpu) = gpu_backend(&GridSetup::for_model(&model)) else {
+    let Some(mut gpu) = gpu_backend(&model.grid_setup()) else {
         return;
     };
     let device = gpu.context().device().clone();
@@ -113,7 +116,12 @@ fn losing_the_device_mid_run_keeps_the_states_and_says_so() {
         Some(SolverError::Backend(BackendError::DeviceLost { .. })) => {}
         other => panic!("expected a device-lost error, got {other:?}"),
     }
-    let _ = gpu.name();
+    // The backend stays usable as a value and keeps saying the device is gone.
+    let mut mask = vec![false; model.nx * model.ny];
+    match gpu.contact(&mut mask) {
+        Err(BackendError::DeviceLost { .. }) => {}
+        other => panic!("a read after the loss should say the device is lost, got {other:?}"),
+    }
 }
 
 /// One CG solve on the initial Hertz contact at `nx` (sphere), in f32 on the GPU: the
@@ -121,7 +129,6 @@ fn losing_the_device_mid_run_keeps_the_states_and_says_so() {
 /// ‖(d − h − K p)_C‖/‖(d − h)_C‖ must be within `cg::TRUE_RESIDUAL_SLACK` of it (the solve
 /// ends converged); the true residual, recomputed here from p, is reported beside CG's.
 fn large_grid_cg(nx: usize) {
-    use jkrbem::backend::Slot;
     use jkrbem::solver::cg::{self, CgWork};
     let model = model_for(
         1.0,
@@ -130,7 +137,7 @@ fn large_grid_cg(nx: usize) {
             ..ModelOptions::default()
         },
     );
-    let Some(mut gpu) = gpu_backend(&GridSetup::for_model(&model)) else {
+    let Some(mut gpu) = gpu_backend(&model.grid_setup()) else {
         return;
     };
     gpu.set_contact(&model.initial_contact()).unwrap();
@@ -144,15 +151,16 @@ fn large_grid_cg(nx: usize) {
         gpu.field().unwrap(),
         gpu.field().unwrap(),
     );
+    let slot = gpu.slot().unwrap();
     gpu.residual(&zero, model.d0, &mut r).unwrap();
-    gpu.dot(&r, &r, Slot(6)).unwrap();
+    gpu.dot(&r, &r, slot).unwrap();
     let mut bb = [0.0];
-    gpu.read_slots(&[Slot(6)], &mut bb).unwrap();
+    gpu.read_slots(&[slot], &mut bb).unwrap();
     gpu.convolve(&p, &mut u).unwrap();
     gpu.residual(&u, model.d0, &mut r).unwrap();
-    gpu.dot(&r, &r, Slot(6)).unwrap();
+    gpu.dot(&r, &r, slot).unwrap();
     let mut rr = [0.0];
-    gpu.read_slots(&[Slot(6)], &mut rr).unwrap();
+    gpu.read_slots(&[slot], &mut rr).unwrap();
     println!(
         "{nx}×{nx} CG on the GPU (f32): {} iterations, CG's residual (true, checked at \
          convergence) {:.2e} (tolerance {:.0e}, converged {}), true residual recomputed {:.2e}, {wall:.1} s on {}",
@@ -166,14 +174,43 @@ fn large_grid_cg(nx: usize) {
     assert!(report.converged(), "{report:?}");
 }
 
-#[test]
 fn cg_reaches_the_tolerance_at_256() {
     large_grid_cg(256);
 }
 
 /// Minutes on a software adapter: run with `cargo test --release -- --ignored`.
-#[test]
-#[ignore]
 fn cg_reaches_the_tolerance_at_2048() {
     large_grid_cg(2048);
+}
+
+fn main() {
+    common::run_gpu_tests(
+        &[
+            (
+                "regridded_adhesive_force_measurement_matches_cpu",
+                regridded_adhesive_force_measurement_matches_cpu,
+            ),
+            (
+                "sphere_pulloff_matches_cpu_within_0_2_percent",
+                sphere_pulloff_matches_cpu_within_0_2_percent,
+            ),
+            (
+                "ellipsoid_5_to_1_pulloff_matches_cpu_within_0_2_percent",
+                ellipsoid_5_to_1_pulloff_matches_cpu_within_0_2_percent,
+            ),
+            (
+                "losing_the_device_mid_run_keeps_the_states_and_says_so",
+                losing_the_device_mid_run_keeps_the_states_and_says_so,
+            ),
+            (
+                "cg_reaches_the_tolerance_at_256",
+                cg_reaches_the_tolerance_at_256,
+            ),
+            (
+                "cg_reaches_the_tolerance_at_2048",
+                cg_reaches_the_tolerance_at_2048,
+            ),
+        ],
+        &["cg_reaches_the_tolerance_at_2048"],
+    )
 }

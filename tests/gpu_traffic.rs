@@ -12,9 +12,9 @@
 mod common;
 
 use common::gpu_backend;
-use jkrbem::backend::cpu::GridSetup;
 use jkrbem::backend::gpu::traffic::cg_iteration_floor;
-use jkrbem::backend::{Backend, Counters, Preconditioner};
+use jkrbem::backend::prelude::*;
+use jkrbem::backend::{Counters, Preconditioner};
 use jkrbem::model::{CgSettings, Model, ModelOptions};
 use jkrbem::scene::Scene;
 use jkrbem::solver::cg::{self, CgWork};
@@ -22,7 +22,7 @@ use jkrbem::solver::cg::{self, CgWork};
 /// Counter growth per iteration of a CG solve of `n` iterations, less CG's start (a solve of
 /// 0 iterations), on the model's first contact set.
 fn per_iteration(model: &Model, pre: Preconditioner, n: usize) -> Option<(f64, f64)> {
-    let mut setup = GridSetup::for_model(model);
+    let mut setup = model.grid_setup();
     setup.preconditioner = pre;
     let mut gpu = gpu_backend(&setup)?;
     gpu.set_contact(&model.initial_contact()).unwrap();
@@ -60,7 +60,6 @@ fn per_iteration(model: &Model, pre: Preconditioner, n: usize) -> Option<(f64, f
     ))
 }
 
-#[test]
 fn a_preconditioned_cg_iteration_is_8_dispatches_within_1_3_times_its_byte_floor() {
     for (ratio, nx) in [(1.0, 64), (1.0, 256), (5.0, 128)] {
         let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).unwrap();
@@ -106,4 +105,14 @@ fn a_preconditioned_cg_iteration_is_8_dispatches_within_1_3_times_its_byte_floor
             );
         }
     }
+}
+
+fn main() {
+    common::run_gpu_tests(
+        &[(
+            "a_preconditioned_cg_iteration_is_8_dispatches_within_1_3_times_its_byte_floor",
+            a_preconditioned_cg_iteration_is_8_dispatches_within_1_3_times_its_byte_floor,
+        )],
+        &[],
+    )
 }

@@ -1,4 +1,4 @@
-//! The adhesive pull-off of a sphere against JKR (SPEC §3, §7).
+//! The adhesive pull-off of a sphere against JKR (physics §3, §7).
 
 mod common;
 
@@ -60,6 +60,7 @@ fn sphere_128_follows_jkr_within_6_percent() {
 }
 
 #[test]
+#[ignore = "slow tier (about 2 minutes): cargo test --release -- --ignored"]
 fn sphere_256_follows_jkr_within_4_percent() {
     check_sphere(256, 0.04);
 }
@@ -79,6 +80,13 @@ fn force_minimum_does_not_depend_on_step_size() {
         -run.outcome.force_minimum().unwrap().f_bar
     };
     let (coarse, fine) = (f(40), f(160));
-    println!("64²: |min F̄| = {coarse:.6} (40 steps), {fine:.6} (160 steps)");
-    assert!((coarse / fine - 1.0).abs() < 2e-3);
+    println!("64²: |min F̄| = {coarse:.9} (40 steps), {fine:.9} (160 steps)");
+    // The README's claim: the same minimum to 1e-6.
+    assert!((coarse / fine - 1.0).abs() < 1e-6, "{coarse} vs {fine}");
+    // A regression pin of this deterministic f64 figure (the README's 0.546318), not an
+    // accuracy claim: its distance to JKR's 1/2 is the first-order grid error.
+    assert!(
+        (fine - 0.546318).abs() < 1e-4,
+        "|min F̄| at 64² moved: {fine}"
+    );
 }

@@ -1,4 +1,4 @@
-//! `jkrbem reproduce --quick`: the whole study on coarse grids writes every chart of SPEC §8
+//! `jkrbem reproduce --quick`: the whole study on coarse grids writes every chart of physics §8
 //! (with data in each) and an index.html that shows them with captions, and the adhesive
 //! force falls with R1/R2 less steeply than Johnson–Greenwood's.
 
@@ -63,22 +63,41 @@ fn quick_reproduction_writes_every_chart_with_data_and_an_index() {
     let laws = std::fs::read_to_string(rep.join("coefficient_laws.csv")).unwrap();
     assert_eq!(laws.lines().count(), 6, "{laws}");
     assert!(index.contains("backend cpu-f64"));
-    // |min F̄| falls with the ratio, and less steeply than JG.
-    let rows: Vec<Vec<String>> = std::fs::read_to_string(rep.join("sweep/sweep.csv"))
-        .unwrap()
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').map(String::from).collect())
-        .collect();
-    let f = |r: &Vec<String>, i: usize| r[i].parse::<f64>().unwrap();
+    // |min F̄| at Δx → 0 (with its stated uncertainty) falls with the ratio, and less steeply
+    // than JG.
+    let mut csv = csv::Reader::from_path(rep.join("sweep/sweep.csv")).unwrap();
+    let header = csv.headers().unwrap().clone();
+    let rows: Vec<csv::StringRecord> = csv.records().map(|r| r.unwrap()).collect();
+    let f = |r: &csv::StringRecord, name: &str| -> f64 {
+        r[header.iter().position(|h| h == name).unwrap()]
+            .parse()
+            .unwrap()
+    };
     let (first, last) = (&rows[0], &rows[rows.len() - 1]);
-    assert_eq!(f(first, 0), 1.0);
+    assert_eq!(f(first, "ratio"), 1.0);
+    assert!((f(first, "f_ad_bar") - 0.5).abs() <= f(first, "f_ad_bar_uncertainty"));
     assert!(
-        f(last, 1) < f(first, 1),
+        f(last, "f_ad_bar") < f(first, "f_ad_bar"),
         "the adhesive force falls with R1/R2"
     );
     assert!(
-        f(first, 1) - f(last, 1) < f(first, 4) - f(last, 4),
+        f(first, "f_ad_bar") - f(last, "f_ad_bar")
+            < f(first, "jg_f_ad_bar") - f(last, "jg_f_ad_bar"),
         "it falls less steeply than JG"
     );
+    // Every value is shown with its uncertainty, and the coarse grids' warnings are listed.
+    assert!(
+        index.contains(" ± ") && index.contains("<h2>Warnings</h2>"),
+        "{index}"
+    );
+    // Without the pinned transient, F̄ = c1 c̄³ + c2 c̄^α fits every ratio's branch smoothly
+    // (it was RMS 0.16 with α at its bound for 50:1).
+    let mut fits = csv::Reader::from_path(rep.join("fits.csv")).unwrap();
+    let fh = fits.headers().unwrap().clone();
+    for r in fits.records().map(|r| r.unwrap()) {
+        let get = |name: &str| r[fh.iter().position(|h| h == name).unwrap()].to_string();
+        let rms: f64 = get("f_rms").parse().unwrap();
+        assert!(rms < 0.03, "R1/R2 = {}: F̄ fit RMS {rms}", get("ratio"));
+        assert_eq!(get("alpha_at_bound"), "false", "R1/R2 = {}", get("ratio"));
+    }
 }

@@ -35,8 +35,10 @@ fn shards_run_separately_and_collect_merges_them_into_the_whole_sweep() {
     assert!(o.status.success(), "{}", stderr(&o));
     let expected = std::fs::read_to_string(whole.path().join("sw/sweep.csv")).unwrap();
     let header = expected.lines().next().unwrap();
-    assert!(header
-        .starts_with("ratio,f_ad_bar,c_bar_at_min,d_bar_at_min,jg_f_ad_bar,n_d,grid,dx,wall_s"));
+    assert!(header.starts_with(
+        "ratio,f_ad_bar,f_ad_bar_uncertainty,estimate,c_bar_at_min,d_bar_at_min,jg_f_ad_bar,n_d,\
+         grid,dx,wall_s"
+    ));
     assert_eq!(expected.lines().count(), 4);
     for r in ["1", "2", "5"] {
         assert!(whole.path().join(format!("sw/r{r}-n32.csv")).exists());
@@ -56,7 +58,7 @@ fn shards_run_separately_and_collect_merges_them_into_the_whole_sweep() {
         s.lines()
             .map(|l| {
                 let mut f: Vec<&str> = l.split(',').collect();
-                f[8] = "";
+                f[10] = "";
                 f.join(",")
             })
             .collect()
@@ -184,11 +186,11 @@ fn extrapolation_to_zero_element_size_moves_the_sphere_towards_jkr() {
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("ex/s.json")).unwrap())
             .unwrap();
-    let x = &report["f_ad_bar_extrapolated"];
+    assert_eq!(report["estimate"], "extrapolated");
     let (value, bar, finest) = (
-        x["value"].as_f64().unwrap(),
-        x["error_bar"].as_f64().unwrap(),
-        x["finest"].as_f64().unwrap(),
+        report["f_ad_bar"].as_f64().unwrap(),
+        report["f_ad_bar_uncertainty"].as_f64().unwrap(),
+        report["runs"][2]["f_ad_bar"].as_f64().unwrap(),
     );
     println!("extrapolated |min F̄| = {value:.4} ± {bar:.4}, finest {finest:.4}");
     // Closer to JKR's 1/2 than the finest grid, and within its own error bar of it.
@@ -235,7 +237,8 @@ fn accuracy_charts_error_against_cost_with_the_extrapolated_point() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "variant,backend,precision,grid,n_d,f_ad_bar,error,wall_s,cg_iterations"
+        "variant,backend,precision,grid,n_d,f_ad_bar,error,wall_s,cg_iterations,reference,\
+         reference_uncertainty"
     );
     // Per variant (plain, measure, regrid): two grids and the extrapolated point.
     let rows: Vec<(String, f64, usize)> = lines
@@ -273,4 +276,76 @@ fn accuracy_charts_error_against_cost_with_the_extrapolated_point() {
     let bad = jkrbem(&["accuracy", "--backends", "tpu", "--out", "z"], dir.path());
     assert_eq!(bad.status.code(), Some(2));
     assert!(!dir.path().join("z").exists());
+}
+
+#[test]
+fn without_a_grid_each_ratio_gets_the_grid_its_accuracy_needs() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = jkrbem(
+        &[
+            "sweep",
+            "--ratios",
+            "1,2",
+            "--accuracy",
+            "5%",
+            "--backend",
+            "cpu",
+            "--out",
+            "sw",
+        ],
+        dir.path(),
+    );
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    let mut csv = csv::Reader::from_path(dir.path().join("sw/sweep.csv")).unwrap();
+    let header = csv.headers().unwrap().clone();
+    let col = |r: &csv::StringRecord, name: &str| -> String {
+        r[header.iter().position(|h| h == name).unwrap()].to_string()
+    };
+    let rows: Vec<csv::StringRecord> = csv.records().map(|r| r.unwrap()).collect();
+    assert_eq!(rows.len(), 2);
+    let grids: Vec<String> = rows.iter().map(|r| col(r, "grid")).collect();
+    assert_ne!(grids[0], grids[1], "the planner chose per ratio: {grids:?}");
+    for r in &rows {
+        let (f, u): (f64, f64) = (
+            col(r, "f_ad_bar").parse().unwrap(),
+            col(r, "f_ad_bar_uncertainty").parse().unwrap(),
+        );
+        assert!(u > 0.0 && u / f <= 0.05, "{f} ± {u}");
+        assert_eq!(col(r, "estimate"), "single-grid");
+        let json = dir.path().join(format!(
+            "sw/r{}-n{}.json",
+            col(r, "ratio").parse::<f64>().unwrap(),
+            col(r, "grid")
+        ));
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+        assert_eq!(s["target"], 0.05, "{s}");
+        assert_eq!(s["target_met"], true, "{s}");
+    }
+    // The sphere's interval holds JKR's 1/2.
+    let f: f64 = col(&rows[0], "f_ad_bar").parse().unwrap();
+    let u: f64 = col(&rows[0], "f_ad_bar_uncertainty").parse().unwrap();
+    assert!((f - 0.5).abs() <= u, "{f} ± {u}");
+    let svg = std::fs::read_to_string(dir.path().join("sw/force_vs_ratio.svg")).unwrap();
+    assert!(
+        svg.contains("stated uncertainty"),
+        "error bars in the legend"
+    );
+    // --grid and --accuracy together are refused.
+    let o = jkrbem(
+        &[
+            "sweep",
+            "--ratios",
+            "1",
+            "--grid",
+            "32",
+            "--accuracy",
+            "5%",
+            "--out",
+            "x",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }

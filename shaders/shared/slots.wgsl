@@ -16,12 +16,12 @@
 //
 // CPU twin: the f64 slots of `jkrbem::backend::cpu::CpuBackend`.
 
-const SLOTS: u32 = 16u;
+const SLOTS: u32 = 64u;
 const MAX_PARTIALS: u32 = 4096u;
 // Under a CG guard: 1.0 once CG has converged (or failed) on the device, and the CG steps
 // made since the guard began (f32 values, exact to 2^24).
-const HALT_SLOT: u32 = 14u;
-const STEPS_SLOT: u32 = 15u;
+const HALT_SLOT: u32 = 62u;
+const STEPS_SLOT: u32 = 63u;
 // "No slot": a kernel with an optional sum skips it.
 const NO_SLOT: u32 = 0xffffffffu;
 

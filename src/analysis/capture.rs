@@ -76,7 +76,7 @@ impl ContactCapture {
     }
 }
 
-/// One point of a quarter contour, normalised (SPEC §2), with its state and ellipse.
+/// One point of a quarter contour, normalised (physics §2), with its state and ellipse.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ContourRow {
     /// What the state was chosen for.

@@ -1,5 +1,5 @@
 //! The boundary of a contact, one quadrant, and how far it departs from an ellipse
-//! (SPEC §8.3).
+//! (physics §8.3).
 
 use crate::model::Model;
 use thiserror::Error;

@@ -1,5 +1,5 @@
 //! Two identical elastic cylinders crossed at an angle, as the equivalent ellipsoid scene
-//! (SPEC §1, §8.7).
+//! (physics §1, §8.7).
 
 use crate::scene::{self, Scene, SceneError, MAX_RATIO};
 use crate::text::compact;

@@ -1,4 +1,4 @@
-//! Extrapolation of a grid-dependent result to Δx → 0 (SPEC §7: the mesh-dependent criterion
+//! Extrapolation of a grid-dependent result to Δx → 0 (physics §7: the mesh-dependent criterion
 //! converges at first order in Δx).
 
 use serde::Serialize;

@@ -1,4 +1,4 @@
-//! Least-squares fits of the study (SPEC §8.4–8.6), each reported with its quality:
+//! Least-squares fits of the study (physics §8.4–8.6), each reported with its quality:
 //! d̄ = A c̄² + B c̄^(1/2), F̄ = c1 c̄³ + c2 c̄^α and y = k1·x^k2 + k3.
 //!
 //! Forms that are nonlinear in one exponent are linear in the other coefficients once the

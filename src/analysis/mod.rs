@@ -1,4 +1,4 @@
-//! Analysis of recorded pull-offs for the study (SPEC §8): least-squares fits of the branch
+//! Analysis of recorded pull-offs for the study (physics §8): least-squares fits of the branch
 //! and of coefficients against R1/R2, quarter contours of the contact beside an ellipse, and
 //! the crossed-cylinder form of the scene. Pure functions of states, masks and numbers.
 
@@ -7,9 +7,13 @@ pub mod capture;
 pub mod contour;
 pub mod convergence;
 pub mod crossed;
+pub mod estimate;
 pub mod extrapolate;
 pub mod fit;
+pub mod line_fit;
 mod lstsq;
+pub mod report;
+pub mod study_fits;
 
 pub use branch::{adhesive_branch, BranchPoint};
 pub use contour::{ellipse_departure, quarter_contour, ContourError, Departure, Point};

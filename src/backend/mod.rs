@@ -1,20 +1,42 @@
 //! Backends: where the grid fields live and where the elastic operator and the
 //! vector operations of conjugate gradients run.
 //!
-//! The solver drives a [`Backend`] through a small set of operations that a GPU can
-//! run entirely on the device: every grid field stays resident, CG's scalars live in
-//! device-side [`Slot`]s, and the host reads back only a handful of scalars (when it
+//! The contract is split by job, in the manner of rustfft's `Fft: Length + Direction`, so
+//! that each part of the solver states what it needs:
+//! - [`Device`]: fields resident on the device (allocate, upload, download, copy), the grid
+//!   shape, the work counters, a sibling for another grid;
+//! - [`Scalars`]: scalar registers on the device ([`Slot`] handles the backend hands out);
+//! - [`ElasticOperator`]: the half-space's influence operator u = K p and its preconditioner
+//!   (the separation Tamaas and ContactMechanics make between the elastic operator and the
+//!   contact solver);
+//! - [`CgKernels`]: the vector operations of conjugate gradients, fused where a device
+//!   benefits;
+//! - [`ContactKernels`]: the contact set and the per-state operations on it;
+//! - [`Backend`]: all of them (what the pull-off protocol needs).
+//!
+//! A GPU can run every operation on the device: grid fields stay resident, CG's scalars live
+//! in device-side [`Slot`]s, and the host reads back only a handful of scalars (when it
 //! chooses to test convergence) and whole fields only when a state is recorded.
 //!
 //! Conventions shared by every backend (all fields are `nx × ny`, row-major, x fastest):
 //! - the *contact set* C is a mask held by the backend; masked operations act on C only;
-//! - the *profile* h (length) and the element size Δx (length) are given at creation;
+//! - the *profile* h (length) and the element size Δx (length) are given at creation
+//!   ([`GridSetup`]);
 //! - pressure p has units of stress, displacement u and gap g of length.
 
 pub mod cpu;
+#[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod kernel;
 pub mod select;
+pub mod setup;
+
+pub use setup::GridSetup;
+
+/// Every part of the backend contract, for code that calls backends' operations.
+pub mod prelude {
+    pub use super::{Backend, CgKernels, ContactKernels, Device, ElasticOperator, Scalars};
+}
 
 use thiserror::Error;
 
@@ -46,15 +68,27 @@ pub enum BackendError {
     Unavailable(String),
 }
 
-/// Index of a scalar register held on the backend's device (CG's α, β, residual norms).
+/// A scalar register on the backend's device (CG's α, β, residual norms), handed out by
+/// [`Scalars::slot`]; only the backend that made it reads it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Slot(pub usize);
+pub struct Slot(usize);
 
-/// Number of scalar registers every backend provides.
-pub const N_SLOTS: usize = 8;
+impl Slot {
+    /// The register's index on its device (for the backends).
+    pub fn index(self) -> usize {
+        self.0
+    }
+
+    /// A handle for register `index`: for the backends that hand them out, and for tests of
+    /// device kernels that own their registers. The solver takes its own from
+    /// [`Scalars::slot`].
+    pub fn new(index: usize) -> Slot {
+        Slot(index)
+    }
+}
 
 /// How the elastic operator's inverse is approximated for preconditioning.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum Preconditioner {
     /// No preconditioning: z = r.
     None,
@@ -63,7 +97,7 @@ pub enum Preconditioner {
     Stiffness,
 }
 
-/// When a guarded batch of CG iterations stops on the device (see [`Backend::guard_cg`]).
+/// When a guarded batch of CG iterations stops on the device (see [`CgKernels::guard_cg`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CgStop {
     /// The slot the CG update writes r·r to.
@@ -101,11 +135,8 @@ pub struct Counters {
     pub bytes: u64,
 }
 
-/// The operations the solver needs, over fields resident on a device.
-///
-/// A backend owns: the contact mask, the profile h, the spectrum of the influence
-/// kernel (and of the preconditioner), and [`N_SLOTS`] scalar registers.
-pub trait Backend {
+/// Fields resident on a device: the part of the contract every other part builds on.
+pub trait Device {
     /// A real field of nx × ny values resident on the backend's device.
     type Field;
 
@@ -115,30 +146,58 @@ pub trait Backend {
     fn precision(&self) -> &'static str;
     /// Grid shape (nx, ny).
     fn shape(&self) -> (usize, usize);
-
     /// A new field, zero everywhere.
     fn field(&mut self) -> Result<Self::Field, BackendError>;
     /// Copy host values (row-major, length nx·ny) into a field.
     fn upload(&mut self, dst: &mut Self::Field, host: &[f64]) -> Result<(), BackendError>;
     /// Copy a field back to the host (row-major, length nx·ny).
     fn download(&mut self, src: &Self::Field, host: &mut [f64]) -> Result<(), BackendError>;
+    /// dst = src on the whole grid.
+    fn copy(&mut self, src: &Self::Field, dst: &mut Self::Field) -> Result<(), BackendError>;
+    /// Work done since creation (zeros where a backend does not count).
+    fn counters(&self) -> Counters {
+        Counters::default()
+    }
+    /// A new backend of the same kind, on the same device, for another grid (the solver
+    /// re-grids a shrinking contact with it).
+    fn sibling(&self, setup: &GridSetup) -> Result<Self, BackendError>
+    where
+        Self: Sized;
+}
 
-    /// Replace the contact mask (row-major, true = in contact).
-    fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError>;
-    /// Read the contact mask back.
-    fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError>;
+/// Scalar registers on the device.
+pub trait Scalars: Device {
+    /// A new register, holding 0 until written. Fails when the device has no more.
+    fn slot(&mut self) -> Result<Slot, BackendError>;
+    /// Read registers back to the host.
+    fn read_slots(&mut self, slots: &[Slot], out: &mut [f64]) -> Result<(), BackendError>;
+    /// slots\[dst\] = slots\[src\] (on the device).
+    fn copy_slot(&mut self, src: Slot, dst: Slot) -> Result<(), BackendError>;
+}
 
+/// The elastic half-space's influence operator and an approximate inverse of it.
+pub trait ElasticOperator: Device {
     /// dst = K ∗ src, the non-periodic convolution with the influence kernel
     /// (src a pressure, dst a displacement); evaluated on the whole grid.
     fn convolve(&mut self, src: &Self::Field, dst: &mut Self::Field) -> Result<(), BackendError>;
-    /// dst = M r, the preconditioner applied to a residual (zero off C).
+    /// dst = M r, the preconditioner applied to a residual (zero off C), zero off C.
     fn precondition(
         &mut self,
         src: &Self::Field,
         dst: &mut Self::Field,
     ) -> Result<(), BackendError>;
+}
 
-    /// r = d − h − u on C, 0 off C (the residual of (K p)_C = (d − h)_C given u = K p).
+/// The vector operations of conjugate gradients on the contact set C.
+pub trait CgKernels: ElasticOperator + Scalars {
+    /// How often (iterations) the solver should read CG's residual back by default: 1 where
+    /// each operation runs when called, more on a device that queues work ahead of the host
+    /// and stops it itself ([`CgKernels::guard_cg`]).
+    fn check_every(&self) -> usize {
+        1
+    }
+    /// r = d − h − u on C, 0 off C (the residual of (K p)_C = (d − h)_C given u = K p; h is
+    /// the profile the backend was built with).
     fn residual(
         &mut self,
         u: &Self::Field,
@@ -164,28 +223,6 @@ pub trait Backend {
         num: Slot,
         den: Slot,
     ) -> Result<(), BackendError>;
-    /// slots\[dst\] = slots\[src\] (on the device).
-    fn copy_slot(&mut self, src: Slot, dst: Slot) -> Result<(), BackendError>;
-
-    /// Guard the CG iterations recorded from now on (`Some`) or end the guard (`None`). A
-    /// device backend that queues iterations ahead of the host stops them on the device once
-    /// the stop condition holds after a step: the steps recorded after that change nothing,
-    /// and [`Backend::read_cg_progress`] tells how many steps were made. The guarded
-    /// iterations are: `convolve_dot`, `cg_update` (one step each), `precondition_dot` and
-    /// `xpay_ratio` (which tests the condition). The default does nothing: a backend that
-    /// runs each operation when called makes every step the solver asks for.
-    fn guard_cg(&mut self, stop: Option<CgStop>) -> Result<(), BackendError> {
-        let _ = stop;
-        Ok(())
-    }
-    /// slots\[rr\], and under a guard the CG steps made since it began (`None`: every step
-    /// recorded was made).
-    fn read_cg_progress(&mut self, rr: Slot) -> Result<(f64, Option<usize>), BackendError> {
-        let mut v = [0.0];
-        self.read_slots(&[rr], &mut v)?;
-        Ok((v[0], None))
-    }
-
     /// dst = K src and slots\[out\] = Σ_C src·dst (CG's curvature s·Ks). A device backend
     /// fuses the dot product into the convolution's last pass.
     fn convolve_dot(
@@ -226,9 +263,33 @@ pub trait Backend {
         self.axpy_ratio(r, q, num, den, -1.0)?;
         self.dot(r, r, rr)
     }
-    /// Read scalar registers back to the host.
-    fn read_slots(&mut self, slots: &[Slot], out: &mut [f64]) -> Result<(), BackendError>;
 
+    /// Guard the CG iterations recorded from now on (`Some`) or end the guard (`None`). A
+    /// device backend that queues iterations ahead of the host stops them on the device once
+    /// the stop condition holds after a step: the steps recorded after that change nothing,
+    /// and [`CgKernels::read_cg_progress`] tells how many steps were made. The guarded
+    /// iterations are: `convolve_dot`, `cg_update` (one step each), `precondition_dot` and
+    /// `xpay_ratio` (which tests the condition). The default does nothing: a backend that
+    /// runs each operation when called makes every step the solver asks for.
+    fn guard_cg(&mut self, stop: Option<CgStop>) -> Result<(), BackendError> {
+        let _ = stop;
+        Ok(())
+    }
+    /// slots\[rr\], and under a guard the CG steps made since it began (`None`: every step
+    /// recorded was made).
+    fn read_cg_progress(&mut self, rr: Slot) -> Result<(f64, Option<usize>), BackendError> {
+        let mut v = [0.0];
+        self.read_slots(&[rr], &mut v)?;
+        Ok((v[0], None))
+    }
+}
+
+/// The contact set and the operations of the pull-off protocol on it.
+pub trait ContactKernels: Device {
+    /// Replace the contact mask (row-major, true = in contact).
+    fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError>;
+    /// Read the contact mask back.
+    fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError>;
     /// One sweep of the Pohrt–Popov rule: detach elements of C with p < −σ_c, attach
     /// elements off C whose gap g = h − d + u is negative; then p = 0 off C.
     /// σ_c is a stress; σ_c = 0 gives the non-adhesive (Signorini) rule.
@@ -257,19 +318,11 @@ pub trait Backend {
         t: f64,
         dst: &mut Self::Field,
     ) -> Result<(), BackendError>;
-    /// dst = src on the whole grid.
-    fn copy(&mut self, src: &Self::Field, dst: &mut Self::Field) -> Result<(), BackendError>;
     /// (Σ_C p, |C|): total pressure sum (stress; multiply by Δx² for force) and contact count.
     fn sum_and_count(&mut self, p: &Self::Field) -> Result<(f64, usize), BackendError>;
-
-    /// Work done since creation (zeros where a backend does not count).
-    fn counters(&self) -> Counters {
-        Counters::default()
-    }
-
-    /// A new backend of the same kind, on the same device, for another grid (the solver
-    /// re-grids a shrinking contact with it).
-    fn sibling(&self, setup: &cpu::GridSetup) -> Result<Self, BackendError>
-    where
-        Self: Sized;
 }
+
+/// Everything the pull-off protocol needs of a backend.
+pub trait Backend: CgKernels + ContactKernels {}
+
+impl<B: CgKernels + ContactKernels> Backend for B {}

@@ -1,19 +1,20 @@
 //! Opening the backend a user asked for: `cpu`, `gpu` (the best adapter) or `auto` (a
 //! hardware GPU if there is one, else the CPU), behind one enum the solver is dispatched on.
 
-use super::cpu::{CpuBackend, GridSetup};
+use super::cpu::CpuBackend;
+#[cfg(feature = "gpu")]
 use super::gpu::{AdapterPreference, GpuBackend, GpuContext};
-use super::BackendError;
+use super::{BackendError, GridSetup};
 
 /// Which backend to open.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum BackendKind {
-    /// A hardware GPU if there is one, else the CPU backend.
+    /// A hardware GPU if there is one, else the CPU.
     #[default]
     Auto,
     /// The rustfft CPU backend (f64).
     Cpu,
-    /// The wgpu backend (f32) on the best adapter, software adapters included.
+    /// The wgpu GPU backend (f32) on the best adapter, software adapters included.
     Gpu,
 }
 
@@ -22,6 +23,7 @@ pub enum AnyBackend {
     /// The CPU backend.
     Cpu(Box<CpuBackend>),
     /// The GPU backend.
+    #[cfg(feature = "gpu")]
     Gpu(Box<GpuBackend>),
 }
 
@@ -47,6 +49,15 @@ pub fn open(kind: BackendKind, setup: &GridSetup) -> Result<Opened, BackendError
     };
     match kind {
         BackendKind::Cpu => cpu("cpu (f64, rustfft)".into()),
+        #[cfg(not(feature = "gpu"))]
+        BackendKind::Gpu => Err(BackendError::Unavailable(
+            "this jkrbem was built without the `gpu` feature: use --backend cpu, or rebuild \
+             with the default features"
+                .into(),
+        )),
+        #[cfg(not(feature = "gpu"))]
+        BackendKind::Auto => cpu("cpu (f64, rustfft) (auto: built without the gpu feature)".into()),
+        #[cfg(feature = "gpu")]
         BackendKind::Gpu => {
             let ctx = GpuContext::new(AdapterPreference::Best)?;
             let mut note = format!("gpu (f32, wgpu) on {}", ctx.adapter_summary());
@@ -59,6 +70,7 @@ pub fn open(kind: BackendKind, setup: &GridSetup) -> Result<Opened, BackendError
                 note,
             })
         }
+        #[cfg(feature = "gpu")]
         BackendKind::Auto => match GpuContext::new(AdapterPreference::Best) {
             Ok(ctx) if ctx.is_hardware() => {
                 let summary = ctx.adapter_summary();
@@ -89,10 +101,64 @@ macro_rules! with_backend {
                 let $b = &mut **cpu;
                 $body
             }
+            #[cfg(feature = "gpu")]
             $crate::backend::select::AnyBackend::Gpu(gpu) => {
                 let $b = &mut **gpu;
                 $body
             }
         }
     };
+}
+
+impl AnyBackend {
+    /// Short name of the backend ("cpu", "gpu", "cpu-periodic").
+    pub fn name(&self) -> &'static str {
+        use super::Device;
+        match self {
+            AnyBackend::Cpu(b) => b.name(),
+            #[cfg(feature = "gpu")]
+            AnyBackend::Gpu(b) => b.name(),
+        }
+    }
+
+    /// The backend's own interval between CG residual reads (iterations): 1 on the CPU,
+    /// more on a device that queues work ahead of the host.
+    pub fn check_every(&self) -> usize {
+        use super::CgKernels;
+        match self {
+            AnyBackend::Cpu(b) => b.check_every(),
+            #[cfg(feature = "gpu")]
+            AnyBackend::Gpu(b) => b.check_every(),
+        }
+    }
+
+    /// The device in words: the CPU model and its threads, or the GPU adapter.
+    pub fn device_summary(&self) -> String {
+        match self {
+            AnyBackend::Cpu(_) => {
+                let model = std::fs::read_to_string("/proc/cpuinfo")
+                    .ok()
+                    .and_then(|s| {
+                        s.lines()
+                            .find(|l| l.starts_with("model name"))
+                            .and_then(|l| l.split_once(':'))
+                            .map(|(_, v)| v.trim().to_string())
+                    })
+                    .unwrap_or_else(|| std::env::consts::ARCH.to_string());
+                format!("{model} ({} threads)", rayon::current_num_threads())
+            }
+            #[cfg(feature = "gpu")]
+            AnyBackend::Gpu(g) => g.adapter_summary(),
+        }
+    }
+
+    /// The arithmetic of the device fields ("f64", "f32").
+    pub fn precision(&self) -> &'static str {
+        use super::Device;
+        match self {
+            AnyBackend::Cpu(b) => b.precision(),
+            #[cfg(feature = "gpu")]
+            AnyBackend::Gpu(b) => b.precision(),
+        }
+    }
 }

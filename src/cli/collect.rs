@@ -1,12 +1,10 @@
 //! `jkrbem collect DIR`: merge the shard files sweep-shard-K-of-N.json of a split sweep into
 //! DIR/sweep.csv, after checking that they are of one sweep and that no ratio appears twice;
-//! missing and incomplete ratios are named by value.
+//! missing and incomplete ratios are named by value. The work is
+//! [`jkrbem::run::sweep::collect_shards`].
 
-use super::outputs::{named, write_error, Outputs};
-use super::sweep::chart_files;
-use super::{failed, input, CliError};
-use jkrbem::output::sweep_charts::write_sweep_charts;
-use jkrbem::output::sweep_csv::{self, CollectError};
+use super::{run_error, CliError};
+use jkrbem::run::sweep::collect_shards;
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem collect`.
@@ -21,70 +19,23 @@ pub struct Args {
     pub allow_missing: bool,
 }
 
-/// Ratios as text: "2, 25".
-fn listed(ratios: &[f64]) -> String {
-    ratios
-        .iter()
-        .map(|r| jkrbem::text::compact(*r))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 /// Run `jkrbem collect`.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let c = sweep_csv::collect(&args.dir).map_err(|e| match e {
-        CollectError::Empty(_) | CollectError::Io(..) => input(e),
-        CollectError::Corrupt(..) | CollectError::Mixed(..) | CollectError::Duplicate { .. } => {
-            failed(e)
-        }
-    })?;
-    let mut problems = Vec::new();
-    if !c.missing.is_empty() {
-        problems.push(format!(
-            "R1/R2 = {} missing{}",
-            listed(&c.missing),
-            if c.missing_shards.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    " (shards {:?} of {} have not written their file: run them)",
-                    c.missing_shards, c.shards
-                )
-            }
-        ));
-    }
-    if !c.incomplete.is_empty() {
-        problems.push(format!(
-            "R1/R2 = {} incomplete (failed, no force minimum reached, or not finite: see their \
-             complete, min_reached and error columns)",
-            listed(&c.incomplete)
-        ));
-    }
-    if !problems.is_empty() && !args.allow_missing {
-        return Err(failed(format!(
-            "{}; nothing was written (pass --allow-missing to merge what there is)",
-            problems.join("; ")
-        )));
-    }
-    let path = sweep_csv::sweep_csv_path(&args.dir);
-    let mut targets = vec![path.clone()];
-    targets.extend(chart_files(&args.dir));
-    let _claimed = Outputs::claim(&named("DIR", &targets))?;
-    sweep_csv::write_rows(&path, &c.rows).map_err(write_error("DIR"))?;
+    let m = collect_shards(&args.dir, args.allow_missing).map_err(run_error)?;
     println!(
         "merged {} ratio(s) from {} of {} shard(s) into {}",
-        c.rows.len(),
-        c.shards - c.missing_shards.len(),
-        c.shards,
-        path.display()
+        m.rows,
+        m.shards_found,
+        m.shards,
+        m.path.display()
     );
-    for p in &problems {
+    for p in &m.problems {
         println!("warning (--allow-missing): {p}");
     }
-    write_sweep_charts(&args.dir, &c.rows).map_err(write_error("DIR"))?;
     println!(
-        "charts written to {0}/force_vs_ratio.svg and {0}/pulloff_curves.svg",
-        args.dir.display()
+        "charts written to {} and {}",
+        m.charts[0].display(),
+        m.charts[1].display()
     );
     Ok(())
 }

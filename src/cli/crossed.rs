@@ -1,16 +1,11 @@
 //! `jkrbem crossed`: two identical elastic cylinders crossed at angles θ, each mapped to an
-//! ellipsoid (SPEC §1), one pull-off per angle; the adhesive force in newtons (in the units of
-//! the inputs) beside Johnson–Greenwood's.
+//! ellipsoid (physics §1), one pull-off per angle; the adhesive force in newtons (in the units
+//! of the inputs) beside Johnson–Greenwood's. The work is [`jkrbem::run::crossed`].
 
-use super::outputs::{named, write_error, Outputs};
-use super::simulate::BackendChoice;
-use super::sweep::{run_all, run_files};
-use super::{count_in, failed, input, no_repeats, CliError, MAX_JOBS};
-use jkrbem::analysis::CrossedCylinders;
-use jkrbem::model::{Model, ModelOptions};
-use jkrbem::output::line_chart::{LineChart, Style};
-use jkrbem::theory;
-use serde::Serialize;
+use super::{count_in, no_repeats, run_error, CliError, MAX_JOBS};
+use jkrbem::backend::select::BackendKind;
+use jkrbem::run::crossed::{crossed, CrossedRequest};
+use jkrbem::run::open::BackendRequest;
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem crossed`.
@@ -38,9 +33,16 @@ pub struct Args {
     /// Work of adhesion Δγ (energy/area, e.g. J/m²; in [1e-30, 1e30]).
     #[arg(long, default_value_t = 0.05)]
     pub work_of_adhesion: f64,
-    /// Elements along x, Nx, for every angle (a power of two from 16 to 65536).
-    #[arg(long, default_value_t = 128)]
-    pub grid: usize,
+    /// Elements along x, Nx, for every angle (a power of two from 16 to 65536); each estimate
+    /// then states its expected bias [default: the grid --accuracy chooses].
+    #[arg(long)]
+    pub grid: Option<usize>,
+    /// The relative accuracy of each adhesive force |min F̄| at Δx → 0 (a percentage such as
+    /// `2%`, the unit required): each angle gets the one grid, re-gridded, whose estimate is
+    /// predicted to state an uncertainty within it [default: 2% unless --grid is given].
+    #[arg(long, value_parser = super::simulate::parse_percentage, conflicts_with = "grid")]
+    pub accuracy: Option<f64>,
+
     /// Load steps from the initial approach to the expected end of contact (1 to 100000).
     #[arg(long, default_value_t = 200)]
     pub steps: usize,
@@ -48,8 +50,8 @@ pub struct Args {
     #[arg(long, default_value_t = 0.08)]
     pub margin: f64,
     /// Backend: `cpu`, `gpu` or `auto`.
-    #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
-    pub backend: BackendChoice,
+    #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
+    pub backend: BackendKind,
     /// Pull-offs run at the same time (1 to 256).
     #[arg(long, default_value_t = 1, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_JOBS as u64))]
     pub jobs: usize,
@@ -58,169 +60,59 @@ pub struct Args {
     pub out: PathBuf,
 }
 
-/// One angle's result (forces in the inputs' force unit, e.g. N).
-#[derive(Debug, Clone, Serialize)]
-struct CrossedRow {
-    angle_deg: f64,
-    ratio: f64,
-    f_ad: Option<f64>,
-    jg_f_ad: Option<f64>,
-    f_ad_bar: Option<f64>,
-    jg_f_ad_bar: Option<f64>,
-    n_d: Option<f64>,
-    grid: usize,
-    wall_s: f64,
-    complete: bool,
-}
-
-/// JG's (JKR's at 90°) adhesive force |min F̄| at a ratio.
-fn jg_force_bar(ratio: f64) -> Option<f64> {
-    theory::reference_adhesive_force(ratio).ok()
-}
-
-/// The analysis layer names its parameters `--angle`, `--young` and `--poisson`; this
-/// command's flags are `--angles`, `--e` and `--nu`.
-fn with_cli_flags(message: &str) -> String {
-    message
-        .replace("--angle", "--angles")
-        .replace("--young", "--e")
-        .replace("--poisson", "--nu")
+/// The flag of this command that sets each of the analysis layer's parameters.
+fn flag(parameter: &'static str) -> &'static str {
+    match parameter {
+        "--angle" => "--angles",
+        "--young" => "--e",
+        "--poisson" => "--nu",
+        other => other,
+    }
 }
 
 /// Run `jkrbem crossed`.
 pub fn run(args: Args) -> Result<(), CliError> {
     count_in("--angles", args.angles.len(), 1, 100)?;
     no_repeats("--angles", &args.angles)?;
-    let pair = |angle_deg: f64| CrossedCylinders {
+    let request = CrossedRequest {
         radius: args.radius,
-        angle_deg,
+        angles: args.angles.clone(),
         young: args.young,
         poisson: args.poisson,
         work_of_adhesion: args.work_of_adhesion,
+        grid: super::grid_choice(args.grid, args.accuracy),
+        steps: args.steps,
+        margin: args.margin,
+        backend: BackendRequest {
+            kind: args.backend,
+            ..BackendRequest::default()
+        },
+        jobs: args.jobs,
+        out: args.out.clone(),
     };
-    let mut work = Vec::new();
-    let mut scales = Vec::new();
-    for &angle in &args.angles {
-        let c = pair(angle);
-        let scene = c
-            .scene()
-            .map_err(|e| input(with_cli_flags(&e.to_string())))?;
-        let model = Model::build(
-            &scene,
-            &ModelOptions {
-                nx: args.grid,
-                steps: args.steps,
-                margin: args.margin,
-                ..ModelOptions::default()
-            },
-        )
-        .map_err(|e| input(format!("--angles {}: {e}", jkrbem::text::compact(angle))))?;
-        scales.push((angle, scene.ratio(), c.force_scale().map_err(input)?));
-        work.push((
-            model,
-            args.out.join(format!("theta{angle}-n{}.csv", args.grid)),
-        ));
-    }
-    let refs: Vec<&Model> = work.iter().map(|(m, _)| m).collect();
-    jkrbem::plan::check_memory(&refs, args.jobs, "--grid").map_err(input)?;
-    let csv_path = args.out.join("crossed.csv");
-    let svg_path = args.out.join("crossed.svg");
-    let mut targets: Vec<PathBuf> = work.iter().flat_map(|(_, out)| run_files(out)).collect();
-    targets.extend([csv_path.clone(), svg_path.clone()]);
-    let _claimed = Outputs::claim(&named("--out", &targets))?;
-    let results = run_all(work, args.jobs, args.backend);
-    let failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
-    let mut rows: Vec<CrossedRow> = scales
-        .iter()
-        .zip(&results)
-        .map(|(&(angle, ratio, scale), r)| {
-            let s = r.summary.as_ref();
-            let f_ad_bar = s.and_then(|s| s.f_ad_bar);
-            let jg = jg_force_bar(ratio);
-            CrossedRow {
-                angle_deg: angle,
-                ratio,
-                f_ad: f_ad_bar.map(|f| f * scale),
-                jg_f_ad: jg.map(|f| f * scale),
-                f_ad_bar,
-                jg_f_ad_bar: jg,
-                n_d: s.and_then(|s| s.n_d),
-                grid: args.grid,
-                wall_s: s.map_or(0.0, |s| s.wall_s),
-                complete: s.is_some_and(|s| s.complete),
-            }
-        })
-        .collect();
-    rows.sort_by(|a, b| b.angle_deg.total_cmp(&a.angle_deg));
-    jkrbem::output::file::write_csv(&csv_path, None, &rows).map_err(write_error("--out"))?;
-    chart(&args, &rows)
-        .write_svg(&svg_path)
-        .map_err(write_error("--out"))?;
-    println!("θ (deg)  R1/R2    F_ad       JG F_ad    n_d");
-    for r in &rows {
+    let done = crossed(&request, &flag, &|line| eprintln!("jkrbem: {line}")).map_err(run_error)?;
+    println!("θ (deg)  R1/R2    F_ad                    JG F_ad    n_d");
+    for r in &done.rows {
         let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4e}"));
+        let u = r
+            .f_ad_uncertainty
+            .map_or(String::new(), |u| format!(" ± {u:.2e}"));
         println!(
-            "{:<8} {:<8.3} {:<10} {:<10} {}",
+            "{:<8} {:<8.3} {:<23} {:<10} {}",
             r.angle_deg,
             r.ratio,
-            f(r.f_ad),
+            format!("{}{u}", f(r.f_ad)),
             f(r.jg_f_ad),
             r.n_d.map_or("—".into(), |v| format!("{v:.0}"))
         );
     }
-    println!("written {} and {}", csv_path.display(), svg_path.display());
-    if failures.is_empty() {
-        Ok(())
-    } else {
-        Err(failed(format!(
-            "{} of the pull-offs failed:\n  {}",
-            failures.len(),
-            failures.join("\n  ")
-        )))
+    for w in &done.warnings {
+        println!("WARNING: {w}");
     }
-}
-
-/// Adhesive force against crossing angle: the runs beside JG over (θ_min, 90°]. The title
-/// gives the inputs in SI units (the documented use: m, Pa, J/m², so forces in N); other
-/// consistent units work the same, as the y label says.
-fn chart(args: &Args, rows: &[CrossedRow]) -> LineChart {
-    use jkrbem::text::compact;
-    let mut chart = LineChart::new(
-        &format!(
-            "Crossed cylinders: R = {} m, E = {} Pa, ν = {}, Δγ = {} J/m²",
-            compact(args.radius),
-            compact(args.young),
-            compact(args.poisson),
-            compact(args.work_of_adhesion)
-        ),
-        "crossing angle θ (degrees)",
-        "adhesive force |F_min| (N; in the unit of E·R² for non-SI inputs)",
+    println!(
+        "written {} and {}",
+        done.files[0].display(),
+        done.files[1].display()
     );
-    let lo = rows.iter().map(|r| r.angle_deg).fold(90.0, f64::min);
-    let jg: Vec<(f64, f64)> = (0..=200)
-        .map(|i| lo + (90.0 - lo) * i as f64 / 200.0)
-        .filter_map(|a| {
-            let c = CrossedCylinders {
-                radius: args.radius,
-                angle_deg: a,
-                young: args.young,
-                poisson: args.poisson,
-                work_of_adhesion: args.work_of_adhesion,
-            };
-            let ratio = c.scene().ok()?.ratio();
-            Some((a, jg_force_bar(ratio)? * c.force_scale().ok()?))
-        })
-        .collect();
-    chart.push("Johnson–Greenwood", jg, 1, Style::Line);
-    let sim = rows
-        .iter()
-        .filter_map(|r| Some((r.angle_deg, r.f_ad?)))
-        .collect();
-    chart.push(
-        &format!("jkrbem (Nx = {})", args.grid),
-        sim,
-        0,
-        Style::Markers,
-    );
-    chart
+    super::failures("pull-offs", &done.failures, "")
 }

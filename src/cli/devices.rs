@@ -2,14 +2,25 @@
 //! which grids the GPU backend can hold.
 
 use super::CliError;
-use jkrbem::backend::gpu::list_adapters;
 
 /// Arguments of `jkrbem devices` (none).
 #[derive(Debug, clap::Args)]
 pub struct Args {}
 
 /// Run `jkrbem devices`.
+#[cfg(not(feature = "gpu"))]
 pub fn run(_args: Args) -> Result<(), CliError> {
+    println!(
+        "this jkrbem was built without the `gpu` feature: no GPU adapter is looked for, and \
+         every run uses the CPU backend"
+    );
+    Ok(())
+}
+
+/// Run `jkrbem devices`.
+#[cfg(feature = "gpu")]
+pub fn run(_args: Args) -> Result<(), CliError> {
+    use jkrbem::backend::gpu::list_adapters;
     let adapters = list_adapters();
     if adapters.is_empty() {
         println!(

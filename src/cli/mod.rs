@@ -5,8 +5,8 @@ pub mod bench;
 pub mod collect;
 pub mod crossed;
 pub mod devices;
-pub mod extrapolate;
-pub mod outputs;
+pub mod progress;
+pub mod reference;
 pub mod reproduce;
 pub mod simulate;
 pub mod sweep;
@@ -39,6 +39,20 @@ impl fmt::Display for CliError {
         match self {
             CliError::Input(m) | CliError::Run(m) => f.write_str(m),
         }
+    }
+}
+
+/// A request's error as the command's: a refusal is bad input, anything else a failed run.
+pub fn run_error(e: jkrbem::run::RunError) -> CliError {
+    match e {
+        jkrbem::run::RunError::Input(m) => CliError::Input(m),
+        jkrbem::run::RunError::Failed(m) => CliError::Run(m),
+    }
+}
+
+impl From<jkrbem::run::RunError> for CliError {
+    fn from(e: jkrbem::run::RunError) -> Self {
+        run_error(e)
     }
 }
 
@@ -76,5 +90,28 @@ pub fn count_in(flag: &str, len: usize, min: usize, max: usize) -> Result<(), Cl
         Err(input(format!(
             "{flag}: {len} values given; give {min} to {max}"
         )))
+    }
+}
+
+/// Ok if nothing failed, else the run's error listing `failures` (what failed: `what`).
+pub fn failures(what: &str, failures: &[String], note: &str) -> Result<(), CliError> {
+    if failures.is_empty() {
+        Ok(())
+    } else {
+        Err(failed(format!(
+            "{} of the {what} failed{note}:\n  {}",
+            failures.len(),
+            failures.join("\n  ")
+        )))
+    }
+}
+
+/// A batch's grid choice from `--grid` and `--accuracy`: the grid if given, else the accuracy
+/// (default [`simulate::DEFAULT_ACCURACY`]).
+pub fn grid_choice(grid: Option<usize>, accuracy: Option<f64>) -> jkrbem::run::batch::GridChoice {
+    use jkrbem::run::batch::GridChoice;
+    match grid {
+        Some(nx) => GridChoice::Fixed(nx),
+        None => GridChoice::Accuracy(accuracy.unwrap_or(simulate::DEFAULT_ACCURACY)),
     }
 }

@@ -1,8 +1,8 @@
 //! `jkrbem theory`: closed-form curves.
 
-use super::outputs::{write_error, Outputs};
 use super::{input, CliError};
 use clap::ValueEnum;
+use jkrbem::run::claim::{write_error, Outputs};
 use jkrbem::theory::{self, TheoryModel};
 use std::path::PathBuf;
 

@@ -3,8 +3,9 @@
 
 use super::chart::{LogLogChart, Series};
 use super::OutputError;
-use crate::bench::Measurement;
+use crate::bench::{GridProfile, Measurement};
 use serde::Serialize;
+use std::fmt::Write as _;
 use std::path::Path;
 
 /// The CSV header, one column per [`BenchRow`] field.
@@ -101,6 +102,139 @@ pub fn timing_chart(rows: &[BenchRow], title: &str) -> LogLogChart {
         });
     }
     chart
+}
+
+/// An optional value printed with `digits` decimals, or "—".
+fn opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or_else(|| "—".into(), |v| format!("{v:.digits$}"))
+}
+
+/// The timings as a table for people: the devices, then one line per backend and grid.
+pub fn table_text(rows: &[BenchRow], measured: &[Measurement]) -> String {
+    let mut out = String::new();
+    let mut devices: Vec<(&str, &str)> = Vec::new();
+    for r in rows {
+        if !devices.iter().any(|(b, _)| *b == r.backend) {
+            devices.push((&r.backend, &r.adapter));
+        }
+    }
+    for (b, a) in devices {
+        let _ = writeln!(out, "{b}: {a}");
+    }
+    if let Some(m) = measured.first() {
+        let _ = writeln!(
+        out,
+            "medians of {} samples (each the mean over ≥ 20 ms of calls); every call ends with one \
+             scalar readback; CG: {} iterations per solve, its start excluded",
+            m.repeats, m.cg_iterations
+        );
+    }
+    let _ = writeln!(
+        out,
+        "{:<8} {:>9} {:>10} {:>10} {:>8} {:>8} {:>8} {:>11} {:>8} {:>8}",
+        "backend",
+        "grid",
+        "conv (ms)",
+        "CG it (ms)",
+        "disp/it",
+        "read/it",
+        "subm/it",
+        "pull-off(s)",
+        "CG its",
+        "f_ad_bar"
+    );
+    for (r, m) in rows.iter().zip(measured) {
+        let w = m.work_per_iteration;
+        let _ = writeln!(
+            out,
+            "{:<8} {:>9} {:>10.4} {:>10.4} {:>8.2} {:>8.3} {:>8.2} {:>11} {:>8} {:>8}",
+            format!("{} {}", r.backend, r.precision),
+            format!("{}×{}", r.nx, r.ny),
+            r.convolution_ms,
+            r.cg_iteration_ms,
+            w.dispatches,
+            w.readbacks,
+            w.submits,
+            opt(r.pulloff_s, 2),
+            r.pulloff_cg_iterations
+                .map_or_else(|| "—".into(), |n| n.to_string()),
+            opt(r.f_ad_bar, 4),
+        );
+    }
+    out
+}
+
+/// One grid's kernel profile: time, bytes and bandwidth per CG iteration, and the kernels'
+/// bytes against the iteration's floor.
+pub fn profile_text(p: &GridProfile) -> String {
+    let mut out = String::new();
+    let (label, profile, floor) = (&p.label, &p.kernels, p.floor_bytes);
+    let time: f64 = profile.iter().map(|k| k.ms_per_iteration).sum();
+    let bytes: f64 = profile.iter().map(|k| k.bytes_per_iteration).sum();
+    let _ = writeln!(
+        out,
+        "profile {label}, per CG iteration (GPU timestamps around each dispatch):"
+    );
+    let _ = writeln!(
+        out,
+        "  {:<18} {:>8} {:>10} {:>10} {:>9} {:>7}",
+        "kernel", "disp/it", "ms/it", "MB/it", "GB/s", "share"
+    );
+    for k in profile {
+        let _ = writeln!(
+            out,
+            "  {:<18} {:>8.2} {:>10.4} {:>10.2} {:>9.0} {:>6.1}%",
+            k.kernel,
+            k.dispatches_per_iteration,
+            k.ms_per_iteration,
+            k.bytes_per_iteration / 1e6,
+            k.gb_per_s(),
+            100.0 * k.ms_per_iteration / time.max(f64::MIN_POSITIVE)
+        );
+    }
+    let _ = writeln!(
+        out,
+        "  kernels: {time:.4} ms, {:.1} MB ({:.2}× the floor of {:.1} MB), {:.0} GB/s overall",
+        bytes / 1e6,
+        bytes / floor,
+        floor / 1e6,
+        bytes / (time * 1e-3).max(f64::MIN_POSITIVE) / 1e9
+    );
+    out
+}
+
+/// GPU/CPU time ratios per grid, when both ran in this invocation (empty otherwise).
+pub fn ratios_text(rows: &[BenchRow]) -> String {
+    let mut out = String::new();
+    let find = |b: &str, g: usize| rows.iter().find(|r| r.backend == b && r.grid == g);
+    let mut header = false;
+    for r in rows.iter().filter(|r| r.backend == "cpu") {
+        let Some(gpu) = find("gpu", r.grid) else {
+            continue;
+        };
+        if !header {
+            let _ = writeln!(
+                out,
+                "GPU/CPU time ratios (below 1: the GPU is faster), measured in this run:"
+            );
+            let _ = writeln!(
+                out,
+                "{:>9} {:>12} {:>13} {:>9}",
+                "grid", "convolution", "CG iteration", "pull-off"
+            );
+            header = true;
+        }
+        let pulloff = gpu.pulloff_s.zip(r.pulloff_s).map(|(g, c)| g / c);
+        let _ = writeln!(
+            out,
+            "{:>9} {:>12.3} {:>13.3} {:>9}",
+            format!("{}×{}", r.nx, r.ny),
+            gpu.convolution_ms / r.convolution_ms,
+            gpu.cg_iteration_ms / r.cg_iteration_ms,
+            opt(pulloff, 3),
+        );
+    }
+    out
 }
 
 #[cfg(test)]

@@ -32,6 +32,8 @@ pub struct Curve {
     pub color: usize,
     /// Line, dashed line or markers.
     pub style: Style,
+    /// Half-widths of vertical error bars, one per point (markers only; empty: none).
+    pub errors: Vec<f64>,
 }
 
 /// A chart of [`Curve`]s.
@@ -83,6 +85,25 @@ impl LineChart {
             points,
             color,
             style,
+            errors: Vec::new(),
+        });
+    }
+
+    /// Add markers with vertical error bars of half-width `errors` (one per point, in the
+    /// y unit; a non-finite one draws no bar).
+    pub fn push_with_errors(
+        &mut self,
+        label: &str,
+        points: Vec<(f64, f64)>,
+        errors: Vec<f64>,
+        color: usize,
+    ) {
+        self.curves.push(Curve {
+            label: label.into(),
+            points,
+            color,
+            style: Style::Markers,
+            errors,
         });
     }
 
@@ -166,10 +187,26 @@ impl LineChart {
 
     /// A curve's finite points (positive x on a log axis).
     fn plotted(&self, c: &Curve) -> Vec<(f64, f64)> {
+        self.plotted_with_errors(c)
+            .into_iter()
+            .map(|(p, _)| p)
+            .collect()
+    }
+
+    /// A curve's finite points with their error half-widths (0 where none is given).
+    fn plotted_with_errors(&self, c: &Curve) -> Vec<((f64, f64), f64)> {
         c.points
             .iter()
-            .filter(|(x, y)| x.is_finite() && y.is_finite() && (!self.x_log || *x > 0.0))
-            .copied()
+            .enumerate()
+            .filter(|(_, (x, y))| x.is_finite() && y.is_finite() && (!self.x_log || *x > 0.0))
+            .map(|(i, &p)| {
+                let e = c
+                    .errors
+                    .get(i)
+                    .copied()
+                    .filter(|e| e.is_finite() && *e > 0.0);
+                (p, e.unwrap_or(0.0))
+            })
             .collect()
     }
 
@@ -178,7 +215,13 @@ impl LineChart {
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
         root.fill(&WHITE)?;
-        let all: Vec<(f64, f64)> = self.curves.iter().flat_map(|c| self.plotted(c)).collect();
+        // Every point, and the ends of its error bar, must be in range.
+        let all: Vec<(f64, f64)> = self
+            .curves
+            .iter()
+            .flat_map(|c| self.plotted_with_errors(c))
+            .flat_map(|((x, y), e)| [(x, y - e), (x, y + e)])
+            .collect();
         let range = |v: Vec<f64>| {
             let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
             let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -261,6 +304,13 @@ impl LineChart {
                     chart.draw_series(DashedLineSeries::new(pts, DASH.0, DASH.1, line))?
                 }
                 Style::Markers => {
+                    let bars = self
+                        .plotted_with_errors(c)
+                        .into_iter()
+                        .filter(|(_, e)| *e > 0.0);
+                    chart.draw_series(bars.map(|((x, y), e)| {
+                        ErrorBar::new_vertical(x, y - e, y, y + e, color.stroke_width(1), 6)
+                    }))?;
                     chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))?
                 }
             };
@@ -293,6 +343,33 @@ mod tests {
         let svg = c.to_svg().unwrap();
         assert!(svg.contains("<svg") && svg.contains("JKR") && svg.contains("simulated"));
         assert!(svg.matches("<circle").count() >= 2);
+        // Error bars: three lines each (the bar and its two caps), within the range a line
+        // already fixes; a bar beyond it widens the range.
+        let frame = || {
+            let mut c = LineChart::new("bars", "x", "y");
+            c.push("frame", vec![(0.0, 0.0), (4.0, 1.0)], 0, Style::Line);
+            c
+        };
+        let mut plain = frame();
+        plain.push("m", vec![(1.0, 0.2), (3.0, 0.25)], 1, Style::Markers);
+        let mut bars = frame();
+        bars.push_with_errors("m", vec![(1.0, 0.2), (3.0, 0.25)], vec![0.05, 0.1], 1);
+        let count = |svg: &str| svg.matches("<line").count() + svg.matches("<polyline").count();
+        let (n0, n1) = (
+            count(&plain.to_svg().unwrap()),
+            count(&bars.to_svg().unwrap()),
+        );
+        assert_eq!(n1, n0 + 6, "{n0} → {n1}");
+        let mut wide = frame();
+        wide.push_with_errors("m", vec![(1.0, 0.2)], vec![3.0], 1);
+        let ticks: Vec<String> = texts(&wide.to_svg().unwrap())
+            .into_iter()
+            .map(|t| t.2)
+            .collect();
+        assert!(
+            ticks.iter().any(|t| t == "3"),
+            "the bar's top is in range: {ticks:?}"
+        );
         c.x_log = true;
         assert!(c.to_svg().unwrap().contains("<svg"));
     }

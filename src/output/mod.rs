@@ -6,6 +6,7 @@ pub mod bench;
 pub mod chart;
 pub mod file;
 pub mod line_chart;
+#[cfg(feature = "gpu")]
 pub mod profile;
 pub mod states_csv;
 pub mod study_charts;

@@ -1,36 +1,15 @@
-//! The charts of the study (SPEC §8.2, §8.4–§8.6) made from pull-off states: the axis ratio
+//! The charts of the study (physics §8.2, §8.4–§8.6) made from pull-off states: the axis ratio
 //! b/a against F̄, the branch laws d̄(c̄), F̄(c̄), F̄(d̄) with their fits, the fitted
 //! coefficients against R1/R2, and the adhesive force with its fitted law.
 
 use super::line_chart::{LineChart, Style};
-use crate::analysis::branch::columns;
-use crate::analysis::{adhesive_branch, fit_d_of_c, fit_f_of_c, fit_power_law};
-use crate::analysis::{LinearFit2, PowerFit, PowerLawFit};
-use crate::solver::{Phase, State};
+use crate::analysis::adhesive_branch;
+use crate::analysis::study_fits::{coefficient_laws, BranchFits, RatioRun};
+use crate::solver::Phase;
 use crate::theory::{self, TheoryModel, TheoryPoint};
 
 /// Points of closed-form and fitted curves.
 const CURVE_POINTS: usize = 200;
-
-/// One ratio's pull-off.
-pub struct RatioRun {
-    /// R1/R2.
-    pub ratio: f64,
-    /// Elements along x and y.
-    pub grid: (usize, usize),
-    /// The recorded states.
-    pub states: Vec<State>,
-}
-
-/// The branch fits of one ratio (None where there were too few branch points).
-pub struct BranchFits {
-    /// R1/R2.
-    pub ratio: f64,
-    /// d̄ = A c̄² + B c̄^½.
-    pub d_of_c: Option<LinearFit2>,
-    /// F̄ = c1 c̄³ + c2 c̄^α.
-    pub f_of_c: Option<PowerFit>,
-}
 
 fn reference(ratio: f64) -> (TheoryModel, String) {
     let model = TheoryModel::adhesive_reference(ratio);
@@ -39,16 +18,6 @@ fn reference(ratio: f64) -> (TheoryModel, String) {
 
 fn theory_points(ratio: f64) -> Vec<TheoryPoint> {
     theory::curve(reference(ratio).0, ratio, CURVE_POINTS).unwrap_or_default()
-}
-
-/// Least-squares fits of a run's adhesive branch.
-pub fn branch_fits(run: &RatioRun) -> BranchFits {
-    let (c, d, f) = columns(&adhesive_branch(&run.states));
-    BranchFits {
-        ratio: run.ratio,
-        d_of_c: fit_d_of_c(&c, &d).ok(),
-        f_of_c: fit_f_of_c(&c, &f).ok(),
-    }
 }
 
 /// b/a against F̄ for each run (pull-off states in contact) beside JG's g(F̄).
@@ -151,38 +120,6 @@ pub fn branch_chart(runs: &[RatioRun], fits: &[BranchFits], law: BranchLaw) -> L
     chart
 }
 
-/// A coefficient's name and its value in a ratio's fits.
-type Coefficient = (&'static str, fn(&BranchFits) -> Option<f64>);
-
-/// The coefficients of the branch laws.
-pub const COEFFICIENTS: [Coefficient; 5] = [
-    ("A", |f| f.d_of_c.as_ref().map(|d| d.a)),
-    ("B", |f| f.d_of_c.as_ref().map(|d| d.b)),
-    ("c1", |f| f.f_of_c.as_ref().map(|p| p.c1)),
-    ("c2", |f| f.f_of_c.as_ref().map(|p| p.c2)),
-    ("α", |f| f.f_of_c.as_ref().map(|p| p.alpha)),
-];
-
-/// A coefficient's name, its (R1/R2, value) points and its fitted law.
-pub type CoefficientLaw = (&'static str, Vec<(f64, f64)>, Option<PowerLawFit>);
-
-/// Each coefficient's values against R1/R2 and its law k1·(R1/R2)^k2 + k3 (None with fewer
-/// than three ratios or a failed fit).
-pub fn coefficient_laws(fits: &[BranchFits]) -> Vec<CoefficientLaw> {
-    COEFFICIENTS
-        .iter()
-        .map(|(name, get)| {
-            let pts: Vec<(f64, f64)> = fits
-                .iter()
-                .filter_map(|f| Some((f.ratio, get(f)?)))
-                .collect();
-            let (x, y): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
-            let law = fit_power_law(&x, &y).ok();
-            (*name, pts, law)
-        })
-        .collect()
-}
-
 /// The fitted coefficients against R1/R2 (log axis) with their laws (dashed).
 pub fn coefficients_chart(fits: &[BranchFits]) -> LineChart {
     let mut chart = LineChart::new(
@@ -214,7 +151,7 @@ pub fn coefficients_chart(fits: &[BranchFits]) -> LineChart {
 }
 
 /// Quarter contours of the contact at the captured states of one run (markers) beside the
-/// ellipses with the same half-axes (lines), in c_r units (SPEC §8.1 snapshots, §8.3).
+/// ellipses with the same half-axes (lines), in c_r units (physics §8.1 snapshots, §8.3).
 pub fn contour_chart(ratio: f64, rows: &[crate::analysis::capture::ContourRow]) -> LineChart {
     let mut chart = LineChart::new(
         &format!(

@@ -1,196 +1,89 @@
-//! The summary of a run: the adhesive force and where it occurred, beside the closed-form
-//! value, with what the run cost. Printed for people, written as JSON for scripts.
+//! The summary of an adhesive-force request, one shape for every run (one grid or several):
+//! the best estimate of |min F̄| with its uncertainty, where the minimum lies, the requested
+//! accuracy, the closed forms as comparisons, and every run. Printed for people, written as
+//! JSON for scripts. Every number comes from `analysis`; this module only lays it out.
 
 use super::OutputError;
-use crate::analysis::convergence;
-use crate::model::{Model, Stepping};
-use crate::solver::{protocol::RegridEvent, Outcome};
+use crate::analysis::estimate::AdhesiveResult;
+use crate::analysis::report::RunReport;
 use crate::text::fixed;
-use crate::theory::{self, TheoryModel};
 use serde::Serialize;
 use std::path::Path;
 
-/// Summary of one pull-off run.
+/// The summary (see the README's "The summary" for every field).
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
     /// R1/R2 (dimensionless).
     pub ratio: f64,
-    /// Adhesive force |min F̄| (dimensionless); null if the run did not reach the force
-    /// minimum (`min_reached` false).
+    /// "single-grid" or "extrapolated"; null if no run reached the force minimum.
+    pub estimate: Option<&'static str>,
+    /// The best estimate of the adhesive force |min F̄| at Δx → 0 (dimensionless).
     pub f_ad_bar: Option<f64>,
-    /// Whether the run reached the force minimum: after it the contact jumped off, or the
-    /// approach went 0.1 past it with the force 2 % above it (`Outcome::min_reached`). When
-    /// false, no adhesive force is reported and `lowest_f_bar` is only the lowest force seen.
-    pub min_reached: bool,
-    /// The lowest F̄ recorded (dimensionless; on the last grid after re-grids), whether or not
-    /// it is the minimum; null if no state was recorded.
-    pub lowest_f_bar: Option<f64>,
-    /// d̄ of that state.
-    pub d_bar_at_lowest: Option<f64>,
-    /// c̄ at the force minimum.
+    /// Half-width of the interval stated to hold the Δx → 0 limit (absolute).
+    pub f_ad_bar_uncertainty: Option<f64>,
+    /// One grid: how much its own |min F̄| exceeds the estimate (positive: it over-predicts).
+    pub f_ad_bar_bias: Option<f64>,
+    /// c̄ at the force minimum (best estimate).
     pub c_bar_at_min: Option<f64>,
-    /// d̄ at the force minimum.
+    /// Its uncertainty (absolute).
+    pub c_bar_at_min_uncertainty: Option<f64>,
+    /// d̄ at the force minimum (best estimate).
     pub d_bar_at_min: Option<f64>,
-    /// ā at the force minimum.
-    pub a_bar_at_min: Option<f64>,
-    /// b̄ at the force minimum.
-    pub b_bar_at_min: Option<f64>,
-    /// Elements across the contact's minor axis at the force minimum (2 b / Δx; the diameter
-    /// for a sphere).
-    pub n_d: Option<f64>,
-    /// Name of the closed form compared with ("jkr" or "jg").
-    pub reference_model: &'static str,
-    /// Its adhesive force |min F̄| (dimensionless).
-    pub reference_f_ad_bar: Option<f64>,
-    /// Relative error of f_ad_bar against the reference (dimensionless, signed).
-    pub relative_error: Option<f64>,
-    /// Elements along x.
-    pub nx: usize,
-    /// Elements along y.
-    pub ny: usize,
-    /// Element side Δx (length).
-    pub dx: f64,
-    /// Angle between the ellipsoid's major axis and the grid's x axis (degrees).
-    pub mesh_angle_deg: f64,
-    /// Detachment stress σ_c (force/length²).
-    pub sigma_c: f64,
-    /// Backend that ran the solver.
-    pub backend: String,
-    /// Arithmetic precision of the backend.
-    pub precision: String,
-    /// CG iterations over the run.
-    pub cg_iterations: usize,
-    /// The largest relative CG residual of any state, recomputed from p (dimensionless).
-    pub cg_residual_max: Option<f64>,
-    /// CG solves that needed the safer retry.
-    pub cg_retries: usize,
-    /// States recorded.
-    pub states: usize,
-    /// Wall time of the solve (s).
-    pub wall_s: f64,
-    /// Whether the protocol ran to its end.
+    /// Its uncertainty (absolute).
+    pub d_bar_at_min_uncertainty: Option<f64>,
+    /// How the estimate was made, in words.
+    pub method: Option<String>,
+    /// The requested relative accuracy (`--accuracy`), if any.
+    pub target: Option<f64>,
+    /// Whether the estimate's relative uncertainty is within the target.
+    pub target_met: Option<bool>,
+    /// Johnson–Greenwood's |min F̄| (a comparison, not a reference).
+    pub jg_f_ad_bar: Option<f64>,
+    /// f_ad_bar / jg_f_ad_bar − 1: the deviation from JG (dimensionless, signed).
+    pub jg_deviation: Option<f64>,
+    /// For the sphere: f_ad_bar / 0.5 − 1, the error against JKR's exact value.
+    pub jkr_error: Option<f64>,
+    /// Whether every run reached the force minimum.
+    pub min_reached: bool,
+    /// Whether every run ran to its end.
     pub complete: bool,
-    /// Why it did not, if it did not.
-    pub error: Option<String>,
-    /// Where the states were written.
-    pub states_csv: String,
-    /// Element side Δx at the force minimum (length; differs from `dx` after re-grids).
-    pub dx_at_min: Option<f64>,
-    /// The grid changes made during the run.
-    pub regrids: Vec<RegridEvent>,
-    /// Whether the run stopped once the force minimum was confirmed (--measure adhesive-force).
-    pub stopped_after_minimum: bool,
-    /// Warnings about the result (CG retries and states accepted above the CG tolerance, too
-    /// coarse a grid, too large load steps); empty for a healthy run.
+    /// CG iterations over all runs.
+    pub cg_iterations: usize,
+    /// Wall time of all runs (s).
+    pub wall_s: f64,
+    /// Warnings of every run.
     pub warnings: Vec<String>,
-}
-
-/// `v` with `decimals` decimals and its sign ("+2.05", "-0.31"), never "-0.00".
-fn signed(v: f64, decimals: usize) -> String {
-    let s = fixed(v, decimals);
-    if s.starts_with('-') {
-        s
-    } else {
-        format!("+{s}")
-    }
-}
-
-/// With [`Stepping::Fixed`], a warning if the steps around the force minimum detached
-/// elements: the minimum then lies at an onset inside a step, which whole steps do not see.
-fn step_warning(model: &Model, outcome: &Outcome) -> Option<String> {
-    if model.stepping != Stepping::Fixed {
-        return None;
-    }
-    let states = &outcome.states;
-    let k = states
-        .iter()
-        .enumerate()
-        .min_by(|a, b| a.1.force.total_cmp(&b.1.force))?
-        .0;
-    let around = &states[k.saturating_sub(1)..(k + 2).min(states.len())];
-    let lost = around
-        .windows(2)
-        .map(|w| w[0].n_contact.saturating_sub(w[1].n_contact))
-        .max()
-        .unwrap_or(0);
-    let jump = around
-        .windows(2)
-        .map(|w| (w[1].f_bar - w[0].f_bar).abs())
-        .fold(0.0, f64::max);
-    let f_min = states[k].f_bar.abs();
-    (lost > 0).then(|| {
-        format!(
-            "load steps too large to resolve the force minimum: with --stepping fixed, one step \
-             (Δd̄ = {:.4}) around it detached {lost} elements and changed F̄ by {:.1} % of |min F̄|, \
-             so the minimum lies at an onset inside a step; use --stepping adaptive (the \
-             default), which refines every step to its onsets",
-            model.d_step / model.scene.scales().approach,
-            100.0 * jump / f_min
-        )
-    })
+    /// Every run, coarse to fine.
+    pub runs: Vec<RunReport>,
 }
 
 impl Summary {
-    /// Summarise an outcome.
-    pub fn new(
-        model: &Model,
-        outcome: &Outcome,
-        backend: (&str, &str),
-        wall_s: f64,
-        states_csv: &Path,
-    ) -> Self {
-        let ratio = model.scene.ratio();
-        let which = TheoryModel::adhesive_reference(ratio);
-        let name = which.name();
-        let reference = theory::pull_off(which, ratio)
-            .ok()
-            .map(|p| -p.force_min.f_bar);
-        let lowest = outcome.force_minimum();
-        let min_reached = outcome.min_reached();
-        let min = lowest.filter(|_| min_reached);
-        let f_ad = min.map(|s| -s.f_bar);
-        // 2b/Δx is a count of elements (half-integers on an aligned mesh): rounded to 1e-6 so
-        // that it does not read 25.999999999999996.
-        let n_d = min.map(|s| (2e6 * s.b_axis / s.dx).round() / 1e6);
-        let warnings = n_d
-            .and_then(|n| convergence::coarse_grid_warning(ratio, n))
-            .into_iter()
-            .chain(step_warning(model, outcome))
-            .chain(outcome.warnings.iter().cloned())
-            .collect();
+    /// The summary of `result`.
+    pub fn new(result: &AdhesiveResult) -> Self {
+        let e = result.estimate.as_ref();
+        let c = result.comparison;
         Summary {
-            ratio,
-            f_ad_bar: f_ad,
-            min_reached,
-            lowest_f_bar: lowest.map(|s| s.f_bar),
-            d_bar_at_lowest: lowest.map(|s| s.d_bar),
-            c_bar_at_min: min.map(|s| s.c_bar),
-            d_bar_at_min: min.map(|s| s.d_bar),
-            a_bar_at_min: min.map(|s| s.a_bar),
-            b_bar_at_min: min.map(|s| s.b_bar),
-            n_d,
-            reference_model: name,
-            reference_f_ad_bar: reference,
-            relative_error: f_ad.zip(reference).map(|(f, r)| f / r - 1.0),
-            nx: model.nx,
-            ny: model.ny,
-            dx: model.dx,
-            mesh_angle_deg: model.mesh.degrees,
-            sigma_c: model.sigma_c,
-            backend: backend.0.to_string(),
-            precision: backend.1.to_string(),
-            cg_iterations: outcome.cg_iterations(),
-            cg_residual_max: outcome.worst_cg_residual(),
-            cg_retries: outcome.cg_retries.len(),
-            states: outcome.states.len(),
-            wall_s,
-            complete: outcome.complete(),
-            error: outcome.error.as_ref().map(|e| e.to_string()),
-            states_csv: states_csv.display().to_string(),
-            dx_at_min: min.map(|s| s.dx),
-            regrids: outcome.regrids.clone(),
-            stopped_after_minimum: outcome.stopped_after_minimum,
-            warnings,
+            ratio: result.ratio,
+            estimate: e.map(|e| e.kind.name()),
+            f_ad_bar: e.map(|e| e.f_ad_bar.value),
+            f_ad_bar_uncertainty: e.map(|e| e.f_ad_bar.uncertainty),
+            f_ad_bar_bias: e.and_then(|e| e.f_ad_bar_bias),
+            c_bar_at_min: e.and_then(|e| e.c_bar_at_min).map(|v| v.value),
+            c_bar_at_min_uncertainty: e.and_then(|e| e.c_bar_at_min).map(|v| v.uncertainty),
+            d_bar_at_min: e.and_then(|e| e.d_bar_at_min).map(|v| v.value),
+            d_bar_at_min_uncertainty: e.and_then(|e| e.d_bar_at_min).map(|v| v.uncertainty),
+            method: e.map(|e| e.method.clone()),
+            target: result.target.map(|t| t.target),
+            target_met: result.target.map(|t| t.met),
+            jg_f_ad_bar: c.jg_f_ad_bar,
+            jg_deviation: c.jg_deviation,
+            jkr_error: c.jkr_error,
+            min_reached: result.runs.iter().all(|r| r.min_reached),
+            complete: result.runs.iter().all(|r| r.complete),
+            cg_iterations: result.runs.iter().map(|r| r.cg_iterations).sum(),
+            wall_s: result.runs.iter().map(|r| r.wall_s).sum(),
+            warnings: result.warnings(),
+            runs: result.runs.clone(),
         }
     }
 
@@ -203,100 +96,157 @@ impl Summary {
     /// Human-readable lines.
     pub fn to_text(&self) -> String {
         let opt = |v: Option<f64>, p: usize| v.map_or("—".into(), |x| fixed(x, p));
+        let pct =
+            |v: Option<f64>| v.map_or("—".into(), |e| format!("{} %", signed(100.0 * e, 2)));
         let mut s = String::new();
-        if self.min_reached {
-            s += &format!(
-                "adhesive force |min F̄| = {}  ({} value {}, error {})\n",
-                opt(self.f_ad_bar, 4),
-                self.reference_model.to_uppercase(),
-                opt(self.reference_f_ad_bar, 4),
-                self.relative_error
-                    .map_or("—".into(), |e| format!("{} %", signed(100.0 * e, 2)))
-            );
-            s += &format!(
-                "  at c̄ = {}, d̄ = {}, ā = {}, b̄ = {}\n",
-                opt(self.c_bar_at_min, 4),
-                opt(self.d_bar_at_min, 4),
-                opt(self.a_bar_at_min, 4),
-                opt(self.b_bar_at_min, 4)
-            );
-        } else {
-            let seen = match (self.lowest_f_bar, self.d_bar_at_lowest) {
-                (Some(f), Some(d)) => format!(
-                    "the lowest F̄ recorded is {} at d̄ = {}, and the force had not turned after it",
+        match (self.f_ad_bar, self.f_ad_bar_uncertainty) {
+            (Some(f), Some(u)) => {
+                s += &format!(
+                    "adhesive force |min F̄| = {} ± {} ({}, ± {:.2} %)\n",
                     fixed(f, 4),
-                    fixed(d, 4)
-                ),
-                _ => "no state was recorded".to_string(),
-            };
-            let why = if self.complete {
-                "the run stopped at its final approach: lower --final-d (or leave it out) to \
-                 pass the minimum"
-            } else {
-                "the run stopped early (see INCOMPLETE below)"
-            };
-            s += &format!(
-                "NO ADHESIVE FORCE: the run did not reach the force minimum; {seen}; {why}\n"
-            );
+                    fixed(u, 4),
+                    self.estimate.unwrap_or("—"),
+                    100.0 * u / f
+                );
+                if let Some(b) = self.f_ad_bar_bias {
+                    let own = self.runs.first().and_then(|r| r.f_ad_bar);
+                    s += &format!(
+                        "  the grid's own |min F̄| = {} over-predicts it by {} % (first order in Δx: \
+                         refine the grid or extrapolate to shrink the uncertainty)\n",
+                        opt(own, 4),
+                        signed(100.0 * b / f, 2)
+                    );
+                }
+                if let (Some(t), Some(met)) = (self.target, self.target_met) {
+                    s += &format!(
+                        "  target ± {:.2} %: {}\n",
+                        100.0 * t,
+                        if met {
+                            "met"
+                        } else {
+                            "NOT MET (the best answer within the limits is shown)"
+                        }
+                    );
+                }
+                s += &format!(
+                    "  at c̄ = {} ± {}, d̄ = {} ± {}\n",
+                    opt(self.c_bar_at_min, 4),
+                    opt(self.c_bar_at_min_uncertainty, 4),
+                    opt(self.d_bar_at_min, 4),
+                    opt(self.d_bar_at_min_uncertainty, 4)
+                );
+                s += &format!(
+                    "  beside Johnson–Greenwood {} (deviation from JG {})",
+                    opt(self.jg_f_ad_bar, 4),
+                    pct(self.jg_deviation)
+                );
+                if self.jkr_error.is_some() {
+                    s += &format!("; against JKR's exact 1/2: {}", pct(self.jkr_error));
+                }
+                s += "\n";
+            }
+            _ => {
+                let lowest = self.runs.iter().find(|r| !r.min_reached);
+                let seen = match lowest.and_then(|r| r.lowest_f_bar.zip(r.d_bar_at_lowest)) {
+                    Some((f, d)) => format!(
+                        "the lowest F̄ recorded is {} at d̄ = {}, and the force had not turned \
+                         after it",
+                        fixed(f, 4),
+                        fixed(d, 4)
+                    ),
+                    None => "no state was recorded".to_string(),
+                };
+                let why = if self.complete {
+                    "the run stopped at its final approach: lower --final-d (or leave it out) to \
+                     pass the minimum"
+                } else {
+                    "the run stopped early (see INCOMPLETE below)"
+                };
+                s += &format!(
+                    "NO ADHESIVE FORCE: the run did not reach the force minimum; {seen}; {why}\n"
+                );
+            }
         }
-        let angle = if self.mesh_angle_deg == 0.0 {
-            String::new()
-        } else {
-            format!(" turned by {}°", self.mesh_angle_deg)
-        };
-        s += &format!(
-            "grid {}×{}{angle}, Δx = {:.5e}, σ_c = {:.5e}, {} elements across the minor axis at pull-off\n",
-            self.nx,
-            self.ny,
-            self.dx,
-            self.sigma_c,
-            opt(self.n_d, 0)
-        );
-        if !self.regrids.is_empty() {
-            s += &format!(
-                "Δx at the force minimum {} after {} re-grid(s)\n",
-                self.dx_at_min.map_or("—".into(), |v| format!("{v:.5e}")),
-                self.regrids.len()
-            );
-        }
-        s += &format!(
-            "{} backend ({}), {} states, {} CG iterations, {:.2} s\n",
-            self.backend, self.precision, self.states, self.cg_iterations, self.wall_s
-        );
-        if self.cg_retries > 0 {
-            s += &format!(
-                "CG: {} solve(s) retried in the safer mode, worst relative residual {} \
-                 (warnings on stderr)\n",
-                self.cg_retries,
-                self.cg_residual_max
-                    .map_or("—".into(), |r| format!("{r:.2e}"))
-            );
-        }
-        for r in &self.regrids {
-            s += &format!(
-                "re-gridded at d̄ = {:.4}: Δx {:.4e} → {:.4e}\n",
-                r.d_bar, r.dx_from, r.dx_to
-            );
-        }
-        if self.stopped_after_minimum {
-            s += "stopped once the force minimum was confirmed (--measure adhesive-force)\n";
+        for r in &self.runs {
+            s += &run_text(r);
         }
         for w in &self.warnings {
             s += &format!("WARNING: {w}\n");
         }
-        if let Some(e) = &self.error {
-            s += &format!("INCOMPLETE: {e}\n");
+        for r in &self.runs {
+            if let Some(e) = &r.error {
+                s += &format!("INCOMPLETE ({}): {e}\n", r.grid);
+            }
         }
         s
+    }
+}
+
+/// One run's lines: grid, Δx, its own |min F̄|, cost.
+fn run_text(r: &RunReport) -> String {
+    let opt = |v: Option<f64>, p: usize| v.map_or("—".into(), |x| fixed(x, p));
+    let mut s = String::new();
+    let angle = if r.mesh_angle_deg == 0.0 {
+        String::new()
+    } else {
+        format!(" turned by {}°", r.mesh_angle_deg)
+    };
+    s += &format!(
+        "grid {}{angle}: |min F̄| = {}, Δx = {:.5e}, σ_c = {:.5e}, {} elements across the minor \
+         axis at pull-off\n",
+        r.grid,
+        opt(r.f_ad_bar, 5),
+        r.dx,
+        r.sigma_c,
+        opt(r.n_d, 0)
+    );
+    if !r.regrids.is_empty() {
+        s += &format!(
+            "  Δx at the force minimum {} after {} re-grid(s)\n",
+            r.dx_at_min.map_or("—".into(), |v| format!("{v:.5e}")),
+            r.regrids.len()
+        );
+    }
+    s += &format!(
+        "  {} backend ({}), {} states, {} CG iterations, {:.2} s\n",
+        r.backend, r.precision, r.states, r.cg_iterations, r.wall_s
+    );
+    if r.cg_retries > 0 {
+        s += &format!(
+            "  CG: {} solve(s) retried in the safer mode, worst relative residual {} (warnings \
+             below)\n",
+            r.cg_retries,
+            r.cg_residual_max.map_or("—".into(), |v| format!("{v:.2e}"))
+        );
+    }
+    for g in &r.regrids {
+        s += &format!(
+            "  re-gridded at d̄ = {:.4}: Δx {:.4e} → {:.4e}\n",
+            g.d_bar, g.dx_from, g.dx_to
+        );
+    }
+    if r.stopped_after_minimum {
+        s += "  stopped once the force minimum was confirmed (--measure adhesive-force)\n";
+    }
+    s
+}
+
+/// `v` with `decimals` decimals and its sign ("+2.05", "-0.31"), never "-0.00".
+fn signed(v: f64, decimals: usize) -> String {
+    let s = fixed(v, decimals);
+    if s.starts_with('-') {
+        s
+    } else {
+        format!("+{s}")
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::ModelOptions;
+    use crate::model::{Model, ModelOptions};
     use crate::scene::Scene;
-    use crate::solver::{Phase, State};
+    use crate::solver::{Outcome, Phase, State};
 
     fn state(model: &Model, force: f64, b_elements: f64, n_contact: usize) -> State {
         let dx = model.dx;
@@ -333,58 +283,95 @@ mod tests {
         }
     }
 
-    #[test]
-    fn n_d_is_a_count_of_elements_without_round_off() {
-        // Before: n_d = 2 b / Δx came out as 25.999999999999996.
+    fn sphere(nx: usize) -> Model {
         let scene = Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap();
-        let model = Model::build(
+        Model::build(
             &scene,
             &ModelOptions {
-                nx: 32,
+                nx,
                 ..ModelOptions::default()
             },
         )
-        .unwrap();
+        .unwrap()
+    }
+
+    fn summary_of(model: &Model, states: Vec<State>) -> Summary {
+        let run = RunReport::new(
+            model,
+            &outcome(states),
+            ("cpu", "f64"),
+            0.0,
+            Path::new("s.csv"),
+        );
+        Summary::new(&AdhesiveResult::single(run, None))
+    }
+
+    #[test]
+    fn n_d_is_a_count_of_elements_without_round_off() {
+        // Before: n_d = 2 b / Δx came out as 25.999999999999996.
+        let model = sphere(32);
         let k = (1..200)
             .map(f64::from)
             .find(|k| 2.0 * (k * model.dx) / model.dx != 2.0 * k)
             .expect("some count has round-off in 2 k Δx / Δx");
         let min = state(&model, -1.0, k, 100);
         let gone = state(&model, -0.3, 0.0, 0);
-        let s = Summary::new(
-            &model,
-            &outcome(vec![min, gone]),
-            ("cpu", "f64"),
-            0.0,
-            Path::new("s.csv"),
-        );
+        let s = summary_of(&model, vec![min, gone]);
         assert!(s.min_reached);
-        assert_eq!(s.n_d, Some(2.0 * k));
+        assert_eq!(s.runs[0].n_d, Some(2.0 * k));
+    }
+
+    #[test]
+    fn one_shape_with_the_estimate_its_uncertainty_and_the_comparisons() {
+        let model = sphere(32);
+        let min = state(&model, -0.55, 16.0, 100);
+        let gone = state(&model, -0.3, 0.0, 0);
+        let s = summary_of(&model, vec![min, gone]);
+        assert_eq!(s.estimate, Some("single-grid"));
+        let (f, u) = (s.f_ad_bar.unwrap(), s.f_ad_bar_uncertainty.unwrap());
+        // The grid's 0.55 over-predicts: the estimate lies below it, and its interval is
+        // wide enough to hold JKR's 1/2 (k = 3.2 at n_d = 32: +10 %).
+        assert!(f < 0.55 && (f - 0.5).abs() <= u, "{f} ± {u}");
+        assert_eq!(s.runs[0].f_ad_bar, Some(0.55));
+        assert!((s.f_ad_bar_bias.unwrap() - (0.55 - f)).abs() < 1e-12);
+        // JG reduces to JKR for the sphere (to round-off).
+        assert!((s.jg_f_ad_bar.unwrap() - 0.5).abs() < 1e-12);
+        assert!((s.jkr_error.unwrap() - (f / 0.5 - 1.0)).abs() < 1e-12);
+        assert!((s.jg_deviation.unwrap() - s.jkr_error.unwrap()).abs() < 1e-12);
+        let json = serde_json::to_value(&s).unwrap();
+        for key in [
+            "f_ad_bar",
+            "f_ad_bar_uncertainty",
+            "estimate",
+            "target",
+            "target_met",
+            "jg_f_ad_bar",
+            "jg_deviation",
+            "jkr_error",
+            "c_bar_at_min",
+            "c_bar_at_min_uncertainty",
+            "d_bar_at_min",
+            "d_bar_at_min_uncertainty",
+            "runs",
+        ] {
+            assert!(json.get(key).is_some(), "{key} missing from {json}");
+        }
+        assert!(json["f_ad_bar"].is_number());
+        assert!(!json.to_string().contains("relative_error"));
+        let text = s.to_text();
+        assert!(text.contains("deviation from JG"), "{text}");
+        assert!(!text.contains("error +"), "{text}");
     }
 
     #[test]
     fn without_a_minimum_there_is_no_adhesive_force_line() {
-        let scene = Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap();
-        let model = Model::build(
-            &scene,
-            &ModelOptions {
-                nx: 32,
-                ..ModelOptions::default()
-            },
-        )
-        .unwrap();
+        let model = sphere(32);
         // The force still falls at the last state.
         let states = vec![state(&model, -0.2, 10.0, 80), state(&model, -0.49, 9.0, 70)];
-        let s = Summary::new(
-            &model,
-            &outcome(states),
-            ("cpu", "f64"),
-            0.0,
-            Path::new("s.csv"),
-        );
+        let s = summary_of(&model, states);
         assert!(!s.min_reached);
         assert_eq!(s.f_ad_bar, None);
-        assert_eq!(s.lowest_f_bar, Some(-0.49));
+        assert_eq!(s.runs[0].lowest_f_bar, Some(-0.49));
         let text = s.to_text();
         assert!(!text.contains("adhesive force |min F̄|"), "{text}");
         assert!(text.contains("NO ADHESIVE FORCE"), "{text}");

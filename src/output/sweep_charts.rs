@@ -1,4 +1,4 @@
-//! The charts of a sweep (SPEC §8.1 and §8.6): the pull-off curves F̄(d̄) of every ratio beside
+//! The charts of a sweep (physics §8.1 and §8.6): the pull-off curves F̄(d̄) of every ratio beside
 //! JKR/JG, and the adhesive force |min F̄| against R1/R2 beside JG.
 
 use super::line_chart::{LineChart, Style};
@@ -124,11 +124,19 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
         );
     }
     let grids: Vec<String> = rows.iter().map(|r| r.grid.to_string()).collect();
-    chart.push(
-        &format!("jkrbem (Nx = {})", grids.join(", ")),
+    let errors = rows
+        .iter()
+        .filter(|r| r.f_ad_bar.is_some())
+        .map(|r| r.f_ad_bar_uncertainty.unwrap_or(0.0))
+        .collect();
+    chart.push_with_errors(
+        &format!(
+            "jkrbem at Δx → 0, ± stated uncertainty (Nx = {})",
+            grids.join(", ")
+        ),
         sim,
+        errors,
         0,
-        Style::Markers,
     );
     chart
 }
@@ -151,6 +159,8 @@ mod tests {
             .map(|&ratio: &f64| SweepRow {
                 ratio,
                 f_ad_bar: Some(0.3 + 0.25 * ratio.powf(-0.4)),
+                f_ad_bar_uncertainty: Some(0.01),
+                estimate: Some("single-grid".into()),
                 c_bar_at_min: Some(0.8),
                 d_bar_at_min: Some(-0.2),
                 jg_f_ad_bar: Some(0.5),

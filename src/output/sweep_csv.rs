@@ -14,13 +14,20 @@ use super::OutputError;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
-/// One ratio of a sweep (normalised quantities per SPEC §2).
+/// One ratio of a sweep (normalised quantities per physics §2).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SweepRow {
     /// R1/R2.
     pub ratio: f64,
-    /// Adhesive force |min F̄| (dimensionless); empty if the run did not reach the minimum.
+    /// Adhesive force |min F̄|, the best estimate at Δx → 0 (dimensionless); empty if the run
+    /// did not reach the minimum.
     pub f_ad_bar: Option<f64>,
+    /// Half-width of the interval stated to hold it (absolute).
+    #[serde(default)]
+    pub f_ad_bar_uncertainty: Option<f64>,
+    /// "single-grid" or "extrapolated".
+    #[serde(default)]
+    pub estimate: Option<String>,
     /// c̄ at the force minimum.
     pub c_bar_at_min: Option<f64>,
     /// d̄ at the force minimum.
@@ -55,23 +62,26 @@ fn yes() -> bool {
 }
 
 impl SweepRow {
-    /// The row of one finished (or failed) pull-off.
+    /// The row of one scene's finished (or stopped) request: its estimate and its finest run.
     pub fn from_summary(s: &Summary) -> SweepRow {
+        let finest = s.runs.last();
         SweepRow {
             ratio: s.ratio,
             f_ad_bar: s.f_ad_bar,
+            f_ad_bar_uncertainty: s.f_ad_bar_uncertainty,
+            estimate: s.estimate.map(str::to_string),
             c_bar_at_min: s.c_bar_at_min,
             d_bar_at_min: s.d_bar_at_min,
-            jg_f_ad_bar: s.reference_f_ad_bar,
-            n_d: s.n_d,
-            grid: s.nx,
-            dx: s.dx,
+            jg_f_ad_bar: s.jg_f_ad_bar,
+            n_d: finest.and_then(|r| r.n_d),
+            grid: finest.map_or(0, |r| r.nx),
+            dx: finest.map_or(0.0, |r| r.dx),
             wall_s: s.wall_s,
-            ny: s.ny,
-            backend: format!("{}-{}", s.backend, s.precision),
+            ny: finest.map_or(0, |r| r.ny),
+            backend: finest.map_or(String::new(), |r| format!("{}-{}", r.backend, r.precision)),
             complete: s.complete,
             min_reached: s.min_reached,
-            error: s.error.clone(),
+            error: s.runs.iter().find_map(|r| r.error.clone()),
         }
     }
 
@@ -81,6 +91,8 @@ impl SweepRow {
         SweepRow {
             ratio,
             f_ad_bar: None,
+            f_ad_bar_uncertainty: None,
+            estimate: None,
             c_bar_at_min: None,
             d_bar_at_min: None,
             jg_f_ad_bar: crate::theory::reference_adhesive_force(ratio).ok(),
@@ -110,8 +122,8 @@ impl SweepRow {
 }
 
 /// The CSV header of a sweep's summary, one column per [`SweepRow`] field.
-pub const HEADER: &str = "ratio,f_ad_bar,c_bar_at_min,d_bar_at_min,jg_f_ad_bar,n_d,grid,dx,\
-wall_s,ny,backend,complete,min_reached,error";
+pub const HEADER: &str = "ratio,f_ad_bar,f_ad_bar_uncertainty,estimate,c_bar_at_min,\
+d_bar_at_min,jg_f_ad_bar,n_d,grid,dx,wall_s,ny,backend,complete,min_reached,error";
 
 /// The summary file of a whole sweep: `dir/sweep.csv`.
 pub fn sweep_csv_path(dir: &Path) -> PathBuf {
@@ -141,8 +153,11 @@ pub fn read_rows(path: &Path) -> Result<Vec<SweepRow>, csv::Error> {
 pub struct SweepSettings {
     /// Every ratio R1/R2 of the sweep, in the order of `--ratios`.
     pub ratios: Vec<f64>,
-    /// Elements along x, Nx (`--grid`).
-    pub grid: usize,
+    /// Elements along x, Nx (`--grid`), if every ratio had the same.
+    pub grid: Option<usize>,
+    /// The relative accuracy each ratio's grid was planned for (`--accuracy`), if it was.
+    #[serde(default)]
+    pub accuracy: Option<f64>,
     /// Load steps (`--steps`).
     pub steps: usize,
     /// Mean radius c̄0 of the first contact (`--start-radius`, dimensionless).
@@ -249,8 +264,17 @@ fn difference(a: &SweepSettings, b: &SweepSettings) -> String {
     if a.ratios != b.ratios {
         d.push(format!("--ratios {:?} against {:?}", a.ratios, b.ratios));
     }
-    if a.grid != b.grid {
-        d.push(format!("--grid {} against {}", a.grid, b.grid));
+    let grid = |s: &SweepSettings| match (s.grid, s.accuracy) {
+        (Some(nx), _) => format!("--grid {nx}"),
+        (None, Some(t)) => format!("--accuracy {}%", crate::text::compact(100.0 * t)),
+        (None, None) => "no grid".into(),
+    };
+    match (a.grid, b.grid) {
+        (Some(x), Some(y)) if x != y => d.push(format!("--grid {x} against {y}")),
+        _ if a.grid != b.grid || a.accuracy != b.accuracy => {
+            d.push(format!("{} against {}", grid(a), grid(b)))
+        }
+        _ => {}
     }
     if a.steps != b.steps {
         d.push(format!("--steps {} against {}", a.steps, b.steps));
@@ -301,11 +325,13 @@ fn read_shard(path: &Path, (k, n): (usize, usize)) -> Result<Shard, CollectError
             r.ratio, shard.ratios
         )));
     }
-    if let Some(r) = shard.rows.iter().find(|r| r.grid != shard.sweep.grid) {
-        return Err(corrupt(format!(
-            "its row for R1/R2 = {} has grid {}, the sweep's is {}",
-            r.ratio, r.grid, shard.sweep.grid
-        )));
+    if let Some(nx) = shard.sweep.grid {
+        if let Some(r) = shard.rows.iter().find(|r| r.grid != nx) {
+            return Err(corrupt(format!(
+                "its row for R1/R2 = {} has grid {}, the sweep's is {nx}",
+                r.ratio, r.grid
+            )));
+        }
     }
     Ok(shard)
 }
@@ -449,6 +475,8 @@ mod tests {
         SweepRow {
             ratio,
             f_ad_bar: Some(0.5 / ratio.sqrt()),
+            f_ad_bar_uncertainty: Some(0.01),
+            estimate: Some("single-grid".into()),
             c_bar_at_min: Some(0.8),
             d_bar_at_min: Some(-0.2),
             jg_f_ad_bar: Some(0.5),
@@ -467,7 +495,8 @@ mod tests {
     fn settings(ratios: &[f64]) -> SweepSettings {
         SweepSettings {
             ratios: ratios.to_vec(),
-            grid: 128,
+            grid: Some(128),
+            accuracy: None,
             steps: 200,
             start_radius: 1.5,
             margin: 0.08,
@@ -530,7 +559,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         write_shard(dir.path(), &settings(&[1.0, 2.0]), (1, 2), vec![row(1.0)]);
         let mut other = settings(&[1.0, 2.0]);
-        other.grid = 64;
+        other.grid = Some(64);
         let mut r2 = row(2.0);
         r2.grid = 64;
         write_shard(dir.path(), &other, (2, 2), vec![r2]);

@@ -16,21 +16,38 @@
 //!   removes the drift of the recurrence); its history holds true residuals only, and it
 //!   returns the best p it saw.
 
-use crate::backend::{Backend, BackendError, CgStop, Slot};
+use crate::backend::{BackendError, CgKernels, CgStop, Slot};
 use crate::model::CgSettings;
 use std::fmt;
 
-/// r·z: the two slots take turns (the current iteration's and the previous one's), so that
-/// the new direction β = r·z / (r·z)_old needs no copy of a slot.
-const RZ: [Slot; 2] = [Slot(0), Slot(1)];
-/// s·(K s).
-const SQ: Slot = Slot(2);
-/// r·r.
-const RR: Slot = Slot(3);
-/// ‖(d − h)_C‖², the right-hand side's norm.
-const BB: Slot = Slot(4);
-/// A register that is never written, so it stays 0.
-const ZERO: Slot = Slot(7);
+/// CG's scalar registers on the backend's device.
+#[derive(Debug, Clone, Copy)]
+pub struct CgSlots {
+    /// r·z: the two slots take turns (the current iteration's and the previous one's), so
+    /// that the new direction β = r·z / (r·z)_old needs no copy of a slot.
+    rz: [Slot; 2],
+    /// s·(K s).
+    sq: Slot,
+    /// r·r.
+    rr: Slot,
+    /// ‖(d − h)_C‖², the right-hand side's norm.
+    bb: Slot,
+    /// A register that is never written, so it stays 0.
+    zero: Slot,
+}
+
+impl CgSlots {
+    /// Registers for one CG workspace, handed out by `backend`.
+    pub fn new<B: CgKernels>(backend: &mut B) -> Result<Self, BackendError> {
+        Ok(CgSlots {
+            rz: [backend.slot()?, backend.slot()?],
+            sq: backend.slot()?,
+            rr: backend.slot()?,
+            bb: backend.slot()?,
+            zero: backend.slot()?,
+        })
+    }
+}
 
 /// A checked residual above this multiple of the best one so far means CG has diverged.
 /// CG's residual norm is not monotone, but in healthy solves it rises above its best by a
@@ -72,12 +89,15 @@ pub struct CgWork<F> {
     best: F,
     /// A field that stays zero (to evaluate the right-hand side d − h).
     zero: F,
+    /// The scalar registers.
+    slots: CgSlots,
 }
 
 impl<F> CgWork<F> {
     /// Allocate the work fields on `backend`.
-    pub fn new<B: Backend<Field = F>>(backend: &mut B) -> Result<Self, BackendError> {
+    pub fn new<B: CgKernels<Field = F>>(backend: &mut B) -> Result<Self, BackendError> {
         Ok(CgWork {
+            slots: CgSlots::new(backend)?,
             r: backend.field()?,
             z: backend.field()?,
             s: backend.field()?,
@@ -220,89 +240,94 @@ impl Scale {
 /// Start a solve at approach `d` (length): q = K p and r = (d − h − q)_C, the true residual
 /// of the warm start. Returns the scale ‖(d − h)_C‖ and that residual's relative norm, read
 /// back together.
-fn start<B: Backend>(
+fn start<B: CgKernels>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
     p: &B::Field,
     d: f64,
 ) -> Result<(Scale, f64), BackendError> {
+    let CgSlots { rr, bb, .. } = work.slots;
     backend.residual(&work.zero, d, &mut work.r)?;
-    backend.dot(&work.r, &work.r, BB)?;
+    backend.dot(&work.r, &work.r, bb)?;
     backend.convolve(p, &mut work.q)?;
     backend.residual(&work.q, d, &mut work.r)?;
-    backend.dot(&work.r, &work.r, RR)?;
+    backend.dot(&work.r, &work.r, rr)?;
     let mut v = [0.0; 2];
-    backend.read_slots(&[RR, BB], &mut v)?;
+    backend.read_slots(&[rr, bb], &mut v)?;
     let scale = Scale(v[1].sqrt());
     Ok((scale, scale.relative(v[0])))
 }
 
 /// The relative residual of r, with r·r already in its slot, read back from the device.
-fn read_rr<B: Backend>(backend: &mut B, scale: Scale) -> Result<f64, BackendError> {
-    let mut rr = [0.0];
-    backend.read_slots(&[RR], &mut rr)?;
-    Ok(scale.relative(rr[0]))
+fn read_rr<B: CgKernels>(backend: &mut B, rr: Slot, scale: Scale) -> Result<f64, BackendError> {
+    let mut v = [0.0];
+    backend.read_slots(&[rr], &mut v)?;
+    Ok(scale.relative(v[0]))
 }
 
 /// The relative residual of r, read back from the device.
-fn read_residual<B: Backend>(
+fn read_residual<B: CgKernels>(
     backend: &mut B,
     r: &B::Field,
+    rr: Slot,
     scale: Scale,
 ) -> Result<f64, BackendError> {
-    backend.dot(r, r, RR)?;
-    read_rr(backend, scale)
+    backend.dot(r, r, rr)?;
+    read_rr(backend, rr, scale)
 }
 
 /// q = K p and r = (d − h − q)_C, the true residual; returns its relative norm.
-fn true_residual<B: Backend>(
+fn true_residual<B: CgKernels>(
     backend: &mut B,
     p: &B::Field,
-    q: &mut B::Field,
-    r: &mut B::Field,
+    work: &mut CgWork<B::Field>,
     d: f64,
     scale: Scale,
 ) -> Result<f64, BackendError> {
-    backend.convolve(p, q)?;
-    backend.residual(q, d, r)?;
-    read_residual(backend, r, scale)
+    backend.convolve(p, &mut work.q)?;
+    backend.residual(&work.q, d, &mut work.r)?;
+    read_residual(backend, &work.r, work.slots.rr, scale)
 }
 
-/// Start CG's directions from the residual in `work.r`: z = M r with r·z in `RZ[0]`, s = z.
+/// Start CG's directions from the residual in `work.r`: z = M r with r·z in the first r·z
+/// slot, s = z.
 /// Returns the index of the r·z slot in use.
-fn start_directions<B: Backend>(
+fn start_directions<B: CgKernels>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
 ) -> Result<usize, BackendError> {
-    backend.precondition_dot(&work.r, &mut work.z, RZ[0])?;
+    let CgSlots { rz, zero, .. } = work.slots;
+    backend.precondition_dot(&work.r, &mut work.z, rz[0])?;
     // s = z (the ratio 0/0 counts as 0, so the old direction vanishes).
-    backend.xpay_ratio(&mut work.s, &work.z, ZERO, ZERO)?;
+    backend.xpay_ratio(&mut work.s, &work.z, zero, zero)?;
     Ok(0)
 }
 
 /// One step along s: q = K s with s·q, then p += α s, r −= α q with α = r·z / s·q, and r·r
 /// into its slot. `rz` is the index of the r·z slot in use.
-fn step<B: Backend>(
+fn step<B: CgKernels>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
     p: &mut B::Field,
     rz: usize,
 ) -> Result<(), BackendError> {
-    backend.convolve_dot(&work.s, &mut work.q, SQ)?;
+    let slots = work.slots;
+    backend.convolve_dot(&work.s, &mut work.q, slots.sq)?;
     let CgWork { r, s, q, .. } = work;
-    backend.cg_update(p, r, s, q, RZ[rz], SQ, RR)
+    backend.cg_update(p, r, s, q, slots.rz[rz], slots.sq, slots.rr)
 }
 
 /// The next direction: z = M r, s = z + β s with β = r·z / (r·z)_old; the new r·z goes to the
 /// other slot of the pair. Returns the index of the r·z slot now in use.
-fn next_direction<B: Backend>(
+fn next_direction<B: CgKernels>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
     rz: usize,
 ) -> Result<usize, BackendError> {
     let new = 1 - rz;
-    backend.precondition_dot(&work.r, &mut work.z, RZ[new])?;
-    backend.xpay_ratio(&mut work.s, &work.z, RZ[new], RZ[rz])?;
+    let slots = work.slots.rz;
+    backend.precondition_dot(&work.r, &mut work.z, slots[new])?;
+    backend.xpay_ratio(&mut work.s, &work.z, slots[new], slots[rz])?;
     Ok(new)
 }
 
@@ -310,7 +335,7 @@ fn next_direction<B: Backend>(
 /// the p given (which must be zero off C), in the normal mode (see the module's notes).
 /// Ends converged, stagnated, diverged, non-finite, at the iteration limit or with a
 /// residual gap; after [`CgEnd::Converged`], `work.q` holds K p.
-pub fn solve<B: Backend>(
+pub fn solve<B: CgKernels>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
     p: &mut B::Field,
@@ -336,8 +361,8 @@ pub fn solve<B: Backend>(
     // A device backend stops the iterations it has queued once the tolerance is reached, so
     // it can be read rarely without doing more iterations than the solve needs.
     backend.guard_cg(Some(CgStop {
-        rr: RR,
-        bb: BB,
+        rr: work.slots.rr,
+        bb: work.slots.bb,
         tolerance: settings.tolerance,
     }))?;
     let mut k = 0;
@@ -348,7 +373,7 @@ pub fn solve<B: Backend>(
         k += 1;
         step(backend, work, p, rz)?;
         if k % settings.check_every == 0 || k == settings.max_iterations {
-            let (rr, made) = backend.read_cg_progress(RR)?;
+            let (rr, made) = backend.read_cg_progress(work.slots.rr)?;
             // Under a guard the device stops before the k-th step once its test of the
             // tolerance holds (in f32): the solve has then converged, which the true residual
             // recomputed by `verify` confirms or not.
@@ -384,7 +409,7 @@ pub fn solve<B: Backend>(
 /// The recurrence reached the tolerance: recompute the true residual from p and end
 /// converged if it is within [`TRUE_RESIDUAL_SLACK`] of the tolerance, with a residual gap
 /// otherwise.
-fn verify<B: Backend>(
+fn verify<B: CgKernels>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
     p: &B::Field,
@@ -393,7 +418,7 @@ fn verify<B: Backend>(
     settings: &CgSettings,
     mut report: CgReport,
 ) -> Result<CgReport, BackendError> {
-    let t = true_residual(backend, p, &mut work.q, &mut work.r, d, scale)?;
+    let t = true_residual(backend, p, work, d, scale)?;
     report.residual = t;
     if t <= TRUE_RESIDUAL_SLACK * settings.tolerance {
         report.end = CgEnd::Converged;
@@ -409,7 +434,7 @@ fn verify<B: Backend>(
 /// tolerance and at least every [`REPLACE_EVERY`] iterations, up to the iteration limit.
 /// The history judges the true residuals only. p is left at the smallest true residual
 /// seen, which the report gives; after [`CgEnd::Converged`], `work.q` holds K p.
-pub fn solve_safe<B: Backend>(
+pub fn solve_safe<B: CgKernels>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
     p: &mut B::Field,
@@ -449,14 +474,14 @@ pub fn solve_safe<B: Backend>(
         }
         let n = REPLACE_EVERY.min(settings.max_iterations - report.iterations);
         report.iterations += segment(backend, work, p, scale, settings.tolerance, n)?;
-        t = true_residual(backend, p, &mut work.q, &mut work.r, d, scale)?;
+        t = true_residual(backend, p, work, d, scale)?;
     }
 }
 
 /// Up to `n` CG iterations from the true residual in `work.r`, reading the recurrence
 /// residual every iteration; stops early when it reaches `tolerance` or is not finite.
 /// Returns the iterations made.
-fn segment<B: Backend>(
+fn segment<B: CgKernels>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
     p: &mut B::Field,
@@ -467,7 +492,7 @@ fn segment<B: Backend>(
     let mut rz = start_directions(backend, work)?;
     for k in 1..=n {
         step(backend, work, p, rz)?;
-        let rel = read_rr(backend, scale)?;
+        let rel = read_rr(backend, work.slots.rr, scale)?;
         if rel <= tolerance || !rel.is_finite() {
             return Ok(k);
         }

@@ -1,4 +1,4 @@
-//! The detachment/attachment loop at one approach (SPEC §6.2): solve on a fixed contact
+//! The detachment/attachment loop at one approach (physics §6.2): solve on a fixed contact
 //! set, detach over-stressed elements, attach overlapping ones, repeat until nothing changes.
 
 use super::cg::{self, CgEnd, CgWork};

@@ -1,4 +1,4 @@
-//! The approach and pull-off protocol (SPEC §6): a non-adhesive press to d0, then the
+//! The approach and pull-off protocol (physics §6): a non-adhesive press to d0, then the
 //! approach decreases step by step until the contact vanishes or d passes its final value.
 //!
 //! Two options of the model change how much of it is computed: with
@@ -11,7 +11,6 @@ use super::equilibrium::{equilibrate, solve_fixed, Equilibrium, Fields};
 use super::retry::{self, CgRetry};
 use super::state::{axis_half_lengths, axis_half_lengths_along, Phase, State};
 use super::SolverError;
-use crate::backend::cpu::GridSetup;
 use crate::backend::Backend;
 use crate::model::{Measure, Model, Stepping};
 use std::collections::VecDeque;
@@ -36,7 +35,7 @@ pub struct Outcome {
 }
 
 /// One change of grid during a run.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RegridEvent {
     /// Approach at which the grid changed (dimensionless).
     pub d_bar: f64,
@@ -511,7 +510,7 @@ fn regrid_if_shrunk<B: Backend>(
     backend.download(&run.fields.p, &mut p)?;
     let p = m.resample(&fine, &p, 0.0);
     let mask = m.resample(&fine, &run.mask, false);
-    *backend = backend.sibling(&GridSetup::for_model(&fine))?;
+    *backend = backend.sibling(&fine.grid_setup())?;
     backend.set_contact(&mask)?;
     let mut fields = Fields::new(backend)?;
     backend.upload(&mut fields.p, &p)?;

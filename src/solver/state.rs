@@ -20,7 +20,7 @@ pub enum Phase {
 }
 
 /// One converged state. Dimensional values are in the scene's units; `*_bar` values are
-/// normalised as in SPEC §2.
+/// normalised as in physics §2.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct State {
     /// Load step (0 for the approach).

@@ -91,7 +91,7 @@ pub fn hertz_for_depth(r1: f64, r2: f64, e_star: f64, d: f64) -> Result<HertzCon
 }
 
 /// Normalised Hertz state at `c_bar` (dimensionless) for `ratio` = R1/R2 with Hertz axis
-/// ratio `g`: with c = c̄c_r, Re/R1 = λ, the SPEC §2 scales give d̄ = c̄² λK/(2gD) and
+/// ratio `g`: with c = c̄c_r, Re/R1 = λ, the physics §2 scales give d̄ = c̄² λK/(2gD) and
 /// F̄ = (π/4) c̄³ λ/(g^(3/2) D) (sphere: d̄ = c̄², F̄ = c̄³).
 pub(super) fn hertz_point(ratio: f64, g: f64, c_bar: f64) -> TheoryPoint {
     let lambda = (1.0 / ratio).sqrt();

@@ -1,4 +1,4 @@
-//! Johnson–Greenwood (2005) approximate JKR theory for an elliptical contact (SPEC §3), as a
+//! Johnson–Greenwood (2005) approximate JKR theory for an elliptical contact (physics §3), as a
 //! one-parameter branch in the axis ratio g = b/a ∈ (g_H, 1].
 
 use super::elliptic::kdbc;
@@ -23,7 +23,7 @@ pub fn jg_point(ratio: f64, g: f64) -> TheoryPoint {
 
 /// The branch point at `t` = 1 − g (dimensionless), which keeps full precision as g → 1.
 ///
-/// The SPEC formulas are evaluated in a rearranged, cancellation-free form (same values):
+/// The formulas of docs/physics.md §3 are evaluated in a rearranged, cancellation-free form (same values):
 /// δ = βg² − α = (g²D − λ²B)/(λQ) with g²D − λ²B = m(C − D) + (1 − λ²)B and
 /// Q = (C + D)(B + g²C) − g²C² = B(C + D) + g²CD; then X = √g(1 − √g)/δ,
 /// T = βg² − √g/X, F̄ = (8/(3π)) X [X(βg² + δ)/3 − √g] and
@@ -106,7 +106,7 @@ mod tests {
     use super::super::jkr::{jkr_end_of_contact, jkr_point};
     use super::*;
 
-    /// The SPEC §3 formulas typed literally (fine away from g = 1 and λ = 1).
+    /// The physics §3 formulas typed literally (fine away from g = 1 and λ = 1).
     fn spec_point(ratio: f64, g: f64) -> (f64, f64, f64) {
         let (lambda, m) = ((1.0 / ratio).sqrt(), 1.0 - g * g);
         let (k, e) = (ellip_k(m), ellip_e(m));

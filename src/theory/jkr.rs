@@ -1,4 +1,4 @@
-//! JKR theory for a sphere (R1 = R2) in the SPEC §2 normalisation.
+//! JKR theory for a sphere (R1 = R2) in the physics §2 normalisation.
 
 use super::TheoryPoint;
 use std::f64::consts::SQRT_2;

@@ -1,4 +1,4 @@
-//! Closed-form and semi-analytic contact theories (SPEC §3) in the SPEC §2 normalisation:
+//! Closed-form and semi-analytic contact theories (physics §3) in the physics §2 normalisation:
 //! Hertz, JKR (sphere) and Johnson–Greenwood (ellipse), the oracles the solver is checked against.
 
 pub mod elliptic;
@@ -53,7 +53,7 @@ impl fmt::Display for TheoryError {
 
 impl std::error::Error for TheoryError {}
 
-/// One state of a theory branch in the SPEC §2 normalisation.
+/// One state of a theory branch in the physics §2 normalisation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TheoryPoint {
     /// Mean contact radius c̄ = √(A/π)/c_r (dimensionless).

@@ -1,8 +1,10 @@
 //! Shared set-up for the integration tests: build a scene's model and run it on the CPU.
 #![allow(dead_code)]
 
-use jkrbem::backend::cpu::{CpuBackend, GridSetup};
-use jkrbem::backend::Backend;
+pub mod cg_failures;
+
+use jkrbem::backend::cpu::CpuBackend;
+use jkrbem::backend::prelude::*;
 use jkrbem::model::{Model, ModelOptions};
 use jkrbem::scene::Scene;
 use jkrbem::solver::{self, Outcome};
@@ -16,7 +18,7 @@ pub struct Run {
 
 /// The CPU backend for a model.
 pub fn cpu_backend(model: &Model) -> CpuBackend {
-    CpuBackend::new(&GridSetup::for_model(model)).expect("grid setup is consistent")
+    CpuBackend::new(&model.grid_setup()).expect("grid setup is consistent")
 }
 
 /// The model of R1/R2 = `ratio` (R2 = E* = Δγ = 1).
@@ -65,9 +67,8 @@ pub fn pseudo_random(n: usize, seed: u64) -> Vec<f64> {
 
 /// The GPU backend for a setup on the best adapter; `None` (test skipped, reason printed)
 /// when there is no adapter, unless `JKRBEM_REQUIRE_GPU=1`, which makes that a failure.
-pub fn gpu_backend(
-    setup: &jkrbem::backend::cpu::GridSetup,
-) -> Option<jkrbem::backend::gpu::GpuBackend> {
+#[cfg(feature = "gpu")]
+pub fn gpu_backend(setup: &jkrbem::backend::GridSetup) -> Option<jkrbem::backend::gpu::GpuBackend> {
     let ctx = jkrbem::backend::gpu::test_context()?;
     Some(jkrbem::backend::gpu::GpuBackend::new(ctx, setup).expect("GPU backend opens"))
 }
@@ -84,4 +85,45 @@ pub fn jkrbem(args: &[&str], dir: &std::path::Path) -> std::process::Output {
 /// A process's standard error as text.
 pub fn stderr(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The harness of the GPU test files (`harness = false`): runs `tests` (name, function) with
+/// libtest's command line. Where no GPU adapter exists, every test is reported as ignored with
+/// the reason, never as passed; with `JKRBEM_REQUIRE_GPU=1` that is a failure instead. Tests
+/// named in `slow` are marked ignored unless `--include-ignored` (or `--ignored`) is given.
+#[cfg(feature = "gpu")]
+pub fn run_gpu_tests(tests: &[(&'static str, fn())], slow: &[&str]) -> ! {
+    use libtest_mimic::{Arguments, Trial};
+    let args = Arguments::from_args();
+    let missing = match jkrbem::backend::gpu::GpuContext::new(Default::default()) {
+        Ok(_) => None,
+        Err(e) if gpu_required() => {
+            panic!("JKRBEM_REQUIRE_GPU=1 but no GPU adapter is usable: {e}")
+        }
+        Err(e) => {
+            let reason = e.to_string();
+            eprintln!("no GPU adapter, so these tests are ignored: {reason}");
+            Some(
+                reason
+                    .lines()
+                    .next()
+                    .unwrap_or("no GPU adapter")
+                    .to_string(),
+            )
+        }
+    };
+    let trials = tests
+        .iter()
+        .map(|&(name, f)| {
+            let t = Trial::test(name, move || {
+                f();
+                Ok(())
+            });
+            match &missing {
+                Some(_) => t.with_ignored_flag(true).with_kind("no GPU adapter"),
+                None => t.with_ignored_flag(slow.contains(&name)),
+            }
+        })
+        .collect();
+    libtest_mimic::run(&args, trials).exit()
 }

@@ -58,7 +58,7 @@ fn jkr_force_fit_recovers_c1_one_c2_minus_root_two_alpha_three_halves() {
 
 #[test]
 fn johnson_greenwood_branches_are_close_to_the_fitted_forms() {
-    // Not an identity: how well the JKR-shaped forms describe JG for ellipsoids (SPEC §8.4),
+    // Not an identity: how well the JKR-shaped forms describe JG for ellipsoids (physics §8.4),
     // over the branch from the end of contact to c̄ = 1.5.
     for ratio in [2.0, 10.0, 25.0] {
         let end = theory::pull_off(TheoryModel::Jg, ratio)

@@ -4,43 +4,15 @@
 pub mod spectral;
 
 use super::kernel::{padded_kernel, stiffness_spectrum};
-use super::{Backend, BackendError, ContactChange, Preconditioner, Slot, N_SLOTS};
+use super::{
+    BackendError, CgKernels, ContactChange, ContactKernels, Device, ElasticOperator, GridSetup,
+    Preconditioner, Scalars, Slot,
+};
 use rayon::prelude::*;
 use spectral::SpectralFilter;
 
 /// Fields shorter than this are processed on one thread.
 const PAR_MIN: usize = 1 << 14;
-
-/// What a backend is built from: the grid, the element size, the material and the profile.
-#[derive(Debug, Clone)]
-pub struct GridSetup {
-    /// Elements along x.
-    pub nx: usize,
-    /// Elements along y.
-    pub ny: usize,
-    /// Element side Δx (length).
-    pub dx: f64,
-    /// Effective modulus E* (stress).
-    pub e_star: f64,
-    /// Indenter profile h at element centres (length), row-major nx × ny.
-    pub profile: Vec<f64>,
-    /// Preconditioner to apply in CG.
-    pub preconditioner: Preconditioner,
-}
-
-impl GridSetup {
-    /// The setup a model asks for: its grid, element size, material, profile and preconditioner.
-    pub fn for_model(model: &crate::model::Model) -> Self {
-        GridSetup {
-            nx: model.nx,
-            ny: model.ny,
-            dx: model.dx,
-            e_star: model.scene.e_star,
-            profile: model.profile(),
-            preconditioner: model.preconditioner,
-        }
-    }
-}
 
 /// The CPU backend (f64).
 pub struct CpuBackend {
@@ -54,7 +26,8 @@ pub struct CpuBackend {
     periodic: bool,
     /// Scratch for the masked preconditioner input.
     scratch: Vec<f64>,
-    slots: [f64; N_SLOTS],
+    /// The scalar registers handed out so far.
+    slots: Vec<f64>,
 }
 
 impl CpuBackend {
@@ -72,7 +45,7 @@ impl CpuBackend {
     }
 
     /// Like [`CpuBackend::new`] but with a periodic (unpadded, nx × ny) convolution: the
-    /// wrong method that SPEC §4 warns against, kept to show what padding removes.
+    /// wrong method that physics §4 warns against, kept to show what padding removes.
     pub fn new_periodic(setup: &GridSetup) -> Self {
         Self::with_periodic(setup, true)
     }
@@ -105,16 +78,16 @@ impl CpuBackend {
             mask: vec![false; nx * ny],
             periodic,
             scratch: vec![0.0; nx * ny],
-            slots: [0.0; N_SLOTS],
+            slots: Vec::new(),
         }
     }
 
     fn ratio(&self, num: Slot, den: Slot) -> f64 {
-        let d = self.slots[den.0];
+        let d = self.slots[den.index()];
         if d == 0.0 {
             0.0
         } else {
-            self.slots[num.0] / d
+            self.slots[num.index()] / d
         }
     }
 }
@@ -138,9 +111,8 @@ fn periodic_kernel(nx: usize, ny: usize, dx: f64, e: f64) -> Vec<f64> {
     out
 }
 
-impl Backend for CpuBackend {
+impl Device for CpuBackend {
     type Field = Vec<f64>;
-
     fn name(&self) -> &'static str {
         if self.periodic {
             "cpu-periodic"
@@ -161,7 +133,6 @@ impl Backend for CpuBackend {
             Self::new(setup)
         }
     }
-
     fn field(&mut self) -> Result<Vec<f64>, BackendError> {
         Ok(vec![0.0; self.nx * self.ny])
     }
@@ -173,20 +144,34 @@ impl Backend for CpuBackend {
         host.copy_from_slice(src);
         Ok(())
     }
-    fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError> {
-        self.mask.copy_from_slice(mask);
+    fn copy(&mut self, src: &Vec<f64>, dst: &mut Vec<f64>) -> Result<(), BackendError> {
+        dst.copy_from_slice(src);
         Ok(())
     }
-    fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError> {
-        mask.copy_from_slice(&self.mask);
-        Ok(())
-    }
+}
 
+impl Scalars for CpuBackend {
+    fn slot(&mut self) -> Result<Slot, BackendError> {
+        self.slots.push(0.0);
+        Ok(Slot::new(self.slots.len() - 1))
+    }
+    fn copy_slot(&mut self, src: Slot, dst: Slot) -> Result<(), BackendError> {
+        self.slots[dst.index()] = self.slots[src.index()];
+        Ok(())
+    }
+    fn read_slots(&mut self, slots: &[Slot], out: &mut [f64]) -> Result<(), BackendError> {
+        for (o, s) in out.iter_mut().zip(slots) {
+            *o = self.slots[s.index()];
+        }
+        Ok(())
+    }
+}
+
+impl ElasticOperator for CpuBackend {
     fn convolve(&mut self, src: &Vec<f64>, dst: &mut Vec<f64>) -> Result<(), BackendError> {
         self.convolution.apply(src, dst);
         Ok(())
     }
-
     fn precondition(&mut self, src: &Vec<f64>, dst: &mut Vec<f64>) -> Result<(), BackendError> {
         match &mut self.preconditioner {
             None => dst.copy_from_slice(src),
@@ -210,7 +195,9 @@ impl Backend for CpuBackend {
         }
         Ok(())
     }
+}
 
+impl CgKernels for CpuBackend {
     fn residual(&mut self, u: &Vec<f64>, d: f64, r: &mut Vec<f64>) -> Result<(), BackendError> {
         let (h, mask) = (&self.profile, &self.mask);
         r.par_iter_mut()
@@ -219,10 +206,9 @@ impl Backend for CpuBackend {
             .for_each(|(i, ri)| *ri = if mask[i] { d - h[i] - u[i] } else { 0.0 });
         Ok(())
     }
-
     fn dot(&mut self, a: &Vec<f64>, b: &Vec<f64>, out: Slot) -> Result<(), BackendError> {
         let mask = &self.mask;
-        self.slots[out.0] = a
+        self.slots[out.index()] = a
             .par_iter()
             .with_min_len(PAR_MIN)
             .zip(b.par_iter())
@@ -231,7 +217,6 @@ impl Backend for CpuBackend {
             .sum();
         Ok(())
     }
-
     fn axpy_ratio(
         &mut self,
         y: &mut Vec<f64>,
@@ -252,7 +237,6 @@ impl Backend for CpuBackend {
             });
         Ok(())
     }
-
     fn xpay_ratio(
         &mut self,
         y: &mut Vec<f64>,
@@ -268,19 +252,17 @@ impl Backend for CpuBackend {
             .for_each(|(yi, (xi, &m))| *yi = if m { xi + b * *yi } else { 0.0 });
         Ok(())
     }
+}
 
-    fn copy_slot(&mut self, src: Slot, dst: Slot) -> Result<(), BackendError> {
-        self.slots[dst.0] = self.slots[src.0];
+impl ContactKernels for CpuBackend {
+    fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError> {
+        self.mask.copy_from_slice(mask);
         Ok(())
     }
-
-    fn read_slots(&mut self, slots: &[Slot], out: &mut [f64]) -> Result<(), BackendError> {
-        for (o, s) in out.iter_mut().zip(slots) {
-            *o = self.slots[s.0];
-        }
+    fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError> {
+        mask.copy_from_slice(&self.mask);
         Ok(())
     }
-
     fn update_contact(
         &mut self,
         p: &mut Vec<f64>,
@@ -329,7 +311,6 @@ impl Backend for CpuBackend {
             at_edge,
         })
     }
-
     fn first_crossing(
         &mut self,
         p_old: &Vec<f64>,
@@ -350,7 +331,6 @@ impl Backend for CpuBackend {
             })
             .reduce(|| 1.0, f64::min))
     }
-
     fn lerp(
         &mut self,
         a: &Vec<f64>,
@@ -371,12 +351,6 @@ impl Backend for CpuBackend {
             });
         Ok(())
     }
-
-    fn copy(&mut self, src: &Vec<f64>, dst: &mut Vec<f64>) -> Result<(), BackendError> {
-        dst.copy_from_slice(src);
-        Ok(())
-    }
-
     fn sum_and_count(&mut self, p: &Vec<f64>) -> Result<(f64, usize), BackendError> {
         let mask = &self.mask;
         Ok(p.par_iter()

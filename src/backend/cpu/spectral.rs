@@ -1,7 +1,7 @@
 //! A real 2-D spectral filter on the CPU: dst = crop(IFFT(symbol · FFT(pad(src)))).
 //!
 //! With a transform of 2nx × 2ny and the influence kernel's spectrum as the symbol, this is
-//! the non-periodic convolution u = K ∗ p (SPEC §4); with nx × ny and the stiffness symbol
+//! the non-periodic convolution u = K ∗ p (physics §4); with nx × ny and the stiffness symbol
 //! it is the periodic preconditioner. The zero padding and the cropping are fused into the
 //! transforms: only the `ny` occupied rows are transformed along x, and only `ny` rows are
 //! transformed back.

@@ -18,17 +18,13 @@ use super::slots::{self, scalars_bytes, SLOTS};
 use super::spectral::{largest_buffer_bytes, GpuSpectralFilter, SpectralKernels};
 use super::traffic;
 use crate::backend::cpu::spectral::SpectralFilter;
-use crate::backend::cpu::GridSetup;
 use crate::backend::kernel::{padded_kernel, stiffness_spectrum};
 use crate::backend::{
-    Backend, BackendError, CgStop, ContactChange, Counters, Preconditioner, Slot, N_SLOTS,
+    BackendError, CgKernels, CgStop, ContactChange, ContactKernels, Counters, Device,
+    ElasticOperator, GridSetup, Preconditioner, Scalars, Slot,
 };
 use wgpu::util::DeviceExt;
 
-/// Device slot receiving sums for the host (after the solver's [`N_SLOTS`]).
-const SUM_SLOT: u32 = N_SLOTS as u32;
-/// Device slot receiving the first-crossing fraction.
-const MIN_SLOT: u32 = N_SLOTS as u32 + 1;
 /// Most workgroups of a reduction's first pass.
 const MAX_REDUCE_GROUPS: usize = 1024;
 /// Elements each reduction thread adds at least (before the workgroup tree).
@@ -147,6 +143,12 @@ pub struct GpuBackend {
     pending: [u32; SLOTS],
     /// The stop condition of the guarded CG batch being recorded, if any.
     guard: Option<CgStop>,
+    /// Slots handed out so far (the next one's index).
+    next_slot: usize,
+    /// The slot receiving the per-state sums for the host.
+    sum_slot: Slot,
+    /// The slot receiving the first-crossing fraction.
+    min_slot: Slot,
     partials: wgpu::Buffer,
     counts: wgpu::Buffer,
     contact_counters: wgpu::Buffer,
@@ -268,6 +270,9 @@ impl GpuBackend {
             scalars: storage(&ctx, "scalars", scalars_bytes()),
             pending: [0; SLOTS],
             guard: None,
+            next_slot: 2,
+            sum_slot: Slot::new(0),
+            min_slot: Slot::new(1),
             partials: storage(&ctx, "partials", reduce_groups as u64 * 4),
             counts: storage(&ctx, "partial counts", (reduce_groups as u64 + 1) * 4),
             contact_counters: storage(&ctx, "contact counters", 16),
@@ -488,9 +493,8 @@ impl GpuBackend {
     }
 }
 
-impl Backend for GpuBackend {
+impl Device for GpuBackend {
     type Field = GpuField;
-
     fn name(&self) -> &'static str {
         "gpu"
     }
@@ -503,13 +507,11 @@ impl Backend for GpuBackend {
     fn sibling(&self, setup: &GridSetup) -> Result<Self, BackendError> {
         GpuBackend::new(self.ctx.clone(), setup)
     }
-
     fn field(&mut self) -> Result<GpuField, BackendError> {
         let buffer = storage(&self.ctx, "field", self.n() as u64 * 4);
         self.ctx.check()?;
         Ok(GpuField { buffer })
     }
-
     fn upload(&mut self, dst: &mut GpuField, host: &[f64]) -> Result<(), BackendError> {
         self.check_len(host.len())?;
         self.rec.flush(&self.ctx)?;
@@ -519,7 +521,6 @@ impl Backend for GpuBackend {
             .write_buffer(&dst.buffer, 0, bytemuck::cast_slice(&v));
         Ok(())
     }
-
     fn download(&mut self, src: &GpuField, host: &mut [f64]) -> Result<(), BackendError> {
         self.check_len(host.len())?;
         let v: Vec<f32> = self
@@ -530,28 +531,58 @@ impl Backend for GpuBackend {
         }
         Ok(())
     }
-
-    fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError> {
-        self.check_len(mask.len())?;
-        self.rec.flush(&self.ctx)?;
-        let v: Vec<u32> = mask.iter().map(|&m| m as u32).collect();
-        self.ctx
-            .queue()
-            .write_buffer(&self.mask, 0, bytemuck::cast_slice(&v));
+    fn copy(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
+        let bytes = self.n() as u64 * 4;
+        self.rec.counters.bytes += 2 * bytes;
+        self.rec
+            .encoder(&self.ctx)
+            .copy_buffer_to_buffer(&src.buffer, 0, &dst.buffer, 0, bytes);
         Ok(())
     }
+    fn counters(&self) -> Counters {
+        self.rec.counters
+    }
+}
 
-    fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError> {
-        self.check_len(mask.len())?;
-        let v: Vec<u32> = self
-            .rec
-            .read(&self.ctx, &self.mask, 0, self.n() as u64 * 4)?;
-        for (m, x) in mask.iter_mut().zip(v) {
-            *m = x != 0;
+impl Scalars for GpuBackend {
+    fn slot(&mut self) -> Result<Slot, BackendError> {
+        if self.next_slot >= slots::HALT_SLOT {
+            return Err(BackendError::Unavailable(format!(
+                "the GPU backend has no more than {} scalar slots",
+                slots::HALT_SLOT
+            )));
+        }
+        self.next_slot += 1;
+        Ok(Slot::new(self.next_slot - 1))
+    }
+    fn copy_slot(&mut self, src: Slot, dst: Slot) -> Result<(), BackendError> {
+        let params = VectorParams {
+            num: src.index() as u32,
+            den: dst.index() as u32,
+            ..self.vector_params()
+        };
+        let p = self.rec.uniform(&self.ctx, &params)?;
+        let bytes = 4 * self.pending[src.index()] as u64 + 8;
+        self.rec.dispatch(
+            &self.ctx,
+            &self.kernels.copy_slot,
+            &[(0, &p), (8, &self.scalars)],
+            (1, 1),
+            bytes,
+        )?;
+        self.pending[dst.index()] = 0;
+        Ok(())
+    }
+    fn read_slots(&mut self, slots: &[Slot], out: &mut [f64]) -> Result<(), BackendError> {
+        let v = self.read_values(0, self.next_slot)?;
+        for (o, s) in out.iter_mut().zip(slots) {
+            *o = v[s.index()] as f64;
         }
         Ok(())
     }
+}
 
+impl ElasticOperator for GpuBackend {
     fn convolve(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
         self.convolution.encode(
             &self.ctx,
@@ -565,7 +596,30 @@ impl Backend for GpuBackend {
             None,
         )
     }
+    fn precondition(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
+        match &self.preconditioner {
+            None => self.copy(src, dst),
+            Some(f) => f.encode(
+                &self.ctx,
+                &mut self.rec,
+                &self.kernels.spectral,
+                &self.scalars,
+                &src.buffer,
+                &dst.buffer,
+                &self.mask,
+                true,
+                None,
+            ),
+        }
+    }
+}
 
+impl CgKernels for GpuBackend {
+    /// 8: the device stops the iterations queued past convergence itself, so reading rarely
+    /// costs only their launches.
+    fn check_every(&self) -> usize {
+        8
+    }
     fn convolve_dot(
         &mut self,
         src: &GpuField,
@@ -586,27 +640,9 @@ impl Backend for GpuBackend {
         );
         self.convolution.set_guarded(false);
         result?;
-        self.pending[out.0] = self.convolution.row_groups();
+        self.pending[out.index()] = self.convolution.row_groups();
         Ok(())
     }
-
-    fn precondition(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
-        match &self.preconditioner {
-            None => self.copy(src, dst),
-            Some(f) => f.encode(
-                &self.ctx,
-                &mut self.rec,
-                &self.kernels.spectral,
-                &self.scalars,
-                &src.buffer,
-                &dst.buffer,
-                &self.mask,
-                true,
-                None,
-            ),
-        }
-    }
-
     fn precondition_dot(
         &mut self,
         src: &GpuField,
@@ -634,12 +670,11 @@ impl Backend for GpuBackend {
                 );
                 f.set_guarded(false);
                 result?;
-                self.pending[out.0] = f.row_groups();
+                self.pending[out.index()] = f.row_groups();
                 Ok(())
             }
         }
     }
-
     fn residual(&mut self, u: &GpuField, d: f64, r: &mut GpuField) -> Result<(), BackendError> {
         let params = VectorParams {
             scalar: d as f32,
@@ -653,15 +688,14 @@ impl Backend for GpuBackend {
             4,
         )
     }
-
     fn dot(&mut self, a: &GpuField, b: &GpuField, out: Slot) -> Result<(), BackendError> {
         let params = VectorParams {
-            out: out.0 as u32,
+            out: out.index() as u32,
             ..self.vector_params()
         };
         let mask = self.mask.clone();
         let bytes = traffic::dot(self.n());
-        self.pending[out.0] = self.strided(
+        self.pending[out.index()] = self.strided(
             |k| &k.dot,
             params,
             &[(1, &a.buffer), (2, &b.buffer), (4, &mask)],
@@ -669,7 +703,6 @@ impl Backend for GpuBackend {
         )?;
         Ok(())
     }
-
     fn axpy_ratio(
         &mut self,
         y: &mut GpuField,
@@ -679,8 +712,8 @@ impl Backend for GpuBackend {
         sign: f64,
     ) -> Result<(), BackendError> {
         let params = VectorParams {
-            num: num.0 as u32,
-            den: den.0 as u32,
+            num: num.index() as u32,
+            den: den.index() as u32,
             sign: sign as f32,
             ..self.vector_params()
         };
@@ -694,7 +727,6 @@ impl Backend for GpuBackend {
         )?;
         Ok(())
     }
-
     fn xpay_ratio(
         &mut self,
         y: &mut GpuField,
@@ -704,17 +736,17 @@ impl Backend for GpuBackend {
     ) -> Result<(), BackendError> {
         let params = match self.guard {
             Some(g) => VectorParams {
-                num: num.0 as u32,
-                den: den.0 as u32,
-                out: g.rr.0 as u32,
-                aux: g.bb.0 as u32,
+                num: num.index() as u32,
+                den: den.index() as u32,
+                out: g.rr.index() as u32,
+                aux: g.bb.index() as u32,
                 scalar: (g.tolerance * g.tolerance) as f32,
                 guarded: 1,
                 ..self.vector_params()
             },
             None => VectorParams {
-                num: num.0 as u32,
-                den: den.0 as u32,
+                num: num.index() as u32,
+                den: den.index() as u32,
                 ..self.vector_params()
             },
         };
@@ -728,7 +760,6 @@ impl Backend for GpuBackend {
         )?;
         Ok(())
     }
-
     fn cg_update(
         &mut self,
         x: &mut GpuField,
@@ -740,15 +771,15 @@ impl Backend for GpuBackend {
         rr: Slot,
     ) -> Result<(), BackendError> {
         let params = VectorParams {
-            num: num.0 as u32,
-            den: den.0 as u32,
-            out: rr.0 as u32,
+            num: num.index() as u32,
+            den: den.index() as u32,
+            out: rr.index() as u32,
             guarded: self.guard.is_some() as u32,
             ..self.vector_params()
         };
         let mask = self.mask.clone();
         let bytes = traffic::cg_update(self.n(), self.partials_of(num, den));
-        self.pending[rr.0] = self.strided(
+        self.pending[rr.index()] = self.strided(
             |k| &k.cg_update,
             params,
             &[
@@ -762,29 +793,9 @@ impl Backend for GpuBackend {
         )?;
         Ok(())
     }
-
-    fn copy_slot(&mut self, src: Slot, dst: Slot) -> Result<(), BackendError> {
-        let params = VectorParams {
-            num: src.0 as u32,
-            den: dst.0 as u32,
-            ..self.vector_params()
-        };
-        let p = self.rec.uniform(&self.ctx, &params)?;
-        let bytes = 4 * self.pending[src.0] as u64 + 8;
-        self.rec.dispatch(
-            &self.ctx,
-            &self.kernels.copy_slot,
-            &[(0, &p), (8, &self.scalars)],
-            (1, 1),
-            bytes,
-        )?;
-        self.pending[dst.0] = 0;
-        Ok(())
-    }
-
     fn guard_cg(&mut self, stop: Option<CgStop>) -> Result<(), BackendError> {
         if stop.is_some() {
-            // HALT_SLOT and STEPS_SLOT (14 and 15) back to 0.0.
+            // HALT_SLOT and STEPS_SLOT back to 0.0.
             self.rec.encoder(&self.ctx).clear_buffer(
                 &self.scalars,
                 slots::value_offset(slots::HALT_SLOT),
@@ -796,21 +807,33 @@ impl Backend for GpuBackend {
         self.guard = stop;
         Ok(())
     }
-
     fn read_cg_progress(&mut self, rr: Slot) -> Result<(f64, Option<usize>), BackendError> {
         let v = self.read_values(0, SLOTS)?;
         let steps = self.guard.map(|_| v[slots::STEPS_SLOT] as usize);
-        Ok((v[rr.0] as f64, steps))
+        Ok((v[rr.index()] as f64, steps))
     }
+}
 
-    fn read_slots(&mut self, slots: &[Slot], out: &mut [f64]) -> Result<(), BackendError> {
-        let v = self.read_values(0, N_SLOTS)?;
-        for (o, s) in out.iter_mut().zip(slots) {
-            *o = v[s.0] as f64;
+impl ContactKernels for GpuBackend {
+    fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError> {
+        self.check_len(mask.len())?;
+        self.rec.flush(&self.ctx)?;
+        let v: Vec<u32> = mask.iter().map(|&m| m as u32).collect();
+        self.ctx
+            .queue()
+            .write_buffer(&self.mask, 0, bytemuck::cast_slice(&v));
+        Ok(())
+    }
+    fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError> {
+        self.check_len(mask.len())?;
+        let v: Vec<u32> = self
+            .rec
+            .read(&self.ctx, &self.mask, 0, self.n() as u64 * 4)?;
+        for (m, x) in mask.iter_mut().zip(v) {
+            *m = x != 0;
         }
         Ok(())
     }
-
     fn update_contact(
         &mut self,
         p: &mut GpuField,
@@ -852,23 +875,22 @@ impl Backend for GpuBackend {
             at_edge: c[3] as usize,
         })
     }
-
     fn first_crossing(
         &mut self,
         p_old: &GpuField,
         p_new: &GpuField,
         sigma_c: f64,
     ) -> Result<f64, BackendError> {
+        let min_slot = self.min_slot.index() as u32;
         self.reduce(
             Reduction::Crossing,
             &p_old.buffer,
             &p_new.buffer,
-            MIN_SLOT,
+            min_slot,
             sigma_c as f32,
         )?;
-        Ok(self.read_values(MIN_SLOT as usize, 1)?[0] as f64)
+        Ok(self.read_values(min_slot as usize, 1)?[0] as f64)
     }
-
     fn lerp(
         &mut self,
         a: &GpuField,
@@ -888,27 +910,14 @@ impl Backend for GpuBackend {
             4,
         )
     }
-
-    fn copy(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
-        let bytes = self.n() as u64 * 4;
-        self.rec.counters.bytes += 2 * bytes;
-        self.rec
-            .encoder(&self.ctx)
-            .copy_buffer_to_buffer(&src.buffer, 0, &dst.buffer, 0, bytes);
-        Ok(())
-    }
-
     fn sum_and_count(&mut self, p: &GpuField) -> Result<(f64, usize), BackendError> {
-        self.reduce(Reduction::Sum, &p.buffer, &p.buffer, SUM_SLOT, 0.0)?;
-        let sum = self.read_values(SUM_SLOT as usize, 1)?[0] as f64;
+        let sum_slot = self.sum_slot.index() as u32;
+        self.reduce(Reduction::Sum, &p.buffer, &p.buffer, sum_slot, 0.0)?;
+        let sum = self.read_values(sum_slot as usize, 1)?[0] as f64;
         let c: Vec<u32> =
             self.rec
                 .read(&self.ctx, &self.counts, self.reduce_groups as u64 * 4, 4)?;
         Ok((sum, c[0] as usize))
-    }
-
-    fn counters(&self) -> Counters {
-        self.rec.counters
     }
 }
 

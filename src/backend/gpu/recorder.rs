@@ -177,8 +177,29 @@ impl Recorder {
         ctx: &GpuContext,
         params: &T,
     ) -> Result<wgpu::Buffer, BackendError> {
+        self.params_buffer(ctx, params, wgpu::BufferUsages::UNIFORM)
+    }
+
+    /// A read-only storage buffer holding `params` (cached by content), for kernels that take
+    /// their parameters from storage rather than uniform memory.
+    pub fn storage_params<T: bytemuck::Pod>(
+        &mut self,
+        ctx: &GpuContext,
+        params: &T,
+    ) -> Result<wgpu::Buffer, BackendError> {
+        self.params_buffer(ctx, params, wgpu::BufferUsages::STORAGE)
+    }
+
+    fn params_buffer<T: bytemuck::Pod>(
+        &mut self,
+        ctx: &GpuContext,
+        params: &T,
+        usage: wgpu::BufferUsages,
+    ) -> Result<wgpu::Buffer, BackendError> {
+        let mut key = bytemuck::bytes_of(params).to_vec();
+        key.push((usage == wgpu::BufferUsages::STORAGE) as u8);
         let bytes = bytemuck::bytes_of(params);
-        if let Some(b) = self.uniforms.get(bytes) {
+        if let Some(b) = self.uniforms.get(&key) {
             return Ok(b.clone());
         }
         ctx.check()?;
@@ -189,7 +210,7 @@ impl Recorder {
         let buffer = ctx.device().create_buffer(&wgpu::BufferDescriptor {
             label: Some("params"),
             size: (bytes.len() as u64).next_multiple_of(16),
-            usage: wgpu::BufferUsages::UNIFORM,
+            usage,
             mapped_at_creation: true,
         });
         buffer
@@ -204,7 +225,7 @@ impl Recorder {
             .slice(..bytes.len())
             .copy_from_slice(bytes);
         buffer.unmap();
-        self.uniforms.insert(bytes.to_vec(), buffer.clone());
+        self.uniforms.insert(key, buffer.clone());
         Ok(buffer)
     }
 

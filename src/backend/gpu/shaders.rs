@@ -20,12 +20,12 @@ pub const SPECTRAL_KERNELS: &[KernelLayout] = &[
     KernelLayout {
         entry: "rows_forward",
         bindings: &[
-            (0, Uniform),
             (1, Read),
             (2, Read),
             (3, ReadWrite),
             (4, Read),
             (8, ReadWrite),
+            (9, Read),
         ],
     },
     KernelLayout {

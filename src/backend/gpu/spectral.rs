@@ -341,12 +341,12 @@ impl GpuSpectralFilter {
         mask: &wgpu::Buffer,
         masked: bool,
     ) -> Result<(), BackendError> {
-        let p = rec.uniform(ctx, &self.params(masked, None))?;
+        let p = rec.storage_params(ctx, &self.params(masked, None))?;
         rec.dispatch(
             ctx,
             &kernels.variants[self.variant].rows_forward,
             &[
-                (0, &p),
+                (9, &p),
                 (1, src),
                 (2, mask),
                 (3, &self.spec),

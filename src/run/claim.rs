@@ -1,18 +1,17 @@
-//! The files a command will write, claimed once every input has been checked and before any
+//! The files a request will write, claimed once every input has been checked and before any
 //! work: two outputs that are the same file (`--out o.csv --summary o.csv`) are refused, as is
 //! a target that is not a regular file, and each target is locked against other runs
-//! ([`OutputLock`]) until the command ends. The writing itself goes through
-//! [`jkrbem::output::file`].
+//! ([`OutputLock`]) until the claim is dropped. The writing itself goes through
+//! [`crate::output::file`].
 
-use super::{failed, input, CliError};
-use jkrbem::output::file::{check_target, OutputLock};
-use jkrbem::output::OutputError;
+use super::{failed, input, RunError};
+use crate::output::file::{check_target, OutputLock};
+use crate::output::OutputError;
 use std::path::{Path, PathBuf};
 
-/// An output error as the command's error: a refusal (not a regular file, held by another
-/// run) is bad input (exit 2), anything else a failed run (exit 1). The message names the
-/// path and `flag`.
-pub fn write_error(flag: &str) -> impl Fn(OutputError) -> CliError + '_ {
+/// An output error as the request's error: a refusal (not a regular file, held by another
+/// run) is bad input, anything else a failure. The message names the path and `flag`.
+pub fn write_error(flag: &str) -> impl Fn(OutputError) -> RunError + '_ {
     move |e| {
         let e = e.with_flag(flag);
         if e.is_refusal() {
@@ -46,7 +45,7 @@ fn identity(path: &Path) -> PathBuf {
     }
 }
 
-/// The outputs claimed by one command, locked until it is dropped.
+/// The outputs claimed by one request, locked until it is dropped.
 #[derive(Default)]
 pub struct Outputs {
     locks: Vec<OutputLock>,
@@ -57,7 +56,7 @@ impl Outputs {
     /// target that exists and is not a regular file, and one that another run holds. Nothing
     /// is created unless all pass the first two checks; the folders are then created and the
     /// locks taken.
-    pub fn claim(targets: &[(PathBuf, String)]) -> Result<Outputs, CliError> {
+    pub fn claim(targets: &[(PathBuf, String)]) -> Result<Outputs, RunError> {
         Self::check(targets)?;
         let mut outputs = Outputs::default();
         for (path, flag) in targets {
@@ -70,7 +69,7 @@ impl Outputs {
 
     /// The checks of [`Outputs::claim`] that create nothing: no two outputs the same file,
     /// none that exists and is not a regular file.
-    pub fn check(targets: &[(PathBuf, String)]) -> Result<(), CliError> {
+    pub fn check(targets: &[(PathBuf, String)]) -> Result<(), RunError> {
         let mut seen: Vec<(PathBuf, &Path, &str)> = Vec::new();
         for (path, flag) in targets {
             let id = identity(path);

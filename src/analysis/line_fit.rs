@@ -1,0 +1,182 @@
+//! A straight line y = a + b·x fitted to points with known standard deviations, with a
+//! Gaussian prior on the slope b (weighted least squares; the prior is one more observation).
+//! With one point the prior alone fixes the slope; with several the data refine it.
+
+/// One observation: abscissa, value and its standard deviation (same unit as the value, > 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point {
+    /// The abscissa x.
+    pub x: f64,
+    /// The observed value y.
+    pub y: f64,
+    /// Standard deviation of y (> 0).
+    pub sd: f64,
+}
+
+/// A Gaussian prior on the slope: its mean and standard deviation (> 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlopePrior {
+    /// Prior mean of the slope b.
+    pub mean: f64,
+    /// Prior standard deviation of b (> 0).
+    pub sd: f64,
+}
+
+/// The fitted line and the intercept's standard deviation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LineFit {
+    /// Intercept a: the value at x = 0.
+    pub intercept: f64,
+    /// Standard deviation of the intercept, from the points' and the prior's deviations only.
+    pub intercept_sd: f64,
+    /// Slope b.
+    pub slope: f64,
+    /// Standard deviation of the slope, from the points' and the prior's deviations only.
+    pub slope_sd: f64,
+    /// χ² of the fit (points and prior), dimensionless.
+    pub chi2: f64,
+    /// Degrees of freedom: points + 1 (the prior) − 2.
+    pub dof: usize,
+}
+
+impl LineFit {
+    /// √(χ²/dof) where the points scatter more than their deviations say (the Birge ratio),
+    /// else 1 (never below).
+    pub fn birge(&self) -> f64 {
+        if self.dof > 0 {
+            (self.chi2 / self.dof as f64).sqrt().max(1.0)
+        } else {
+            1.0
+        }
+    }
+
+    /// The intercept's standard deviation scaled up by the [`LineFit::birge`] ratio.
+    pub fn intercept_sd_from_residuals(&self) -> f64 {
+        self.intercept_sd * self.birge()
+    }
+}
+
+/// Fit y = a + b·x to `points` with the slope's `prior`. `None` if there are no points, a
+/// deviation is not positive and finite, or the system is singular.
+pub fn fit_line(points: &[Point], prior: SlopePrior) -> Option<LineFit> {
+    if points.is_empty()
+        || !(prior.sd > 0.0 && prior.sd.is_finite() && prior.mean.is_finite())
+        || points
+            .iter()
+            .any(|p| !(p.sd > 0.0 && p.sd.is_finite() && p.x.is_finite() && p.y.is_finite()))
+    {
+        return None;
+    }
+    // Normal equations [[s, sx], [sx, sxx + 1/σb²]] (a, b) = (sy, sxy + μb/σb²).
+    let (mut s, mut sx, mut sxx, mut sy, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for p in points {
+        let w = 1.0 / (p.sd * p.sd);
+        s += w;
+        sx += w * p.x;
+        sxx += w * p.x * p.x;
+        sy += w * p.y;
+        sxy += w * p.x * p.y;
+    }
+    let wb = 1.0 / (prior.sd * prior.sd);
+    let (m11, m12, m22) = (s, sx, sxx + wb);
+    let det = m11 * m22 - m12 * m12;
+    if !(det > 0.0 && det.is_finite()) {
+        return None;
+    }
+    let (r1, r2) = (sy, sxy + prior.mean * wb);
+    let a = (m22 * r1 - m12 * r2) / det;
+    let b = (m11 * r2 - m12 * r1) / det;
+    let chi2 = points
+        .iter()
+        .map(|p| ((p.y - a - b * p.x) / p.sd).powi(2))
+        .sum::<f64>()
+        + ((b - prior.mean) / prior.sd).powi(2);
+    Some(LineFit {
+        intercept: a,
+        intercept_sd: (m22 / det).sqrt(),
+        slope: b,
+        slope_sd: (m11 / det).sqrt(),
+        chi2,
+        dof: points.len() + 1 - 2,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_point_takes_its_slope_from_the_prior() {
+        let p = [Point {
+            x: 0.1,
+            y: 1.3,
+            sd: 0.01,
+        }];
+        let f = fit_line(&p, SlopePrior { mean: 3.0, sd: 0.5 }).unwrap();
+        assert!((f.intercept - 1.0).abs() < 1e-12);
+        // var = sd² + x²·σb²
+        assert!((f.intercept_sd - (0.01f64.powi(2) + 0.05f64.powi(2)).sqrt()).abs() < 1e-12);
+        assert_eq!(f.dof, 0);
+        assert!(f.chi2 < 1e-20);
+    }
+
+    #[test]
+    fn exact_points_recover_the_line_whatever_the_prior() {
+        let p: Vec<Point> = [0.1, 0.05, 0.025]
+            .iter()
+            .map(|&x| Point {
+                x,
+                y: 0.5 + 1.6 * x,
+                sd: 1e-9,
+            })
+            .collect();
+        let f = fit_line(&p, SlopePrior { mean: 0.0, sd: 1.0 }).unwrap();
+        assert!((f.intercept - 0.5).abs() < 1e-9, "{f:?}");
+        assert!((f.slope - 1.6).abs() < 1e-6, "{f:?}");
+    }
+
+    #[test]
+    fn inconsistent_points_widen_the_interval_by_the_birge_ratio() {
+        let p = [
+            Point {
+                x: 0.1,
+                y: 1.0,
+                sd: 0.001,
+            },
+            Point {
+                x: 0.05,
+                y: 0.9,
+                sd: 0.001,
+            },
+            Point {
+                x: 0.025,
+                y: 1.0,
+                sd: 0.001,
+            },
+        ];
+        let f = fit_line(
+            &p,
+            SlopePrior {
+                mean: 0.0,
+                sd: 10.0,
+            },
+        )
+        .unwrap();
+        assert!(
+            f.intercept_sd_from_residuals() > 10.0 * f.intercept_sd,
+            "{f:?}"
+        );
+    }
+
+    #[test]
+    fn bad_input_is_none() {
+        let prior = SlopePrior { mean: 0.0, sd: 1.0 };
+        assert!(fit_line(&[], prior).is_none());
+        let bad = Point {
+            x: 0.1,
+            y: f64::NAN,
+            sd: 0.1,
+        };
+        assert!(fit_line(&[bad], prior).is_none());
+    }
+}

@@ -1,0 +1,179 @@
+//! What one pull-off found, as numbers: its force minimum and where it lies, its grid, what it
+//! cost and what to warn about. Built from a model and its outcome; `output` only writes it.
+
+use super::convergence;
+use crate::model::{Model, Stepping};
+use crate::solver::{protocol::RegridEvent, Outcome};
+use serde::Serialize;
+use std::path::Path;
+
+/// One run's report (normalised quantities per physics §2).
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+pub struct RunReport {
+    /// R1/R2 (dimensionless).
+    pub ratio: f64,
+    /// The grid, "Nx×Ny".
+    pub grid: String,
+    /// Elements along x.
+    pub nx: usize,
+    /// Elements along y.
+    pub ny: usize,
+    /// Element side Δx at the start (length).
+    pub dx: f64,
+    /// Element side Δx at the force minimum (length; smaller than `dx` after re-grids).
+    pub dx_at_min: Option<f64>,
+    /// Angle between the ellipsoid's major axis and the grid's x axis (degrees).
+    pub mesh_angle_deg: f64,
+    /// The apex's position within the element grid (fractions of an element along x, y).
+    pub apex_offset: [f64; 2],
+    /// Detachment stress σ_c at the start (force/length²).
+    pub sigma_c: f64,
+    /// |min F̄| on this grid (dimensionless); null if the run did not reach the minimum.
+    pub f_ad_bar: Option<f64>,
+    /// Whether the run reached the force minimum: after it the contact jumped off, or the
+    /// approach went 0.1 past it with the force 2 % above it. When false, `f_ad_bar` is null
+    /// and `lowest_f_bar` is only the lowest force seen.
+    pub min_reached: bool,
+    /// The lowest F̄ recorded (dimensionless), minimum or not; null if no state was recorded.
+    pub lowest_f_bar: Option<f64>,
+    /// d̄ of that state.
+    pub d_bar_at_lowest: Option<f64>,
+    /// c̄ at the force minimum.
+    pub c_bar_at_min: Option<f64>,
+    /// d̄ at the force minimum.
+    pub d_bar_at_min: Option<f64>,
+    /// ā at the force minimum.
+    pub a_bar_at_min: Option<f64>,
+    /// b̄ at the force minimum.
+    pub b_bar_at_min: Option<f64>,
+    /// Elements across the contact's minor axis at the force minimum (2b/Δx; the diameter for
+    /// a sphere).
+    pub n_d: Option<f64>,
+    /// Backend that ran the solver ("cpu", "gpu").
+    pub backend: String,
+    /// Its arithmetic ("f64", "f32").
+    pub precision: String,
+    /// CG iterations over the run.
+    pub cg_iterations: usize,
+    /// The largest relative CG residual of any state, recomputed from p (dimensionless).
+    pub cg_residual_max: Option<f64>,
+    /// CG solves that needed the safer retry.
+    pub cg_retries: usize,
+    /// States recorded.
+    pub states: usize,
+    /// Wall time of the solve (s).
+    pub wall_s: f64,
+    /// Whether the protocol ran to its end.
+    pub complete: bool,
+    /// Why it did not, if it did not.
+    pub error: Option<String>,
+    /// Where the states were written.
+    pub states_csv: String,
+    /// The grid changes made during the run.
+    pub regrids: Vec<RegridEvent>,
+    /// Whether the run stopped once the force minimum was confirmed (adhesive-force measure).
+    pub stopped_after_minimum: bool,
+    /// Warnings about this run (CG retries and states accepted above the CG tolerance, too
+    /// coarse a grid, too large load steps); empty for a healthy run.
+    pub warnings: Vec<String>,
+}
+
+impl RunReport {
+    /// The report of `outcome`, a run of `model` on `backend` (name, precision) that took
+    /// `wall_s` seconds and wrote its states to `states_csv`.
+    pub fn new(
+        model: &Model,
+        outcome: &Outcome,
+        backend: (&str, &str),
+        wall_s: f64,
+        states_csv: &Path,
+    ) -> Self {
+        let ratio = model.scene.ratio();
+        let lowest = outcome.force_minimum();
+        let min_reached = outcome.min_reached();
+        let min = lowest.filter(|_| min_reached);
+        // 2b/Δx is a count of elements (half-integers on an aligned mesh): rounded to 1e-6 so
+        // that it does not read 25.999999999999996.
+        let n_d = min.map(|s| (2e6 * s.b_axis / s.dx).round() / 1e6);
+        let warnings = n_d
+            .and_then(|n| convergence::coarse_grid_warning(ratio, n))
+            .into_iter()
+            .chain(step_warning(model, outcome))
+            .chain(outcome.warnings.iter().cloned())
+            .collect();
+        RunReport {
+            ratio,
+            grid: format!("{}×{}", model.nx, model.ny),
+            nx: model.nx,
+            ny: model.ny,
+            dx: model.dx,
+            dx_at_min: min.map(|s| s.dx),
+            mesh_angle_deg: model.mesh.degrees,
+            apex_offset: [model.apex_offset.0, model.apex_offset.1],
+            sigma_c: model.sigma_c,
+            f_ad_bar: min.map(|s| -s.f_bar),
+            min_reached,
+            lowest_f_bar: lowest.map(|s| s.f_bar),
+            d_bar_at_lowest: lowest.map(|s| s.d_bar),
+            c_bar_at_min: min.map(|s| s.c_bar),
+            d_bar_at_min: min.map(|s| s.d_bar),
+            a_bar_at_min: min.map(|s| s.a_bar),
+            b_bar_at_min: min.map(|s| s.b_bar),
+            n_d,
+            backend: backend.0.to_string(),
+            precision: backend.1.to_string(),
+            cg_iterations: outcome.cg_iterations(),
+            cg_residual_max: outcome.worst_cg_residual(),
+            cg_retries: outcome.cg_retries.len(),
+            states: outcome.states.len(),
+            wall_s,
+            complete: outcome.complete(),
+            error: outcome.error.as_ref().map(|e| e.to_string()),
+            states_csv: states_csv.display().to_string(),
+            regrids: outcome.regrids.clone(),
+            stopped_after_minimum: outcome.stopped_after_minimum,
+            warnings,
+        }
+    }
+
+    /// Δx at the force minimum in units of c_r (dimensionless): the variable the adhesive
+    /// force converges in.
+    pub fn dx_bar_at_min(&self, length_scale: f64) -> Option<f64> {
+        self.dx_at_min.map(|dx| dx / length_scale)
+    }
+}
+
+/// With [`Stepping::Fixed`], a warning if the steps around the force minimum detached
+/// elements: the minimum then lies at an onset inside a step, which whole steps do not see.
+fn step_warning(model: &Model, outcome: &Outcome) -> Option<String> {
+    if model.stepping != Stepping::Fixed {
+        return None;
+    }
+    let states = &outcome.states;
+    let k = states
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1.force.total_cmp(&b.1.force))?
+        .0;
+    let around = &states[k.saturating_sub(1)..(k + 2).min(states.len())];
+    let lost = around
+        .windows(2)
+        .map(|w| w[0].n_contact.saturating_sub(w[1].n_contact))
+        .max()
+        .unwrap_or(0);
+    let jump = around
+        .windows(2)
+        .map(|w| (w[1].f_bar - w[0].f_bar).abs())
+        .fold(0.0, f64::max);
+    let f_min = states[k].f_bar.abs();
+    (lost > 0).then(|| {
+        format!(
+            "load steps too large to resolve the force minimum: with --stepping fixed, one step \
+             (Δd̄ = {:.4}) around it detached {lost} elements and changed F̄ by {:.1} % of |min F̄|, \
+             so the minimum lies at an onset inside a step; use --stepping adaptive (the \
+             default), which refines every step to its onsets",
+            model.d_step / model.scene.scales().approach,
+            100.0 * jump / f_min
+        )
+    })
+}

@@ -1,0 +1,76 @@
+//! `jkrbem reference`: the table of converged adhesive forces per R1/R2 that the convergence law
+//! is fitted to. Parses the flags; the work is [`jkrbem::run::reference`].
+
+use super::progress::Progress;
+use super::{run_error, CliError};
+use jkrbem::backend::select::BackendKind;
+use jkrbem::run::open::BackendRequest;
+use jkrbem::run::reference::{reference, ReferenceRequest, REFERENCE_RATIOS};
+use std::path::PathBuf;
+
+/// Arguments of `jkrbem reference`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Ratios R1/R2, comma-separated, each in [1, 1000] [default: 1, 1.5, 2, 3, 5, 7, 10, 15,
+    /// 20, 25, 35, 50].
+    #[arg(long, value_delimiter = ',')]
+    pub ratios: Vec<f64>,
+    /// The relative uncertainty wanted of each |min F̄| at Δx → 0 (a percentage, the unit
+    /// required). Each ratio's grids double (at least three) until it is reached, or
+    /// --max-grid or the memory is.
+    #[arg(long, default_value = "0.3%", value_parser = super::simulate::parse_percentage)]
+    pub target: f64,
+    /// Nx of the finest grid a ratio's ladder may use (a power of two).
+    #[arg(long, default_value_t = 2048)]
+    pub max_grid: usize,
+    /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.
+    #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
+    pub backend: BackendKind,
+    /// The table (CSV); every run's states and summary go beside it in `<stem>-runs/`.
+    #[arg(long, default_value = "docs/reference/adhesive-force.csv")]
+    pub out: PathBuf,
+}
+
+/// Run `jkrbem reference`.
+pub fn run(args: Args) -> Result<(), CliError> {
+    let ratios = if args.ratios.is_empty() {
+        REFERENCE_RATIOS.to_vec()
+    } else {
+        args.ratios.clone()
+    };
+    let command = std::iter::once("jkrbem".to_string())
+        .chain(std::env::args().skip(1))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let req = ReferenceRequest {
+        ratios,
+        target: args.target,
+        max_grid: args.max_grid,
+        backend: BackendRequest {
+            kind: args.backend,
+            ..BackendRequest::default()
+        },
+        out: args.out,
+        command,
+    };
+    let done = reference(&req, &mut Progress::new()).map_err(run_error)?;
+    println!("ratio   |min F̄| at Δx → 0      k      grids");
+    for r in &done.rows {
+        let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.5}"));
+        println!(
+            "{:<7} {} ± {}{}  {}  {}",
+            r.ratio,
+            f(r.f_ad_bar),
+            f(r.f_ad_bar_uncertainty),
+            if r.target_met {
+                ""
+            } else {
+                " (target not met)"
+            },
+            r.k.map_or("—".into(), |k| format!("{k:.2}")),
+            r.grids
+        );
+    }
+    println!("written {}", done.path.display());
+    Ok(())
+}

@@ -1,0 +1,353 @@
+//! The accuracy–cost chart of one scene: each grid run on each backend in each way (whole
+//! curve, adhesive force only, adhesive force with re-grids), its |min F̄| against the Δx → 0
+//! limit (JKR's exact 1/2 for the sphere, else the first backend's own extrapolation, with its
+//! uncertainty), and the same for first-order extrapolations of consecutive grids, against
+//! the wall time each cost.
+
+use super::batch::{run_files, run_jobs, Job};
+use super::claim::{named, write_error, Outputs};
+use super::open::BackendRequest;
+use super::{input, RunError};
+use crate::analysis::estimate::{from_runs, Estimate};
+use crate::analysis::extrapolate::extrapolate_first_order;
+use crate::analysis::report::RunReport;
+use crate::backend::select::BackendKind;
+use crate::model::{Measure, Model, ModelOptions};
+use crate::output::chart::{LogLogChart, Series};
+use crate::scene::Scene;
+use serde::Serialize;
+use std::fmt;
+use std::path::PathBuf;
+
+/// A way of running each grid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Variant {
+    /// The whole curve on a fixed grid.
+    Plain,
+    /// `--measure adhesive-force`: stop once the minimum is confirmed.
+    Measure,
+    /// `--measure adhesive-force --regrid`: also refine Δx as the contact shrinks.
+    Regrid,
+}
+
+impl fmt::Display for Variant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Variant {
+    /// "plain", "measure" or "regrid".
+    pub fn name(self) -> &'static str {
+        match self {
+            Variant::Plain => "plain",
+            Variant::Measure => "measure",
+            Variant::Regrid => "regrid",
+        }
+    }
+
+    /// The flags this variant adds, for labels.
+    fn flags(self) -> &'static str {
+        match self {
+            Variant::Plain => "whole curve",
+            Variant::Measure => "--measure adhesive-force",
+            Variant::Regrid => "--measure adhesive-force --regrid",
+        }
+    }
+
+    fn options(self, nx: usize) -> ModelOptions {
+        ModelOptions {
+            nx,
+            measure: if self == Variant::Plain {
+                Measure::Curve
+            } else {
+                Measure::AdhesiveForce
+            },
+            regrid: self == Variant::Regrid,
+            ..ModelOptions::default()
+        }
+    }
+}
+
+/// A request for the accuracy–cost chart.
+#[derive(Debug, Clone)]
+pub struct AccuracyRequest {
+    /// R1/R2 (1: the sphere).
+    pub ratio: f64,
+    /// Grids Nx, coarse to fine (2 to 12 increasing).
+    pub grids: Vec<usize>,
+    /// Backends (none repeated); the precision follows the backend.
+    pub backends: Vec<BackendKind>,
+    /// Ways of running each grid (none repeated, at least one).
+    pub variants: Vec<Variant>,
+    /// Output folder: states per run, accuracy.csv and accuracy.svg.
+    pub out: PathBuf,
+}
+
+/// The header of accuracy.csv, one column per [`AccuracyRow`] field.
+pub const ROW_HEADER: &str = "variant,backend,precision,grid,n_d,f_ad_bar,error,wall_s,\
+                              cg_iterations,reference,reference_uncertainty";
+
+/// One point of the chart.
+#[derive(Debug, Clone, Serialize)]
+pub struct AccuracyRow {
+    /// plain, measure or regrid.
+    pub variant: &'static str,
+    /// cpu, gpu or auto, as asked.
+    pub backend: String,
+    /// f64 or f32.
+    pub precision: String,
+    /// "Nx×Ny", or "extrapolated from A and B".
+    pub grid: String,
+    /// Elements across the minor axis at the minimum.
+    pub n_d: Option<f64>,
+    /// |min F̄| of the grid (dimensionless; raw, not corrected), or the extrapolated value.
+    pub f_ad_bar: Option<f64>,
+    /// f_ad_bar / reference − 1 (dimensionless, signed).
+    pub error: Option<f64>,
+    /// Wall time (s); an extrapolation costs both of its grids.
+    pub wall_s: f64,
+    /// CG iterations.
+    pub cg_iterations: usize,
+    /// The Δx → 0 limit the error is measured against.
+    pub reference: Option<f64>,
+    /// Its uncertainty (absolute; 0 for JKR's exact 1/2).
+    pub reference_uncertainty: Option<f64>,
+}
+
+/// What the chart request produced.
+#[derive(Debug, Clone)]
+pub struct AccuracyDone {
+    /// Every point, in the order written.
+    pub rows: Vec<AccuracyRow>,
+    /// The reference, in words.
+    pub reference: String,
+    /// accuracy.csv.
+    pub csv: PathBuf,
+    /// accuracy.svg.
+    pub svg: PathBuf,
+    /// The runs that failed, in words.
+    pub failures: Vec<String>,
+}
+
+/// One backend × variant: its runs, coarse to fine.
+struct RunSeries {
+    backend: String,
+    variant: Variant,
+    runs: Vec<RunReport>,
+}
+
+fn backend_name(kind: BackendKind) -> &'static str {
+    match kind {
+        BackendKind::Auto => "auto",
+        BackendKind::Cpu => "cpu",
+        BackendKind::Gpu => "gpu",
+    }
+}
+
+/// Check the request, claim its outputs, run every grid and write the chart.
+pub fn accuracy(
+    req: &AccuracyRequest,
+    lines: &(dyn Fn(&str) + Sync),
+) -> Result<AccuracyDone, RunError> {
+    if !(2..=12).contains(&req.grids.len()) || req.grids.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(input(
+            "--grids: give 2 to 12 increasing grids, e.g. 32,64,128",
+        ));
+    }
+    if req.variants.is_empty() || req.backends.is_empty() {
+        return Err(input(
+            "--variants and --backends: give at least one of each",
+        ));
+    }
+    let scene = Scene::from_ratio(req.ratio, 1.0, 1.0, 1.0).map_err(input)?;
+    // Every model is built, and every output claimed, before any work.
+    let mut plan = Vec::new();
+    for &kind in &req.backends {
+        for &variant in &req.variants {
+            let mut jobs = Vec::new();
+            for &nx in &req.grids {
+                let model = Model::build(&scene, &variant.options(nx))
+                    .map_err(|e| input(format!("--grids {nx}: {e}")))?;
+                let file = format!("{}-{}-n{nx}.csv", backend_name(kind), variant.name());
+                jobs.push(Job {
+                    target: None,
+                    model,
+                    out: req.out.join(file),
+                });
+            }
+            plan.push((kind, variant, jobs));
+        }
+    }
+    let refs: Vec<&Model> = plan
+        .iter()
+        .flat_map(|p| p.2.iter().map(|j| &j.model))
+        .collect();
+    crate::plan::check_memory(&refs, 1, "--grids").map_err(input)?;
+    let csv = req.out.join("accuracy.csv");
+    let svg = req.out.join("accuracy.svg");
+    let mut targets: Vec<PathBuf> = plan
+        .iter()
+        .flat_map(|p| p.2.iter().flat_map(|j| run_files(&j.out)))
+        .collect();
+    targets.extend([csv.clone(), svg.clone()]);
+    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    let mut series = Vec::new();
+    let mut failures = Vec::new();
+    for (kind, variant, jobs) in plan {
+        let request = BackendRequest {
+            kind,
+            ..BackendRequest::default()
+        };
+        let results = run_jobs(jobs, 1, request, lines);
+        failures.extend(results.iter().filter_map(|r| r.error.clone()));
+        let mut runs: Vec<RunReport> = results
+            .into_iter()
+            .filter_map(|r| r.summary)
+            .flat_map(|s| s.runs)
+            .collect();
+        runs.sort_by_key(|r| r.nx);
+        series.push(RunSeries {
+            backend: backend_name(kind).to_string(),
+            variant,
+            runs,
+        });
+    }
+    let (reference, reference_text) = reference(req.ratio, &series);
+    let rows = chart_rows(&series, reference);
+    write_chart(req.ratio, &series, &rows, &reference_text, &svg)?;
+    crate::output::file::write_csv(&csv, Some(ROW_HEADER), &rows).map_err(write_error("--out"))?;
+    Ok(AccuracyDone {
+        rows,
+        reference: reference_text,
+        csv,
+        svg,
+        failures,
+    })
+}
+
+/// The Δx → 0 limit: JKR's exact 1/2 for the sphere, else the first series extrapolated (with
+/// its uncertainty).
+fn reference(ratio: f64, series: &[RunSeries]) -> (Option<Estimate>, String) {
+    if ratio == 1.0 {
+        let exact = Estimate {
+            value: 0.5,
+            uncertainty: 0.0,
+        };
+        return (Some(exact), "exact JKR value 1/2".into());
+    }
+    let first = &series[0];
+    match from_runs(&first.runs) {
+        Ok(e) => (
+            Some(e.f_ad_bar),
+            format!(
+                "{} ({}) extrapolated to Δx → 0: {:.4} ± {:.4}",
+                first.backend,
+                first.variant.name(),
+                e.f_ad_bar.value,
+                e.f_ad_bar.uncertainty
+            ),
+        ),
+        Err(why) => (None, format!("no reference ({why})")),
+    }
+}
+
+/// Every grid's point and every consecutive pair's extrapolation, per series.
+fn chart_rows(series: &[RunSeries], reference: Option<Estimate>) -> Vec<AccuracyRow> {
+    let error = |f: Option<f64>| Some(f? / reference?.value - 1.0);
+    let mut rows = Vec::new();
+    for s in series {
+        for r in &s.runs {
+            rows.push(AccuracyRow {
+                variant: s.variant.name(),
+                backend: s.backend.clone(),
+                precision: r.precision.clone(),
+                grid: r.grid.clone(),
+                n_d: r.n_d,
+                f_ad_bar: r.f_ad_bar,
+                error: error(r.f_ad_bar),
+                wall_s: r.wall_s,
+                cg_iterations: r.cg_iterations,
+                reference: reference.map(|e| e.value),
+                reference_uncertainty: reference.map(|e| e.uncertainty),
+            });
+        }
+        for pair in s.runs.windows(2) {
+            let dx: Vec<f64> = pair.iter().map(|r| r.dx_at_min.unwrap_or(r.dx)).collect();
+            let f: Option<Vec<f64>> = pair.iter().map(|r| r.f_ad_bar).collect();
+            let Some(x) = f.and_then(|f| extrapolate_first_order(&dx, &f)) else {
+                continue;
+            };
+            rows.push(AccuracyRow {
+                variant: s.variant.name(),
+                backend: s.backend.clone(),
+                precision: pair[0].precision.clone(),
+                grid: format!("extrapolated from {} and {}", pair[0].nx, pair[1].nx),
+                n_d: None,
+                f_ad_bar: Some(x.value),
+                error: error(Some(x.value)),
+                wall_s: pair[0].wall_s + pair[1].wall_s,
+                cg_iterations: pair[0].cg_iterations + pair[1].cg_iterations,
+                reference: reference.map(|e| e.value),
+                reference_uncertainty: reference.map(|e| e.uncertainty),
+            });
+        }
+    }
+    rows
+}
+
+/// The log–log chart of |error| against wall time: one solid series per backend × variant
+/// (one grid per point), one dashed series of its extrapolations.
+fn write_chart(
+    ratio: f64,
+    series: &[RunSeries],
+    rows: &[AccuracyRow],
+    reference: &str,
+    svg: &std::path::Path,
+) -> Result<(), RunError> {
+    let mut chart = LogLogChart::new(
+        format!("R1/R2 = {ratio}: error of |min F̄| against cost ({reference})"),
+        "wall time (s)",
+        "|relative error of |min F̄||",
+    );
+    chart.x_data_ticks = false;
+    for (i, s) in series.iter().enumerate() {
+        let mine = rows
+            .iter()
+            .filter(|r| r.backend == s.backend && r.variant == s.variant.name());
+        let (extra, single): (Vec<&AccuracyRow>, Vec<&AccuracyRow>) =
+            mine.partition(|r| r.n_d.is_none() && r.grid.starts_with("extrapolated"));
+        // A point at zero error (the reference itself) has no place on a log axis.
+        let points = |rows: &[&AccuracyRow]| -> Vec<(f64, f64)> {
+            rows.iter()
+                .filter_map(|r| r.error.map(|e| (r.wall_s, e.abs())))
+                .filter(|p| p.1 > 0.0)
+                .collect()
+        };
+        chart.push(Series {
+            label: format!(
+                "{} ({}), {}: one grid per point",
+                s.backend,
+                s.runs.first().map_or("", |r| r.precision.as_str()),
+                s.variant.flags()
+            ),
+            points: points(&single),
+            color: i,
+            dashed: false,
+        });
+        let extrapolations = points(&extra);
+        if !extrapolations.is_empty() {
+            chart.push(Series {
+                label: format!(
+                    "{}, {}: extrapolated from two consecutive grids",
+                    s.backend,
+                    s.variant.name()
+                ),
+                points: extrapolations,
+                color: i,
+                dashed: true,
+            });
+        }
+    }
+    chart.write_svg(svg).map_err(write_error("--out"))
+}

@@ -1,0 +1,248 @@
+//! Timing the backends: per backend and grid, the convolution, one CG iteration and (on small
+//! grids) a whole pull-off, optionally the GPU's kernels one by one; the rows are written as
+//! CSV and a chart. The timing itself is [`crate::bench`].
+
+use super::claim::{named, write_error, Outputs};
+use super::open::backend_error;
+use super::{input, RunError};
+#[cfg(feature = "gpu")]
+use crate::backend::select::AnyBackend;
+use crate::backend::select::{self, BackendKind, Opened};
+use crate::bench::{self, BenchOptions, GridProfile, Measurement};
+use crate::model::{Model, ModelOptions, MIN_GRID};
+use crate::output::bench::{timing_chart, write_csv, BenchRow};
+#[cfg(feature = "gpu")]
+use crate::output::profile::{self, ProfileRow};
+use crate::scene::Scene;
+use std::path::PathBuf;
+
+/// A request to time the backends.
+#[derive(Debug, Clone)]
+pub struct BenchRequest {
+    /// Backends to time (cpu, gpu); empty: cpu, plus gpu when it opens.
+    pub backends: Vec<BackendKind>,
+    /// Grids Nx (powers of two ≥ 16; sorted and deduplicated here).
+    pub grids: Vec<usize>,
+    /// Time a whole pull-off only on grids up to this Nx (0: none).
+    pub pulloff_max_grid: usize,
+    /// Timed samples per quantity (median reported).
+    pub repeats: usize,
+    /// CG iterations per timed solve.
+    pub cg_iterations: usize,
+    /// R1/R2 of the scene.
+    pub ratio: f64,
+    /// c̄0 of the initial contact.
+    pub start_radius: f64,
+    /// Free margin around the initial contact.
+    pub margin: f64,
+    /// Also profile the GPU's kernels.
+    pub profile: bool,
+    /// Folder for bench.csv, bench.svg (and profile.csv).
+    pub out: PathBuf,
+}
+
+/// What the timing produced.
+pub struct BenchDone {
+    /// One row per backend and grid measured.
+    pub rows: Vec<BenchRow>,
+    /// The measurements behind the rows, in the same order.
+    pub measured: Vec<Measurement>,
+    /// The kernel profiles (with `profile`).
+    pub profiles: Vec<GridProfile>,
+    /// The files written.
+    pub files: Vec<PathBuf>,
+    /// What failed or stopped early, one line each.
+    pub problems: Vec<String>,
+}
+
+/// The flag that names a backend.
+fn flag(kind: BackendKind) -> &'static str {
+    match kind {
+        BackendKind::Cpu => "--backends cpu",
+        BackendKind::Gpu => "--backends gpu",
+        BackendKind::Auto => "--backends auto",
+    }
+}
+
+/// The grids asked for, sorted and without repeats; refused unless all are powers of two ≥ 16.
+fn grids(args: &BenchRequest) -> Result<Vec<usize>, RunError> {
+    if args.grids.is_empty() {
+        return Err(input("--grids is empty: give e.g. --grids 64,128,256"));
+    }
+    if let Some(bad) = args
+        .grids
+        .iter()
+        .find(|&&g| g < MIN_GRID || !g.is_power_of_two())
+    {
+        return Err(input(format!(
+            "--grids {bad} is invalid: every grid must be a power of two ≥ {MIN_GRID} \
+             (e.g. --grids 64,128,256)"
+        )));
+    }
+    let mut g = args.grids.clone();
+    g.sort_unstable();
+    g.dedup();
+    Ok(g)
+}
+
+/// Open `which` for `model`'s grid.
+fn open(which: BackendKind, model: &Model) -> Result<Opened, RunError> {
+    select::open(which, &model.grid_setup()).map_err(|e| match backend_error(e) {
+        RunError::Input(m) => RunError::Input(format!("{}: {m}", flag(which))),
+        RunError::Failed(m) => RunError::Failed(format!("{}: {m}", flag(which))),
+    })
+}
+
+/// Check the request, claim its outputs, open every backend, time every grid and write the
+/// rows. `lines` receives progress notes.
+pub fn bench(args: &BenchRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<BenchDone, RunError> {
+    let grids = grids(args)?;
+    if args.repeats == 0 {
+        return Err(input("--repeats 0 is invalid: give at least 1"));
+    }
+    if args.cg_iterations == 0 {
+        return Err(input("--cg-iterations 0 is invalid: give at least 1"));
+    }
+    let scene = Scene::from_ratio(args.ratio, 1.0, 1.0, 1.0).map_err(input)?;
+    let models = grids
+        .iter()
+        .map(|&nx| {
+            let opt = ModelOptions {
+                nx,
+                start_radius_bar: args.start_radius,
+                margin: args.margin,
+                ..ModelOptions::default()
+            };
+            Model::build(&scene, &opt).map_err(input)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let refs: Vec<&Model> = models.iter().collect();
+    crate::plan::check_memory(&refs, 1, "--grids").map_err(input)?;
+    let csv = args.out.join("bench.csv");
+    let svg = args.out.join("bench.svg");
+    let profile_csv = args.out.join("profile.csv");
+    let mut targets = vec![csv.clone(), svg.clone()];
+    if args.profile {
+        if cfg!(not(feature = "gpu")) {
+            return Err(input(
+                "--profile times GPU kernels, and this jkrbem was built without the `gpu` feature",
+            ));
+        }
+        targets.push(profile_csv.clone());
+    }
+    let _claimed = Outputs::claim(&named("--out", &targets))?;
+
+    // Open every backend on the first grid before any work, so a missing one is refused
+    // up front; the default takes the GPU only if it opens.
+    let mut backends: Vec<(BackendKind, Option<Opened>)> = Vec::new();
+    let requested = if args.backends.is_empty() {
+        vec![BackendKind::Cpu, BackendKind::Gpu]
+    } else {
+        args.backends.clone()
+    };
+    for which in requested {
+        if backends.iter().any(|(b, _)| *b == which) {
+            continue;
+        }
+        match open(which, &models[0]) {
+            Ok(o) => backends.push((which, Some(o))),
+            Err(e) if args.backends.is_empty() => {
+                lines(&format!("bench: {} skipped: {e}", flag(which)));
+            }
+            Err(e) => return Err(e),
+        }
+    }
+
+    let mut rows = Vec::new();
+    #[cfg(feature = "gpu")]
+    let mut profile_rows: Vec<ProfileRow> = Vec::new();
+    #[cfg_attr(not(feature = "gpu"), allow(unused_mut))]
+    let mut profiles: Vec<GridProfile> = Vec::new();
+    let mut measured: Vec<Measurement> = Vec::new();
+    let mut problems = Vec::new();
+    for (which, first) in &mut backends {
+        for (k, (model, &grid)) in models.iter().zip(&grids).enumerate() {
+            let opened = match if k == 0 { first.take() } else { None } {
+                Some(o) => o,
+                None => match open(*which, model) {
+                    Ok(o) => o,
+                    Err(e) => {
+                        lines(&format!("bench: skipped grid {grid}: {e}"));
+                        problems.push(format!("grid {grid}: {e}"));
+                        continue;
+                    }
+                },
+            };
+            let mut any = opened.backend;
+            let device = any.device_summary();
+            let options = BenchOptions {
+                repeats: args.repeats,
+                cg_iterations: args.cg_iterations,
+                pulloff: grid <= args.pulloff_max_grid,
+            };
+            let label = format!("{} {}×{}", flag(*which), model.nx, model.ny);
+            lines(&format!("bench: {label}: {}", opened.note));
+            let mut progress = |what: &str| lines(&format!("bench: {label}: timing {what}"));
+            let result = crate::with_backend!(&mut any, b =>
+                bench::measure(b, model, &options, &mut progress));
+            #[cfg(feature = "gpu")]
+            if let (true, AnyBackend::Gpu(g), Ok(_)) = (args.profile, &mut any, &result) {
+                lines(&format!("bench: {label}: profiling the kernels"));
+                match bench::profile_cg_iteration(g, model, args.cg_iterations.max(20)) {
+                    Ok(p) => {
+                        profile_rows.extend(profile::rows(grid, model.nx, model.ny, &p));
+                        profiles.push(GridProfile {
+                            label: label.clone(),
+                            kernels: p,
+                            floor_bytes: crate::backend::gpu::traffic::cg_iteration_floor(
+                                model.nx, model.ny, true,
+                            ) as f64,
+                        });
+                    }
+                    Err(e) => {
+                        lines(&format!("bench: {label}: no profile: {e}"));
+                        problems.push(format!("{label}: no profile: {e}"));
+                    }
+                }
+            }
+            match result {
+                Ok(m) => {
+                    if let Some(e) = m.pulloff.as_ref().and_then(|p| p.error.as_ref()) {
+                        lines(&format!("bench: {label}: the pull-off stopped early: {e}"));
+                        problems.push(format!("{label}: the pull-off stopped early: {e}"));
+                    }
+                    rows.push(BenchRow::new(&m, &device, grid));
+                    measured.push(m);
+                }
+                Err(e) => {
+                    lines(&format!("bench: {label}: failed: {e}"));
+                    problems.push(format!("{label}: {e}"));
+                }
+            }
+        }
+    }
+
+    write_csv(&csv, &rows).map_err(write_error("--out"))?;
+    #[cfg_attr(not(feature = "gpu"), allow(unused_mut))]
+    let mut files = vec![csv.clone(), svg.clone()];
+    #[cfg(feature = "gpu")]
+    if args.profile {
+        profile::write_csv(&profile_csv, &profile_rows).map_err(write_error("--out"))?;
+        files.push(profile_csv.clone());
+    }
+    let title = format!(
+        "jkrbem bench: R1/R2 = {}, medians of {} samples",
+        scene.ratio(),
+        args.repeats
+    );
+    timing_chart(&rows, &title)
+        .write_svg(&svg)
+        .map_err(write_error("--out"))?;
+    Ok(BenchDone {
+        rows,
+        measured,
+        profiles,
+        files,
+        problems,
+    })
+}

@@ -1,0 +1,221 @@
+//! Two identical elastic cylinders crossed at angles θ, each mapped to an ellipsoid (physics
+//! §1), one pull-off per angle; the adhesive force in the inputs' force unit beside
+//! Johnson–Greenwood's, as CSV and a chart.
+
+use super::batch::{batch_model, run_files, run_jobs, GridChoice, Job};
+use super::claim::{named, write_error, Outputs};
+use super::open::BackendRequest;
+use super::{input, RunError};
+use crate::analysis::CrossedCylinders;
+use crate::model::{Model, ModelOptions};
+use crate::output::line_chart::{LineChart, Style};
+use crate::theory;
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// A request for crossed cylinders.
+#[derive(Debug, Clone)]
+pub struct CrossedRequest {
+    /// Radius R of both cylinders (length).
+    pub radius: f64,
+    /// Crossing angles (degrees).
+    pub angles: Vec<f64>,
+    /// Young's modulus E of both (force/length²).
+    pub young: f64,
+    /// Poisson's ratio ν of both.
+    pub poisson: f64,
+    /// Work of adhesion Δγ (energy/area).
+    pub work_of_adhesion: f64,
+    /// How each angle's grid is chosen: a fixed Nx, or the accuracy wanted.
+    pub grid: GridChoice,
+    /// Load steps.
+    pub steps: usize,
+    /// Free margin around the first contact.
+    pub margin: f64,
+    /// The backend.
+    pub backend: BackendRequest,
+    /// Pull-offs at the same time.
+    pub jobs: usize,
+    /// Output folder.
+    pub out: PathBuf,
+}
+
+/// One angle's result (forces in the inputs' force unit, e.g. N).
+#[derive(Debug, Clone, Serialize)]
+pub struct CrossedRow {
+    /// θ (degrees).
+    pub angle_deg: f64,
+    /// R1/R2 of the equivalent ellipsoid.
+    pub ratio: f64,
+    /// The adhesive force (best estimate), in the inputs' force unit.
+    pub f_ad: Option<f64>,
+    /// Its uncertainty, same unit.
+    pub f_ad_uncertainty: Option<f64>,
+    /// Johnson–Greenwood's (JKR's at 90°), same unit.
+    pub jg_f_ad: Option<f64>,
+    /// |min F̄| (dimensionless).
+    pub f_ad_bar: Option<f64>,
+    /// JG's |min F̄|.
+    pub jg_f_ad_bar: Option<f64>,
+    /// Elements across the minor axis at the minimum.
+    pub n_d: Option<f64>,
+    /// Elements along x.
+    pub grid: usize,
+    /// Wall time (s).
+    pub wall_s: f64,
+    /// Whether the pull-off completed.
+    pub complete: bool,
+}
+
+/// What the request produced.
+pub struct CrossedDone {
+    /// One row per angle, largest angle first.
+    pub rows: Vec<CrossedRow>,
+    /// crossed.csv and crossed.svg.
+    pub files: [PathBuf; 2],
+    /// Why pull-offs failed, one line each.
+    pub failures: Vec<String>,
+    /// Every angle's warnings (coarse grid, missed target, CG retries), one line each.
+    pub warnings: Vec<String>,
+}
+
+/// JG's (JKR's at 90°) adhesive force |min F̄| at a ratio.
+fn jg_force_bar(ratio: f64) -> Option<f64> {
+    theory::reference_adhesive_force(ratio).ok()
+}
+
+impl CrossedRequest {
+    fn pair(&self, angle_deg: f64) -> CrossedCylinders {
+        CrossedCylinders {
+            radius: self.radius,
+            angle_deg,
+            young: self.young,
+            poisson: self.poisson,
+            work_of_adhesion: self.work_of_adhesion,
+        }
+    }
+}
+
+/// Run the request: check every angle, claim the outputs, run, write crossed.csv and the chart.
+/// `flags` maps the analysis layer's parameter names (`--angle`, `--young`, …) to the front
+/// end's flags in messages.
+pub fn crossed(
+    req: &CrossedRequest,
+    flags: &dyn Fn(&'static str) -> &'static str,
+    lines: &(dyn Fn(&str) + Sync),
+) -> Result<CrossedDone, RunError> {
+    req.backend.check()?;
+    let mut jobs = Vec::new();
+    let mut scales = Vec::new();
+    for &angle in &req.angles {
+        let c = req.pair(angle);
+        let scene = c.scene().map_err(|e| input(e.renamed(flags)))?;
+        let base = ModelOptions {
+            steps: req.steps,
+            margin: req.margin,
+            ..ModelOptions::default()
+        };
+        let (model, target) = batch_model(&scene, req.grid, &base).map_err(|e| {
+            input(format!(
+                "{} {}: {e}",
+                flags("--angle"),
+                crate::text::compact(angle)
+            ))
+        })?;
+        scales.push((
+            angle,
+            scene.ratio(),
+            c.force_scale().map_err(|e| input(e.renamed(flags)))?,
+        ));
+        let out = req.out.join(format!("theta{angle}-n{}.csv", model.nx));
+        jobs.push(Job { model, out, target });
+    }
+    let refs: Vec<&Model> = jobs.iter().map(|j| &j.model).collect();
+    crate::plan::check_memory(&refs, req.jobs, "--grid").map_err(input)?;
+    let files = [req.out.join("crossed.csv"), req.out.join("crossed.svg")];
+    let mut targets: Vec<PathBuf> = jobs.iter().flat_map(|j| run_files(&j.out)).collect();
+    targets.extend(files.iter().cloned());
+    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    let results = run_jobs(jobs, req.jobs, req.backend, lines);
+    let failures = results.iter().filter_map(|r| r.error.clone()).collect();
+    let warnings = results.iter().flat_map(|r| r.warnings()).collect();
+    let mut rows: Vec<CrossedRow> = scales
+        .iter()
+        .zip(&results)
+        .map(|(&(angle, ratio, scale), r)| {
+            let grid = r.grid.0;
+            let s = r.summary.as_ref();
+            let f_ad_bar = s.and_then(|s| s.f_ad_bar);
+            let jg = jg_force_bar(ratio);
+            CrossedRow {
+                angle_deg: angle,
+                ratio,
+                f_ad: f_ad_bar.map(|f| f * scale),
+                f_ad_uncertainty: s.and_then(|s| s.f_ad_bar_uncertainty).map(|u| u * scale),
+                jg_f_ad: jg.map(|f| f * scale),
+                f_ad_bar,
+                jg_f_ad_bar: jg,
+                n_d: s.and_then(|s| s.runs.last()).and_then(|r| r.n_d),
+                grid,
+                wall_s: s.map_or(0.0, |s| s.wall_s),
+                complete: s.is_some_and(|s| s.complete),
+            }
+        })
+        .collect();
+    rows.sort_by(|a, b| b.angle_deg.total_cmp(&a.angle_deg));
+    crate::output::file::write_csv(&files[0], None, &rows).map_err(write_error("--out"))?;
+    chart(req, &rows)
+        .write_svg(&files[1])
+        .map_err(write_error("--out"))?;
+    Ok(CrossedDone {
+        rows,
+        files,
+        failures,
+        warnings,
+    })
+}
+
+/// Adhesive force against crossing angle: the runs (with their uncertainty) beside JG over
+/// (θ_min, 90°]. The title gives the inputs in SI units (the documented use: m, Pa, J/m², so
+/// forces in N); other consistent units work the same, as the y label says.
+fn chart(req: &CrossedRequest, rows: &[CrossedRow]) -> LineChart {
+    use crate::text::compact;
+    let mut chart = LineChart::new(
+        &format!(
+            "Crossed cylinders: R = {} m, E = {} Pa, ν = {}, Δγ = {} J/m²",
+            compact(req.radius),
+            compact(req.young),
+            compact(req.poisson),
+            compact(req.work_of_adhesion)
+        ),
+        "crossing angle θ (degrees)",
+        "adhesive force |F_min| (N; in the unit of E·R² for non-SI inputs)",
+    );
+    let lo = rows.iter().map(|r| r.angle_deg).fold(90.0, f64::min);
+    let jg: Vec<(f64, f64)> = (0..=200)
+        .map(|i| lo + (90.0 - lo) * i as f64 / 200.0)
+        .filter_map(|a| {
+            let c = req.pair(a);
+            let ratio = c.scene().ok()?.ratio();
+            Some((a, jg_force_bar(ratio)? * c.force_scale().ok()?))
+        })
+        .collect();
+    chart.push("Johnson–Greenwood", jg, 1, Style::Line);
+    let (sim, errors): (Vec<(f64, f64)>, Vec<f64>) = rows
+        .iter()
+        .filter_map(|r| Some(((r.angle_deg, r.f_ad?), r.f_ad_uncertainty.unwrap_or(0.0))))
+        .unzip();
+    chart.push_with_errors(
+        &format!(
+            "jkrbem at Δx → 0, ± stated uncertainty (Nx = {})",
+            rows.iter()
+                .map(|r| r.grid.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        sim,
+        errors,
+        0,
+    );
+    chart
+}

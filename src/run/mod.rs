@@ -1,0 +1,73 @@
+//! The session layer: what a user asks for (one pull-off, an adhesive force to an accuracy, a
+//! sweep over R1/R2, crossed cylinders, the whole study, timings), planned, run on backends and
+//! handed to `output` to write. Each front end (the `jkrbem` command line, a test, another
+//! program) only builds a request, calls one function here and shows what comes back.
+//!
+//! Errors say whether the request was refused before any work ([`RunError::Input`]) or the
+//! work failed ([`RunError::Failed`]), and name the flag or value to change.
+
+pub mod accuracy;
+pub mod batch;
+pub mod bench;
+pub mod claim;
+pub mod crossed;
+pub mod open;
+pub mod pulloff;
+pub mod reference;
+pub mod simulate;
+pub mod study;
+pub mod sweep;
+
+use crate::model::Model;
+use crate::solver::State;
+use std::fmt;
+
+/// Why a request did not produce its results.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum RunError {
+    /// The request was refused before any work (bad input, an output that cannot be written).
+    Input(String),
+    /// The work started and failed.
+    Failed(String),
+}
+
+impl fmt::Display for RunError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RunError::Input(m) | RunError::Failed(m) => f.write_str(m),
+        }
+    }
+}
+
+impl std::error::Error for RunError {}
+
+/// A refusal, from any layer's error.
+pub fn input(e: impl fmt::Display) -> RunError {
+    RunError::Input(e.to_string())
+}
+
+/// A failure, from any layer's error.
+pub fn failed(e: impl fmt::Display) -> RunError {
+    RunError::Failed(e.to_string())
+}
+
+/// What watches a run as it goes (a progress line for a person; nothing for a script or a
+/// test). Every method does nothing by default.
+pub trait Watch {
+    /// A line about what starts now (the backend opened, the grid).
+    fn note(&mut self, _line: &str) {}
+    /// A pull-off of `model` begins.
+    fn pulloff_started(&mut self, _model: &Model) {}
+    /// The pull-off of `model` recorded `state`.
+    fn state(&mut self, _model: &Model, _state: &State) {}
+    /// The pull-off ended.
+    fn pulloff_ended(&mut self) {}
+    /// A warning about a result.
+    fn warning(&mut self, _line: &str) {}
+}
+
+/// A [`Watch`] that shows nothing.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct Quiet;
+
+impl Watch for Quiet {}

@@ -1,0 +1,85 @@
+//! Opening the backend a request asks for, for one model: its kind, its convolution, the
+//! check that the model's scales fit the backend's arithmetic, and the backend's own interval
+//! between CG residual reads.
+
+use super::{failed, input, RunError};
+use crate::backend::cpu::CpuBackend;
+use crate::backend::select::{self, AnyBackend, BackendKind};
+use crate::backend::BackendError;
+use crate::model::Model;
+
+/// How the displacements u = K ∗ p are convolved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum Convolution {
+    /// Zero-padded to 2Nx × 2Ny: the exact non-periodic sum (physics §4).
+    #[default]
+    Padded,
+    /// Unpadded Nx × Ny: the contact feels its periodic images. Wrong on purpose, to show what
+    /// padding removes; CPU only.
+    Periodic,
+}
+
+/// Which backend a request runs on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct BackendRequest {
+    /// cpu, gpu or auto.
+    pub kind: BackendKind,
+    /// Padded (exact) or periodic (only to show its error).
+    pub convolution: Convolution,
+    /// CG residual reads every this many iterations; `None`: the backend's own interval.
+    pub check_every: Option<usize>,
+}
+
+impl BackendRequest {
+    /// Refuse a combination no backend offers (checked before any output is claimed).
+    pub fn check(&self) -> Result<(), RunError> {
+        if self.convolution == Convolution::Periodic && self.kind == BackendKind::Gpu {
+            return Err(input(
+                "--convolution periodic runs on the CPU backend only: use --backend cpu",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// A backend opened for one model, with a line saying what was chosen and why.
+pub struct OpenedFor {
+    /// The backend.
+    pub backend: AnyBackend,
+    /// E.g. "gpu (f32, wgpu) on NVIDIA H100 …" or "cpu (f64, rustfft) (auto: …)".
+    pub note: String,
+}
+
+/// A backend error as the request's error: a refused grid or a missing device is bad input,
+/// a device that failed is a failure.
+pub fn backend_error(e: BackendError) -> RunError {
+    match e {
+        BackendError::GridTooLarge { .. } | BackendError::Unavailable(_) => input(e),
+        BackendError::DeviceLost { .. } => failed(e),
+    }
+}
+
+/// Open `request`'s backend for `model`, refuse a model whose scales its arithmetic cannot
+/// hold, and set the model's CG check interval (the request's, else the backend's own).
+pub fn open_for(request: &BackendRequest, model: &mut Model) -> Result<OpenedFor, RunError> {
+    request.check()?;
+    let setup = model.grid_setup();
+    let (backend, note) = match request.convolution {
+        Convolution::Padded => {
+            let o = select::open(request.kind, &setup).map_err(backend_error)?;
+            (o.backend, o.note)
+        }
+        Convolution::Periodic => (
+            AnyBackend::Cpu(Box::new(CpuBackend::new_periodic(&setup))),
+            "cpu (f64, rustfft) with a PERIODIC convolution (no padding: wrong on purpose)".into(),
+        ),
+    };
+    // Refuse a model whose scales the backend's arithmetic (the GPU's f32) cannot hold.
+    if backend.precision() == "f32" {
+        model
+            .check_scales("f32", crate::model::F32_SAFE_RANGE)
+            .map_err(input)?;
+    }
+    model.cg.check_every = request.check_every.unwrap_or(backend.check_every());
+    Ok(OpenedFor { backend, note })
+}

@@ -1,0 +1,83 @@
+//! One pull-off of one model on an opened backend, its states streamed to a file under this
+//! run's partial name until it completes.
+
+use super::claim::write_error;
+use super::{failed, RunError, Watch};
+use crate::analysis::capture::ContactCapture;
+use crate::analysis::report::RunReport;
+use crate::backend::Backend;
+use crate::model::Model;
+use crate::output::states_csv::StateWriter;
+use crate::solver::{self, Outcome};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// A finished (or stopped) pull-off: its report, its outcome and where its states are.
+pub struct Pulloff {
+    /// What it found, as numbers.
+    pub report: RunReport,
+    /// The states and how the run ended.
+    pub outcome: Outcome,
+    /// The states CSV: `out` if the run completed, else its partial name.
+    pub states: PathBuf,
+}
+
+/// Run `model`'s pull-off on `backend`, streaming its states to `out` (under this run's
+/// partial name `<stem>.incomplete-<pid>.csv` until the run completes; `flag` names `out` in
+/// messages). `watch` sees every state; `capture`, if given, sees every state with its
+/// contact mask. If the states cannot be written, the run stops and that is the error.
+pub fn pulloff_to_file<B: Backend>(
+    backend: &mut B,
+    model: &Model,
+    out: &Path,
+    flag: &str,
+    watch: &mut dyn Watch,
+    mut capture: Option<&mut ContactCapture>,
+) -> Result<Pulloff, RunError> {
+    let mut writer = StateWriter::create(out).map_err(write_error(flag))?;
+    let mut write_error_at = None;
+    watch.pulloff_started(model);
+    let start = Instant::now();
+    let outcome = solver::run_until(backend, model, &mut |s, mask| {
+        if let Some(c) = capture.as_deref_mut() {
+            c.observe(s, mask);
+        }
+        watch.state(model, s);
+        if let Err(e) = writer.write(s) {
+            write_error_at.get_or_insert(e);
+            return false;
+        }
+        true
+    });
+    let wall = start.elapsed().as_secs_f64();
+    watch.pulloff_ended();
+    for w in &outcome.warnings {
+        watch.warning(w);
+    }
+    if let Some(e) = write_error_at {
+        let partial = writer.partial_path().display().to_string();
+        let _ = writer.finish(false);
+        return Err(failed(format!(
+            "{}; the run stopped after {} states, and what could be written is in {partial} \
+             (incomplete); nothing was written to {}",
+            e.with_flag(flag),
+            outcome.states.len(),
+            out.display()
+        )));
+    }
+    let path = writer
+        .finish(outcome.complete())
+        .map_err(write_error(flag))?;
+    let report = RunReport::new(
+        model,
+        &outcome,
+        (backend.name(), backend.precision()),
+        wall,
+        &path,
+    );
+    Ok(Pulloff {
+        report,
+        outcome,
+        states: path,
+    })
+}

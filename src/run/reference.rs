@@ -1,0 +1,260 @@
+//! The reference table of converged adhesive forces: per R1/R2, a ladder of grids (each run
+//! with the apex on an element corner, re-gridded, stopped after the force minimum), refined
+//! until the Δx → 0 limit is known within the target from the runs themselves (the law's k only
+//! a weak prior, [`crate::analysis::estimate::reference`]). The convergence law that
+//! `--accuracy` and single-grid estimates use is fitted to this table.
+
+use super::claim::{named, write_error, Outputs};
+use super::open::BackendRequest;
+use super::simulate::{simulate, Mode, SimulateRequest};
+use super::{failed, input, RunError, Watch};
+use crate::analysis::estimate;
+use crate::analysis::report::RunReport;
+use crate::model::{Measure, ModelOptions, Stepping, MAX_GRID};
+use crate::scene::Scene;
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+/// The ratios of the reference table.
+pub const REFERENCE_RATIOS: [f64; 12] = [
+    1.0, 1.5, 2.0, 3.0, 5.0, 7.0, 10.0, 15.0, 20.0, 25.0, 35.0, 50.0,
+];
+
+/// Grids of a ladder at the least (the fit's model term needs three).
+pub const MIN_LEVELS: usize = 3;
+
+/// A request for reference values.
+#[derive(Debug, Clone)]
+pub struct ReferenceRequest {
+    /// The ratios R1/R2.
+    pub ratios: Vec<f64>,
+    /// The relative uncertainty wanted (e.g. 0.003).
+    pub target: f64,
+    /// Nx of the finest grid a ladder may reach.
+    pub max_grid: usize,
+    /// The backend.
+    pub backend: BackendRequest,
+    /// The table (CSV); each ratio's runs go beside it in `<stem>-runs/`.
+    pub out: PathBuf,
+    /// The command line that produced it, written into every row.
+    pub command: String,
+}
+
+/// One row of the reference table (dimensionless, physics §2 normalisation).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ReferenceRow {
+    /// R1/R2.
+    pub ratio: f64,
+    /// |min F̄| at Δx → 0.
+    pub f_ad_bar: Option<f64>,
+    /// Its stated half-width (absolute).
+    pub f_ad_bar_uncertainty: Option<f64>,
+    /// c̄ at the force minimum at Δx → 0.
+    pub c_bar_at_min: Option<f64>,
+    /// Its stated half-width.
+    pub c_bar_at_min_uncertainty: Option<f64>,
+    /// d̄ at the force minimum at Δx → 0.
+    pub d_bar_at_min: Option<f64>,
+    /// Its stated half-width.
+    pub d_bar_at_min_uncertainty: Option<f64>,
+    /// The fitted first-order coefficient k of |min F̄| ≈ F0·(1 + k/n_d).
+    pub k: Option<f64>,
+    /// Its stated half-width (two standard deviations).
+    #[serde(default)]
+    pub k_uncertainty: Option<f64>,
+    /// Whether the uncertainty reached the target.
+    pub target_met: bool,
+    /// The grids Nx of the ladder, coarse to fine, `;`-separated.
+    pub grids: String,
+    /// n_d of the finest run.
+    pub n_d: Option<f64>,
+    /// CG iterations over all runs.
+    pub cg_iterations: usize,
+    /// Wall time over all runs (s).
+    pub wall_s: f64,
+    /// The command that produced the table.
+    pub command: String,
+}
+
+/// What the request produced.
+pub struct ReferenceDone {
+    /// One row per ratio, in the order asked.
+    pub rows: Vec<ReferenceRow>,
+    /// The table.
+    pub path: PathBuf,
+}
+
+/// The first grid of a ratio's ladder: the one a 5 % plan takes (n_d about 20–40).
+fn first_grid(scene: &Scene, base: &ModelOptions) -> Result<usize, RunError> {
+    let p = crate::plan::for_accuracy_one_grid(scene, 0.05, base).map_err(input)?;
+    Ok(p.grids[0])
+}
+
+/// One ratio's ladder: runs on doubling grids until the reference estimate states `target` (with
+/// at least [`MIN_LEVELS`] grids), `max_grid` or the memory is reached.
+fn ladder(
+    req: &ReferenceRequest,
+    ratio: f64,
+    watch: &mut dyn Watch,
+) -> Result<(ReferenceRow, Vec<RunReport>), RunError> {
+    let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
+    let base = ModelOptions {
+        steps: crate::plan::PLAN_STEPS,
+        stepping: Stepping::Adaptive,
+        measure: Measure::AdhesiveForce,
+        regrid: true,
+        ..ModelOptions::default()
+    };
+    let dir = runs_dir(&req.out);
+    let mut runs: Vec<RunReport> = Vec::new();
+    let mut nx = first_grid(&scene, &base)?;
+    let mut est = None;
+    while nx <= req.max_grid.min(MAX_GRID) {
+        let summary = dir.join(format!("r{ratio}-n{nx}.json"));
+        if let Some(run) = finished_run(&summary) {
+            watch.note(&format!(
+                "R1/R2 = {ratio}, grid {nx}: reusing {}",
+                summary.display()
+            ));
+            runs.push(run);
+        } else {
+            let one = SimulateRequest {
+                scene,
+                options: ModelOptions { nx, ..base.clone() },
+                backend: req.backend,
+                mode: Mode::Single,
+                out: Some(dir.join(format!("r{ratio}-n{nx}.csv"))),
+                summary: Some(summary.clone()),
+            };
+            let done = match simulate(&one, watch) {
+                Ok(d) => d,
+                // A grid that no longer fits in memory ends the ladder.
+                Err(RunError::Input(e)) if !runs.is_empty() && e.contains("available") => {
+                    watch.warning(&format!(
+                        "R1/R2 = {ratio}: the ladder stops at grid {nx}: {e}"
+                    ));
+                    break;
+                }
+                Err(e) => return Err(e),
+            };
+            if let Some(f) = done.failure {
+                return Err(failed(format!("R1/R2 = {ratio}, grid {nx}: {f}")));
+            }
+            runs.extend(done.summary.runs);
+        }
+        if runs.len() >= MIN_LEVELS {
+            let e = estimate::reference(&runs).map_err(failed)?;
+            let met = e.f_ad_bar.relative() <= req.target;
+            watch.note(&format!(
+                "R1/R2 = {ratio}: grids up to {nx}: {:.5} ± {:.5} (± {:.3} %)",
+                e.f_ad_bar.value,
+                e.f_ad_bar.uncertainty,
+                100.0 * e.f_ad_bar.relative()
+            ));
+            est = Some(e);
+            if met {
+                break;
+            }
+        }
+        nx *= 2;
+    }
+    let e = est.ok_or_else(|| {
+        failed(format!(
+            "R1/R2 = {ratio}: fewer than {MIN_LEVELS} grids fit below --max-grid {}",
+            req.max_grid
+        ))
+    })?;
+    let finest = runs.last().expect("a ladder has runs");
+    let row = ReferenceRow {
+        ratio,
+        f_ad_bar: Some(e.f_ad_bar.value),
+        f_ad_bar_uncertainty: Some(e.f_ad_bar.uncertainty),
+        c_bar_at_min: e.c_bar_at_min.map(|v| v.value),
+        c_bar_at_min_uncertainty: e.c_bar_at_min.map(|v| v.uncertainty),
+        d_bar_at_min: e.d_bar_at_min.map(|v| v.value),
+        d_bar_at_min_uncertainty: e.d_bar_at_min.map(|v| v.uncertainty),
+        k: Some(e.k.value),
+        k_uncertainty: Some(e.k.uncertainty),
+        target_met: e.f_ad_bar.relative() <= req.target,
+        grids: runs
+            .iter()
+            .map(|r| r.nx.to_string())
+            .collect::<Vec<_>>()
+            .join(";"),
+        n_d: finest.n_d,
+        cg_iterations: runs.iter().map(|r| r.cg_iterations).sum(),
+        wall_s: runs.iter().map(|r| r.wall_s).sum(),
+        command: req.command.clone(),
+    };
+    Ok((row, runs))
+}
+
+/// The run of a summary an earlier job wrote, if it finished with a force minimum (so that an
+/// interrupted job resumes where it stopped).
+fn finished_run(summary: &std::path::Path) -> Option<RunReport> {
+    let text = std::fs::read_to_string(summary).ok()?;
+    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
+    let run: RunReport = serde_json::from_value(v.get("runs")?.get(0)?.clone()).ok()?;
+    (run.complete && run.min_reached && run.f_ad_bar.is_some()).then_some(run)
+}
+
+/// The folder of the runs beside the table: `<stem>-runs/`.
+pub fn runs_dir(table: &std::path::Path) -> PathBuf {
+    let stem = table
+        .file_stem()
+        .map_or("reference".into(), |s| s.to_string_lossy().into_owned());
+    table.with_file_name(format!("{stem}-runs"))
+}
+
+/// The rows of an existing table at `path` (none if there is no file). A file that is not a
+/// reference table is refused rather than replaced.
+fn existing_rows(path: &std::path::Path) -> Result<Vec<ReferenceRow>, RunError> {
+    if !path.exists() {
+        return Ok(Vec::new());
+    }
+    let mut r = csv::Reader::from_path(path).map_err(|e| {
+        input(format!(
+            "--out {}: cannot read the existing table: {e}",
+            path.display()
+        ))
+    })?;
+    r.deserialize()
+        .collect::<Result<Vec<ReferenceRow>, _>>()
+        .map_err(|e| {
+            input(format!(
+                "--out {} exists and is not a reference table ({e}): give another name",
+                path.display()
+            ))
+        })
+}
+
+/// Compute the table: every ratio's ladder in turn. The rows of an existing table for other
+/// ratios are kept, so a table grows over several jobs; it is rewritten (whole, atomically,
+/// sorted by ratio) after each ratio so that a long job keeps what it has finished.
+pub fn reference(req: &ReferenceRequest, watch: &mut dyn Watch) -> Result<ReferenceDone, RunError> {
+    if !(req.target > 0.0 && req.target < 1.0) {
+        return Err(input("--target: give a percentage in (0, 100), e.g. 0.3%"));
+    }
+    if req.ratios.is_empty() || req.ratios.iter().any(|r| !(1.0..=1000.0).contains(r)) {
+        return Err(input("--ratios: give ratios R1/R2 in [1, 1000]"));
+    }
+    req.backend.check()?;
+    let kept = existing_rows(&req.out)?;
+    let _claimed = Outputs::claim(&named("--out", [&req.out]))?;
+    let mut table: Vec<ReferenceRow> = kept
+        .into_iter()
+        .filter(|r| !req.ratios.contains(&r.ratio))
+        .collect();
+    let mut rows = Vec::new();
+    for &ratio in &req.ratios {
+        let (row, _) = ladder(req, ratio, watch)?;
+        rows.push(row.clone());
+        table.push(row);
+        table.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
+        crate::output::file::write_csv(&req.out, None, &table).map_err(write_error("--out"))?;
+    }
+    Ok(ReferenceDone {
+        rows,
+        path: req.out.clone(),
+    })
+}

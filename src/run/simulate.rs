@@ -1,0 +1,266 @@
+//! One scene's pull-off: on one grid, on several grids extrapolated to Δx → 0, or on the grids
+//! a requested accuracy needs. Every run's states go to a CSV; the summary (one shape for all
+//! three) is returned, and written as JSON when asked.
+
+use super::claim::{write_error, Outputs};
+use super::open::{open_for, BackendRequest};
+use super::pulloff::{pulloff_to_file, Pulloff};
+use super::{failed, input, RunError, Watch};
+use crate::analysis::estimate::{self, AdhesiveResult};
+use crate::model::{Measure, Model, ModelOptions, Stepping};
+use crate::output::summary::Summary;
+use crate::plan;
+use crate::scene::Scene;
+use std::path::{Path, PathBuf};
+
+/// What to do with the scene.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Mode {
+    /// One run on the options' grid, its estimate corrected by the convergence law.
+    Single,
+    /// One run per grid Nx (2 to 8, increasing), extrapolated to Δx → 0.
+    Extrapolate(Vec<usize>),
+    /// The grids, domain, steps and measure the convergence law says this relative accuracy
+    /// needs (e.g. 0.02 for 2 %).
+    Accuracy(f64),
+}
+
+/// A request to simulate one scene.
+#[derive(Debug, Clone)]
+pub struct SimulateRequest {
+    /// The scene.
+    pub scene: Scene,
+    /// The user's model options (the grid of a single run).
+    pub options: ModelOptions,
+    /// The backend.
+    pub backend: BackendRequest,
+    /// One grid, several, or an accuracy.
+    pub mode: Mode,
+    /// The states CSV (one grid), or the stem of the per-grid CSVs (`<stem>-n<Nx>.csv`);
+    /// `None`: under `jkrbem-out/`.
+    pub out: Option<PathBuf>,
+    /// Also write the summary JSON here.
+    pub summary: Option<PathBuf>,
+}
+
+/// What a simulation produced.
+pub struct Simulated {
+    /// The summary (also written as JSON where asked).
+    pub summary: Summary,
+    /// What the accuracy plan chose, in words (with [`Mode::Accuracy`]).
+    pub plan: Option<String>,
+    /// The states CSV of every run.
+    pub states: Vec<PathBuf>,
+    /// Why a run stopped early, if one did (its states and the summary were written).
+    pub failure: Option<String>,
+}
+
+/// The default states path of a single run.
+fn default_out(model: &Model) -> PathBuf {
+    let angle = if model.mesh.is_aligned() {
+        String::new()
+    } else {
+        format!("-a{}", model.mesh.degrees)
+    };
+    PathBuf::from(format!(
+        "jkrbem-out/simulate-r{}-n{}{angle}.csv",
+        model.scene.ratio(),
+        model.nx
+    ))
+}
+
+/// The states file of grid `nx` of an extrapolation with stem `stem`.
+fn grid_out(stem: &Path, nx: usize) -> PathBuf {
+    let name = stem
+        .file_stem()
+        .map_or("states".into(), |s| s.to_string_lossy().into_owned());
+    stem.with_file_name(format!("{name}-n{nx}.csv"))
+}
+
+/// Run the request: check every input, claim the outputs, run, estimate, write the summary.
+pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulated, RunError> {
+    req.backend.check()?;
+    let Planned {
+        models,
+        target,
+        note: plan_note,
+    } = plan_models(req)?;
+    let refs: Vec<&Model> = models.iter().collect();
+    let flag = match req.mode {
+        Mode::Single => "--grid",
+        _ => "--extrapolate-grids",
+    };
+    plan::check_memory(&refs, 1, flag).map_err(input)?;
+    // One grid (asked for, or the one an accuracy plan chose): --out is the file itself.
+    // Several: --out is the stem of one file per grid.
+    let one_grid = models.len() == 1 && !matches!(req.mode, Mode::Extrapolate(_));
+    let outs: Vec<PathBuf> = match (one_grid, &req.out) {
+        (true, Some(out)) => vec![out.clone()],
+        (true, None) => vec![default_out(&models[0])],
+        (false, stem) => {
+            let name = match req.mode {
+                Mode::Accuracy(_) => "simulate",
+                _ => "extrapolate",
+            };
+            let stem = stem.clone().unwrap_or_else(|| {
+                PathBuf::from(format!("jkrbem-out/{name}-r{}.csv", req.scene.ratio()))
+            });
+            if stem.is_dir() || stem.file_stem().is_none() {
+                return Err(input(format!(
+                    "--out {}: with several grids --out is the stem of one states file per \
+                     grid (e.g. runs/r5.csv gives runs/r5-n128.csv, …); give a file name, not a \
+                     folder",
+                    stem.display()
+                )));
+            }
+            models.iter().map(|m| grid_out(&stem, m.nx)).collect()
+        }
+    };
+    let mut targets: Vec<(PathBuf, String)> =
+        outs.iter().map(|p| (p.clone(), "--out".into())).collect();
+    if let Some(p) = &req.summary {
+        targets.push((p.clone(), "--summary".into()));
+    }
+    Outputs::check(&targets)?;
+    let _claimed = Outputs::claim(&targets)?;
+    let mut runs = Vec::new();
+    let mut failure = None;
+    for (mut model, out) in models.into_iter().zip(&outs) {
+        let opened = open_for(&req.backend, &mut model)?;
+        watch.note(&format!(
+            "R1/R2 = {}, grid {}×{}, Δx = {:.4e}{}, backend {}",
+            req.scene.ratio(),
+            model.nx,
+            model.ny,
+            model.dx,
+            angle_note(&model),
+            opened.note
+        ));
+        let mut any = opened.backend;
+        let run: Pulloff = crate::with_backend!(
+            &mut any,
+            backend => pulloff_to_file(backend, &model, out, "--out", watch, None)
+        )?;
+        if let Some(e) = &run.outcome.error {
+            failure = Some(format!(
+                "the {} run stopped early: {e}\n  the {} states computed so far are in {} \
+                 (incomplete)",
+                run.report.grid,
+                run.outcome.states.len(),
+                run.states.display()
+            ));
+        }
+        let reached = run.report.min_reached;
+        runs.push(run);
+        if failure.is_some() || (!reached && !matches!(req.mode, Mode::Single)) {
+            break;
+        }
+    }
+    let states: Vec<PathBuf> = runs.iter().map(|r| r.states.clone()).collect();
+    let reports: Vec<_> = runs.into_iter().map(|r| r.report).collect();
+    // One run (one grid, or the one grid an accuracy plan chose): its single-grid estimate.
+    let one_grid = !matches!(req.mode, Mode::Extrapolate(_));
+    let result = if reports.len() == 1 && one_grid {
+        AdhesiveResult::single(reports.into_iter().next().expect("one run"), target)
+    } else {
+        let est = estimate::from_runs(&reports);
+        if let (Err(why), None) = (&est, &failure) {
+            failure = Some(format!("no extrapolation: {why}"));
+        }
+        AdhesiveResult::assemble(req.scene.ratio(), est.ok(), target, reports)
+    };
+    let summary = Summary::new(&result);
+    if let Some(p) = &req.summary {
+        summary.write_json(p).map_err(write_error("--summary"))?;
+    }
+    Ok(Simulated {
+        summary,
+        plan: plan_note,
+        states,
+        failure,
+    })
+}
+
+/// What a request runs: the models (every input checked), the accuracy target (if any) and,
+/// for an accuracy, what the plan chose.
+struct Planned {
+    models: Vec<Model>,
+    target: Option<f64>,
+    note: Option<String>,
+}
+
+/// The models the request runs.
+fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
+    let build = |options: &ModelOptions, flag: &str| {
+        Model::build(&req.scene, options).map_err(|e| match flag {
+            "" => input(e),
+            f => input(format!("{f} {}: {e}", options.nx)),
+        })
+    };
+    // One model per grid Nx (Ny fitted to the contact), a refusal naming `flag` and the grid.
+    let per_grid = |grids: &[usize], options: &ModelOptions, flag: &str| {
+        grids
+            .iter()
+            .map(|&nx| {
+                let options = ModelOptions {
+                    nx,
+                    ny: None,
+                    ..options.clone()
+                };
+                build(&options, flag)
+            })
+            .collect::<Result<Vec<_>, _>>()
+    };
+    match &req.mode {
+        Mode::Single => Ok(Planned {
+            models: vec![build(&req.options, "")?],
+            target: None,
+            note: None,
+        }),
+        Mode::Extrapolate(grids) => {
+            if !(2..=8).contains(&grids.len()) || grids.windows(2).any(|w| w[1] <= w[0]) {
+                return Err(input(
+                    "--extrapolate-grids: give 2 to 8 increasing grids, e.g. 64,128,256",
+                ));
+            }
+            let models = per_grid(grids, &req.options, "--extrapolate-grids")?;
+            Ok(Planned {
+                models,
+                target: None,
+                note: None,
+            })
+        }
+        Mode::Accuracy(target) => {
+            let p = plan::for_accuracy(&req.scene, *target, &req.options).map_err(input)?;
+            let note = p.describe(req.scene.ratio());
+            let options = ModelOptions {
+                stepping: Stepping::Adaptive,
+                measure: Measure::AdhesiveForce,
+                ..p.options.clone()
+            };
+            let models = per_grid(&p.grids, &options, "--accuracy")?;
+            Ok(Planned {
+                models,
+                target: Some(*target),
+                note: Some(note),
+            })
+        }
+    }
+}
+
+/// ", mesh turned by θ°" for a rotated mesh, else nothing.
+pub fn angle_note(model: &Model) -> String {
+    if model.mesh.is_aligned() {
+        String::new()
+    } else {
+        format!(", mesh turned by {}°", model.mesh.degrees)
+    }
+}
+
+/// A run that stopped early as the request's failure (after its outputs were written).
+pub fn failure_error(failure: Option<String>) -> Result<(), RunError> {
+    match failure {
+        None => Ok(()),
+        Some(f) => Err(failed(f)),
+    }
+}

@@ -1,0 +1,495 @@
+//! The whole study of physics §8 from one request: the sweep over R1/R2, the branch fits and
+//! their laws, the crossed cylinders, every chart as SVG and an index.html that shows them.
+
+use super::batch::{contours_path, run_files, run_jobs, Job, JobResult};
+use super::claim::{named, write_error, Outputs};
+use super::crossed::{crossed, CrossedRequest};
+use super::open::BackendRequest;
+use super::sweep::states_path;
+use super::{failed, input, RunError};
+use crate::analysis::capture::ContourRow;
+use crate::analysis::study_fits::{branch_fits, coefficient_laws, BranchFits, RatioRun};
+use crate::model::{Model, ModelOptions};
+use crate::output::line_chart::LineChart;
+use crate::output::states_csv::read_state_rows;
+use crate::output::study_charts::{
+    axis_ratio_chart, branch_chart, coefficients_chart, contour_chart, BranchLaw,
+};
+use crate::output::sweep_charts::{force_vs_ratio_chart, pulloff_curves_chart};
+use crate::output::sweep_csv::{self, SweepRow};
+use crate::scene::Scene;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The ratios of the study and the grid Nx of each, quick (2 CPU cores, minutes) and full
+/// (the study's resolution, for a GPU). Slender contacts need more elements along x for the
+/// same count across the minor axis.
+const RATIOS: [f64; 6] = [1.0, 2.0, 5.0, 10.0, 25.0, 50.0];
+const QUICK_GRIDS: [usize; 6] = [64, 64, 128, 128, 256, 256];
+const FULL_GRIDS: [usize; 6] = [512, 512, 1024, 1024, 2048, 2048];
+
+/// A request for the whole study.
+#[derive(Debug, Clone)]
+pub struct StudyRequest {
+    /// Output folder: sweep/, crossed/, the charts and index.html.
+    pub out: PathBuf,
+    /// Coarse grids (Nx 64 … 256, minutes on 2 CPU cores) instead of the study's (512 … 2048).
+    pub quick: bool,
+    /// The backend.
+    pub backend: BackendRequest,
+    /// Pull-offs at the same time.
+    pub jobs: usize,
+}
+
+/// What the study produced.
+pub struct StudyDone {
+    /// index.html.
+    pub index: PathBuf,
+    /// Charts written.
+    pub charts: usize,
+    /// Wall time of the whole study (s).
+    pub wall_s: f64,
+    /// The parts that failed, one line each (the report shows the rest).
+    pub failures: Vec<String>,
+}
+
+/// The files `reproduce` writes in its --out folder itself (beside sweep/ and crossed/).
+const FILES: [&str; 14] = [
+    "fits.csv",
+    "coefficient_laws.csv",
+    "pulloff_curves.svg",
+    "axis_ratio.svg",
+    "d_of_c.svg",
+    "f_of_c.svg",
+    "f_of_d.svg",
+    "coefficients.svg",
+    "force_vs_ratio.svg",
+    "contours_r1.svg",
+    "contours_r5.svg",
+    "contours_r25.svg",
+    "crossed.svg",
+    "index.html",
+];
+
+/// One chart of the report: file name, caption.
+struct Figure {
+    file: String,
+    caption: String,
+}
+
+/// Run the study: the sweep, the fits, the crossed cylinders, the charts and the index.
+/// `lines` receives progress notes.
+pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<StudyDone, RunError> {
+    let start = Instant::now();
+    let grids = if args.quick { QUICK_GRIDS } else { FULL_GRIDS };
+    let sweep_dir = args.out.join("sweep");
+    let mut work = Vec::new();
+    for (&ratio, &grid) in RATIOS.iter().zip(&grids) {
+        let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
+        let model = Model::build(
+            &scene,
+            &ModelOptions {
+                nx: grid,
+                ..ModelOptions::default()
+            },
+        )
+        .map_err(input)?;
+        let out = states_path(&sweep_dir, ratio, grid);
+        work.push(Job {
+            model,
+            out,
+            target: None,
+        });
+    }
+    let refs: Vec<&Model> = work.iter().map(|j| &j.model).collect();
+    crate::plan::check_memory(&refs, args.jobs, "--quick").map_err(|e| {
+        let why = match e {
+            crate::model::ModelError::Invalid { expected, .. } => expected,
+            other => other.to_string(),
+        };
+        input(format!(
+            "the study's grids do not fit in this machine's memory{}: {why}",
+            if args.quick {
+                ""
+            } else {
+                " (use --quick for grids of 64 to 256, or a machine with more memory)"
+            }
+        ))
+    })?;
+    // The files of this command (crossed/ claims its own when it runs).
+    let mut targets: Vec<PathBuf> = work.iter().flat_map(|j| run_files(&j.out)).collect();
+    targets.push(sweep_csv::sweep_csv_path(&sweep_dir));
+    for file in FILES {
+        targets.push(args.out.join(file));
+    }
+    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    lines(&format!(
+        "reproduce: {} ratios on grids {:?}{}",
+        RATIOS.len(),
+        grids,
+        if args.quick { " (quick)" } else { "" }
+    ));
+    let results = run_jobs(work, args.jobs, args.backend, lines);
+    let mut failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
+    let mut rows: Vec<SweepRow> = results.iter().map(JobResult::row).collect();
+    let mut warnings: Vec<String> = results.iter().flat_map(JobResult::warnings).collect();
+    rows.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
+    sweep_csv::write_rows(&sweep_csv::sweep_csv_path(&sweep_dir), &rows)
+        .map_err(write_error("--out"))?;
+    let backend = rows.first().map_or("?".to_string(), |r| r.backend.clone());
+    let sweep_wall: f64 = rows.iter().map(|r| r.wall_s).sum();
+    let grid_text = rows
+        .iter()
+        .map(|r| format!("{}: {}×{}", r.ratio, r.grid, r.ny))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let runs: Vec<RatioRun> = rows
+        .iter()
+        .filter_map(|r| {
+            let path = states_path(&sweep_dir, r.ratio, r.grid);
+            let states = read_state_rows(&path).ok()?;
+            Some(RatioRun {
+                ratio: r.ratio,
+                grid: (r.grid, r.ny),
+                states,
+            })
+        })
+        .collect();
+    let fits: Vec<_> = runs.iter().map(branch_fits).collect();
+    write_fit_tables(&args.out, &fits)?;
+    let what = format!(
+        "R1/R2 = {grid_text} (Nx×Ny); backend {backend}; pull-offs {sweep_wall:.0} s in all"
+    );
+    let pick = |want: &[f64]| -> (Vec<RatioRun>, Vec<_>) {
+        let runs: Vec<RatioRun> = runs
+            .iter()
+            .filter(|r| want.contains(&r.ratio))
+            .map(|r| RatioRun {
+                ratio: r.ratio,
+                grid: r.grid,
+                states: r.states.clone(),
+            })
+            .collect();
+        let fits = runs.iter().map(branch_fits).collect();
+        (runs, fits)
+    };
+    let mut figures = Vec::new();
+    let mut chart = |file: &str, chart: LineChart, caption: String| -> Result<(), RunError> {
+        chart
+            .write_svg(&args.out.join(file))
+            .map_err(write_error("--out"))?;
+        figures.push(Figure {
+            file: file.into(),
+            caption,
+        });
+        Ok(())
+    };
+    chart(
+        "pulloff_curves.svg",
+        pulloff_curves_chart(&sweep_dir, &rows).map_err(write_error("--out"))?,
+        format!("§8.1 Pull-off curves F̄(d̄) beside JKR (sphere) and JG. {what}."),
+    )?;
+    let (r2, _) = pick(&[2.0, 5.0, 10.0, 25.0]);
+    chart(
+        "axis_ratio.svg",
+        axis_ratio_chart(&r2),
+        format!("§8.2 Axis ratio b_simu/a_simu against F̄ beside JG's g(F̄). {what}."),
+    )?;
+    let (r3, f3) = pick(&[2.0, 10.0, 25.0]);
+    for (law, file, name) in [
+        (BranchLaw::DOfC, "d_of_c.svg", "d̄(c̄), fit d̄ = A c̄² + B c̄^½"),
+        (
+            BranchLaw::FOfC,
+            "f_of_c.svg",
+            "F̄(c̄), fit F̄ = c1 c̄³ + c2 c̄^α",
+        ),
+        (BranchLaw::FOfD, "f_of_d.svg", "F̄(d̄) from both fits"),
+    ] {
+        chart(
+            file,
+            branch_chart(&r3, &f3, law),
+            format!("§8.4 {name}, on the adhesive branch (onset states), beside JG. {what}."),
+        )?;
+    }
+    let laws = coefficient_laws(&fits);
+    let law_text = laws
+        .iter()
+        .map(|(n, _, l)| match l {
+            Some(l) => format!("{n} = {}", crate::text::power_law(l.k1, l.k2, l.k3)),
+            None => format!("{n}: no fit"),
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
+    chart(
+        "coefficients.svg",
+        coefficients_chart(&fits),
+        format!(
+            "§8.5 The branch-law coefficients against R1/R2 with fitted laws: {law_text}. {what}."
+        ),
+    )?;
+    chart(
+        "force_vs_ratio.svg",
+        force_vs_ratio_chart(&rows),
+        format!("§8.6 Adhesive force |min F̄| against R1/R2 beside JG's pull-off force, with the fitted law. {what}."),
+    )?;
+    // §8.1 snapshots and §8.3: quarter contours against ellipses.
+    for ratio in [1.0, 5.0, 25.0] {
+        let Some(row) = rows.iter().find(|r| r.ratio == ratio) else {
+            continue;
+        };
+        let path = contours_path(&states_path(&sweep_dir, ratio, row.grid));
+        let contours: Vec<ContourRow> = csv::Reader::from_path(&path)
+            .and_then(|mut r| r.deserialize().collect())
+            .map_err(|e| failed(format!("{}: {e}", path.display())))?;
+        let mut labels: Vec<String> = Vec::new();
+        for c in &contours {
+            if labels.last() != Some(&c.label) {
+                labels.push(c.label.clone());
+            }
+        }
+        let departures = labels
+            .iter()
+            .filter_map(|l| contours.iter().find(|c| &c.label == l))
+            .map(|c| {
+                format!(
+                    "{} (c̄ = {:.2}): rms {:.1} %, max {:.1} %",
+                    c.label,
+                    c.c_bar,
+                    100.0 * c.departure_rms,
+                    100.0 * c.departure_max
+                )
+            })
+            .collect::<Vec<_>>()
+            .join("; ");
+        chart(
+            &format!("contours_r{ratio}.svg"),
+            contour_chart(ratio, &contours),
+            format!(
+                "§8.1/§8.3 Quarter contours of the contact during pull-off, R1/R2 = {ratio} \
+                 ({}×{}), beside the ellipses with the same half-axes. Departure r/r_e − 1: \
+                 {departures}. Backend {backend}.",
+                row.grid, row.ny
+            ),
+        )?;
+    }
+    // §8.7: crossed cylinders, at the grids of the nearest ratios.
+    let crossed_grid = if args.quick { 128 } else { 1024 };
+    let crossed_dir = args.out.join("crossed");
+    let crossed_req = CrossedRequest {
+        radius: 0.01,
+        angles: vec![90.0, 70.0, 50.0, 30.0, 16.1],
+        young: 1.0e6,
+        poisson: 0.5,
+        work_of_adhesion: 0.05,
+        grid: super::batch::GridChoice::Fixed(crossed_grid),
+        steps: 200,
+        margin: 0.08,
+        backend: args.backend,
+        jobs: args.jobs,
+        out: crossed_dir.clone(),
+    };
+    let t = Instant::now();
+    match crossed(&crossed_req, &crossed_flag, lines) {
+        Ok(done) => {
+            failures.extend(
+                done.failures
+                    .iter()
+                    .map(|f| format!("crossed cylinders: {f}")),
+            );
+            warnings.extend(
+                done.warnings
+                    .iter()
+                    .map(|w| format!("crossed cylinders: {w}")),
+            );
+        }
+        Err(e) => failures.push(format!("crossed cylinders: {e}")),
+    }
+    let crossed_svg = crossed_dir.join("crossed.svg");
+    if crossed_svg.exists() {
+        let svg = std::fs::read(&crossed_svg)
+            .map_err(|e| failed(format!("cannot read {}: {e}", crossed_svg.display())))?;
+        crate::output::file::write_bytes(&args.out.join("crossed.svg"), &svg)
+            .map_err(write_error("--out"))?;
+        figures.push(Figure {
+            file: "crossed.svg".into(),
+            caption: format!(
+                "§8.7 Crossed cylinders (R = 10 mm, E = 1 MPa, ν = 0.5, Δγ = 0.05 J/m²): adhesive \
+                 force in N against crossing angle beside JG; Nx = {crossed_grid}, backend {backend}, \
+                 {:.0} s.",
+                t.elapsed().as_secs_f64()
+            ),
+        });
+    }
+    for w in &warnings {
+        lines(&format!("warning: {w}"));
+    }
+    write_index(
+        &args.out,
+        &figures,
+        &rows,
+        &warnings,
+        start.elapsed().as_secs_f64(),
+        args.quick,
+    )?;
+    Ok(StudyDone {
+        index: args.out.join("index.html"),
+        charts: figures.len(),
+        wall_s: start.elapsed().as_secs_f64(),
+        failures,
+    })
+}
+
+/// The crossed-cylinder parameters as this request names them (it has no flags of its own).
+fn crossed_flag(parameter: &'static str) -> &'static str {
+    parameter
+}
+
+/// One ratio's branch fits with their quality.
+#[derive(serde::Serialize)]
+struct FitRow {
+    ratio: f64,
+    a: Option<f64>,
+    b: Option<f64>,
+    d_r_squared: Option<f64>,
+    d_rms: Option<f64>,
+    c1: Option<f64>,
+    c2: Option<f64>,
+    alpha: Option<f64>,
+    alpha_at_bound: Option<bool>,
+    f_r_squared: Option<f64>,
+    f_rms: Option<f64>,
+    points: Option<usize>,
+}
+
+/// One coefficient's law k1·(R1/R2)^k2 + k3 with its quality.
+#[derive(serde::Serialize)]
+struct LawRow {
+    coefficient: &'static str,
+    k1: Option<f64>,
+    k2: Option<f64>,
+    k3: Option<f64>,
+    r_squared: Option<f64>,
+    rms: Option<f64>,
+    ratios: usize,
+}
+
+/// fits.csv (per ratio: A, B, c1, c2, α with R² and RMS residuals) and
+/// coefficient_laws.csv (each coefficient's law across ratios).
+fn write_fit_tables(dir: &Path, fits: &[BranchFits]) -> Result<(), RunError> {
+    write_csv(
+        &dir.join("fits.csv"),
+        fits.iter().map(|f| {
+            let d = f.d_of_c.as_ref();
+            let p = f.f_of_c.as_ref();
+            FitRow {
+                ratio: f.ratio,
+                a: d.map(|d| d.a),
+                b: d.map(|d| d.b),
+                d_r_squared: d.map(|d| d.quality.r_squared),
+                d_rms: d.map(|d| d.quality.rms_residual),
+                c1: p.map(|p| p.c1),
+                c2: p.map(|p| p.c2),
+                alpha: p.map(|p| p.alpha),
+                alpha_at_bound: p.map(|p| p.alpha_at_bound),
+                f_r_squared: p.map(|p| p.quality.r_squared),
+                f_rms: p.map(|p| p.quality.rms_residual),
+                points: d.map(|d| d.quality.points),
+            }
+        }),
+    )?;
+    write_csv(
+        &dir.join("coefficient_laws.csv"),
+        coefficient_laws(fits)
+            .into_iter()
+            .map(|(name, pts, law)| LawRow {
+                coefficient: name,
+                k1: law.as_ref().map(|l| l.k1),
+                k2: law.as_ref().map(|l| l.k2),
+                k3: law.as_ref().map(|l| l.k3),
+                r_squared: law.as_ref().map(|l| l.quality.r_squared),
+                rms: law.as_ref().map(|l| l.quality.rms_residual),
+                ratios: pts.len(),
+            }),
+    )
+}
+
+/// Write serialisable rows as a CSV file, atomically.
+fn write_csv<T: serde::Serialize>(
+    path: &Path,
+    rows: impl Iterator<Item = T>,
+) -> Result<(), RunError> {
+    crate::output::file::write_csv(path, None, rows).map_err(write_error("--out"))
+}
+
+/// index.html: every chart with its caption, the sweep's table and every warning.
+fn write_index(
+    dir: &Path,
+    figures: &[Figure],
+    rows: &[SweepRow],
+    warnings: &[String],
+    wall: f64,
+    quick: bool,
+) -> Result<(), RunError> {
+    let mut html = String::from(
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <title>jkrbem: the study</title>\
+         <style>body{font-family:sans-serif;max-width:960px;margin:2em auto;color:#222}\
+         figure{margin:2em 0}img{width:100%;border:1px solid #ddd}\
+         figcaption{font-size:0.95em;color:#444}table{border-collapse:collapse}\
+         td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}</style></head><body>\n",
+    );
+    let _ = writeln!(
+        html,
+        "<h1>jkrbem: adhesive contact of ellipsoids</h1><p>{} run, {wall:.0} s in all. \
+         Normalisation: F̄ = F/(3π Re Δγ), c̄ = c/c_r, d̄ = d·Re/c_r² (physics §2).</p>",
+        if quick {
+            "Quick (coarse grids)"
+        } else {
+            "Full-resolution"
+        }
+    );
+    html.push_str(
+        "<table><tr><th>R1/R2</th><th>grid</th><th>|min F̄| at Δx → 0</th><th>JG</th>\
+         <th>n_d</th><th>wall (s)</th></tr>\n",
+    );
+    for r in rows {
+        let f = |v: Option<f64>| v.map_or("—".into(), |v| format!("{v:.4}"));
+        let _ = writeln!(
+            html,
+            "<tr><td>{}</td><td>{}×{}</td><td>{}{}</td><td>{}</td><td>{}</td><td>{:.1}</td></tr>",
+            r.ratio,
+            r.grid,
+            r.ny,
+            f(r.f_ad_bar),
+            r.f_ad_bar_uncertainty
+                .map_or(String::new(), |u| format!(" ± {u:.4}")),
+            f(r.jg_f_ad_bar),
+            r.n_d.map_or("—".into(), |v| format!("{v:.0}")),
+            r.wall_s
+        );
+    }
+    html.push_str("</table>\n");
+    if !warnings.is_empty() {
+        html.push_str("<h2>Warnings</h2><ul>\n");
+        for w in warnings {
+            let _ = writeln!(
+                html,
+                "<li>{}</li>",
+                w.replace('&', "&amp;").replace('<', "&lt;")
+            );
+        }
+        html.push_str("</ul>\n");
+    }
+    for f in figures {
+        let _ = writeln!(
+            html,
+            "<figure><img src=\"{0}\" alt=\"{0}\"><figcaption>{1}</figcaption></figure>",
+            f.file,
+            f.caption.replace('&', "&amp;").replace('<', "&lt;")
+        );
+    }
+    html.push_str("</body></html>\n");
+    crate::output::file::write_bytes(&dir.join("index.html"), html.as_bytes())
+        .map_err(write_error("--out"))
+}

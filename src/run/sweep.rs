@@ -1,0 +1,251 @@
+//! One pull-off per axis ratio R1/R2 (or one shard of them), with each ratio's states, summary
+//! and contours, the sweep's summary CSV (or shard file) and its charts.
+
+use super::batch::{batch_model, run_files, run_jobs, GridChoice, Job};
+use super::claim::{named, write_error, Outputs};
+use super::open::BackendRequest;
+use super::{input, RunError};
+use crate::model::{Model, ModelOptions};
+use crate::output::sweep_charts::write_sweep_charts;
+use crate::output::sweep_csv::{self, Shard, SweepRow, SweepSettings};
+use crate::scene::Scene;
+use std::path::{Path, PathBuf};
+
+/// A request for a sweep over R1/R2.
+#[derive(Debug, Clone)]
+pub struct SweepRequest {
+    /// Every ratio of the sweep (the shard takes its share), none repeated.
+    pub ratios: Vec<f64>,
+    /// How each ratio's grid is chosen: a fixed Nx, or the accuracy wanted.
+    pub grid: GridChoice,
+    /// Load steps.
+    pub steps: usize,
+    /// c̄0 of the first contact.
+    pub start_radius: f64,
+    /// Free margin around the first contact.
+    pub margin: f64,
+    /// The backend.
+    pub backend: BackendRequest,
+    /// Run only shard (K, N).
+    pub shard: Option<(usize, usize)>,
+    /// Pull-offs at the same time.
+    pub jobs: usize,
+    /// Output folder.
+    pub out: PathBuf,
+}
+
+/// What a sweep produced.
+pub struct SweepDone {
+    /// One row per ratio run, sorted by ratio.
+    pub rows: Vec<SweepRow>,
+    /// The summary CSV or shard file.
+    pub summary_path: PathBuf,
+    /// The charts, for a whole sweep (not a shard).
+    pub charts: Option<[PathBuf; 2]>,
+    /// The ratios this run took.
+    pub ran: usize,
+    /// Why pull-offs failed, one line each.
+    pub failures: Vec<String>,
+    /// Every ratio's warnings (coarse grid, missed target, CG retries), one line each.
+    pub warnings: Vec<String>,
+}
+
+/// States file of one ratio in `dir`.
+pub fn states_path(dir: &Path, ratio: f64, grid: usize) -> PathBuf {
+    dir.join(format!("r{ratio}-n{grid}.csv"))
+}
+
+/// The sweep charts' files in `dir`.
+pub fn chart_files(dir: &Path) -> [PathBuf; 2] {
+    [
+        dir.join("force_vs_ratio.svg"),
+        dir.join("pulloff_curves.svg"),
+    ]
+}
+
+/// The model of one ratio (R2 = E* = Δγ = 1: the normalised results do not depend on them)
+/// and the accuracy it is held to.
+fn model_for(req: &SweepRequest, ratio: f64) -> Result<(Model, Option<f64>), RunError> {
+    let fail = |e: String| {
+        input(format!(
+            "--ratios {}: {}",
+            crate::text::compact(ratio),
+            e.replacen("--ratio = ", "R1/R2 = ", 1)
+        ))
+    };
+    let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(|e| fail(e.to_string()))?;
+    let base = ModelOptions {
+        steps: req.steps,
+        start_radius_bar: req.start_radius,
+        margin: req.margin,
+        ..ModelOptions::default()
+    };
+    batch_model(&scene, req.grid, &base).map_err(|e| fail(e.to_string()))
+}
+
+/// Run the sweep: check every ratio (the other shards' too), claim the outputs, run this
+/// shard's ratios, write the rows (CSV or shard file) and, for a whole sweep, the charts.
+pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepDone, RunError> {
+    req.backend.check()?;
+    let mut models = Vec::new();
+    for &ratio in &sweep_csv::shard_ratios(&req.ratios, req.shard) {
+        models.push(model_for(req, ratio)?);
+    }
+    for &ratio in &req.ratios {
+        // The other shards' ratios are checked too, so that every shard refuses a bad sweep.
+        model_for(req, ratio)?;
+    }
+    let refs: Vec<&Model> = models.iter().map(|(m, _)| m).collect();
+    crate::plan::check_memory(&refs, req.jobs, "--grid").map_err(input)?;
+    let jobs: Vec<Job> = models
+        .into_iter()
+        .map(|(model, target)| {
+            let out = states_path(&req.out, model.scene.ratio(), model.nx);
+            Job { model, out, target }
+        })
+        .collect();
+    let summary_path = match req.shard {
+        Some(kn) => sweep_csv::shard_path(&req.out, kn),
+        None => sweep_csv::sweep_csv_path(&req.out),
+    };
+    let mut targets: Vec<PathBuf> = jobs.iter().flat_map(|j| run_files(&j.out)).collect();
+    targets.push(summary_path.clone());
+    if req.shard.is_none() {
+        targets.extend(chart_files(&req.out));
+    }
+    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    lines(&format!(
+        "sweep: {} ratio(s) {:?} ({}: grids {:?}){}, {} at a time",
+        jobs.len(),
+        jobs.iter()
+            .map(|j| j.model.scene.ratio())
+            .collect::<Vec<_>>(),
+        req.grid.describe(),
+        jobs.iter().map(|j| j.model.nx).collect::<Vec<_>>(),
+        req.shard
+            .map_or(String::new(), |(k, n)| format!(", shard {k} of {n}")),
+        req.jobs
+    ));
+    let ran = jobs.len();
+    let results = run_jobs(jobs, req.jobs, req.backend, lines);
+    let rows: Vec<SweepRow> = results.iter().map(|r| r.row()).collect();
+    let failures = results.iter().filter_map(|r| r.error.clone()).collect();
+    let warnings = results.iter().flat_map(|r| r.warnings()).collect();
+    match req.shard {
+        Some(kn) => {
+            let (grid, accuracy) = match req.grid {
+                GridChoice::Fixed(nx) => (Some(nx), None),
+                GridChoice::Accuracy(t) => (None, Some(t)),
+            };
+            let settings = SweepSettings {
+                ratios: req.ratios.clone(),
+                grid,
+                accuracy,
+                steps: req.steps,
+                start_radius: req.start_radius,
+                margin: req.margin,
+            };
+            Shard::new(settings, kn, rows.clone())
+                .write(&summary_path)
+                .map_err(write_error("--out"))?;
+        }
+        None => sweep_csv::write_rows(&summary_path, &rows).map_err(write_error("--out"))?,
+    }
+    let mut sorted = rows;
+    sorted.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
+    let charts = if req.shard.is_none() {
+        write_sweep_charts(&req.out, &sorted).map_err(write_error("--out"))?;
+        Some(chart_files(&req.out))
+    } else {
+        None
+    };
+    Ok(SweepDone {
+        rows: sorted,
+        summary_path,
+        charts,
+        ran,
+        failures,
+        warnings,
+    })
+}
+
+/// What merging a split sweep's shards produced.
+pub struct Merged {
+    /// The merged rows.
+    pub rows: usize,
+    /// Shards found, of all.
+    pub shards_found: usize,
+    /// Shards of the sweep.
+    pub shards: usize,
+    /// sweep.csv.
+    pub path: PathBuf,
+    /// The charts.
+    pub charts: [PathBuf; 2],
+    /// What is missing or incomplete (merged anyway with `allow_missing`).
+    pub problems: Vec<String>,
+}
+
+/// Ratios as text: "2, 25".
+fn listed(ratios: &[f64]) -> String {
+    ratios
+        .iter()
+        .map(|r| crate::text::compact(*r))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Merge the shard files in `dir` into `dir/sweep.csv` and its charts, after checking that
+/// they are of one sweep with no ratio twice. Missing or incomplete ratios stop the merge
+/// (naming them) unless `allow_missing`.
+pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunError> {
+    use crate::output::sweep_csv::CollectError;
+    let c = sweep_csv::collect(dir).map_err(|e| match e {
+        CollectError::Empty(_) | CollectError::Io(..) => input(e),
+        CollectError::Corrupt(..) | CollectError::Mixed(..) | CollectError::Duplicate { .. } => {
+            super::failed(e)
+        }
+    })?;
+    let mut problems = Vec::new();
+    if !c.missing.is_empty() {
+        problems.push(format!(
+            "R1/R2 = {} missing{}",
+            listed(&c.missing),
+            if c.missing_shards.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    " (shards {:?} of {} have not written their file: run them)",
+                    c.missing_shards, c.shards
+                )
+            }
+        ));
+    }
+    if !c.incomplete.is_empty() {
+        problems.push(format!(
+            "R1/R2 = {} incomplete (failed, no force minimum reached, or not finite: see their \
+             complete, min_reached and error columns)",
+            listed(&c.incomplete)
+        ));
+    }
+    if !problems.is_empty() && !allow_missing {
+        return Err(super::failed(format!(
+            "{}; nothing was written (pass --allow-missing to merge what there is)",
+            problems.join("; ")
+        )));
+    }
+    let path = sweep_csv::sweep_csv_path(dir);
+    let charts = chart_files(dir);
+    let mut targets = vec![path.clone()];
+    targets.extend(charts.iter().cloned());
+    let _claimed = Outputs::claim(&named("DIR", &targets))?;
+    sweep_csv::write_rows(&path, &c.rows).map_err(write_error("DIR"))?;
+    write_sweep_charts(dir, &c.rows).map_err(write_error("DIR"))?;
+    Ok(Merged {
+        rows: c.rows.len(),
+        shards_found: c.shards - c.missing_shards.len(),
+        shards: c.shards,
+        path,
+        charts,
+        problems,
+    })
+}
