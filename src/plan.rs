@@ -206,6 +206,15 @@ fn plan(
     })
 }
 
+/// The coarsest grid Nx (from [`MIN_PLAN_GRID`], doubling) predicted to resolve the contact
+/// at the force minimum (n_d ≥ [`MIN_PLAN_N_D`]) with the planner's options: the first run of
+/// a time-limited accuracy request, so that it has an answer however early the limit comes.
+pub fn coarsest_resolving_grid(scene: &Scene, base: &ModelOptions) -> Result<usize, ModelError> {
+    // Every grid that resolves the contact meets a 50 % target alone: the plan is the first.
+    let plan = plan(scene, 0.5, base, available_memory(), false)?;
+    Ok(plan.grids[0])
+}
+
 /// The memory this machine can give a run (bytes): the smaller of the memory available now
 /// (`MemAvailable` in /proc/meminfo) and what the process's control group may still use; or
 /// the value of the environment variable `JKRBEM_MEMORY_LIMIT` (bytes) if set, to plan for

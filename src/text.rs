@@ -39,6 +39,18 @@ pub fn compact_digits(v: f64, digits: usize) -> String {
     }
 }
 
+/// A duration in seconds as `--time-limit` takes it: "90s", "10min", "1.5h" (three
+/// significant digits; minutes from 2 min, hours from 2 h).
+pub fn duration(seconds: f64) -> String {
+    if seconds < 120.0 {
+        format!("{}s", compact_digits(seconds, 3))
+    } else if seconds < 7200.0 {
+        format!("{}min", compact_digits(seconds / 60.0, 3))
+    } else {
+        format!("{}h", compact_digits(seconds / 3600.0, 3))
+    }
+}
+
 /// `v` with `decimals` decimals, without the sign of a value that rounds to zero
 /// ("0.0000", not "-0.0000").
 pub fn fixed(v: f64, decimals: usize) -> String {

@@ -277,3 +277,69 @@ fn a_bare_simulate_states_the_adhesive_force_to_two_percent() {
         "{stdout}"
     );
 }
+
+#[test]
+fn a_time_limit_gives_the_best_answer_so_far_and_says_the_target_was_missed() {
+    let dir = tempfile::tempdir().unwrap();
+    // 0.2 % for the sphere needs a fine grid (minutes on a CPU); 5 s leaves time only for the
+    // coarsest grid that resolves the contact (32², well under a second), run first.
+    let o = jkrbem(
+        &[
+            "simulate",
+            "--ratio",
+            "1",
+            "--accuracy",
+            "0.2%",
+            "--time-limit",
+            "5s",
+            "--backend",
+            "cpu",
+            "--out",
+            "t.csv",
+            "--summary",
+            "t.json",
+        ],
+        dir.path(),
+    );
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("WARNING: --time-limit 5s reached"),
+        "{stdout}"
+    );
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("t.json")).unwrap()).unwrap();
+    assert_eq!(s["target_met"], false, "{s}");
+    assert_eq!(s["runs"][0]["nx"], 32, "{s}");
+    assert!(s["runs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|r| r["min_reached"] == true));
+    let (f, u) = (
+        s["f_ad_bar"].as_f64().unwrap(),
+        s["f_ad_bar_uncertainty"].as_f64().unwrap(),
+    );
+    assert!((f - 0.5).abs() <= u && u / f > 0.002, "{f} ± {u}");
+    assert!(s["warnings"].to_string().contains("--time-limit"), "{s}");
+    assert!(dir.path().join("t-n32.csv").exists());
+
+    // The unit is required, and the limit belongs to an accuracy run.
+    for (args, says) in [
+        (&["--time-limit", "30"][..], "write the unit"),
+        (&["--time-limit", "0s"][..], "[1 s, 30 days]"),
+        (&["--grid", "64", "--time-limit", "30s"][..], "--accuracy"),
+    ] {
+        let mut full = vec!["simulate", "--out", "x/y.csv"];
+        full.extend_from_slice(args);
+        let o = jkrbem(&full, dir.path());
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains("--time-limit") && err.contains(says),
+            "{args:?}: {err}"
+        );
+        assert!(!dir.path().join("x").exists());
+    }
+}

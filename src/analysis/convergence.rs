@@ -26,6 +26,14 @@ pub const K_MEASURED: [(f64, f64); 6] = [
     (50.0, 1.5),
 ];
 
+/// The sphere's k, measured against JKR's exact 1/2 (seven runs, 64²–256², fixed and
+/// re-gridded, apex on an element corner), with [`K_GRID_SPREAD`].
+pub const SPHERE: LawPoint = LawPoint {
+    ratio: 1.0,
+    k: 3.2,
+    k_sd: K_GRID_SPREAD,
+};
+
 /// One ratio of the law: R1/R2, k and k's relative standard deviation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LawPoint {
@@ -37,27 +45,141 @@ pub struct LawPoint {
     pub k_sd: f64,
 }
 
-/// The law's points: the reference table's rows (not the sphere's, whose limit is exact),
-/// each k with the spread its limit's uncertainty leaves (the half-width is two standard
-/// deviations; at n_d, k/n_d of the value is the correction) combined with
-/// [`K_GRID_SPREAD`]; where the table has no row, [`K_MEASURED`] with
-/// [`K_UNTABLED_SPREAD`] (the sphere: 3.2 with [`K_GRID_SPREAD`]).
+/// The law's points: at each ratio of the reference table, k from the smooth law fitted to
+/// the table ([`fit_table_law`]: the sphere's 3.2 and every row's fitted k, pooled), with its
+/// relative spread: the law's own uncertainty there combined with [`K_GRID_SPREAD`] (how far
+/// one grid's k moves, which a single run does not average away). Beyond the table's largest
+/// ratio, [`K_MEASURED`] with [`K_UNTABLED_SPREAD`]. With fewer than two rows, the rows as they
+/// are and [`K_MEASURED`] elsewhere (the sphere: [`SPHERE`]).
 pub fn law_points() -> &'static [LawPoint] {
     static POINTS: std::sync::OnceLock<Vec<LawPoint>> = std::sync::OnceLock::new();
-    POINTS.get_or_init(|| {
-        let mut points: Vec<LawPoint> = table_points(REFERENCE_TABLE);
-        for &(ratio, k) in &K_MEASURED {
-            if !points.iter().any(|p| p.ratio == ratio) {
-                let k_sd = if ratio == 1.0 {
-                    K_GRID_SPREAD
-                } else {
-                    K_UNTABLED_SPREAD
-                };
-                points.push(LawPoint { ratio, k, k_sd });
-            }
+    POINTS.get_or_init(|| law_points_of(&table_points(REFERENCE_TABLE)))
+}
+
+/// [`law_points`] for the table points `rows` (see [`table_points`]).
+pub fn law_points_of(rows: &[LawPoint]) -> Vec<LawPoint> {
+    let mut points = Vec::new();
+    let law = fit_table_law(rows);
+    let largest = rows.iter().map(|p| p.ratio).fold(1.0, f64::max);
+    // Where no law can be fitted, the rows themselves (and [`K_MEASURED`] elsewhere).
+    if let Some(law) = &law {
+        // The sphere's k is measured against its exact limit, better than the law pools it.
+        points.push(SPHERE);
+        for p in rows {
+            points.push(law.at(p.ratio));
         }
-        points.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
-        points
+    } else {
+        points.extend_from_slice(rows);
+    }
+    for &(ratio, k) in &K_MEASURED {
+        let covered = law.is_some() && ratio <= largest;
+        if !covered && !points.iter().any(|p| p.ratio == ratio) {
+            let k_sd = if ratio == 1.0 {
+                K_GRID_SPREAD
+            } else {
+                K_UNTABLED_SPREAD
+            };
+            points.push(LawPoint { ratio, k, k_sd });
+        }
+    }
+    points.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
+    points.dedup_by(|a, b| a.ratio == b.ratio);
+    points
+}
+
+/// The smooth law k = k_slender + k_round/(R1/R2), fitted by weighted least squares to the
+/// sphere's k (3.2, one standard deviation [`K_GRID_SPREAD`]) and each table row's k (one
+/// standard deviation: its `k_sd` without [`K_GRID_SPREAD`]), with its parameters'
+/// covariance widened by the Birge ratio where the rows scatter more than that.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TableLaw {
+    /// k of an infinitely slender contact (the constant term).
+    pub k_slender: f64,
+    /// The term in 1/(R1/R2).
+    pub k_round: f64,
+    /// Covariance of (k_slender, k_round), Birge-widened.
+    pub covariance: [[f64; 2]; 2],
+}
+
+impl TableLaw {
+    /// k at R1/R2 = `ratio`.
+    pub fn k(&self, ratio: f64) -> f64 {
+        self.k_slender + self.k_round / ratio
+    }
+
+    /// The standard deviation of [`TableLaw::k`] at `ratio` (absolute).
+    pub fn k_sd(&self, ratio: f64) -> f64 {
+        let g = [1.0, 1.0 / ratio];
+        let c = &self.covariance;
+        (g[0] * g[0] * c[0][0] + 2.0 * g[0] * g[1] * c[0][1] + g[1] * g[1] * c[1][1])
+            .max(0.0)
+            .sqrt()
+    }
+
+    /// The law point at `ratio`: k and its relative spread for one run (the law's own
+    /// uncertainty combined with [`K_GRID_SPREAD`]).
+    pub fn at(&self, ratio: f64) -> LawPoint {
+        let k = self.k(ratio);
+        LawPoint {
+            ratio,
+            k,
+            k_sd: K_GRID_SPREAD.hypot(self.k_sd(ratio) / k),
+        }
+    }
+}
+
+/// Fit [`TableLaw`] to the table points `rows` and the sphere. `None` with fewer than two
+/// rows (the law is then [`K_MEASURED`]).
+pub fn fit_table_law(rows: &[LawPoint]) -> Option<TableLaw> {
+    if rows.len() < 2 {
+        return None;
+    }
+    // (1/ratio, k, absolute sd) of every observation.
+    let obs: Vec<(f64, f64, f64)> = std::iter::once(SPHERE)
+        .chain(rows.iter().copied())
+        .map(|p| {
+            let own = if p.ratio == 1.0 {
+                p.k_sd
+            } else {
+                (p.k_sd * p.k_sd - K_GRID_SPREAD * K_GRID_SPREAD)
+                    .max(0.0)
+                    .sqrt()
+            };
+            (1.0 / p.ratio, p.k, (own * p.k).max(1e-6))
+        })
+        .collect();
+    let (mut s, mut sx, mut sxx, mut sy, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for &(x, y, sd) in &obs {
+        let w = 1.0 / (sd * sd);
+        s += w;
+        sx += w * x;
+        sxx += w * x * x;
+        sy += w * y;
+        sxy += w * x * y;
+    }
+    let det = s * sxx - sx * sx;
+    if !(det.is_finite() && det > 0.0) {
+        return None;
+    }
+    let b = (s * sxy - sx * sy) / det;
+    let a = (sy - b * sx) / s;
+    let chi2: f64 = obs
+        .iter()
+        .map(|&(x, y, sd)| ((y - a - b * x) / sd).powi(2))
+        .sum();
+    let dof = obs.len() - 2;
+    let birge2 = if dof > 0 {
+        (chi2 / dof as f64).max(1.0)
+    } else {
+        1.0
+    };
+    Some(TableLaw {
+        k_slender: a,
+        k_round: b,
+        covariance: [
+            [birge2 * sxx / det, -birge2 * sx / det],
+            [-birge2 * sx / det, birge2 * s / det],
+        ],
     })
 }
 
@@ -241,6 +363,35 @@ mod tests {
                 "{r}: {k} {sd}"
             );
         }
+    }
+
+    #[test]
+    fn the_smooth_law_pools_the_rows_and_is_tighter_than_any_one() {
+        // Rows on k = 1.6 + 1.6/r exactly, each ± 10 % (one sd, with the grid spread).
+        let rows: Vec<LawPoint> = [1.5, 2.0, 3.0, 5.0, 7.0, 10.0]
+            .iter()
+            .map(|&ratio| LawPoint {
+                ratio,
+                k: 1.6 + 1.6 / ratio,
+                k_sd: 0.1,
+            })
+            .collect();
+        let law = fit_table_law(&rows).unwrap();
+        // The sphere's 3.2 lies on that law, so the fit is exact.
+        assert!((law.k_slender - 1.6).abs() < 1e-9 && (law.k_round - 1.6).abs() < 1e-9);
+        let points = law_points_of(&rows);
+        assert_eq!(points[0], SPHERE);
+        for p in &points[1..points.len() - 2] {
+            assert!(p.k_sd < 0.1 && p.k_sd > K_GRID_SPREAD, "{p:?}");
+        }
+        // Beyond the table: the first measurements, with their spread.
+        let last = points[points.len() - 1];
+        assert_eq!((last.ratio, last.k_sd), (50.0, K_UNTABLED_SPREAD));
+        // One row alone is no law: it is used as it is, the first measurements elsewhere.
+        assert!(fit_table_law(&rows[..1]).is_none());
+        let alone = law_points_of(&rows[..1]);
+        assert_eq!(alone.len(), K_MEASURED.len() + 1);
+        assert!(alone.contains(&rows[0]));
     }
 
     #[test]

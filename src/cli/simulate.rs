@@ -11,6 +11,7 @@ use jkrbem::run::open::{BackendRequest, Convolution};
 use jkrbem::run::simulate::{failure_error, simulate, Mode, SimulateRequest};
 use jkrbem::scene::Scene;
 use std::path::PathBuf;
+use std::time::Duration;
 
 /// Arguments of `jkrbem simulate`.
 #[derive(Debug, clap::Args)]
@@ -147,6 +148,13 @@ pub struct Args {
     /// [default: 2% unless one grid or --extrapolate is asked for].
     #[arg(long, value_parser = parse_percentage)]
     pub accuracy: Option<f64>,
+    /// Wall-clock time an --accuracy run may take (`90s`, `20min`, `2h`; the unit is
+    /// required; in [1 s, 30 days]). The coarsest grid that resolves the contact then runs
+    /// first; a grid still running at the limit is stopped (its states kept under their
+    /// partial name), and the answer comes from the grids that finished: printed with its
+    /// stated uncertainty, `target_met: false` if that misses the target, exit status 0.
+    #[arg(long, value_parser = parse_duration)]
+    pub time_limit: Option<Duration>,
 }
 
 /// The accuracy of a bare `simulate` (relative): the adhesive force to 2 %.
@@ -176,6 +184,31 @@ pub fn parse_percentage(text: &str) -> Result<f64, String> {
     } else {
         Err(format!(
             "{}: give a percentage in [0.1, 50], e.g. 5% or 1%",
+            jkrbem::text::compact(v)
+        ))
+    }
+}
+
+/// A duration such as `90s`, `20min` or `2h`. The unit is required (s, min, h); the value
+/// lies in [1 s, 30 days].
+pub fn parse_duration(text: &str) -> Result<Duration, String> {
+    let t = text.trim();
+    let (number, unit) = [("min", 60.0), ("h", 3600.0), ("s", 1.0)]
+        .iter()
+        .find_map(|&(u, scale)| t.strip_suffix(u).map(|n| (n, scale)))
+        .ok_or_else(|| {
+            format!("{text:?} is not a duration: write the unit, e.g. 90s, 20min or 2h")
+        })?;
+    let v: f64 = number
+        .trim()
+        .parse()
+        .map_err(|_| format!("{text:?} is not a duration (e.g. 90s, 20min or 2h)"))?;
+    let seconds = v * unit;
+    if (1.0..=30.0 * 86400.0).contains(&seconds) {
+        Ok(Duration::from_secs_f64(seconds))
+    } else {
+        Err(format!(
+            "{}: give a duration in [1 s, 30 days], e.g. 90s, 20min or 2h",
             jkrbem::text::compact(v)
         ))
     }
@@ -211,6 +244,12 @@ impl Args {
             (None, false, true) => Mode::Single,
             (None, false, false) => Mode::Accuracy(DEFAULT_ACCURACY),
         };
+        if self.time_limit.is_some() && !matches!(mode, Mode::Accuracy(_)) {
+            return Err(super::input(
+                "--time-limit applies to an --accuracy run (the default without --grid and \
+                 the other one-grid flags, or --accuracy given)",
+            ));
+        }
         Ok(SimulateRequest {
             scene: self.scene()?,
             options: self.options(),
@@ -222,6 +261,7 @@ impl Args {
             mode,
             out: self.out.clone(),
             summary: self.summary.clone(),
+            time_limit: self.time_limit,
         })
     }
 
@@ -270,6 +310,22 @@ pub fn run(args: Args) -> Result<(), CliError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn durations_need_a_unit_and_are_bounded() {
+        assert_eq!(parse_duration("90s"), Ok(Duration::from_secs(90)));
+        assert_eq!(parse_duration("20min"), Ok(Duration::from_secs(1200)));
+        assert_eq!(parse_duration("1.5h"), Ok(Duration::from_secs(5400)));
+        assert!(parse_duration("90").unwrap_err().contains("write the unit"));
+        for bad in ["0s", "0.5s", "31h0", "-5min", "NaNs", "1e300h", "800h"] {
+            let e = parse_duration(bad).unwrap_err();
+            assert!(
+                e.contains("[1 s, 30 days]") || e.contains("not a duration"),
+                "{bad}: {e}"
+            );
+            assert!(e.len() < 100, "{e}");
+        }
+    }
 
     #[test]
     fn percentages_are_bounded() {

@@ -202,7 +202,7 @@ fn run_one(
     let mut watch = Lines(lines);
     let run = crate::with_backend!(
         &mut any,
-        b => pulloff_to_file(b, &job.model, &job.out, "--out", &mut watch, Some(&mut capture))
+        b => pulloff_to_file(b, &job.model, &job.out, "--out", &mut watch, Some(&mut capture), None)
     )?;
     let [_, json, contours] = run_files(&job.out);
     let summary = Summary::new(&AdhesiveResult::single(run.report, job.target));

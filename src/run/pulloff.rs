@@ -20,12 +20,16 @@ pub struct Pulloff {
     pub outcome: Outcome,
     /// The states CSV: `out` if the run completed, else its partial name.
     pub states: PathBuf,
+    /// Whether the run was stopped at its deadline (its states are kept under the partial
+    /// name).
+    pub timed_out: bool,
 }
 
 /// Run `model`'s pull-off on `backend`, streaming its states to `out` (under this run's
 /// partial name `<stem>.incomplete-<pid>.csv` until the run completes; `flag` names `out` in
 /// messages). `watch` sees every state; `capture`, if given, sees every state with its
-/// contact mask. If the states cannot be written, the run stops and that is the error.
+/// contact mask. If the states cannot be written, the run stops and that is the error. At
+/// `deadline`, if given, the run stops after the state it is computing (`timed_out`).
 pub fn pulloff_to_file<B: Backend>(
     backend: &mut B,
     model: &Model,
@@ -33,9 +37,11 @@ pub fn pulloff_to_file<B: Backend>(
     flag: &str,
     watch: &mut dyn Watch,
     mut capture: Option<&mut ContactCapture>,
+    deadline: Option<Instant>,
 ) -> Result<Pulloff, RunError> {
     let mut writer = StateWriter::create(out).map_err(write_error(flag))?;
     let mut write_error_at = None;
+    let mut timed_out = false;
     watch.pulloff_started(model);
     let start = Instant::now();
     let outcome = solver::run_until(backend, model, &mut |s, mask| {
@@ -47,7 +53,8 @@ pub fn pulloff_to_file<B: Backend>(
             write_error_at.get_or_insert(e);
             return false;
         }
-        true
+        timed_out = deadline.is_some_and(|d| Instant::now() >= d);
+        !timed_out
     });
     let wall = start.elapsed().as_secs_f64();
     watch.pulloff_ended();
@@ -76,6 +83,8 @@ pub fn pulloff_to_file<B: Backend>(
         &path,
     );
     Ok(Pulloff {
+        // A run that reached its end (or its confirmed minimum) at the deadline was not cut.
+        timed_out: timed_out && !outcome.complete(),
         report,
         outcome,
         states: path,

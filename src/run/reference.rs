@@ -125,6 +125,7 @@ fn ladder(
                 mode: Mode::Single,
                 out: Some(dir.join(format!("r{ratio}-n{nx}.csv"))),
                 summary: Some(summary.clone()),
+                time_limit: None,
             };
             let done = match simulate(&one, watch) {
                 Ok(d) => d,

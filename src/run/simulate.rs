@@ -12,6 +12,7 @@ use crate::output::summary::Summary;
 use crate::plan;
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
 /// What to do with the scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -41,6 +42,11 @@ pub struct SimulateRequest {
     pub out: Option<PathBuf>,
     /// Also write the summary JSON here.
     pub summary: Option<PathBuf>,
+    /// Wall-clock time the request may take (with [`Mode::Accuracy`]): a grid still running
+    /// then is stopped, and the answer comes from the grids that finished (the coarsest grid
+    /// that resolves the contact runs first, so that there is one), with `target_met: false`
+    /// where that falls short. `None`: no limit.
+    pub time_limit: Option<Duration>,
 }
 
 /// What a simulation produced.
@@ -123,9 +129,18 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
     }
     Outputs::check(&targets)?;
     let _claimed = Outputs::claim(&targets)?;
+    let deadline = req.time_limit.map(|t| Instant::now() + t);
     let mut runs = Vec::new();
     let mut failure = None;
+    let mut timed_out = None;
     for (mut model, out) in models.into_iter().zip(&outs) {
+        if deadline.is_some_and(|d| Instant::now() >= d) {
+            timed_out = Some(format!(
+                "the {}×{} grid was not started",
+                model.nx, model.ny
+            ));
+            break;
+        }
         let opened = open_for(&req.backend, &mut model)?;
         watch.note(&format!(
             "R1/R2 = {}, grid {}×{}, Δx = {:.4e}{}, backend {}",
@@ -139,8 +154,17 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
         let mut any = opened.backend;
         let run: Pulloff = crate::with_backend!(
             &mut any,
-            backend => pulloff_to_file(backend, &model, out, "--out", watch, None)
+            backend => pulloff_to_file(backend, &model, out, "--out", watch, None, deadline)
         )?;
+        if run.timed_out {
+            timed_out = Some(format!(
+                "the {} grid was stopped after {} states (kept, incomplete, in {})",
+                run.report.grid,
+                run.outcome.states.len(),
+                run.states.display()
+            ));
+            break;
+        }
         if let Some(e) = &run.outcome.error {
             failure = Some(format!(
                 "the {} run stopped early: {e}\n  the {} states computed so far are in {} \
@@ -158,6 +182,14 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
     }
     let states: Vec<PathBuf> = runs.iter().map(|r| r.states.clone()).collect();
     let reports: Vec<_> = runs.into_iter().map(|r| r.report).collect();
+    if let (Some(why), true) = (&timed_out, reports.is_empty()) {
+        let limit = req.time_limit.unwrap_or_default().as_secs_f64();
+        failure = Some(format!(
+            "--time-limit {}: {why}, and no grid had reached the force minimum; allow more \
+             time",
+            crate::text::duration(limit)
+        ));
+    }
     // One run (one grid, or the one grid an accuracy plan chose): its single-grid estimate.
     let one_grid = !matches!(req.mode, Mode::Extrapolate(_));
     let result = if reports.len() == 1 && one_grid {
@@ -169,7 +201,14 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
         }
         AdhesiveResult::assemble(req.scene.ratio(), est.ok(), target, reports)
     };
-    let summary = Summary::new(&result);
+    let mut summary = Summary::new(&result);
+    if let (Some(why), false) = (&timed_out, summary.runs.is_empty()) {
+        let limit = req.time_limit.unwrap_or_default().as_secs_f64();
+        summary.warnings.push(format!(
+            "--time-limit {} reached: {why}; the answer is from the grids that finished",
+            crate::text::duration(limit)
+        ));
+    }
     if let Some(p) = &req.summary {
         summary.write_json(p).map_err(write_error("--summary"))?;
     }
@@ -238,7 +277,20 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
                 measure: Measure::AdhesiveForce,
                 ..p.options.clone()
             };
-            let models = per_grid(&p.grids, &options, "--accuracy")?;
+            let mut grids = p.grids.clone();
+            let mut note = note;
+            if req.time_limit.is_some() {
+                let first =
+                    plan::coarsest_resolving_grid(&req.scene, &req.options).map_err(input)?;
+                if first < grids[0] {
+                    grids.insert(0, first);
+                    note.push_str(&format!(
+                        "; with --time-limit, grid {first} first (the coarsest that resolves \
+                         the contact), so that an answer exists however early the limit comes"
+                    ));
+                }
+            }
+            let models = per_grid(&grids, &options, "--accuracy")?;
             Ok(Planned {
                 models,
                 target: Some(*target),
