@@ -4,6 +4,7 @@
 
 mod common;
 
+use jkrbem::analysis::study_fits::{limit_fits, RatioRun};
 use jkrbem::analysis::{self, branch::columns, contour};
 use jkrbem::model::ModelOptions;
 use jkrbem::solver::Phase;
@@ -41,6 +42,48 @@ fn sphere_branch_fits_give_the_jkr_coefficients_within_the_mesh_error() {
     assert!(rel(ff.c2, -SQRT_2) < 0.03, "c2 = {}", ff.c2);
     assert!(rel(ff.alpha, 1.5) < 0.03, "α = {}", ff.alpha);
     assert!(fd.quality.r_squared > 0.999 && ff.quality.r_squared > 0.999);
+}
+
+#[test]
+fn sphere_branch_laws_at_the_limit_hold_the_jkr_coefficients() {
+    // The branch of 32², 64² and 128² extrapolated to Δx → 0: every JKR coefficient lies in
+    // its stated interval, and the intervals are narrower than one grid's error.
+    let runs: Vec<RatioRun> = [32, 64, 128]
+        .into_iter()
+        .map(|nx| {
+            let run = common::run_ratio(
+                1.0,
+                ModelOptions {
+                    nx,
+                    ..Default::default()
+                },
+            );
+            assert!(run.outcome.complete(), "{:?}", run.outcome.error);
+            RatioRun {
+                ratio: 1.0,
+                grid: (nx, nx),
+                states: run.outcome.states,
+            }
+        })
+        .collect();
+    let (fits, laws) = limit_fits(1.0, &runs).expect("the branches overlap");
+    println!("{laws:#?}");
+    for (name, e, jkr) in [
+        ("A", laws.a, 1.0),
+        ("B", laws.b, -2.0 / 3.0 * SQRT_2),
+        ("c1", laws.c1, 1.0),
+        ("c2", laws.c2, -SQRT_2),
+        ("α", laws.alpha, 1.5),
+    ] {
+        assert!(e.contains(jkr), "{name} = {e:?}, JKR {jkr}");
+    }
+    assert!(
+        laws.a.uncertainty < 0.02 && laws.b.uncertainty < 0.03,
+        "{laws:?}"
+    );
+    assert!(laws.alpha.uncertainty < 0.1, "{laws:?}");
+    assert_eq!(fits.grids, [32, 64, 128]);
+    assert!(fits.uncertainty.is_some());
 }
 
 #[test]

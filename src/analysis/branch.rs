@@ -12,6 +12,9 @@ pub struct BranchPoint {
     pub d_bar: f64,
     /// Force F̄ (dimensionless).
     pub f_bar: f64,
+    /// One over the elements across the contact's minor axis there, Δx/(2b) (dimensionless):
+    /// the abscissa in which the discretisation error is first order.
+    pub inv_n: f64,
 }
 
 /// The adhesive branch of a pull-off: its [`Phase::Onset`] states with contact, in the order
@@ -43,6 +46,7 @@ pub fn adhesive_branch(states: &[State]) -> Vec<BranchPoint> {
             c_bar: s.c_bar,
             d_bar: s.d_bar,
             f_bar: s.f_bar,
+            inv_n: s.dx / (2.0 * s.b_axis),
         })
         .collect()
 }

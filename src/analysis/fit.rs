@@ -280,7 +280,7 @@ fn box_cox(ln_x: f64, k2: f64) -> f64 {
 
 impl FitQuality {
     /// Placeholder until the coefficients are known.
-    const NONE: FitQuality = FitQuality {
+    pub(super) const NONE: FitQuality = FitQuality {
         r_squared: f64::NAN,
         rms_residual: f64::NAN,
         max_residual: f64::NAN,
@@ -299,7 +299,7 @@ fn sum_sq(x: &[f64], y: &[f64], f: impl Fn(f64) -> f64) -> f64 {
 }
 
 /// The quality of model `f` on the points (x_i, y_i).
-fn quality(x: &[f64], y: &[f64], f: impl Fn(f64) -> f64) -> FitQuality {
+pub(super) fn quality(x: &[f64], y: &[f64], f: impl Fn(f64) -> f64) -> FitQuality {
     let n = y.len() as f64;
     let mean = y.iter().sum::<f64>() / n;
     let ss_tot: f64 = y.iter().map(|v| (v - mean).powi(2)).sum();

@@ -35,7 +35,7 @@ pub struct LineFit {
     pub slope_sd: f64,
     /// χ² of the fit (points and prior), dimensionless.
     pub chi2: f64,
-    /// Degrees of freedom: points + 1 (the prior) − 2.
+    /// Degrees of freedom: points (+ 1 with a prior on the slope) − 2.
     pub dof: usize,
 }
 
@@ -59,8 +59,22 @@ impl LineFit {
 /// Fit y = a + b·x to `points` with the slope's `prior`. `None` if there are no points, a
 /// deviation is not positive and finite, or the system is singular.
 pub fn fit_line(points: &[Point], prior: SlopePrior) -> Option<LineFit> {
+    if !(prior.sd > 0.0 && prior.sd.is_finite() && prior.mean.is_finite()) {
+        return None;
+    }
+    fit(points, Some(prior))
+}
+
+/// Fit y = a + b·x to `points` with no prior on the slope (at least two distinct x). `None`
+/// if there are too few points, a deviation is not positive and finite, or the system is
+/// singular.
+pub fn fit_free_line(points: &[Point]) -> Option<LineFit> {
+    fit(points, None)
+}
+
+/// The weighted least-squares line, with the slope's prior as one more observation if given.
+fn fit(points: &[Point], prior: Option<SlopePrior>) -> Option<LineFit> {
     if points.is_empty()
-        || !(prior.sd > 0.0 && prior.sd.is_finite() && prior.mean.is_finite())
         || points
             .iter()
             .any(|p| !(p.sd > 0.0 && p.sd.is_finite() && p.x.is_finite() && p.y.is_finite()))
@@ -77,27 +91,27 @@ pub fn fit_line(points: &[Point], prior: SlopePrior) -> Option<LineFit> {
         sy += w * p.y;
         sxy += w * p.x * p.y;
     }
-    let wb = 1.0 / (prior.sd * prior.sd);
+    let (mean, wb) = prior.map_or((0.0, 0.0), |p| (p.mean, 1.0 / (p.sd * p.sd)));
     let (m11, m12, m22) = (s, sx, sxx + wb);
     let det = m11 * m22 - m12 * m12;
     if !(det > 0.0 && det.is_finite()) {
         return None;
     }
-    let (r1, r2) = (sy, sxy + prior.mean * wb);
+    let (r1, r2) = (sy, sxy + mean * wb);
     let a = (m22 * r1 - m12 * r2) / det;
     let b = (m11 * r2 - m12 * r1) / det;
     let chi2 = points
         .iter()
         .map(|p| ((p.y - a - b * p.x) / p.sd).powi(2))
         .sum::<f64>()
-        + ((b - prior.mean) / prior.sd).powi(2);
+        + prior.map_or(0.0, |p| ((b - p.mean) / p.sd).powi(2));
     Some(LineFit {
         intercept: a,
         intercept_sd: (m22 / det).sqrt(),
         slope: b,
         slope_sd: (m11 / det).sqrt(),
         chi2,
-        dof: points.len() + 1 - 2,
+        dof: (points.len() + usize::from(prior.is_some())).saturating_sub(2),
     })
 }
 

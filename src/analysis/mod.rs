@@ -3,6 +3,7 @@
 //! the crossed-cylinder form of the scene. Pure functions of states, masks and numbers.
 
 pub mod branch;
+pub mod branch_limit;
 pub mod capture;
 pub mod contour;
 pub mod convergence;

@@ -1,9 +1,13 @@
-//! The study's fits of recorded pull-offs (physics §8.4–§8.5): per ratio, least squares of the
-//! adhesive branch (d̄(c̄) and F̄(c̄)); across ratios, each coefficient's power law in R1/R2.
+//! The study's fits of recorded pull-offs (physics §8.4–§8.5): per ratio, the adhesive
+//! branch's laws (d̄(c̄) and F̄(c̄)), from one grid or extrapolated to Δx → 0 from several
+//! ([`super::branch_limit`]); across ratios, each coefficient's power law in R1/R2, with the
+//! uncertainty its coefficients' uncertainties leave.
 
 use super::branch::columns;
+use super::branch_limit::{branch_laws, BranchLaws, GridBranch};
+use super::fit::quality;
 use super::{adhesive_branch, fit_d_of_c, fit_f_of_c, fit_power_law};
-use super::{LinearFit2, PowerFit, PowerLawFit};
+use super::{FitQuality, LinearFit2, PowerFit, PowerLawFit};
 use crate::solver::State;
 
 /// One ratio's pull-off.
@@ -17,6 +21,7 @@ pub struct RatioRun {
 }
 
 /// The branch fits of one ratio (None where there were too few branch points).
+#[derive(Clone)]
 pub struct BranchFits {
     /// R1/R2.
     pub ratio: f64,
@@ -24,22 +29,75 @@ pub struct BranchFits {
     pub d_of_c: Option<LinearFit2>,
     /// F̄ = c1 c̄³ + c2 c̄^α.
     pub f_of_c: Option<PowerFit>,
+    /// The half-widths of A, B, c1, c2 and α where the fits are extrapolated to Δx → 0
+    /// (`None` for one grid's fits, whose discretisation error is not known).
+    pub uncertainty: Option<[f64; 5]>,
+    /// The grids (Nx) the fits come from.
+    pub grids: Vec<usize>,
 }
 
-/// Least-squares fits of a run's adhesive branch.
+/// Least-squares fits of one run's adhesive branch.
 pub fn branch_fits(run: &RatioRun) -> BranchFits {
     let (c, d, f) = columns(&adhesive_branch(&run.states));
     BranchFits {
         ratio: run.ratio,
         d_of_c: fit_d_of_c(&c, &d).ok(),
         f_of_c: fit_f_of_c(&c, &f).ok(),
+        uncertainty: None,
+        grids: vec![run.grid.0],
     }
+}
+
+/// The branch laws of one ratio at Δx → 0 from its runs on several grids, as fits with
+/// uncertainties (`None` if they cannot be formed; see [`branch_laws`]).
+pub fn limit_fits(ratio: f64, runs: &[RatioRun]) -> Option<(BranchFits, BranchLaws)> {
+    let branches: Vec<GridBranch> = runs
+        .iter()
+        .map(|r| GridBranch {
+            nx: r.grid.0,
+            points: adhesive_branch(&r.states),
+        })
+        .collect();
+    let laws = branch_laws(ratio, &branches)?;
+    let l = &laws.limit;
+    let d = LinearFit2 {
+        a: laws.a.value,
+        b: laws.b.value,
+        quality: FitQuality::NONE,
+    };
+    let f = PowerFit {
+        c1: laws.c1.value,
+        c2: laws.c2.value,
+        alpha: laws.alpha.value,
+        alpha_at_bound: laws.alpha_at_bound,
+        quality: FitQuality::NONE,
+    };
+    let fits = BranchFits {
+        ratio,
+        d_of_c: Some(LinearFit2 {
+            quality: quality(&l.c_bar, &l.d_bar, |c| d.eval(c)),
+            ..d
+        }),
+        f_of_c: Some(PowerFit {
+            quality: quality(&l.c_bar, &l.f_bar, |c| f.eval(c)),
+            ..f
+        }),
+        uncertainty: Some([
+            laws.a.uncertainty,
+            laws.b.uncertainty,
+            laws.c1.uncertainty,
+            laws.c2.uncertainty,
+            laws.alpha.uncertainty,
+        ]),
+        grids: laws.grids.clone(),
+    };
+    Some((fits, laws))
 }
 
 /// A coefficient's name and its value in a ratio's fits.
 type Coefficient = (&'static str, fn(&BranchFits) -> Option<f64>);
 
-/// The coefficients of the branch laws.
+/// The coefficients of the branch laws, in the order of [`BranchFits::uncertainty`].
 pub const COEFFICIENTS: [Coefficient; 5] = [
     ("A", |f| f.d_of_c.as_ref().map(|d| d.a)),
     ("B", |f| f.d_of_c.as_ref().map(|d| d.b)),
@@ -48,22 +106,62 @@ pub const COEFFICIENTS: [Coefficient; 5] = [
     ("α", |f| f.f_of_c.as_ref().map(|p| p.alpha)),
 ];
 
-/// A coefficient's name, its (R1/R2, value) points and its fitted law.
-pub type CoefficientLaw = (&'static str, Vec<(f64, f64)>, Option<PowerLawFit>);
+/// One coefficient across ratios and its law k1·(R1/R2)^k2 + k3.
+pub struct CoefficientLaw {
+    /// The coefficient's name.
+    pub name: &'static str,
+    /// (R1/R2, value, half-width if known) per ratio.
+    pub points: Vec<(f64, f64, Option<f64>)>,
+    /// The law (None with fewer than three ratios or a failed fit).
+    pub law: Option<PowerLawFit>,
+    /// Half-widths of (k1, k2, k3) where every point has one: each point moved by its
+    /// standard deviation (half its half-width) in turn and the law refitted, the shifts
+    /// added in quadrature (first-order propagation), times two.
+    pub uncertainty: Option<[f64; 3]>,
+}
 
-/// Each coefficient's values against R1/R2 and its law k1·(R1/R2)^k2 + k3 (None with fewer
-/// than three ratios or a failed fit).
+/// Each coefficient's values against R1/R2 and its law, with uncertainties where the fits
+/// have them.
 pub fn coefficient_laws(fits: &[BranchFits]) -> Vec<CoefficientLaw> {
     COEFFICIENTS
         .iter()
-        .map(|(name, get)| {
-            let pts: Vec<(f64, f64)> = fits
+        .enumerate()
+        .map(|(i, (name, get))| {
+            let points: Vec<(f64, f64, Option<f64>)> = fits
                 .iter()
-                .filter_map(|f| Some((f.ratio, get(f)?)))
+                .filter_map(|f| Some((f.ratio, get(f)?, f.uncertainty.map(|u| u[i]))))
                 .collect();
-            let (x, y): (Vec<f64>, Vec<f64>) = pts.iter().copied().unzip();
+            let x: Vec<f64> = points.iter().map(|p| p.0).collect();
+            let y: Vec<f64> = points.iter().map(|p| p.1).collect();
             let law = fit_power_law(&x, &y).ok();
-            (*name, pts, law)
+            let uncertainty = law.as_ref().and_then(|_| {
+                let sds: Vec<f64> = points
+                    .iter()
+                    .map(|p| p.2.map(|u| 0.5 * u))
+                    .collect::<Option<_>>()?;
+                let mut var = [0.0f64; 3];
+                for (j, sd) in sds.iter().enumerate() {
+                    let moved = |s: f64| {
+                        let mut y = y.clone();
+                        y[j] += s;
+                        fit_power_law(&x, &y).ok()
+                    };
+                    let (up, down) = (moved(*sd)?, moved(-sd)?);
+                    for (v, (a, b)) in
+                        var.iter_mut()
+                            .zip([(up.k1, down.k1), (up.k2, down.k2), (up.k3, down.k3)])
+                    {
+                        *v += (0.5 * (a - b)).powi(2);
+                    }
+                }
+                Some(var.map(|v| 2.0 * v.sqrt()))
+            });
+            CoefficientLaw {
+                name,
+                points,
+                law,
+                uncertainty,
+            }
         })
         .collect()
 }

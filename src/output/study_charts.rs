@@ -128,17 +128,22 @@ pub fn coefficients_chart(fits: &[BranchFits]) -> LineChart {
         "coefficient",
     );
     chart.x_log = true;
-    for (i, (name, pts, law)) in coefficient_laws(fits).into_iter().enumerate() {
-        let hi = pts.iter().map(|p| p.0).fold(1.0, f64::max);
-        chart.push(name, pts, i, Style::Markers);
-        if let Some(law) = law {
+    for (i, c) in coefficient_laws(fits).into_iter().enumerate() {
+        let hi = c.points.iter().map(|p| p.0).fold(1.0, f64::max);
+        let pts: Vec<(f64, f64)> = c.points.iter().map(|p| (p.0, p.1)).collect();
+        match c.points.iter().map(|p| p.2).collect::<Option<Vec<f64>>>() {
+            Some(errors) => chart.push_with_errors(c.name, pts, errors, i),
+            None => chart.push(c.name, pts, i, Style::Markers),
+        }
+        if let Some(law) = c.law {
             let curve = (0..=CURVE_POINTS)
                 .map(|k| hi.powf(k as f64 / CURVE_POINTS as f64))
                 .map(|x| (x, law.eval(x)))
                 .collect();
             chart.push(
                 &format!(
-                    "{name} = {}",
+                    "{} = {}",
+                    c.name,
                     crate::text::power_law(law.k1, law.k2, law.k3)
                 ),
                 curve,

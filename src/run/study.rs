@@ -8,13 +8,17 @@ use super::open::BackendRequest;
 use super::sweep::states_path;
 use super::{failed, input, RunError};
 use crate::analysis::capture::ContourRow;
-use crate::analysis::study_fits::{branch_fits, coefficient_laws, BranchFits, RatioRun};
+use crate::analysis::estimate::{self, AdhesiveResult};
+use crate::analysis::study_fits::{
+    branch_fits, coefficient_laws, limit_fits, BranchFits, RatioRun,
+};
 use crate::model::{Model, ModelOptions};
 use crate::output::line_chart::LineChart;
 use crate::output::states_csv::read_state_rows;
 use crate::output::study_charts::{
     axis_ratio_chart, branch_chart, coefficients_chart, contour_chart, BranchLaw,
 };
+use crate::output::summary::Summary;
 use crate::output::sweep_charts::{force_vs_ratio_chart, pulloff_curves_chart};
 use crate::output::sweep_csv::{self, SweepRow};
 use crate::scene::Scene;
@@ -22,12 +26,23 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// The ratios of the study and the grid Nx of each, quick (2 CPU cores, minutes) and full
-/// (the study's resolution, for a GPU). Slender contacts need more elements along x for the
-/// same count across the minor axis.
+/// The ratios of the study and the grid Nx of each: quick (one grid per ratio, minutes on 2
+/// CPU cores), and the finest of the full study's three (halving, so that every adhesive
+/// force and every branch law is extrapolated to Δx → 0 with an uncertainty; under 45
+/// minutes on 2 CPU cores). Slender contacts need more elements along x for the same count
+/// across the minor axis.
 const RATIOS: [f64; 6] = [1.0, 2.0, 5.0, 10.0, 25.0, 50.0];
 const QUICK_GRIDS: [usize; 6] = [64, 64, 128, 128, 256, 256];
-const FULL_GRIDS: [usize; 6] = [512, 512, 1024, 1024, 2048, 2048];
+const FULL_GRIDS: [usize; 6] = [256, 256, 512, 512, 1024, 1024];
+
+/// Grids per ratio in the full study, each half the next.
+const FULL_LEVELS: usize = 3;
+
+/// The grids Nx of one ratio whose finest is `finest`: one (quick) or [`FULL_LEVELS`].
+fn ladder(finest: usize, quick: bool) -> Vec<usize> {
+    let levels = if quick { 1 } else { FULL_LEVELS };
+    (0..levels).rev().map(|k| finest >> k).collect()
+}
 
 /// A request for the whole study.
 #[derive(Debug, Clone)]
@@ -85,22 +100,24 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
     let grids = if args.quick { QUICK_GRIDS } else { FULL_GRIDS };
     let sweep_dir = args.out.join("sweep");
     let mut work = Vec::new();
-    for (&ratio, &grid) in RATIOS.iter().zip(&grids) {
+    for (&ratio, &finest) in RATIOS.iter().zip(&grids) {
         let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
-        let model = Model::build(
-            &scene,
-            &ModelOptions {
-                nx: grid,
-                ..ModelOptions::default()
-            },
-        )
-        .map_err(input)?;
-        let out = states_path(&sweep_dir, ratio, grid);
-        work.push(Job {
-            model,
-            out,
-            target: None,
-        });
+        for grid in ladder(finest, args.quick) {
+            let model = Model::build(
+                &scene,
+                &ModelOptions {
+                    nx: grid,
+                    ..ModelOptions::default()
+                },
+            )
+            .map_err(input)?;
+            let out = states_path(&sweep_dir, ratio, grid);
+            work.push(Job {
+                model,
+                out,
+                target: None,
+            });
+        }
     }
     let refs: Vec<&Model> = work.iter().map(|j| &j.model).collect();
     crate::plan::check_memory(&refs, args.jobs, "--quick").map_err(|e| {
@@ -125,15 +142,25 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
     }
     let _claimed = Outputs::claim(&named("--out", &targets))?;
     lines(&format!(
-        "reproduce: {} ratios on grids {:?}{}",
+        "reproduce: {} ratios on grids {}{}",
         RATIOS.len(),
-        grids,
+        grids
+            .iter()
+            .map(|&g| format!("{:?}", ladder(g, args.quick)))
+            .collect::<Vec<_>>()
+            .join(", "),
         if args.quick { " (quick)" } else { "" }
     ));
     let results = run_jobs(work, args.jobs, args.backend, lines);
     let mut failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
-    let mut rows: Vec<SweepRow> = results.iter().map(JobResult::row).collect();
     let mut warnings: Vec<String> = results.iter().flat_map(JobResult::warnings).collect();
+    let mut rows: Vec<SweepRow> = RATIOS
+        .iter()
+        .map(|&ratio| {
+            let group: Vec<&JobResult> = results.iter().filter(|r| r.ratio == ratio).collect();
+            ratio_row(ratio, &group)
+        })
+        .collect();
     rows.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
     sweep_csv::write_rows(&sweep_csv::sweep_csv_path(&sweep_dir), &rows)
         .map_err(write_error("--out"))?;
@@ -144,24 +171,61 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
         .map(|r| format!("{}: {}×{}", r.ratio, r.grid, r.ny))
         .collect::<Vec<_>>()
         .join(", ");
-    let runs: Vec<RatioRun> = rows
+    // Every grid's run of every ratio, coarse to fine.
+    let ratio_runs: Vec<(f64, Vec<RatioRun>)> = RATIOS
         .iter()
-        .filter_map(|r| {
-            let path = states_path(&sweep_dir, r.ratio, r.grid);
-            let states = read_state_rows(&path).ok()?;
-            Some(RatioRun {
-                ratio: r.ratio,
-                grid: (r.grid, r.ny),
-                states,
-            })
+        .map(|&ratio| {
+            let runs = results
+                .iter()
+                .filter(|r| r.ratio == ratio)
+                .filter_map(|r| {
+                    let path = states_path(&sweep_dir, ratio, r.grid.0);
+                    let states = read_state_rows(&path).ok()?;
+                    Some(RatioRun {
+                        ratio,
+                        grid: r.grid,
+                        states,
+                    })
+                })
+                .collect();
+            (ratio, runs)
         })
         .collect();
-    let fits: Vec<_> = runs.iter().map(branch_fits).collect();
+    // The branch laws: at Δx → 0 from the full study's grids, else the one grid's.
+    let mut fits: Vec<BranchFits> = Vec::new();
+    for (ratio, runs) in &ratio_runs {
+        let Some(finest) = runs.last() else { continue };
+        if runs.len() >= 2 {
+            match limit_fits(*ratio, runs) {
+                Some((f, _)) => fits.push(f),
+                None => {
+                    warnings.push(format!(
+                        "R1/R2 = {ratio}: the branches of grids {:?} could not be extrapolated \
+                         together; the finest grid's fits are shown, without uncertainties",
+                        runs.iter().map(|r| r.grid.0).collect::<Vec<_>>()
+                    ));
+                    fits.push(branch_fits(finest));
+                }
+            }
+        } else {
+            fits.push(branch_fits(finest));
+        }
+    }
+    // The charts draw each ratio's finest run beside its laws.
+    let runs: Vec<RatioRun> = ratio_runs
+        .into_iter()
+        .filter_map(|(_, mut r)| r.pop())
+        .collect();
     write_fit_tables(&args.out, &fits)?;
     let what = format!(
-        "R1/R2 = {grid_text} (Nx×Ny); backend {backend}; pull-offs {sweep_wall:.0} s in all"
+        "R1/R2 = {grid_text} (Nx×Ny{}); backend {backend}; pull-offs {sweep_wall:.0} s in all",
+        if args.quick {
+            ""
+        } else {
+            ", the finest of three grids; laws and forces extrapolated to Δx → 0"
+        }
     );
-    let pick = |want: &[f64]| -> (Vec<RatioRun>, Vec<_>) {
+    let pick = |want: &[f64]| -> (Vec<RatioRun>, Vec<BranchFits>) {
         let runs: Vec<RatioRun> = runs
             .iter()
             .filter(|r| want.contains(&r.ratio))
@@ -171,7 +235,11 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
                 states: r.states.clone(),
             })
             .collect();
-        let fits = runs.iter().map(branch_fits).collect();
+        let fits = fits
+            .iter()
+            .filter(|f| want.contains(&f.ratio))
+            .cloned()
+            .collect();
         (runs, fits)
     };
     let mut figures = Vec::new();
@@ -215,9 +283,17 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
     let laws = coefficient_laws(&fits);
     let law_text = laws
         .iter()
-        .map(|(n, _, l)| match l {
-            Some(l) => format!("{n} = {}", crate::text::power_law(l.k1, l.k2, l.k3)),
-            None => format!("{n}: no fit"),
+        .map(|c| match (&c.law, &c.uncertainty) {
+            (Some(l), Some(u)) => format!(
+                "{} = {} (± {:.3}, {:.3}, {:.3} on k1, k2, k3)",
+                c.name,
+                crate::text::power_law(l.k1, l.k2, l.k3),
+                u[0],
+                u[1],
+                u[2]
+            ),
+            (Some(l), None) => format!("{} = {}", c.name, crate::text::power_law(l.k1, l.k2, l.k3)),
+            (None, _) => format!("{}: no fit", c.name),
         })
         .collect::<Vec<_>>()
         .join("; ");
@@ -274,7 +350,12 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
         )?;
     }
     // §8.7: crossed cylinders, at the grids of the nearest ratios.
-    let crossed_grid = if args.quick { 128 } else { 1024 };
+    // Quick: one coarse grid; full: each angle's grid planned for a 2 % adhesive force.
+    let crossed_grid = if args.quick {
+        super::batch::GridChoice::Fixed(128)
+    } else {
+        super::batch::GridChoice::Accuracy(0.02)
+    };
     let crossed_dir = args.out.join("crossed");
     let crossed_req = CrossedRequest {
         radius: 0.01,
@@ -282,7 +363,7 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
         young: 1.0e6,
         poisson: 0.5,
         work_of_adhesion: 0.05,
-        grid: super::batch::GridChoice::Fixed(crossed_grid),
+        grid: crossed_grid,
         steps: 200,
         margin: 0.08,
         backend: args.backend,
@@ -315,8 +396,9 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
             file: "crossed.svg".into(),
             caption: format!(
                 "§8.7 Crossed cylinders (R = 10 mm, E = 1 MPa, ν = 0.5, Δγ = 0.05 J/m²): adhesive \
-                 force in N against crossing angle beside JG; Nx = {crossed_grid}, backend {backend}, \
+                 force in N against crossing angle beside JG; {}, backend {backend}, \
                  {:.0} s.",
+                crossed_grid.describe(),
                 t.elapsed().as_secs_f64()
             ),
         });
@@ -340,12 +422,39 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
     })
 }
 
+/// One ratio's row of the study's sweep: one grid's, or the adhesive force extrapolated to
+/// Δx → 0 from the runs of every grid (the finest run's row, marked failed, if a run failed).
+fn ratio_row(ratio: f64, group: &[&JobResult]) -> SweepRow {
+    let Some(finest) = group.last() else {
+        return SweepRow::failed(ratio, (0, 0), 0.0, "no run".into());
+    };
+    if group.len() == 1 {
+        return finest.row();
+    }
+    let reports: Option<Vec<_>> = group
+        .iter()
+        .map(|r| {
+            let s = r.summary.as_ref()?;
+            s.runs.first().filter(|run| run.min_reached).cloned()
+        })
+        .collect();
+    match reports {
+        Some(reports) => {
+            let est = estimate::from_runs(&reports).ok();
+            let result = AdhesiveResult::assemble(ratio, est, None, reports);
+            SweepRow::from_summary(&Summary::new(&result))
+        }
+        None => finest.row(),
+    }
+}
+
 /// The crossed-cylinder parameters as this request names them (it has no flags of its own).
 fn crossed_flag(parameter: &'static str) -> &'static str {
     parameter
 }
 
-/// One ratio's branch fits with their quality.
+/// One ratio's branch fits with their quality and, where extrapolated to Δx → 0, their
+/// uncertainties (half-widths).
 #[derive(serde::Serialize)]
 struct FitRow {
     ratio: f64,
@@ -360,9 +469,15 @@ struct FitRow {
     f_r_squared: Option<f64>,
     f_rms: Option<f64>,
     points: Option<usize>,
+    a_uncertainty: Option<f64>,
+    b_uncertainty: Option<f64>,
+    c1_uncertainty: Option<f64>,
+    c2_uncertainty: Option<f64>,
+    alpha_uncertainty: Option<f64>,
+    grids: String,
 }
 
-/// One coefficient's law k1·(R1/R2)^k2 + k3 with its quality.
+/// One coefficient's law k1·(R1/R2)^k2 + k3 with its quality and uncertainties.
 #[derive(serde::Serialize)]
 struct LawRow {
     coefficient: &'static str,
@@ -372,9 +487,12 @@ struct LawRow {
     r_squared: Option<f64>,
     rms: Option<f64>,
     ratios: usize,
+    k1_uncertainty: Option<f64>,
+    k2_uncertainty: Option<f64>,
+    k3_uncertainty: Option<f64>,
 }
 
-/// fits.csv (per ratio: A, B, c1, c2, α with R² and RMS residuals) and
+/// fits.csv (per ratio: A, B, c1, c2, α with R², RMS residuals and uncertainties) and
 /// coefficient_laws.csv (each coefficient's law across ratios).
 fn write_fit_tables(dir: &Path, fits: &[BranchFits]) -> Result<(), RunError> {
     write_csv(
@@ -382,6 +500,7 @@ fn write_fit_tables(dir: &Path, fits: &[BranchFits]) -> Result<(), RunError> {
         fits.iter().map(|f| {
             let d = f.d_of_c.as_ref();
             let p = f.f_of_c.as_ref();
+            let u = |i: usize| f.uncertainty.map(|u| u[i]);
             FitRow {
                 ratio: f.ratio,
                 a: d.map(|d| d.a),
@@ -395,22 +514,38 @@ fn write_fit_tables(dir: &Path, fits: &[BranchFits]) -> Result<(), RunError> {
                 f_r_squared: p.map(|p| p.quality.r_squared),
                 f_rms: p.map(|p| p.quality.rms_residual),
                 points: d.map(|d| d.quality.points),
+                a_uncertainty: u(0),
+                b_uncertainty: u(1),
+                c1_uncertainty: u(2),
+                c2_uncertainty: u(3),
+                alpha_uncertainty: u(4),
+                grids: f
+                    .grids
+                    .iter()
+                    .map(|g| g.to_string())
+                    .collect::<Vec<_>>()
+                    .join(";"),
             }
         }),
     )?;
     write_csv(
         &dir.join("coefficient_laws.csv"),
-        coefficient_laws(fits)
-            .into_iter()
-            .map(|(name, pts, law)| LawRow {
-                coefficient: name,
-                k1: law.as_ref().map(|l| l.k1),
-                k2: law.as_ref().map(|l| l.k2),
-                k3: law.as_ref().map(|l| l.k3),
-                r_squared: law.as_ref().map(|l| l.quality.r_squared),
-                rms: law.as_ref().map(|l| l.quality.rms_residual),
-                ratios: pts.len(),
-            }),
+        coefficient_laws(fits).into_iter().map(|c| {
+            let law = c.law.as_ref();
+            let u = |i: usize| c.uncertainty.map(|u| u[i]);
+            LawRow {
+                coefficient: c.name,
+                k1: law.map(|l| l.k1),
+                k2: law.map(|l| l.k2),
+                k3: law.map(|l| l.k3),
+                r_squared: law.map(|l| l.quality.r_squared),
+                rms: law.map(|l| l.quality.rms_residual),
+                ratios: c.points.len(),
+                k1_uncertainty: u(0),
+                k2_uncertainty: u(1),
+                k3_uncertainty: u(2),
+            }
+        }),
     )
 }
 
