@@ -6,11 +6,11 @@
 //! minor axis at that state, so the error is first order as for |min F̄|), weighted by the
 //! grid-phase scatter. The laws d̄ = A c̄² + B c̄^½ and F̄ = c1 c̄³ + c2 c̄^α are fitted to the
 //! extrapolated branch by weighted least squares. A coefficient's stated half-width combines
-//! three parts: twice its standard deviation from the fit (widened by the residuals' Birge
-//! ratio); how far it moves when one grid is left out of the extrapolation (three grids or
-//! more); and how far it moves when a tenth of the c̄ range is left out at either end (the
-//! range is a choice: near its top the front has only just left its pinned start, near its
-//! bottom the contact spans the fewest elements).
+//! in quadrature twice its standard deviation from the fit (widened by the residuals' Birge
+//! ratio) and its largest move under each of two independent choices: the extrapolation's
+//! model (one grid left out, or a parabola in 1/n instead of the line; three grids or more),
+//! and the c̄ range (a tenth left out at either end: near its top the front has only just
+//! left its pinned start, near its bottom the contact spans the fewest elements).
 
 use super::branch::BranchPoint;
 use super::convergence::CORNER_SCATTER;
@@ -132,9 +132,27 @@ impl Sorted {
     }
 }
 
-/// The branch at Δx → 0 over `range` at `n` points (≥ 2 grids, ≥ 2 points). `None` if a
-/// branch is empty or a point cannot be extrapolated.
-pub fn extrapolate(branches: &[GridBranch], range: (f64, f64), n: usize) -> Option<LimitBranch> {
+/// How the branch is extrapolated at each c̄.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Order {
+    /// A line in 1/n, weighted by the grid-phase scatter (the estimate).
+    First,
+    /// A parabola in 1/n (three grids or more), with the line's standard deviations: the
+    /// alternative model whose difference is part of the stated uncertainty.
+    Second,
+}
+
+/// The branch at Δx → 0 over `range` at `n` points (≥ 2 grids, ≥ 2 points; ≥ 3 grids for
+/// [`Order::Second`]). `None` if a branch is empty or a point cannot be extrapolated.
+pub fn extrapolate(
+    branches: &[GridBranch],
+    range: (f64, f64),
+    n: usize,
+    order: Order,
+) -> Option<LimitBranch> {
+    if order == Order::Second && branches.len() < 3 {
+        return None;
+    }
     if branches.len() < 2 || n < 2 || branches.iter().any(|b| b.points.is_empty()) {
         return None;
     }
@@ -176,7 +194,16 @@ pub fn extrapolate(branches: &[GridBranch], range: (f64, f64), n: usize) -> Opti
                 })
                 .collect();
             let fit = fit_free_line(&pts)?;
-            values.push(fit.intercept);
+            values.push(match order {
+                Order::First => fit.intercept,
+                Order::Second => {
+                    let cols: Vec<Vec<f64>> = (0..3)
+                        .map(|k| pts.iter().map(|p| p.x.powi(k) / p.sd).collect())
+                        .collect();
+                    let y: Vec<f64> = pts.iter().map(|p| p.y / p.sd).collect();
+                    least_squares(&cols, &y)?[0]
+                }
+            });
             sds.push(fit.intercept_sd_from_residuals());
         }
         Some((values, sds))
@@ -341,8 +368,8 @@ struct Coefficients {
     limit: LimitBranch,
 }
 
-fn coefficients(branches: &[GridBranch], range: (f64, f64)) -> Option<Coefficients> {
-    let l = extrapolate(branches, range, LIMIT_POINTS)?;
+fn coefficients(branches: &[GridBranch], range: (f64, f64), order: Order) -> Option<Coefficients> {
+    let l = extrapolate(branches, range, LIMIT_POINTS, order)?;
     let d = fit_d(&l.c_bar, &l.d_bar, &l.d_sd)?;
     let (f, at_bound) = fit_f(&l.c_bar, &l.f_bar, &l.f_sd)?;
     let v = [d.values.as_slice(), f.values.as_slice()].concat();
@@ -363,15 +390,19 @@ pub fn branch_laws(ratio: f64, branches: &[GridBranch]) -> Option<BranchLaws> {
     let mut branches = branches.to_vec();
     branches.sort_by_key(|b| b.nx);
     let range = common_range(&branches)?;
-    let all = coefficients(&branches, range)?;
-    let mut shift = [0.0f64; 5];
-    let mut widen = |other: Option<Coefficients>| {
-        if let Some(o) = other {
+    let all = coefficients(&branches, range, Order::First)?;
+    // The largest move of each coefficient over the alternatives of one choice.
+    let largest_move = |alternatives: Vec<Option<Coefficients>>| {
+        let mut shift = [0.0f64; 5];
+        for o in alternatives.into_iter().flatten() {
             for (s, (a, b)) in shift.iter_mut().zip(o.values.iter().zip(&all.values)) {
                 *s = s.max((a - b).abs());
             }
         }
+        shift
     };
+    // The extrapolation's model: one grid left out, or a parabola (three grids or more).
+    let mut models = Vec::new();
     if branches.len() >= 3 {
         for i in 0..branches.len() {
             let rest: Vec<GridBranch> = branches
@@ -380,15 +411,21 @@ pub fn branch_laws(ratio: f64, branches: &[GridBranch]) -> Option<BranchLaws> {
                 .filter(|(j, _)| *j != i)
                 .map(|(_, b)| b.clone())
                 .collect();
-            widen(coefficients(&rest, range));
+            models.push(coefficients(&rest, range, Order::First));
         }
+        models.push(coefficients(&branches, range, Order::Second));
     }
+    let model = largest_move(models);
+    // The c̄ range: a tenth left out at either end.
     let w = RANGE_TRIM * (range.1 - range.0);
-    widen(coefficients(&branches, (range.0 + w, range.1)));
-    widen(coefficients(&branches, (range.0, range.1 - w)));
+    let trimmed = largest_move(vec![
+        coefficients(&branches, (range.0 + w, range.1), Order::First),
+        coefficients(&branches, (range.0, range.1 - w), Order::First),
+    ]);
+    // Independent choices add in quadrature, with twice the fit's standard deviation.
     let est = |i: usize| Estimate {
         value: all.values[i],
-        uncertainty: (2.0 * all.sd[i]).hypot(shift[i]),
+        uncertainty: (2.0 * all.sd[i]).hypot(model[i]).hypot(trimmed[i]),
     };
     Some(BranchLaws {
         ratio,

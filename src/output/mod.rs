@@ -10,6 +10,7 @@ pub mod line_chart;
 pub mod profile;
 pub mod states_csv;
 pub mod study_charts;
+pub mod study_index;
 pub mod summary;
 pub mod sweep_charts;
 pub mod sweep_csv;

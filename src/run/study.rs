@@ -18,11 +18,11 @@ use crate::output::states_csv::read_state_rows;
 use crate::output::study_charts::{
     axis_ratio_chart, branch_chart, coefficients_chart, contour_chart, BranchLaw,
 };
+use crate::output::study_index::{self, Figure, StudyPage};
 use crate::output::summary::Summary;
 use crate::output::sweep_charts::{force_vs_ratio_chart, pulloff_curves_chart};
 use crate::output::sweep_csv::{self, SweepRow};
 use crate::scene::Scene;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -87,12 +87,6 @@ const FILES: [&str; 14] = [
     "index.html",
 ];
 
-/// One chart of the report: file name, caption.
-struct Figure {
-    file: String,
-    caption: String,
-}
-
 /// Run the study: the sweep, the fits, the crossed cylinders, the charts and the index.
 /// `lines` receives progress notes.
 pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<StudyDone, RunError> {
@@ -151,7 +145,10 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
             .join(", "),
         if args.quick { " (quick)" } else { "" }
     ));
-    let results = run_jobs(work, args.jobs, args.backend, lines);
+    // The largest pull-offs first, so that parallel jobs end together.
+    work.sort_by_key(|j| std::cmp::Reverse(j.model.nx * j.model.ny));
+    let mut results = run_jobs(work, args.jobs, args.backend, lines);
+    results.sort_by(|a, b| a.ratio.total_cmp(&b.ratio).then(a.grid.0.cmp(&b.grid.0)));
     let mut failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
     let mut warnings: Vec<String> = results.iter().flat_map(JobResult::warnings).collect();
     let mut rows: Vec<SweepRow> = RATIOS
@@ -408,11 +405,14 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
     }
     write_index(
         &args.out,
-        &figures,
-        &rows,
-        &warnings,
-        start.elapsed().as_secs_f64(),
-        args.quick,
+        &StudyPage {
+            figures: &figures,
+            rows: &rows,
+            fits: &fits,
+            warnings: &warnings,
+            wall_s: start.elapsed().as_secs_f64(),
+            quick: args.quick,
+        },
     )?;
     Ok(StudyDone {
         index: args.out.join("index.html"),
@@ -557,74 +557,9 @@ fn write_csv<T: serde::Serialize>(
     crate::output::file::write_csv(path, None, rows).map_err(write_error("--out"))
 }
 
-/// index.html: every chart with its caption, the sweep's table and every warning.
-fn write_index(
-    dir: &Path,
-    figures: &[Figure],
-    rows: &[SweepRow],
-    warnings: &[String],
-    wall: f64,
-    quick: bool,
-) -> Result<(), RunError> {
-    let mut html = String::from(
-        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
-         <title>jkrbem: the study</title>\
-         <style>body{font-family:sans-serif;max-width:960px;margin:2em auto;color:#222}\
-         figure{margin:2em 0}img{width:100%;border:1px solid #ddd}\
-         figcaption{font-size:0.95em;color:#444}table{border-collapse:collapse}\
-         td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}</style></head><body>\n",
-    );
-    let _ = writeln!(
-        html,
-        "<h1>jkrbem: adhesive contact of ellipsoids</h1><p>{} run, {wall:.0} s in all. \
-         Normalisation: F̄ = F/(3π Re Δγ), c̄ = c/c_r, d̄ = d·Re/c_r² (physics §2).</p>",
-        if quick {
-            "Quick (coarse grids)"
-        } else {
-            "Full-resolution"
-        }
-    );
-    html.push_str(
-        "<table><tr><th>R1/R2</th><th>grid</th><th>|min F̄| at Δx → 0</th><th>JG</th>\
-         <th>n_d</th><th>wall (s)</th></tr>\n",
-    );
-    for r in rows {
-        let f = |v: Option<f64>| v.map_or("—".into(), |v| format!("{v:.4}"));
-        let _ = writeln!(
-            html,
-            "<tr><td>{}</td><td>{}×{}</td><td>{}{}</td><td>{}</td><td>{}</td><td>{:.1}</td></tr>",
-            r.ratio,
-            r.grid,
-            r.ny,
-            f(r.f_ad_bar),
-            r.f_ad_bar_uncertainty
-                .map_or(String::new(), |u| format!(" ± {u:.4}")),
-            f(r.jg_f_ad_bar),
-            r.n_d.map_or("—".into(), |v| format!("{v:.0}")),
-            r.wall_s
-        );
-    }
-    html.push_str("</table>\n");
-    if !warnings.is_empty() {
-        html.push_str("<h2>Warnings</h2><ul>\n");
-        for w in warnings {
-            let _ = writeln!(
-                html,
-                "<li>{}</li>",
-                w.replace('&', "&amp;").replace('<', "&lt;")
-            );
-        }
-        html.push_str("</ul>\n");
-    }
-    for f in figures {
-        let _ = writeln!(
-            html,
-            "<figure><img src=\"{0}\" alt=\"{0}\"><figcaption>{1}</figcaption></figure>",
-            f.file,
-            f.caption.replace('&', "&amp;").replace('<', "&lt;")
-        );
-    }
-    html.push_str("</body></html>\n");
+/// index.html, as [`study_index::index_html`] writes it.
+fn write_index(dir: &Path, page: &StudyPage) -> Result<(), RunError> {
+    let html = study_index::index_html(page);
     crate::output::file::write_bytes(&dir.join("index.html"), html.as_bytes())
         .map_err(write_error("--out"))
 }
