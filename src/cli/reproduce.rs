@@ -14,8 +14,11 @@ pub struct Args {
     /// Output folder: sweep/, crossed/, the charts and index.html.
     #[arg(long, default_value = "jkrbem-out/reproduce")]
     pub out: PathBuf,
-    /// Coarse grids (Nx 64 … 256) that finish in minutes on 2 CPU cores, instead of the
-    /// study's (Nx 512 … 2048, meant for a GPU).
+    /// One coarse grid per ratio (Nx 64 … 256; about a minute on 2 CPU cores), each force
+    /// corrected by the convergence law and the branch laws without uncertainties, instead
+    /// of the full study: three grids per ratio (up to Nx 1024), every force and branch law
+    /// extrapolated to Δx → 0 with its uncertainty (about 26 minutes on 2 CPU cores with
+    /// --jobs 2).
     #[arg(long)]
     pub quick: bool,
     /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.

@@ -49,7 +49,8 @@ fn ladder(finest: usize, quick: bool) -> Vec<usize> {
 pub struct StudyRequest {
     /// Output folder: sweep/, crossed/, the charts and index.html.
     pub out: PathBuf,
-    /// Coarse grids (Nx 64 … 256, minutes on 2 CPU cores) instead of the study's (512 … 2048).
+    /// One coarse grid per ratio (Nx 64 … 256, a minute on 2 CPU cores) instead of the full
+    /// study's three (up to Nx 1024), extrapolated to Δx → 0.
     pub quick: bool,
     /// The backend.
     pub backend: BackendRequest,
@@ -124,7 +125,7 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
             if args.quick {
                 ""
             } else {
-                " (use --quick for grids of 64 to 256, or a machine with more memory)"
+                " (use --quick for one grid of 64 to 256 per ratio, or a machine with more memory)"
             }
         ))
     })?;
