@@ -3,6 +3,8 @@
 //! the contact's minor axis at the force minimum. Used to warn about coarse grids and to
 //! choose a grid for a requested accuracy.
 
+use super::line_fit::{fit_free_line, Point};
+
 /// The reference table (`jkrbem reference`), compiled in: the law is fitted to it.
 const REFERENCE_TABLE: &str = include_str!("../../docs/reference/adhesive-force.csv");
 
@@ -148,37 +150,15 @@ pub fn fit_table_law(rows: &[LawPoint]) -> Option<TableLaw> {
             (1.0 / p.ratio, p.k, (own * p.k).max(1e-6))
         })
         .collect();
-    let (mut s, mut sx, mut sxx, mut sy, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for &(x, y, sd) in &obs {
-        let w = 1.0 / (sd * sd);
-        s += w;
-        sx += w * x;
-        sxx += w * x * x;
-        sy += w * y;
-        sxy += w * x * y;
-    }
-    let det = s * sxx - sx * sx;
-    if !(det.is_finite() && det > 0.0) {
-        return None;
-    }
-    let b = (s * sxy - sx * sy) / det;
-    let a = (sy - b * sx) / s;
-    let chi2: f64 = obs
-        .iter()
-        .map(|&(x, y, sd)| ((y - a - b * x) / sd).powi(2))
-        .sum();
-    let dof = obs.len() - 2;
-    let birge2 = if dof > 0 {
-        (chi2 / dof as f64).max(1.0)
-    } else {
-        1.0
-    };
+    let points: Vec<Point> = obs.iter().map(|&(x, y, sd)| Point { x, y, sd }).collect();
+    let fit = fit_free_line(&points)?;
+    let birge2 = fit.birge().powi(2);
     Some(TableLaw {
-        k_slender: a,
-        k_round: b,
+        k_slender: fit.intercept,
+        k_round: fit.slope,
         covariance: [
-            [birge2 * sxx / det, -birge2 * sx / det],
-            [-birge2 * sx / det, birge2 * s / det],
+            [birge2 * fit.intercept_sd.powi(2), birge2 * fit.covariance],
+            [birge2 * fit.covariance, birge2 * fit.slope_sd.powi(2)],
         ],
     })
 }

@@ -33,6 +33,8 @@ pub struct LineFit {
     pub slope: f64,
     /// Standard deviation of the slope, from the points' and the prior's deviations only.
     pub slope_sd: f64,
+    /// Covariance of intercept and slope, from the points' and the prior's deviations only.
+    pub covariance: f64,
     /// χ² of the fit (points and prior), dimensionless.
     pub chi2: f64,
     /// Degrees of freedom: points (+ 1 with a prior on the slope) − 2.
@@ -110,6 +112,7 @@ fn fit(points: &[Point], prior: Option<SlopePrior>) -> Option<LineFit> {
         intercept_sd: (m22 / det).sqrt(),
         slope: b,
         slope_sd: (m11 / det).sqrt(),
+        covariance: -m12 / det,
         chi2,
         dof: (points.len() + usize::from(prior.is_some())).saturating_sub(2),
     })

@@ -4,7 +4,7 @@
 
 use super::line_chart::{LineChart, Style};
 use crate::analysis::adhesive_branch;
-use crate::analysis::study_fits::{coefficient_laws, BranchFits, RatioRun};
+use crate::analysis::study_fits::{BranchFits, CoefficientLaw, RatioRun};
 use crate::solver::Phase;
 use crate::theory::{self, TheoryModel, TheoryPoint};
 
@@ -121,14 +121,14 @@ pub fn branch_chart(runs: &[RatioRun], fits: &[BranchFits], law: BranchLaw) -> L
 }
 
 /// The fitted coefficients against R1/R2 (log axis) with their laws (dashed).
-pub fn coefficients_chart(fits: &[BranchFits]) -> LineChart {
+pub fn coefficients_chart(laws: &[CoefficientLaw]) -> LineChart {
     let mut chart = LineChart::new(
         "Branch-law coefficients against axis ratio (dashed: k1·(R1/R2)^k2 + k3)",
         "R1/R2",
         "coefficient",
     );
     chart.x_log = true;
-    for (i, c) in coefficient_laws(fits).into_iter().enumerate() {
+    for (i, c) in laws.iter().enumerate() {
         let hi = c.points.iter().map(|p| p.0).fold(1.0, f64::max);
         let pts: Vec<(f64, f64)> = c.points.iter().map(|p| (p.0, p.1)).collect();
         match c.points.iter().map(|p| p.2).collect::<Option<Vec<f64>>>() {

@@ -10,7 +10,7 @@ use super::{failed, input, RunError};
 use crate::analysis::capture::ContourRow;
 use crate::analysis::estimate::{self, AdhesiveResult};
 use crate::analysis::study_fits::{
-    branch_fits, coefficient_laws, limit_fits, BranchFits, RatioRun,
+    branch_fits, coefficient_laws, limit_fits, BranchFits, CoefficientLaw, RatioRun,
 };
 use crate::model::{Model, ModelOptions};
 use crate::output::line_chart::LineChart;
@@ -214,7 +214,8 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
         .into_iter()
         .filter_map(|(_, mut r)| r.pop())
         .collect();
-    write_fit_tables(&args.out, &fits)?;
+    let laws = coefficient_laws(&fits);
+    write_fit_tables(&args.out, &fits, &laws)?;
     let what = format!(
         "R1/R2 = {grid_text} (Nx×Ny{}); backend {backend}; pull-offs {sweep_wall:.0} s in all",
         if args.quick {
@@ -278,7 +279,6 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
             format!("§8.4 {name}, on the adhesive branch (onset states), beside JG. {what}."),
         )?;
     }
-    let laws = coefficient_laws(&fits);
     let law_text = laws
         .iter()
         .map(|c| match (&c.law, &c.uncertainty) {
@@ -297,7 +297,7 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
         .join("; ");
     chart(
         "coefficients.svg",
-        coefficients_chart(&fits),
+        coefficients_chart(&laws),
         format!(
             "§8.5 The branch-law coefficients against R1/R2 with fitted laws: {law_text}. {what}."
         ),
@@ -495,7 +495,11 @@ struct LawRow {
 
 /// fits.csv (per ratio: A, B, c1, c2, α with R², RMS residuals and uncertainties) and
 /// coefficient_laws.csv (each coefficient's law across ratios).
-fn write_fit_tables(dir: &Path, fits: &[BranchFits]) -> Result<(), RunError> {
+fn write_fit_tables(
+    dir: &Path,
+    fits: &[BranchFits],
+    laws: &[CoefficientLaw],
+) -> Result<(), RunError> {
     write_csv(
         &dir.join("fits.csv"),
         fits.iter().map(|f| {
@@ -531,7 +535,7 @@ fn write_fit_tables(dir: &Path, fits: &[BranchFits]) -> Result<(), RunError> {
     )?;
     write_csv(
         &dir.join("coefficient_laws.csv"),
-        coefficient_laws(fits).into_iter().map(|c| {
+        laws.iter().map(|c| {
             let law = c.law.as_ref();
             let u = |i: usize| c.uncertainty.map(|u| u[i]);
             LawRow {
