@@ -194,6 +194,7 @@ fn delta(before: Counters, after: Counters) -> Counters {
     Counters {
         dispatches: after.dispatches - before.dispatches,
         readbacks: after.readbacks - before.readbacks,
+        readback_bytes: after.readback_bytes - before.readback_bytes,
         submits: after.submits - before.submits,
         bytes: after.bytes - before.bytes,
     }
@@ -416,6 +417,7 @@ mod tests {
             readbacks: r,
             submits: s,
             bytes: b,
+            ..Counters::default()
         };
         let w = per(c(4, 1, 2, 100), c(204, 2, 22, 2100), 20);
         assert_eq!(

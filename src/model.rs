@@ -1,7 +1,8 @@
 //! What a scene needs numerically: the domain and grid, the detachment stress, the load
 //! steps and the CG settings. Knows nothing of backends.
 
-use crate::backend::Preconditioner;
+use crate::backend::measure;
+use crate::backend::{ChordAxes, Preconditioner};
 use crate::scene::Scene;
 use crate::text::compact;
 use crate::theory::{self, hertz::HertzContact, TheoryModel};
@@ -339,6 +340,19 @@ impl MeshAngle {
     /// Whether the ellipsoid's axes lie along the grid's (θ = 0 exactly).
     pub fn is_aligned(&self) -> bool {
         self.degrees == 0.0
+    }
+
+    /// The directions of the contact's chords (the ellipsoid's axes) in the grid's frame:
+    /// exactly the grid's own axes when aligned.
+    pub fn chord_axes(&self) -> ChordAxes {
+        if self.is_aligned() {
+            ChordAxes::ALIGNED
+        } else {
+            ChordAxes {
+                cos: self.cos,
+                sin: self.sin,
+            }
+        }
     }
 
     /// (ξ, η): the point (x, y) of the grid (length) in the ellipsoid's frame (length).
@@ -680,16 +694,18 @@ impl Model {
     /// Half-extents (length) of the contact in `mask` along x and y: the largest |x| (|y|)
     /// reached by a contact element's outer side; (0, 0) without contact.
     pub fn contact_extent(&self, mask: &[bool]) -> (f64, f64) {
-        let (mut ex, mut ey) = (0f64, 0f64);
-        for j in 0..self.ny {
-            for i in 0..self.nx {
-                if mask[j * self.nx + i] {
-                    ex = ex.max(self.x(i).abs() + 0.5 * self.dx);
-                    ey = ey.max(self.y(j).abs() + 0.5 * self.dx);
-                }
-            }
-        }
-        (ex, ey)
+        measure::bounds(mask, self.nx).map_or((0.0, 0.0), |b| self.extent_of_bounds(b))
+    }
+
+    /// The extent of the elements' index box `[i_min, i_max, j_min, j_max]` (as
+    /// [`crate::backend::ContactMeasure::bounds`]): the largest |x| and |y| (length) reached
+    /// by its elements' outer edges.
+    pub fn extent_of_bounds(&self, [i0, i1, j0, j1]: [usize; 4]) -> (f64, f64) {
+        let half = 0.5 * self.dx;
+        (
+            self.x(i0).abs().max(self.x(i1).abs()) + half,
+            self.y(j0).abs().max(self.y(j1).abs()) + half,
+        )
     }
 
     /// Carry a field (row-major, on this model's grid) over to `fine`, a re-gridded model:

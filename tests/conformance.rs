@@ -14,8 +14,9 @@ mod common;
 
 use common::pseudo_random;
 use jkrbem::backend::cpu::CpuBackend;
+use jkrbem::backend::measure::measure_mask;
 use jkrbem::backend::prelude::*;
-use jkrbem::backend::{CgStop, GridSetup, Preconditioner};
+use jkrbem::backend::{CgStop, ChordAxes, GridSetup, Preconditioner};
 use libtest_mimic::{Arguments, Trial};
 
 /// Elements along x and y: rectangular, so that a transposed index shows.
@@ -166,7 +167,7 @@ fn residual<B: Backend>(mut s: Subject<B>) {
     s.assert_close("residual", &got, &want);
 }
 
-/// Σ_C a·b with a and b NaN off C; the pressure sum and contact count likewise.
+/// Σ_C a·b with a and b NaN off C.
 fn reductions<B: Backend>(mut s: Subject<B>) {
     let (a, b) = (pseudo_random(NX * NY, 4), pseudo_random(NX * NY, 5));
     let fa = s.put(&poisoned(&a, &s.mask));
@@ -178,10 +179,64 @@ fn reductions<B: Backend>(mut s: Subject<B>) {
     let scale: f64 = ca.iter().zip(&cb).map(|(x, y)| (x * y).abs()).sum();
     let got = s.read(out);
     s.assert_scalar("dot", got, want, scale);
-    let (sum, count) = s.b.sum_and_count(&fa).unwrap();
+}
+
+/// A state's measurement: Σ_C p with p NaN off C, |C|, the chords along the grid's axes
+/// (exact) and along axes turned by 30° and 135° (f32's rounding of the band areas), and the
+/// index box; an empty C has none.
+fn measure<B: Backend>(mut s: Subject<B>) {
+    let a = pseudo_random(NX * NY, 4);
+    let fa = s.put(&poisoned(&a, &s.mask));
+    let ca = on_c(&a, &s.mask);
     let scale: f64 = ca.iter().map(|v| v.abs()).sum();
-    s.assert_scalar("sum_and_count sum", sum, ca.iter().sum(), scale);
-    assert_eq!(count, s.mask.iter().filter(|m| **m).count());
+    for deg in [0.0, 30.0, 135.0f64] {
+        let (sin, cos) = deg.to_radians().sin_cos();
+        let axes = if deg == 0.0 {
+            ChordAxes::ALIGNED
+        } else {
+            ChordAxes { cos, sin }
+        };
+        let got = s.b.measure(&fa, axes).unwrap();
+        let want = measure_mask(&ca, &s.mask, NX, NY, axes);
+        s.assert_scalar("measure sum", got.sum, want.sum, scale);
+        assert_eq!(got.count, want.count, "count");
+        assert_eq!(got.bounds, want.bounds, "index box");
+        let chord_tol = if deg == 0.0 { 0.0 } else { 1e-3 };
+        for (g, w) in [
+            (got.half_lengths.0, want.half_lengths.0),
+            (got.half_lengths.1, want.half_lengths.1),
+        ] {
+            assert!(
+                (g - w).abs() <= chord_tol * (1.0 + w),
+                "chords at {deg}°: {:?}, expected {:?}",
+                got.half_lengths,
+                want.half_lengths
+            );
+        }
+    }
+    // One element in contact at (5, 3): its box, and no box without contact.
+    let mut one = vec![false; NX * NY];
+    one[3 * NX + 5] = true;
+    s.b.set_contact(&one).unwrap();
+    let got = s.b.measure(&fa, ChordAxes::ALIGNED).unwrap();
+    assert_eq!((got.count, got.bounds), (1, Some([5, 5, 3, 3])));
+    s.b.set_contact(&vec![false; NX * NY]).unwrap();
+    let got = s.b.measure(&fa, ChordAxes::ALIGNED).unwrap();
+    assert_eq!((got.sum, got.count, got.bounds), (0.0, 0, None));
+}
+
+/// save_contact keeps C in a field; restore_contact brings it back after C has changed.
+fn save_and_restore_contact<B: Backend>(mut s: Subject<B>) {
+    let mut kept = s.put(&vec![f64::NAN; NX * NY]);
+    s.b.save_contact(&mut kept).unwrap();
+    s.b.set_contact(&vec![true; NX * NY]).unwrap();
+    s.b.restore_contact(&kept).unwrap();
+    let mut got = vec![false; NX * NY];
+    s.b.contact(&mut got).unwrap();
+    assert!(
+        got == s.mask,
+        "the restored contact set differs from the saved one"
+    );
 }
 
 /// y += sign·(num/den)·x on C (y unchanged off C, whatever x is there); a zero denominator
@@ -465,6 +520,8 @@ fn checks<B: Backend + 'static>() -> Vec<(&'static str, Check<B>)> {
         ("slots", slots::<B>),
         ("residual", residual::<B>),
         ("reductions", reductions::<B>),
+        ("measure", measure::<B>),
+        ("save_and_restore_contact", save_and_restore_contact::<B>),
         ("axpy_ratio", axpy_ratio::<B>),
         ("xpay_ratio", xpay_ratio::<B>),
         ("lerp", lerp::<B>),

@@ -11,7 +11,7 @@ use common::{gpu_backend, pseudo_random};
 use jkrbem::backend::gpu::GpuBackend;
 use jkrbem::backend::prelude::*;
 use jkrbem::backend::{cpu::CpuBackend, GridSetup};
-use jkrbem::backend::{Preconditioner, Slot};
+use jkrbem::backend::{ChordAxes, Preconditioner, Slot};
 
 fn setup(nx: usize, ny: usize, preconditioner: Preconditioner) -> GridSetup {
     GridSetup {
@@ -166,10 +166,13 @@ fn cg_vector_operations_match_cpu() {
     cpu.copy(&cb, &mut cy).unwrap();
     gpu.copy(&gb, &mut gy).unwrap();
     check("copy", download(&mut gpu, &gy), &cy);
-    let (cs, cn) = cpu.sum_and_count(&ca).unwrap();
-    let (gs, gn) = gpu.sum_and_count(&ga).unwrap();
-    assert_eq!(gn, cn);
-    assert!((gs - cs).abs() <= 1e-5 * ca.iter().map(|v| v.abs()).sum::<f64>());
+    let cm = cpu.measure(&ca, ChordAxes::ALIGNED).unwrap();
+    let gm = gpu.measure(&ga, ChordAxes::ALIGNED).unwrap();
+    assert_eq!(
+        (gm.count, gm.half_lengths, gm.bounds),
+        (cm.count, cm.half_lengths, cm.bounds)
+    );
+    assert!((gm.sum - cm.sum).abs() <= 1e-5 * ca.iter().map(|v| v.abs()).sum::<f64>());
 }
 
 fn reductions_match_f64_sums_on_a_large_grid() {

@@ -1,7 +1,8 @@
 //! Whole pull-offs on the GPU backend (f32) against the CPU backend (f64) on the same grid:
 //! the adhesive force |min F̄| must agree within 0.2 % for a sphere and a 5:1 ellipsoid, and
-//! the F̄(d̄) curves must stay close state by state. A device lost mid-run must end the run
-//! with a clear error and keep the states computed so far.
+//! the F̄(d̄) curves must stay close state by state, and no whole field may come back to the
+//! host except to re-grid (each state is measured on the device). A device lost mid-run must
+//! end the run with a clear error and keep the states computed so far.
 //!
 //! Skips with a message when no GPU adapter exists, unless `JKRBEM_REQUIRE_GPU=1`.
 
@@ -30,6 +31,26 @@ fn compare_with(ratio: f64, options: ModelOptions) {
     };
     let g = solver::run(&mut gpu, &model, &mut |_| {});
     assert!(g.complete(), "GPU run failed: {:?}", g.error);
+    // Each state is measured on the device: at most CG's 64 scalar registers (256 bytes) come
+    // back per readback, and whole fields (p and the contact mask, 4 bytes an element each)
+    // only to re-grid.
+    let work = gpu.counters();
+    let field = 4 * (model.nx * model.ny) as u64;
+    let allowed = 256 * work.readbacks + 2 * field * g.regrids.len() as u64;
+    println!(
+        "{} readbacks, {} bytes back ({:.1} per readback; whole fields: {} regrids × 2)",
+        work.readbacks,
+        work.readback_bytes,
+        work.readback_bytes as f64 / work.readbacks as f64,
+        g.regrids.len()
+    );
+    assert!(
+        work.readback_bytes <= allowed,
+        "{} bytes read back over {} readbacks and {} regrids: whole fields are read back",
+        work.readback_bytes,
+        work.readbacks,
+        g.regrids.len()
+    );
     let c = run_model(model.clone()).outcome;
     assert!(c.complete());
     let (fg, fc) = (g.force_minimum().unwrap(), c.force_minimum().unwrap());

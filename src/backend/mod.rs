@@ -16,7 +16,8 @@
 //!
 //! A GPU can run every operation on the device: grid fields stay resident, CG's scalars live
 //! in device-side [`Slot`]s, and the host reads back only a handful of scalars (when it
-//! chooses to test convergence) and whole fields only when a state is recorded.
+//! chooses to test convergence, a state's measurement) and whole fields only where a caller
+//! asks for them (contour snapshots, re-gridding).
 //!
 //! Conventions shared by every backend (all fields are `nx × ny`, row-major, x fastest):
 //! - the *contact set* C is a mask held by the backend; masked operations act on C only;
@@ -28,9 +29,11 @@ pub mod cpu;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod kernel;
+pub mod measure;
 pub mod select;
 pub mod setup;
 
+pub use measure::{ChordAxes, ContactMeasure};
 pub use setup::GridSetup;
 
 /// Every part of the backend contract, for code that calls backends' operations.
@@ -128,6 +131,8 @@ pub struct Counters {
     pub dispatches: u64,
     /// Blocking reads of device memory by the host (scalars or fields).
     pub readbacks: u64,
+    /// Bytes those reads brought back to the host (0 for the CPU backend).
+    pub readback_bytes: u64,
     /// Command submissions to the device queue.
     pub submits: u64,
     /// Bytes the launched kernels read and wrote in device memory, as counted from their
@@ -318,8 +323,17 @@ pub trait ContactKernels: Device {
         t: f64,
         dst: &mut Self::Field,
     ) -> Result<(), BackendError>;
-    /// (Σ_C p, |C|): total pressure sum (stress; multiply by Δx² for force) and contact count.
-    fn sum_and_count(&mut self, p: &Self::Field) -> Result<(f64, usize), BackendError>;
+    /// A state's measurement of C with pressure `p` on it, reduced where the fields live (a
+    /// few numbers come back, never the mask): Σ_C p (stress; multiply by Δx² for force),
+    /// |C|, the chords along `axes` through the grid centre and the index box of C
+    /// ([`measure::measure_mask`] defines them).
+    fn measure(&mut self, p: &Self::Field, axes: ChordAxes)
+        -> Result<ContactMeasure, BackendError>;
+    /// Keep the contact set in `dst` (a field used as storage, in the backend's own encoding:
+    /// only [`ContactKernels::restore_contact`] reads it), on the device.
+    fn save_contact(&mut self, dst: &mut Self::Field) -> Result<(), BackendError>;
+    /// Make the contact set the one [`ContactKernels::save_contact`] kept in `src`.
+    fn restore_contact(&mut self, src: &Self::Field) -> Result<(), BackendError>;
 }
 
 /// Everything the pull-off protocol needs of a backend.

@@ -28,7 +28,8 @@ pub struct Pulloff {
 /// Run `model`'s pull-off on `backend`, streaming its states to `out` (under this run's
 /// partial name `<stem>.incomplete-<pid>.csv` until the run completes; `flag` names `out` in
 /// messages). `watch` sees every state; `capture`, if given, sees every state with its
-/// contact mask. If the states cannot be written, the run stops and that is the error. At
+/// contact mask (masks are read back from the device only then). If the states cannot be
+/// written, the run stops and that is the error. At
 /// `deadline`, if given, the run stops after the state it is computing (`timed_out`).
 pub fn pulloff_to_file<B: Backend>(
     backend: &mut B,
@@ -44,8 +45,9 @@ pub fn pulloff_to_file<B: Backend>(
     let mut timed_out = false;
     watch.pulloff_started(model);
     let start = Instant::now();
-    let outcome = solver::run_until(backend, model, &mut |s, mask| {
-        if let Some(c) = capture.as_deref_mut() {
+    let with_contact = capture.is_some();
+    let outcome = solver::run_until(backend, model, with_contact, &mut |s, mask| {
+        if let (Some(c), Some(mask)) = (capture.as_deref_mut(), mask) {
             c.observe(s, mask);
         }
         watch.state(model, s);

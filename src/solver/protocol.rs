@@ -9,9 +9,9 @@
 
 use super::equilibrium::{equilibrate, solve_fixed, Equilibrium, Fields};
 use super::retry::{self, CgRetry};
-use super::state::{axis_half_lengths, axis_half_lengths_along, Phase, State};
+use super::state::{Phase, State};
 use super::SolverError;
-use crate::backend::Backend;
+use crate::backend::{Backend, ContactKernels};
 use crate::model::{Measure, Model, Stepping};
 use std::collections::VecDeque;
 use std::f64::consts::PI;
@@ -104,32 +104,27 @@ impl Outcome {
     }
 }
 
-/// Measure and normalise the state of pressure `p` on the backend's contact set.
+/// Measure and normalise the state of pressure `p` on the backend's contact set (reduced on
+/// the backend's device); also returns the contact's index box (`None` without contact).
 #[allow(clippy::too_many_arguments)]
 fn record<B: Backend>(
     backend: &mut B,
     model: &Model,
     p: &B::Field,
-    mask: &mut [bool],
     step: usize,
     phase: Phase,
     d: f64,
     eq: &Equilibrium,
-) -> Result<State, SolverError> {
-    let (sum, n) = backend.sum_and_count(p)?;
-    backend.contact(mask)?;
-    let (a_el, b_el) = if model.mesh.is_aligned() {
-        axis_half_lengths(mask, model.nx, model.ny)
-    } else {
-        let m = model.mesh;
-        axis_half_lengths_along(mask, model.nx, model.ny, m.cos, m.sin)
-    };
+) -> Result<(State, Option<[usize; 4]>), SolverError> {
+    let m = backend.measure(p, model.mesh.chord_axes())?;
+    let (a_el, b_el) = m.half_lengths;
+    let n = m.count;
     let dx = model.dx;
     let sc = model.scene.scales();
     let area = n as f64 * dx * dx;
-    let force = sum * dx * dx;
+    let force = m.sum * dx * dx;
     let mean_radius = (area / PI).sqrt();
-    Ok(State {
+    let state = State {
         step,
         phase,
         d,
@@ -148,16 +143,22 @@ fn record<B: Backend>(
         a_bar: a_el * dx / sc.length,
         b_bar: b_el * dx / sc.length,
         dx,
-    })
+    };
+    Ok((state, m.bounds))
 }
 
 /// Run the whole protocol on `backend`, calling `observe` with each recorded state.
 pub fn run<B: Backend>(backend: &mut B, model: &Model, observe: &mut dyn FnMut(&State)) -> Outcome {
-    run_with_contact(backend, model, &mut |s, _| observe(s))
+    run_until(backend, model, false, &mut |s, _| {
+        observe(s);
+        true
+    })
 }
 
 /// Like [`run`], but `observe` also sees the contact mask of each state (row-major nx × ny
 /// of the grid the state was computed on, true = in contact), for contours and snapshots.
+/// Each mask is read back from the backend's device: a run that needs no masks should use
+/// [`run`].
 ///
 /// If the model re-grids, `backend` is replaced by a sibling on the finer grid.
 pub fn run_with_contact<B: Backend>(
@@ -165,29 +166,32 @@ pub fn run_with_contact<B: Backend>(
     model: &Model,
     observe: &mut dyn FnMut(&State, &[bool]),
 ) -> Outcome {
-    run_until(backend, model, &mut |s, mask| {
-        observe(s, mask);
+    run_until(backend, model, true, &mut |s, mask| {
+        observe(s, mask.unwrap_or_default());
         true
     })
 }
 
-/// Like [`run_with_contact`], but `observe` returns whether to go on: once it returns false
-/// (say, its states can no longer be written), the run stops at the next load step with
-/// [`SolverError::Interrupted`], keeping the states recorded so far.
+/// The run behind [`run`] and [`run_with_contact`]: `observe` sees each state, with its
+/// contact mask if `with_contact` (else `None`: no mask is read back), and returns whether to
+/// go on: once it returns false (say, its states can no longer be written), the run stops at
+/// the next load step with [`SolverError::Interrupted`], keeping the states recorded so far.
 pub fn run_until<B: Backend>(
     backend: &mut B,
     model: &Model,
-    observe: &mut dyn FnMut(&State, &[bool]) -> bool,
+    with_contact: bool,
+    observe: &mut dyn FnMut(&State, Option<&[bool]>) -> bool,
 ) -> Outcome {
     let mut states = Vec::new();
     let go_on = std::cell::Cell::new(true);
     let mut out = Emitter {
-        push: &mut |s: State, mask: &[bool]| {
+        push: &mut |s: State, mask: Option<&[bool]>| {
             if !observe(&s, mask) {
                 go_on.set(false);
             }
             states.push(s);
         },
+        with_contact,
         go_on: &go_on,
         pending: Vec::new(),
         least: None,
@@ -213,10 +217,13 @@ pub fn run_until<B: Backend>(
 /// Where states go: to the observer at once, or held while the steps that produced them may
 /// still be taken again.
 struct Emitter<'a> {
-    push: &'a mut dyn FnMut(State, &[bool]),
+    push: &'a mut dyn FnMut(State, Option<&[bool]>),
+    /// Whether the observer sees each state's contact mask.
+    with_contact: bool,
     /// False once the observer asked to stop.
     go_on: &'a std::cell::Cell<bool>,
-    pending: Vec<(State, Vec<bool>)>,
+    /// States held back, with their masks if the observer sees them.
+    pending: Vec<(State, Option<Vec<bool>>)>,
     /// Least force (force) handed on since the last re-grid, and its d̄.
     least: Option<(f64, f64)>,
     regrids: Vec<RegridEvent>,
@@ -226,17 +233,32 @@ struct Emitter<'a> {
 }
 
 impl Emitter<'_> {
-    /// Hand a state on (held if `hold`).
-    fn emit(&mut self, state: State, mask: &[bool], hold: bool) {
+    /// Hand a state of `backend`'s current contact on (held if `hold`), with the contact mask
+    /// read back if the observer sees masks.
+    fn emit<B: ContactKernels>(
+        &mut self,
+        backend: &mut B,
+        state: State,
+        hold: bool,
+    ) -> Result<(), SolverError> {
+        let mask = if self.with_contact {
+            let (nx, ny) = backend.shape();
+            let mut mask = vec![false; nx * ny];
+            backend.contact(&mut mask)?;
+            Some(mask)
+        } else {
+            None
+        };
         if hold {
-            self.pending.push((state, mask.to_vec()));
+            self.pending.push((state, mask));
         } else {
             self.flush(usize::MAX);
-            self.hand_on(state, mask);
+            self.hand_on(state, mask.as_deref());
         }
+        Ok(())
     }
 
-    fn hand_on(&mut self, state: State, mask: &[bool]) {
+    fn hand_on(&mut self, state: State, mask: Option<&[bool]>) {
         if self.least.is_none_or(|(f, _)| state.force < f) {
             self.least = Some((state.force, state.d_bar));
         }
@@ -248,7 +270,7 @@ impl Emitter<'_> {
         let n = n.min(self.pending.len());
         let held: Vec<_> = self.pending.drain(..n).collect();
         for (s, m) in held {
-            self.hand_on(s, &m);
+            self.hand_on(s, m.as_deref());
         }
     }
 
@@ -295,12 +317,12 @@ pub const REGRID_BELOW: f64 = 0.8;
 /// the last, finest grid, where [`Outcome::force_minimum`] looks for it.
 pub const REGRID_ABOVE_C_BAR: f64 = 0.9;
 
-/// A step-end state kept for going back: where its p lives and its contact mask.
+/// A step-end state kept for going back: the spare fields that hold its p and its contact
+/// set (on the device).
 struct Snapshot {
     field: usize,
     step: usize,
     d: f64,
-    mask: Vec<bool>,
     /// States held before this snapshot's.
     held: usize,
 }
@@ -310,13 +332,14 @@ struct Snapshot {
 struct Progress<F> {
     model: Model,
     fields: Fields<F>,
-    mask: Vec<bool>,
     /// Whether onsets are refined in the steps now taken.
     refine: bool,
     /// Snapshots of the last steps (measure mode, before refining).
     window: VecDeque<Snapshot>,
     /// Device fields that hold the snapshots' p.
     spare: Vec<F>,
+    /// Device fields that hold the snapshots' contact sets.
+    spare_contact: Vec<F>,
     /// Whether re-gridding is still allowed (not once the minimum is confirmed).
     may_regrid: bool,
 }
@@ -327,36 +350,27 @@ fn run_inner<B: Backend>(
     out: &mut Emitter,
 ) -> Result<(), SolverError> {
     let measure = model.measure == Measure::AdhesiveForce;
-    let mut mask = model.initial_contact();
-    backend.set_contact(&mask)?;
+    backend.set_contact(&model.initial_contact())?;
     let mut fields = Fields::new(backend)?;
     // 1. Non-adhesive press to d0.
     let mut eq = equilibrate(backend, model, &mut fields, model.d0, 0.0)?;
     out.retries.append(&mut eq.retries);
-    let state = record(
-        backend,
-        model,
-        &fields.p,
-        &mut mask,
-        0,
-        Phase::Approach,
-        model.d0,
-        &eq,
-    )?;
-    out.emit(state, &mask, false);
-    let mut spare = Vec::new();
+    let (state, _) = record(backend, model, &fields.p, 0, Phase::Approach, model.d0, &eq)?;
+    out.emit(backend, state, false)?;
+    let (mut spare, mut spare_contact) = (Vec::new(), Vec::new());
     if measure {
         for _ in 0..WINDOW {
             spare.push(backend.field()?);
+            spare_contact.push(backend.field()?);
         }
     }
     let mut run = Progress {
         model: model.clone(),
         fields,
-        mask,
         refine: !measure && model.stepping == Stepping::Adaptive,
         window: VecDeque::new(),
         spare,
+        spare_contact,
         may_regrid: true,
     };
     // 2. Adhesive pull-off, step by step.
@@ -381,18 +395,9 @@ fn run_inner<B: Backend>(
         let last = equilibrate(backend, &m, &mut run.fields, d, m.sigma_c)?;
         eq.absorb(last);
         out.retries.append(&mut eq.retries);
-        let state = record(
-            backend,
-            &m,
-            &run.fields.p,
-            &mut run.mask,
-            step,
-            Phase::Pulloff,
-            d,
-            &eq,
-        )?;
+        let (state, bounds) = record(backend, &m, &run.fields.p, step, Phase::Pulloff, d, &eq)?;
         let (force, d_bar, c_bar) = (state.force, state.d_bar, state.c_bar);
-        out.emit(state, &run.mask, hold);
+        out.emit(backend, state, hold)?;
         d_prev = d;
         if eq.n_contact == 0 {
             return Ok(());
@@ -424,7 +429,9 @@ fn run_inner<B: Backend>(
             }
         }
         if run.model.regrid && run.may_regrid && c_bar > REGRID_ABOVE_C_BAR {
-            regrid_if_shrunk(backend, &mut run, step, d, out)?;
+            if let Some(bounds) = bounds {
+                regrid_if_shrunk(backend, &mut run, step, d, bounds, out)?;
+            }
         }
     }
 }
@@ -444,9 +451,8 @@ impl<F> Progress<F> {
         let resume = match snap {
             Some(s) => {
                 out.pending.truncate(s.held);
-                backend.set_contact(&s.mask)?;
+                backend.restore_contact(&self.spare_contact[s.field])?;
                 backend.copy(&self.spare[s.field], &mut self.fields.p)?;
-                self.mask = s.mask;
                 Some((s.step, s.d))
             }
             None => None,
@@ -476,29 +482,31 @@ impl<F> Progress<F> {
             self.window.len()
         };
         backend.copy(&self.fields.p, &mut self.spare[field])?;
+        backend.save_contact(&mut self.spare_contact[field])?;
         self.window.push_back(Snapshot {
             field,
             step,
             d,
-            mask: self.mask.clone(),
             held: out.pending.len(),
         });
         Ok(())
     }
 }
 
-/// If the contact (with the model's margin) now fits in [`REGRID_BELOW`] of the domain,
-/// carry it to the same grid on a domain fitted to it: finer Δx, σ_c for that Δx, the
-/// contact set and p resampled, then re-equilibrated at the same approach `d` (length).
+/// If the contact (index box `bounds`, with the model's margin) now fits in
+/// [`REGRID_BELOW`] of the domain, carry it to the same grid on a domain fitted to it: finer
+/// Δx, σ_c for that Δx, the contact set and p resampled (read back for it), then
+/// re-equilibrated at the same approach `d` (length).
 fn regrid_if_shrunk<B: Backend>(
     backend: &mut B,
     run: &mut Progress<B::Field>,
     step: usize,
     d: f64,
+    bounds: [usize; 4],
     out: &mut Emitter,
 ) -> Result<(), SolverError> {
     let m = &run.model;
-    let (ex, ey) = m.contact_extent(&run.mask);
+    let (ex, ey) = m.extent_of_bounds(bounds);
     let half_x = m.nx as f64 / 2.0 * m.dx;
     let half_y = m.ny as f64 / 2.0 * m.dx;
     let factor = ((1.0 + m.margin) * (ex / half_x).max(ey / half_y)).max(f64::MIN_POSITIVE);
@@ -509,14 +517,17 @@ fn regrid_if_shrunk<B: Backend>(
     let mut p = vec![0.0; m.nx * m.ny];
     backend.download(&run.fields.p, &mut p)?;
     let p = m.resample(&fine, &p, 0.0);
-    let mask = m.resample(&fine, &run.mask, false);
+    let mut coarse_mask = vec![false; m.nx * m.ny];
+    backend.contact(&mut coarse_mask)?;
+    let mask = m.resample(&fine, &coarse_mask, false);
     *backend = backend.sibling(&fine.grid_setup())?;
     backend.set_contact(&mask)?;
     let mut fields = Fields::new(backend)?;
     backend.upload(&mut fields.p, &p)?;
-    let mut spare = Vec::new();
+    let (mut spare, mut spare_contact) = (Vec::new(), Vec::new());
     for _ in 0..run.spare.len() {
         spare.push(backend.field()?);
+        spare_contact.push(backend.field()?);
     }
     out.flush(usize::MAX);
     out.least = None;
@@ -527,22 +538,21 @@ fn regrid_if_shrunk<B: Backend>(
     });
     run.window.clear();
     run.spare = spare;
+    run.spare_contact = spare_contact;
     run.fields = fields;
-    run.mask = mask;
     run.model = fine;
     let mut eq = equilibrate(backend, &run.model, &mut run.fields, d, run.model.sigma_c)?;
     out.retries.append(&mut eq.retries);
-    let state = record(
+    let (state, _) = record(
         backend,
         &run.model,
         &run.fields.p,
-        &mut run.mask,
         step,
         Phase::Regrid,
         d,
         &eq,
     )?;
-    out.emit(state, &run.mask, false);
+    out.emit(backend, state, false)?;
     Ok(())
 }
 
@@ -585,17 +595,16 @@ fn advance_through_onsets<B: Backend>(
         }
         backend.lerp(&fields.p_prev, &fields.p, t, &mut fields.p_onset)?;
         let d_on = d_c + t * (d_to - d_c);
-        let state = record(
+        let (state, _) = record(
             backend,
             model,
             &fields.p_onset,
-            &mut run.mask,
             step,
             Phase::Onset,
             d_on,
             &onset,
         )?;
-        out.emit(state, &run.mask, false);
+        out.emit(backend, state, false)?;
         let t_push = (t + ONSET_PUSH).min(1.0);
         backend.lerp(&fields.p_prev, &fields.p, t_push, &mut fields.p_onset)?;
         backend.copy(&fields.p_onset, &mut fields.p)?;

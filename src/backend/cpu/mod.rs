@@ -4,6 +4,7 @@
 pub mod spectral;
 
 use super::kernel::{padded_kernel, stiffness_spectrum};
+use super::measure::{self, ChordAxes, ContactMeasure};
 use super::{
     BackendError, CgKernels, ContactChange, ContactKernels, Device, ElasticOperator, GridSetup,
     Preconditioner, Scalars, Slot,
@@ -351,12 +352,28 @@ impl ContactKernels for CpuBackend {
             });
         Ok(())
     }
-    fn sum_and_count(&mut self, p: &Vec<f64>) -> Result<(f64, usize), BackendError> {
+    fn measure(&mut self, p: &Vec<f64>, axes: ChordAxes) -> Result<ContactMeasure, BackendError> {
         let mask = &self.mask;
-        Ok(p.par_iter()
+        let (sum, count) = p
+            .par_iter()
             .with_min_len(PAR_MIN)
             .zip(mask.par_iter())
             .map(|(v, &m)| if m { (*v, 1usize) } else { (0.0, 0) })
-            .reduce(|| (0.0, 0), |a, b| (a.0 + b.0, a.1 + b.1)))
+            .reduce(|| (0.0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+        Ok(measure::with_shape(
+            sum, count, mask, self.nx, self.ny, axes,
+        ))
+    }
+    fn save_contact(&mut self, dst: &mut Vec<f64>) -> Result<(), BackendError> {
+        for (d, &m) in dst.iter_mut().zip(&self.mask) {
+            *d = if m { 1.0 } else { 0.0 };
+        }
+        Ok(())
+    }
+    fn restore_contact(&mut self, src: &Vec<f64>) -> Result<(), BackendError> {
+        for (m, &v) in self.mask.iter_mut().zip(src) {
+            *m = v != 0.0;
+        }
+        Ok(())
     }
 }

@@ -20,8 +20,8 @@ use super::traffic;
 use crate::backend::cpu::spectral::SpectralFilter;
 use crate::backend::kernel::{padded_kernel, stiffness_spectrum};
 use crate::backend::{
-    BackendError, CgKernels, CgStop, ContactChange, ContactKernels, Counters, Device,
-    ElasticOperator, GridSetup, Preconditioner, Scalars, Slot,
+    BackendError, CgKernels, CgStop, ChordAxes, ContactChange, ContactKernels, ContactMeasure,
+    Counters, Device, ElasticOperator, GridSetup, Preconditioner, Scalars, Slot,
 };
 use wgpu::util::DeviceExt;
 
@@ -56,9 +56,11 @@ struct ReduceParams {
     n: u32,
     groups: u32,
     out: u32,
-    pad0: u32,
+    nx: u32,
     sigma: f32,
-    pad1: [u32; 3],
+    ny: u32,
+    cos: f32,
+    sin: f32,
 }
 
 /// Uniform parameters of shaders/contact.wgsl (`struct Params`).
@@ -74,8 +76,8 @@ struct ContactParams {
 /// Which reduction of reduce.wgsl to run.
 #[derive(Debug, Clone, Copy)]
 enum Reduction {
-    /// Σ_C a and |C|.
-    Sum,
+    /// A state's measurement ([`ContactMeasure`]) with the chords along these axes.
+    Measure(ChordAxes),
     /// The first-crossing fraction (a minimum).
     Crossing,
 }
@@ -90,9 +92,9 @@ struct Kernels {
     dot: Kernel,
     finish_slots: Kernel,
     copy_slot: Kernel,
-    sum_partials: Kernel,
+    measure_partials: Kernel,
     crossing_partials: Kernel,
-    finish_sum: Kernel,
+    finish_measure: Kernel,
     finish_min: Kernel,
     update_contact: Kernel,
     spectral: SpectralKernels,
@@ -117,9 +119,9 @@ impl Kernels {
             dot: vector("dot_masked"),
             finish_slots: vector("finish_slots"),
             copy_slot: vector("copy_slot"),
-            sum_partials: reduce("sum_partials"),
+            measure_partials: reduce("measure_partials"),
             crossing_partials: reduce("crossing_partials"),
-            finish_sum: reduce("finish_sum"),
+            finish_measure: reduce("finish_measure"),
             finish_min: reduce("finish_min"),
             update_contact: k(&c, shaders::CONTACT_KERNELS, "update_contact"),
             spectral: SpectralKernels::new(ctx),
@@ -273,8 +275,8 @@ impl GpuBackend {
             next_slot: 2,
             sum_slot: Slot::new(0),
             min_slot: Slot::new(1),
-            partials: storage(&ctx, "partials", reduce_groups as u64 * 4),
-            counts: storage(&ctx, "partial counts", (reduce_groups as u64 + 1) * 4),
+            partials: storage(&ctx, "partials", 3 * reduce_groups as u64 * 4),
+            counts: storage(&ctx, "partial counts", (5 * reduce_groups as u64 + 8) * 4),
             contact_counters: storage(&ctx, "contact counters", 16),
             reduce_groups,
             rec: Recorder::default(),
@@ -335,6 +337,15 @@ impl GpuBackend {
         }
     }
 
+    /// Record a copy of one grid of 4-byte values from `src` to `dst` (a field or the mask).
+    fn copy_grid(&mut self, src: &wgpu::Buffer, dst: &wgpu::Buffer) {
+        let bytes = self.n() as u64 * 4;
+        self.rec.counters.bytes += 2 * bytes;
+        self.rec
+            .encoder(&self.ctx)
+            .copy_buffer_to_buffer(src, 0, dst, 0, bytes);
+    }
+
     /// Partials a consumer of slots `a` and `b` adds (for its byte count): the larger.
     fn partials_of(&self, a: Slot, b: Slot) -> u32 {
         self.pending[a.0].max(self.pending[b.0])
@@ -385,19 +396,29 @@ impl GpuBackend {
         out: u32,
         sigma: f32,
     ) -> Result<(), BackendError> {
+        let axes = match kind {
+            Reduction::Measure(axes) => axes,
+            Reduction::Crossing => ChordAxes::ALIGNED,
+        };
         let params = ReduceParams {
             n: self.n() as u32,
             groups: self.reduce_groups,
             out,
-            pad0: 0,
+            nx: self.nx as u32,
             sigma,
-            pad1: [0; 3],
+            ny: self.ny as u32,
+            cos: axes.cos as f32,
+            sin: axes.sin as f32,
         };
         let p = self.rec.uniform(&self.ctx, &params)?;
         let k = &self.kernels;
         let n = self.n();
         let (first, finish, bytes) = match kind {
-            Reduction::Sum => (k.sum_partials.clone(), k.finish_sum.clone(), 8 * n as u64),
+            Reduction::Measure(_) => (
+                k.measure_partials.clone(),
+                k.finish_measure.clone(),
+                8 * n as u64,
+            ),
             Reduction::Crossing => (
                 k.crossing_partials.clone(),
                 k.finish_min.clone(),
@@ -407,7 +428,7 @@ impl GpuBackend {
         let (first, finish) = (&first, &finish);
         let g = self.reduce_groups as u64;
         match kind {
-            Reduction::Sum => {
+            Reduction::Measure(_) => {
                 self.rec.dispatch(
                     &self.ctx,
                     first,
@@ -419,7 +440,7 @@ impl GpuBackend {
                         (5, &self.counts),
                     ],
                     (self.reduce_groups, 1),
-                    bytes + 8 * g,
+                    bytes + 32 * g,
                 )?;
                 self.rec.dispatch(
                     &self.ctx,
@@ -431,7 +452,7 @@ impl GpuBackend {
                         (8, &self.scalars),
                     ],
                     (1, 1),
-                    8 * g + 12,
+                    32 * g + 44,
                 )?;
             }
             Reduction::Crossing => {
@@ -532,11 +553,7 @@ impl Device for GpuBackend {
         Ok(())
     }
     fn copy(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
-        let bytes = self.n() as u64 * 4;
-        self.rec.counters.bytes += 2 * bytes;
-        self.rec
-            .encoder(&self.ctx)
-            .copy_buffer_to_buffer(&src.buffer, 0, &dst.buffer, 0, bytes);
+        self.copy_grid(&src.buffer, &dst.buffer);
         Ok(())
     }
     fn counters(&self) -> Counters {
@@ -910,14 +927,36 @@ impl ContactKernels for GpuBackend {
             4,
         )
     }
-    fn sum_and_count(&mut self, p: &GpuField) -> Result<(f64, usize), BackendError> {
+    fn measure(&mut self, p: &GpuField, axes: ChordAxes) -> Result<ContactMeasure, BackendError> {
         let sum_slot = self.sum_slot.index() as u32;
-        self.reduce(Reduction::Sum, &p.buffer, &p.buffer, sum_slot, 0.0)?;
-        let sum = self.read_values(sum_slot as usize, 1)?[0] as f64;
-        let c: Vec<u32> =
-            self.rec
-                .read(&self.ctx, &self.counts, self.reduce_groups as u64 * 4, 4)?;
-        Ok((sum, c[0] as usize))
+        self.reduce(
+            Reduction::Measure(axes),
+            &p.buffer,
+            &p.buffer,
+            sum_slot,
+            0.0,
+        )?;
+        let at = 5 * self.reduce_groups as u64 * 4;
+        let v: Vec<u32> = self.rec.read(&self.ctx, &self.counts, at, 8 * 4)?;
+        let value = |k: usize| f32::from_bits(v[k]) as f64;
+        let count = v[0] as usize;
+        Ok(ContactMeasure {
+            sum: value(5),
+            count,
+            half_lengths: (value(6) / 2.0, value(7) / 2.0),
+            bounds: (count > 0).then(|| [1, 2, 3, 4].map(|k| v[k] as usize)),
+        })
+    }
+    fn save_contact(&mut self, dst: &mut GpuField) -> Result<(), BackendError> {
+        // The mask's u32 words, bit for bit: the field is only storage here.
+        let mask = self.mask.clone();
+        self.copy_grid(&mask, &dst.buffer);
+        Ok(())
+    }
+    fn restore_contact(&mut self, src: &GpuField) -> Result<(), BackendError> {
+        let mask = self.mask.clone();
+        self.copy_grid(&src.buffer, &mask);
+        Ok(())
     }
 }
 

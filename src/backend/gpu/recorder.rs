@@ -355,6 +355,7 @@ impl Recorder {
             .copy_buffer_to_buffer(buffer, offset, &staging, 0, bytes);
         self.flush(ctx)?;
         self.counters.readbacks += 1;
+        self.counters.readback_bytes += bytes;
         map_read(ctx, &staging)
     }
 }

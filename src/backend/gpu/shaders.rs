@@ -133,7 +133,7 @@ pub const VECTOR_KERNELS: &[KernelLayout] = &[
 /// The kernels of reduce.wgsl.
 pub const REDUCE_KERNELS: &[KernelLayout] = &[
     KernelLayout {
-        entry: "sum_partials",
+        entry: "measure_partials",
         bindings: &[
             (0, Uniform),
             (1, Read),
@@ -153,7 +153,7 @@ pub const REDUCE_KERNELS: &[KernelLayout] = &[
         ],
     },
     KernelLayout {
-        entry: "finish_sum",
+        entry: "finish_measure",
         bindings: &[(0, Uniform), (4, ReadWrite), (5, ReadWrite), (8, ReadWrite)],
     },
     KernelLayout {
