@@ -82,6 +82,15 @@ enum Reduction {
     Crossing,
 }
 
+/// Which of the backend's two spectral filters to apply.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Filter {
+    /// The influence operator u = K p.
+    Convolution,
+    /// The preconditioner's stiffness.
+    Preconditioner,
+}
+
 /// The compiled kernels of vector.wgsl, reduce.wgsl and contact.wgsl.
 struct Kernels {
     residual: Kernel,
@@ -335,6 +344,49 @@ impl GpuBackend {
             guarded: 0,
             aux: 0,
         }
+    }
+
+    /// dst = F src with F the convolution or the preconditioner (a copy where there is none)
+    /// and, with `dot`, slots\[dot\] = Σ_C src·dst fused into the filter's last pass (which a
+    /// CG guard then guards).
+    fn filter(
+        &mut self,
+        which: Filter,
+        src: &GpuField,
+        dst: &GpuField,
+        dot: Option<Slot>,
+    ) -> Result<(), BackendError> {
+        let filter = match which {
+            Filter::Convolution => &mut self.convolution,
+            Filter::Preconditioner => match &mut self.preconditioner {
+                Some(f) => f,
+                None => {
+                    self.copy_grid(&src.buffer, &dst.buffer);
+                    return match dot {
+                        Some(out) => self.dot(src, dst, out),
+                        None => Ok(()),
+                    };
+                }
+            },
+        };
+        filter.set_guarded(dot.is_some() && self.guard.is_some());
+        let result = filter.encode(
+            &self.ctx,
+            &mut self.rec,
+            &self.kernels.spectral,
+            &self.scalars,
+            &src.buffer,
+            &dst.buffer,
+            &self.mask,
+            which == Filter::Preconditioner,
+            dot.map(|out| (out, &src.buffer)),
+        );
+        filter.set_guarded(false);
+        result?;
+        if let Some(out) = dot {
+            self.pending[out.index()] = filter.row_groups();
+        }
+        Ok(())
     }
 
     /// Record a copy of one grid of 4-byte values from `src` to `dst` (a field or the mask).
@@ -601,33 +653,10 @@ impl Scalars for GpuBackend {
 
 impl ElasticOperator for GpuBackend {
     fn convolve(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
-        self.convolution.encode(
-            &self.ctx,
-            &mut self.rec,
-            &self.kernels.spectral,
-            &self.scalars,
-            &src.buffer,
-            &dst.buffer,
-            &self.mask,
-            false,
-            None,
-        )
+        self.filter(Filter::Convolution, src, dst, None)
     }
     fn precondition(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
-        match &self.preconditioner {
-            None => self.copy(src, dst),
-            Some(f) => f.encode(
-                &self.ctx,
-                &mut self.rec,
-                &self.kernels.spectral,
-                &self.scalars,
-                &src.buffer,
-                &dst.buffer,
-                &self.mask,
-                true,
-                None,
-            ),
-        }
+        self.filter(Filter::Preconditioner, src, dst, None)
     }
 }
 
@@ -643,22 +672,7 @@ impl CgKernels for GpuBackend {
         dst: &mut GpuField,
         out: Slot,
     ) -> Result<(), BackendError> {
-        self.convolution.set_guarded(self.guard.is_some());
-        let result = self.convolution.encode(
-            &self.ctx,
-            &mut self.rec,
-            &self.kernels.spectral,
-            &self.scalars,
-            &src.buffer,
-            &dst.buffer,
-            &self.mask,
-            false,
-            Some((out, &src.buffer)),
-        );
-        self.convolution.set_guarded(false);
-        result?;
-        self.pending[out.index()] = self.convolution.row_groups();
-        Ok(())
+        self.filter(Filter::Convolution, src, dst, Some(out))
     }
     fn precondition_dot(
         &mut self,
@@ -666,31 +680,7 @@ impl CgKernels for GpuBackend {
         dst: &mut GpuField,
         out: Slot,
     ) -> Result<(), BackendError> {
-        let guarded = self.guard.is_some();
-        match &mut self.preconditioner {
-            None => {
-                self.copy(src, dst)?;
-                self.dot(src, dst, out)
-            }
-            Some(f) => {
-                f.set_guarded(guarded);
-                let result = f.encode(
-                    &self.ctx,
-                    &mut self.rec,
-                    &self.kernels.spectral,
-                    &self.scalars,
-                    &src.buffer,
-                    &dst.buffer,
-                    &self.mask,
-                    true,
-                    Some((out, &src.buffer)),
-                );
-                f.set_guarded(false);
-                result?;
-                self.pending[out.index()] = f.row_groups();
-                Ok(())
-            }
-        }
+        self.filter(Filter::Preconditioner, src, dst, Some(out))
     }
     fn residual(&mut self, u: &GpuField, d: f64, r: &mut GpuField) -> Result<(), BackendError> {
         let params = VectorParams {
