@@ -325,6 +325,38 @@ fn a_time_limit_gives_the_best_answer_so_far_and_says_the_target_was_missed() {
     assert!(s["warnings"].to_string().contains("--time-limit"), "{s}");
     assert!(dir.path().join("t-n32.csv").exists());
 
+    // With time to spare the plan's own grid answers (64² for 2 %), and the fallback 32² run
+    // first is not pooled with it: the estimator is the one the plan chose.
+    let o = jkrbem(
+        &[
+            "simulate",
+            "--ratio",
+            "1",
+            "--accuracy",
+            "2%",
+            "--time-limit",
+            "10min",
+            "--backend",
+            "cpu",
+            "--out",
+            "p.csv",
+            "--summary",
+            "p.json",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("p.json")).unwrap()).unwrap();
+    let runs = s["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 1, "{s}");
+    assert_eq!(runs[0]["nx"], 64, "{s}");
+    assert_eq!(s["estimate"], "single-grid", "{s}");
+    assert_eq!(s["target_met"], true, "{s}");
+    assert!(dir.path().join("p-n32.csv").exists() && dir.path().join("p-n64.csv").exists());
+    let out = String::from_utf8_lossy(&o.stdout).to_string() + &stderr(&o);
+    assert!(out.contains("is not used"), "{out}");
+
     // The unit is required, and the limit belongs to an accuracy run.
     for (args, says) in [
         (&["--time-limit", "30"][..], "write the unit"),

@@ -85,6 +85,17 @@ fn bad_reference_requests_are_refused_before_any_work() {
     for bad in [
         vec!["reference", "--ratios", "0.5", "--out", "t.csv"],
         vec!["reference", "--target", "0.3", "--out", "t.csv"],
+        vec!["reference", "--first-grid", "48", "--out", "t.csv"],
+        vec!["reference", "--first-grid", "16", "--out", "t.csv"],
+        vec![
+            "reference",
+            "--first-grid",
+            "1024",
+            "--max-grid",
+            "512",
+            "--out",
+            "t.csv",
+        ],
     ] {
         let o = jkrbem(&bad, dir.path());
         assert_eq!(o.status.code(), Some(2), "{bad:?}: {}", stderr(&o));

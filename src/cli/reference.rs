@@ -23,6 +23,12 @@ pub struct Args {
     /// Nx of the finest grid a ratio's ladder may use (a power of two).
     #[arg(long, default_value_t = 2048)]
     pub max_grid: usize,
+    /// Nx of the first (coarsest) grid of every ladder (a power of two, at least 32) [default:
+    /// the grid a 5 % --accuracy plan takes for the ratio, about 20–40 elements across the
+    /// contact's minor axis at the minimum]. A coarser start gives a slender ratio its three
+    /// grids below --max-grid.
+    #[arg(long)]
+    pub first_grid: Option<usize>,
     /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.
     #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
     pub backend: BackendKind,
@@ -46,6 +52,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         ratios,
         target: args.target,
         max_grid: args.max_grid,
+        first_grid: args.first_grid,
         backend: BackendRequest {
             kind: args.backend,
             ..BackendRequest::default()

@@ -32,6 +32,8 @@ pub struct ReferenceRequest {
     pub target: f64,
     /// Nx of the finest grid a ladder may reach.
     pub max_grid: usize,
+    /// Nx of every ladder's first grid (`None`: the grid a 5 % plan takes for the ratio).
+    pub first_grid: Option<usize>,
     /// The backend.
     pub backend: BackendRequest,
     /// The table (CSV); each ratio's runs go beside it in `<stem>-runs/`.
@@ -107,7 +109,10 @@ fn ladder(
     };
     let dir = runs_dir(&req.out);
     let mut runs: Vec<RunReport> = Vec::new();
-    let mut nx = first_grid(&scene, &base)?;
+    let mut nx = match req.first_grid {
+        Some(nx) => nx,
+        None => first_grid(&scene, &base)?,
+    };
     let mut est = None;
     while nx <= req.max_grid.min(MAX_GRID) {
         let summary = dir.join(format!("r{ratio}-n{nx}.json"));
@@ -238,6 +243,14 @@ pub fn reference(req: &ReferenceRequest, watch: &mut dyn Watch) -> Result<Refere
     }
     if req.ratios.is_empty() || req.ratios.iter().any(|r| !(1.0..=1000.0).contains(r)) {
         return Err(input("--ratios: give ratios R1/R2 in [1, 1000]"));
+    }
+    if let Some(nx) = req.first_grid {
+        if !nx.is_power_of_two() || nx < 32 || nx > req.max_grid {
+            return Err(input(format!(
+                "--first-grid {nx}: give a power of two from 32 to --max-grid ({})",
+                req.max_grid
+            )));
+        }
     }
     req.backend.check()?;
     let kept = existing_rows(&req.out)?;

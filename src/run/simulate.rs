@@ -89,8 +89,10 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
     let Planned {
         models,
         target,
-        note: plan_note,
+        note: mut plan_note,
+        fallback,
     } = plan_models(req)?;
+    let planned_runs = models.len();
     let refs: Vec<&Model> = models.iter().collect();
     let flag = match req.mode {
         Mode::Single => "--grid",
@@ -181,7 +183,19 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
         }
     }
     let states: Vec<PathBuf> = runs.iter().map(|r| r.states.clone()).collect();
-    let reports: Vec<_> = runs.into_iter().map(|r| r.report).collect();
+    let mut reports: Vec<_> = runs.into_iter().map(|r| r.report).collect();
+    // Every planned grid finished: the answer is the plan's, the fallback grid is not used
+    // (pooling it would change the estimator the plan chose after seeing the data).
+    if fallback > 0 && reports.len() == planned_runs && timed_out.is_none() && failure.is_none() {
+        let unused: Vec<String> = reports.drain(..fallback).map(|r| r.grid).collect();
+        if let Some(note) = &mut plan_note {
+            note.push_str(&format!(
+                "; the planned grids finished, so the answer is theirs (the fallback {} is \
+                 not used; its states are kept)",
+                unused.join(", ")
+            ));
+        }
+    }
     if let (Some(why), true) = (&timed_out, reports.is_empty()) {
         let limit = req.time_limit.unwrap_or_default().as_secs_f64();
         failure = Some(format!(
@@ -226,6 +240,9 @@ struct Planned {
     models: Vec<Model>,
     target: Option<f64>,
     note: Option<String>,
+    /// Leading models that are only a fallback (the coarse grid a time-limited accuracy run
+    /// takes first): their runs count only if the planned grids do not all finish.
+    fallback: usize,
 }
 
 /// The models the request runs.
@@ -255,6 +272,7 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
             models: vec![build(&req.options, "")?],
             target: None,
             note: None,
+            fallback: 0,
         }),
         Mode::Extrapolate(grids) => {
             if !(2..=8).contains(&grids.len()) || grids.windows(2).any(|w| w[1] <= w[0]) {
@@ -267,6 +285,7 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
                 models,
                 target: None,
                 note: None,
+                fallback: 0,
             })
         }
         Mode::Accuracy(target) => {
@@ -279,14 +298,17 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
             };
             let mut grids = p.grids.clone();
             let mut note = note;
+            let mut fallback = 0;
             if req.time_limit.is_some() {
                 let first =
                     plan::coarsest_resolving_grid(&req.scene, &req.options).map_err(input)?;
                 if first < grids[0] {
                     grids.insert(0, first);
+                    fallback = 1;
                     note.push_str(&format!(
                         "; with --time-limit, grid {first} first (the coarsest that resolves \
-                         the contact), so that an answer exists however early the limit comes"
+                         the contact), so that an answer exists however early the limit comes \
+                         (used only if the planned grids do not finish)"
                     ));
                 }
             }
@@ -295,6 +317,7 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
                 models,
                 target: Some(*target),
                 note: Some(note),
+                fallback,
             })
         }
     }
