@@ -2,7 +2,7 @@
 //! choose the grid, the domain, the load steps and what to compute, by the convergence law
 //! (physics §7, [`crate::analysis::convergence`]).
 
-use crate::analysis::estimate;
+use crate::analysis::{convergence, estimate};
 use crate::model::{self, Measure, Model, ModelError, ModelOptions, Stepping, MAX_GRID};
 use crate::scene::Scene;
 use crate::text::compact;
@@ -21,9 +21,10 @@ pub const MIN_PLAN_N_D: f64 = 20.0;
 /// prediction.
 pub const PLAN_MARGIN: f64 = 0.85;
 
-/// Δx at the force minimum over the initial Δx with re-gridding, from c̄0 = 1.5: measured
-/// 0.60–0.63 (R1/R2 = 1 and 5, 64²–256²) and 0.50 (R1/R2 = 25, 128×32); the last re-grid
-/// falls at c̄ ≤ 1.125, so 0.75 would be the bound.
+/// Δx at the force minimum over the initial Δx with re-gridding, from c̄0 = 1.5, where no
+/// reference table says better ([`regrid_gain`]): measured 0.60–0.63 (R1/R2 = 1 and 5,
+/// 64²–256²) and 0.50 (R1/R2 = 25, 128×32); the last re-grid falls at c̄ ≤ 1.125, so 0.75
+/// would be the bound.
 pub const REGRID_DX_GAIN: f64 = 0.65;
 
 /// Load steps of a plan: with adaptive stepping the force minimum does not depend on them
@@ -79,13 +80,62 @@ impl Plan {
 }
 
 /// Predicted elements across the minor axis at the force minimum for a model, re-gridded:
-/// the closed form's b̄ at the minimum over the Δx expected there.
+/// the closed form's width there in initial elements, over the re-gridding's measured gain
+/// ([`regrid_gain`]).
 fn predicted_n_d(model: &Model) -> f64 {
+    closed_form_width(model) / regrid_gain(model.scene.ratio())
+}
+
+/// The closed form's contact width at the force minimum, 2b̄ (length), in elements of the
+/// model's initial Δx.
+fn closed_form_width(model: &Model) -> f64 {
     let ratio = model.scene.ratio();
     let b_bar = theory::pull_off(TheoryModel::adhesive_reference(ratio), ratio)
         .map(|p| p.force_min.b_bar)
         .unwrap_or(0.5);
-    2.0 * b_bar * model.scene.scales().length / (model.dx * REGRID_DX_GAIN)
+    2.0 * b_bar * model.scene.scales().length / model.dx
+}
+
+/// The effective Δx gain of re-gridding at R1/R2 = `ratio` (Δx at the force minimum over the
+/// initial Δx, with the closed form's error in b̄ folded in): measured by each reference
+/// row's finest run as [`closed_form_width`] over the n_d it reached, linear in ln(R1/R2)
+/// between rows and constant beyond the ends; [`REGRID_DX_GAIN`] without a table.
+pub fn regrid_gain(ratio: f64) -> f64 {
+    static GAINS: std::sync::OnceLock<Vec<(f64, f64)>> = std::sync::OnceLock::new();
+    let gains = GAINS.get_or_init(|| {
+        let mut g: Vec<(f64, f64)> = convergence::reference_resolution()
+            .iter()
+            .filter_map(|r| {
+                let scene = Scene::from_ratio(r.ratio, 1.0, 1.0, 1.0).ok()?;
+                let options = ModelOptions {
+                    nx: r.nx,
+                    ..ModelOptions::default()
+                };
+                let model = Model::build(&scene, &options).ok()?;
+                Some((r.ratio, closed_form_width(&model) / r.n_d))
+            })
+            .filter(|(_, g)| g.is_finite() && *g > 0.0)
+            .collect();
+        g.sort_by(|a, b| a.0.total_cmp(&b.0));
+        g
+    });
+    interpolate_ln(gains, ratio).unwrap_or(REGRID_DX_GAIN)
+}
+
+/// The value at `x` of the points `(x, y)` (sorted by x), linear in ln x between them and
+/// constant beyond the ends; `None` without points.
+fn interpolate_ln(points: &[(f64, f64)], x: f64) -> Option<f64> {
+    let (first, last) = (points.first()?, points.last()?);
+    if x <= first.0 {
+        return Some(first.1);
+    }
+    if x >= last.0 {
+        return Some(last.1);
+    }
+    let i = points.iter().rposition(|p| p.0 <= x)?;
+    let (a, b) = (points[i], points[i + 1]);
+    let t = (x.ln() - a.0.ln()) / (b.0.ln() - a.0.ln());
+    Some(a.1 + t * (b.1 - a.1))
 }
 
 /// The cheapest plan whose estimate is predicted to state a relative uncertainty within
@@ -324,6 +374,28 @@ pub fn check_memory_within(
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn regrid_gains_from_the_table_are_physical() {
+        // Every ratio's gain lies between full re-gridding and none, and matches the rows'
+        // own runs: the table's finest grid predicts its own n_d.
+        for r in convergence::reference_resolution() {
+            let g = regrid_gain(r.ratio);
+            println!("R1/R2 = {}: gain {g:.3}", r.ratio);
+            assert!((0.3..=1.0).contains(&g), "R1/R2 = {}: {g}", r.ratio);
+            let scene = Scene::from_ratio(r.ratio, 1.0, 1.0, 1.0).unwrap();
+            let options = ModelOptions {
+                nx: r.nx,
+                ..ModelOptions::default()
+            };
+            let model = Model::build(&scene, &options).unwrap();
+            assert!((predicted_n_d(&model) / r.n_d - 1.0).abs() < 1e-9);
+        }
+        assert_eq!(interpolate_ln(&[(1.0, 2.0), (4.0, 4.0)], 2.0), Some(3.0));
+        assert_eq!(interpolate_ln(&[(1.0, 2.0), (4.0, 4.0)], 9.0), Some(4.0));
+        assert_eq!(interpolate_ln(&[], 2.0), None);
+    }
+
     use super::*;
 
     fn sphere() -> Scene {

@@ -204,6 +204,51 @@ pub fn table_points(csv_text: &str) -> Vec<LawPoint> {
         .collect()
 }
 
+/// One reference row's resolution: R1/R2, the finest grid's Nx and its n_d (elements across
+/// the minor axis at the force minimum).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TableResolution {
+    /// R1/R2.
+    pub ratio: f64,
+    /// Nx of the row's finest grid.
+    pub nx: usize,
+    /// n_d of that grid's run.
+    pub n_d: f64,
+}
+
+/// The resolution of every row of a reference table's CSV text (rows without n_d or grids
+/// are skipped).
+pub fn table_resolution(csv_text: &str) -> Vec<TableResolution> {
+    let mut r = csv::Reader::from_reader(csv_text.as_bytes());
+    let Ok(h) = r.headers().cloned() else {
+        return Vec::new();
+    };
+    let col = |name: &str| h.iter().position(|x| x == name);
+    let (Some(ci), Some(cg), Some(cn)) = (col("ratio"), col("grids"), col("n_d")) else {
+        return Vec::new();
+    };
+    r.records()
+        .filter_map(Result::ok)
+        .filter_map(|rec| {
+            let ratio = rec.get(ci)?.parse::<f64>().ok()?;
+            let nx = rec
+                .get(cg)?
+                .rsplit(';')
+                .next()?
+                .trim()
+                .parse::<usize>()
+                .ok()?;
+            let n_d = rec.get(cn)?.parse::<f64>().ok().filter(|v| *v > 0.0)?;
+            Some(TableResolution { ratio, nx, n_d })
+        })
+        .collect()
+}
+
+/// [`table_resolution`] of the compiled-in reference table.
+pub fn reference_resolution() -> Vec<TableResolution> {
+    table_resolution(REFERENCE_TABLE)
+}
+
 /// The two law points around `ratio` and the weight of the upper one (linear in ln R1/R2;
 /// constant beyond the ends).
 fn bracket(ratio: f64) -> (LawPoint, LawPoint, f64) {
