@@ -22,9 +22,9 @@ pub const MIN_PLAN_N_D: f64 = 20.0;
 pub const PLAN_MARGIN: f64 = 0.85;
 
 /// Δx at the force minimum over the initial Δx with re-gridding, from c̄0 = 1.5, where no
-/// reference table says better ([`regrid_gain`]): measured 0.60–0.63 (R1/R2 = 1 and 5,
-/// 64²–256²) and 0.50 (R1/R2 = 25, 128×32); the last re-grid falls at c̄ ≤ 1.125, so 0.75
-/// would be the bound.
+/// reference table says better (the gain measured per ratio, `regrid_gain`): measured
+/// 0.60–0.63 (R1/R2 = 1 and 5, 64²–256²) and 0.50 (R1/R2 = 25, 128×32); the last re-grid
+/// falls at c̄ ≤ 1.125, so 0.75 would be the bound.
 pub const REGRID_DX_GAIN: f64 = 0.65;
 
 /// Load steps of a plan: with adaptive stepping the force minimum does not depend on them
@@ -100,7 +100,7 @@ fn closed_form_width(model: &Model) -> f64 {
 /// initial Δx, with the closed form's error in b̄ folded in): measured by each reference
 /// row's finest run as [`closed_form_width`] over the n_d it reached, linear in ln(R1/R2)
 /// between rows and constant beyond the ends; [`REGRID_DX_GAIN`] without a table.
-pub fn regrid_gain(ratio: f64) -> f64 {
+fn regrid_gain(ratio: f64) -> f64 {
     static GAINS: std::sync::OnceLock<Vec<(f64, f64)>> = std::sync::OnceLock::new();
     let gains = GAINS.get_or_init(|| {
         let mut g: Vec<(f64, f64)> = convergence::reference_resolution()

@@ -160,7 +160,7 @@ fn the_committed_table_s_sphere_row_is_reproduced_within_its_uncertainty() {
 #[test]
 #[ignore = "slow tier (about 1 minute): cargo test --release -- --ignored"]
 fn a_two_grid_fit_agrees_with_the_committed_table_s_slender_row() {
-    // 5:1, the most elongated tabled ratio: the two coarser grids of its ladder, fitted with the
+    // 5:1, a slender tabled ratio cheap enough for this tier: the two coarser grids of its ladder, fitted with the
     // law's prior (as `simulate --extrapolate` does), must agree with the table's value within
     // the two stated uncertainties.
     let (h, row) = committed_row(5.0);
