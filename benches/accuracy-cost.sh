@@ -21,9 +21,11 @@ ratios=${5:-"1 1.5 2 3 5 7 10 15 20 25 35 50"}
 bin=${JKRBEM_BIN:-target/release/jkrbem}
 [ -x "$bin" ] || cargo build --release
 mkdir -p "$out"
+# SUMMARY_ONLY=1: only rebuild the CSV from the runs already in OUT_DIR.
 for r in $ratios; do
+  [ -n "${SUMMARY_ONLY:-}" ] && break
   echo "== R1/R2 = $r: --accuracy $target --backend $backend --time-limit $limit" >&2
-  rm -f "$out/r$r"-n*.csv
+  rm -f "$out/r$r.csv" "$out/r$r"-n*.csv
   start=$(date +%s.%N)
   "$bin" simulate --ratio "$r" --accuracy "$target" --backend "$backend" --time-limit "$limit" \
     --out "$out/r$r.csv" --summary "$out/r$r.json" >"$out/r$r.txt" 2>&1 || true
@@ -55,7 +57,7 @@ for r in ratios:
         "n_d": max((x.get("n_d") or 0 for x in runs), default=None),
         "wall_s": round(float(open(f"{out}/r{r}.wall").read()), 1),
         "cg_iterations": sum(int(row["cg_iterations"])
-                             for f in glob.glob(f"{out}/r{r}-n*.csv")
+                             for f in glob.glob(f"{out}/r{r}-n*.csv") + glob.glob(f"{out}/r{r}.csv")
                              for row in csv.DictReader(open(f))),
         "reference": rf, "reference_uncertainty": ru, "within_reference": within,
     })
