@@ -1,7 +1,6 @@
 //! What a scene needs numerically: the domain and grid, the detachment stress, the load
 //! steps and the CG settings. Knows nothing of backends.
 
-use crate::backend::measure;
 use crate::backend::{ChordAxes, Preconditioner};
 use crate::scene::Scene;
 use crate::text::compact;
@@ -691,15 +690,9 @@ impl Model {
         }
     }
 
-    /// Half-extents (length) of the contact in `mask` along x and y: the largest |x| (|y|)
-    /// reached by a contact element's outer side; (0, 0) without contact.
-    pub fn contact_extent(&self, mask: &[bool]) -> (f64, f64) {
-        measure::bounds(mask, self.nx).map_or((0.0, 0.0), |b| self.extent_of_bounds(b))
-    }
-
-    /// The extent of the elements' index box `[i_min, i_max, j_min, j_max]` (as
-    /// [`crate::backend::ContactMeasure::bounds`]): the largest |x| and |y| (length) reached
-    /// by its elements' outer edges.
+    /// Half-extents (length) of a contact whose elements' index box is `[i_min, i_max, j_min,
+    /// j_max]` (as [`crate::backend::ContactMeasure::bounds`]) along x and y: the largest |x|
+    /// (|y|) reached by a contact element's outer side.
     pub fn extent_of_bounds(&self, [i0, i1, j0, j1]: [usize; 4]) -> (f64, f64) {
         let half = 0.5 * self.dx;
         (

@@ -119,23 +119,11 @@ fn regrid_gain(ratio: f64) -> f64 {
         g.sort_by(|a, b| a.0.total_cmp(&b.0));
         g
     });
-    interpolate_ln(gains, ratio).unwrap_or(REGRID_DX_GAIN)
-}
-
-/// The value at `x` of the points `(x, y)` (sorted by x), linear in ln x between them and
-/// constant beyond the ends; `None` without points.
-fn interpolate_ln(points: &[(f64, f64)], x: f64) -> Option<f64> {
-    let (first, last) = (points.first()?, points.last()?);
-    if x <= first.0 {
-        return Some(first.1);
+    if gains.is_empty() {
+        return REGRID_DX_GAIN;
     }
-    if x >= last.0 {
-        return Some(last.1);
-    }
-    let i = points.iter().rposition(|p| p.0 <= x)?;
-    let (a, b) = (points[i], points[i + 1]);
-    let t = (x.ln() - a.0.ln()) / (b.0.ln() - a.0.ln());
-    Some(a.1 + t * (b.1 - a.1))
+    let (i, j, t) = convergence::ln_bracket(gains.len(), |i| gains[i].0, ratio);
+    gains[i].1 + t * (gains[j].1 - gains[i].1)
 }
 
 /// The cheapest plan whose estimate is predicted to state a relative uncertainty within
@@ -391,9 +379,6 @@ mod tests {
             let model = Model::build(&scene, &options).unwrap();
             assert!((predicted_n_d(&model) / r.n_d - 1.0).abs() < 1e-9);
         }
-        assert_eq!(interpolate_ln(&[(1.0, 2.0), (4.0, 4.0)], 2.0), Some(3.0));
-        assert_eq!(interpolate_ln(&[(1.0, 2.0), (4.0, 4.0)], 9.0), Some(4.0));
-        assert_eq!(interpolate_ln(&[], 2.0), None);
     }
 
     use super::*;

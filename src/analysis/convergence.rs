@@ -163,14 +163,21 @@ pub fn fit_table_law(rows: &[LawPoint]) -> Option<TableLaw> {
     })
 }
 
+/// A reference table's CSV text: a lookup of a column's index by name, and the records that
+/// could be read. `None` without a header.
+fn read_table(csv_text: &str) -> Option<(impl Fn(&str) -> Option<usize>, Vec<csv::StringRecord>)> {
+    let mut r = csv::Reader::from_reader(csv_text.as_bytes());
+    let h = r.headers().ok()?.clone();
+    let records = r.records().filter_map(Result::ok).collect();
+    Some((move |name: &str| h.iter().position(|x| x == name), records))
+}
+
 /// The law points of a reference table's CSV text (rows without a value are skipped, and so
 /// is the sphere's).
 pub fn table_points(csv_text: &str) -> Vec<LawPoint> {
-    let mut r = csv::Reader::from_reader(csv_text.as_bytes());
-    let Ok(h) = r.headers().cloned() else {
+    let Some((col, records)) = read_table(csv_text) else {
         return Vec::new();
     };
-    let col = |name: &str| h.iter().position(|x| x == name);
     let (Some(ci), Some(cf), Some(cu), Some(ck), Some(cn)) = (
         col("ratio"),
         col("f_ad_bar"),
@@ -181,8 +188,8 @@ pub fn table_points(csv_text: &str) -> Vec<LawPoint> {
         return Vec::new();
     };
     let cku = col("k_uncertainty");
-    r.records()
-        .filter_map(Result::ok)
+    records
+        .into_iter()
         .filter_map(|rec| {
             let num = |i: usize| rec.get(i)?.parse::<f64>().ok().filter(|v| v.is_finite());
             let (ratio, f, u, k, n_d) = (num(ci)?, num(cf)?, num(cu)?, num(ck)?, num(cn)?);
@@ -219,16 +226,14 @@ pub struct TableResolution {
 /// The resolution of every row of a reference table's CSV text (rows without n_d or grids
 /// are skipped).
 pub fn table_resolution(csv_text: &str) -> Vec<TableResolution> {
-    let mut r = csv::Reader::from_reader(csv_text.as_bytes());
-    let Ok(h) = r.headers().cloned() else {
+    let Some((col, records)) = read_table(csv_text) else {
         return Vec::new();
     };
-    let col = |name: &str| h.iter().position(|x| x == name);
     let (Some(ci), Some(cg), Some(cn)) = (col("ratio"), col("grids"), col("n_d")) else {
         return Vec::new();
     };
-    r.records()
-        .filter_map(Result::ok)
+    records
+        .into_iter()
         .filter_map(|rec| {
             let ratio = rec.get(ci)?.parse::<f64>().ok()?;
             let nx = rec
@@ -249,21 +254,29 @@ pub fn reference_resolution() -> Vec<TableResolution> {
     table_resolution(REFERENCE_TABLE)
 }
 
+/// Where `x` falls among `len` increasing abscissae (`x_at(i)`, all > 0), linear in ln x:
+/// the indices of the points on either side and the weight of the second; beyond the ends
+/// (or on a point) the end's (the point's) index twice or the lower one with weight 0.
+/// Panics if `len` is 0.
+pub fn ln_bracket(len: usize, x_at: impl Fn(usize) -> f64, x: f64) -> (usize, usize, f64) {
+    let last = len - 1;
+    if x >= x_at(last) {
+        return (last, last, 0.0);
+    }
+    if x <= x_at(0) {
+        return (0, 0, 0.0);
+    }
+    let i = (0..last).rev().find(|&i| x_at(i) <= x).unwrap_or(0);
+    let (a, b) = (x_at(i).ln(), x_at(i + 1).ln());
+    (i, i + 1, (x.ln() - a) / (b - a))
+}
+
 /// The two law points around `ratio` and the weight of the upper one (linear in ln R1/R2;
 /// constant beyond the ends).
 fn bracket(ratio: f64) -> (LawPoint, LawPoint, f64) {
     let p = law_points();
-    let r = ratio.max(1.0);
-    if r >= p[p.len() - 1].ratio {
-        return (p[p.len() - 1], p[p.len() - 1], 0.0);
-    }
-    let i = p.iter().rposition(|q| q.ratio <= r).unwrap_or(0);
-    let (a, b) = (p[i], p[i + 1]);
-    (
-        a,
-        b,
-        (r.ln() - a.ratio.ln()) / (b.ratio.ln() - a.ratio.ln()),
-    )
+    let (i, j, t) = ln_bracket(p.len(), |i| p[i].ratio, ratio.max(1.0));
+    (p[i], p[j], t)
 }
 
 /// The first-order coefficient k of R1/R2 (dimensionless) in |min F̄| ≈ F0·(1 + k/n_d),
@@ -344,6 +357,21 @@ pub fn coarse_grid_warning(ratio: f64, n_d: f64) -> Option<String> {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn ln_bracket_interpolates_in_ln_x_and_holds_the_ends() {
+        let xs = [1.0, 4.0];
+        let at = |x: f64| {
+            let (i, j, t) = ln_bracket(2, |i| xs[i], x);
+            let ys = [2.0, 4.0];
+            ys[i] + t * (ys[j] - ys[i])
+        };
+        assert_eq!(at(2.0), 3.0);
+        assert_eq!(at(9.0), 4.0);
+        assert_eq!(at(0.5), 2.0);
+        assert_eq!(ln_bracket(2, |i| xs[i], 1.0), (0, 0, 0.0));
+    }
+
     use super::*;
 
     #[test]

@@ -80,12 +80,17 @@ pub fn with_shape(
 /// The index box (i_min, i_max, j_min, j_max) of the true elements of a row-major mask with
 /// rows of `nx`; `None` if there are none.
 pub fn bounds(mask: &[bool], nx: usize) -> Option<[usize; 4]> {
+    // Row by row: a row's first and last contact element are found scanning in from its two
+    // ends, so a contact row is not walked element by element (this runs for every state).
     let mut b: Option<[usize; 4]> = None;
-    for (k, _) in mask.iter().enumerate().filter(|(_, &m)| m) {
-        let (i, j) = (k % nx, k / nx);
+    for (j, row) in mask.chunks(nx).enumerate() {
+        let Some(first) = row.iter().position(|&m| m) else {
+            continue;
+        };
+        let last = row.iter().rposition(|&m| m).unwrap_or(first);
         b = Some(match b {
-            None => [i, i, j, j],
-            Some([a, c, e, f]) => [a.min(i), c.max(i), e.min(j), f.max(j)],
+            None => [first, last, j, j],
+            Some([a, c, e, _]) => [a.min(first), c.max(last), e, j],
         });
     }
     b
