@@ -41,6 +41,9 @@ enum Command {
     /// The reference table of converged adhesive forces per R1/R2 (|min F̄|, c̄ and d̄ at the
     /// minimum at Δx → 0, with uncertainties), from ladders of grids.
     Reference(cli::reference::Args),
+    /// How honest the stated uncertainties are: single-grid runs of the tabled ratios at many
+    /// grid phases, each estimate against its reference (1/2, or the table's Δx → 0 value).
+    Coverage(cli::coverage::Args),
     /// One scene on several grids and backends: the error of the adhesive force against its
     /// wall time, as CSV and a log–log chart.
     #[command(allow_negative_numbers = true)]
@@ -102,6 +105,7 @@ fn main() -> ExitCode {
         Command::Accuracy(a) => cli::accuracy::run(a),
         Command::Reproduce(a) => cli::reproduce::run(a),
         Command::Reference(a) => cli::reference::run(a),
+        Command::Coverage(a) => cli::coverage::run(a),
         Command::Crossed(a) => cli::crossed::run(a),
         Command::Devices(a) => cli::devices::run(a),
         Command::Bench(a) => cli::bench::run(a),

@@ -80,6 +80,46 @@ d_bar_at_min,d_bar_at_min_uncertainty,k,target_met,grids,n_d,cg_iterations,wall_
 }
 
 #[test]
+fn a_ladder_with_several_phases_per_grid_fits_them_all_and_holds_one_half() {
+    // Two runs per grid (margins 0.08 and 0.13): both are kept, the row says so, and the
+    // limit from all six holds JKR's 1/2 within its stated uncertainty.
+    let dir = tempfile::tempdir().unwrap();
+    let o = jkrbem(
+        &[
+            "reference",
+            "--ratios",
+            "1",
+            "--max-grid",
+            "128",
+            "--phases",
+            "2",
+            "--target",
+            "1%",
+            "--backend",
+            "cpu",
+            "--out",
+            "t.csv",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (h, rows) = table(&dir.path().join("t.csv"));
+    let r = &rows[0];
+    assert_eq!(get(&h, r, "grids"), "32;64;128");
+    assert_eq!(get(&h, r, "runs_per_grid"), "2");
+    let f: f64 = get(&h, r, "f_ad_bar").parse().unwrap();
+    let u: f64 = get(&h, r, "f_ad_bar_uncertainty").parse().unwrap();
+    assert!((f - 0.5).abs() <= u && u / f <= 0.01, "{f} ± {u}");
+    for nx in [32, 64, 128] {
+        assert!(dir.path().join(format!("t-runs/r1-n{nx}.json")).exists());
+        assert!(dir
+            .path()
+            .join(format!("t-runs/r1-n{nx}-m0.13.json"))
+            .exists());
+    }
+}
+
+#[test]
 fn bad_reference_requests_are_refused_before_any_work() {
     let dir = tempfile::tempdir().unwrap();
     for bad in [
@@ -87,6 +127,8 @@ fn bad_reference_requests_are_refused_before_any_work() {
         vec!["reference", "--target", "0.3", "--out", "t.csv"],
         vec!["reference", "--first-grid", "48", "--out", "t.csv"],
         vec!["reference", "--first-grid", "16", "--out", "t.csv"],
+        vec!["reference", "--phases", "0", "--out", "t.csv"],
+        vec!["reference", "--phases", "9", "--out", "t.csv"],
         vec![
             "reference",
             "--first-grid",

@@ -249,6 +249,58 @@ pub fn table_resolution(csv_text: &str) -> Vec<TableResolution> {
         .collect()
 }
 
+/// One reference row's value: |min F̄| at Δx → 0 with its stated half-width, and the grids
+/// of the ladder it came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TableValue {
+    /// R1/R2.
+    pub ratio: f64,
+    /// |min F̄| at Δx → 0 (dimensionless).
+    pub f_ad_bar: f64,
+    /// Its stated half-width (absolute).
+    pub uncertainty: f64,
+    /// The ladder's grids Nx, coarse to fine.
+    pub grids: Vec<usize>,
+}
+
+/// The value of every row of a reference table's CSV text (rows without a value, its
+/// uncertainty or grids are skipped).
+pub fn table_values(csv_text: &str) -> Vec<TableValue> {
+    let Some((col, records)) = read_table(csv_text) else {
+        return Vec::new();
+    };
+    let (Some(ci), Some(cf), Some(cu), Some(cg)) = (
+        col("ratio"),
+        col("f_ad_bar"),
+        col("f_ad_bar_uncertainty"),
+        col("grids"),
+    ) else {
+        return Vec::new();
+    };
+    records
+        .into_iter()
+        .filter_map(|rec| {
+            let num = |i: usize| rec.get(i)?.parse::<f64>().ok().filter(|v| v.is_finite());
+            let grids: Option<Vec<usize>> = rec
+                .get(cg)?
+                .split(';')
+                .map(|g| g.trim().parse::<usize>().ok())
+                .collect();
+            Some(TableValue {
+                ratio: num(ci)?,
+                f_ad_bar: num(cf)?,
+                uncertainty: num(cu)?,
+                grids: grids.filter(|g| !g.is_empty())?,
+            })
+        })
+        .collect()
+}
+
+/// [`table_values`] of the compiled-in reference table.
+pub fn reference_values() -> Vec<TableValue> {
+    table_values(REFERENCE_TABLE)
+}
+
 /// [`table_resolution`] of the compiled-in reference table.
 pub fn reference_resolution() -> Vec<TableResolution> {
     table_resolution(REFERENCE_TABLE)

@@ -424,6 +424,7 @@ mod tests {
             nx,
             ny: nx,
             dx: 1.0 / nx as f64,
+            margin: 0.08,
             dx_at_min: Some(1.0 / nx as f64),
             mesh_angle_deg: 0.0,
             apex_offset: [0.0, 0.0],

@@ -20,6 +20,10 @@ pub struct RunReport {
     pub ny: usize,
     /// Element side Δx at the start (length).
     pub dx: f64,
+    /// The domain's free margin around the initial contact (relative to its half-axes); 0.08,
+    /// the default, in reports written before it was recorded.
+    #[serde(default = "default_margin")]
+    pub margin: f64,
     /// Element side Δx at the force minimum (length; smaller than `dx` after re-grids).
     pub dx_at_min: Option<f64>,
     /// Angle between the ellipsoid's major axis and the grid's x axis (degrees).
@@ -78,6 +82,11 @@ pub struct RunReport {
     pub warnings: Vec<String>,
 }
 
+/// The margin of a report written before [`RunReport::margin`] existed: the default.
+fn default_margin() -> f64 {
+    crate::model::ModelOptions::default().margin
+}
+
 impl RunReport {
     /// The report of `outcome`, a run of `model` on `backend` (name, precision) that took
     /// `wall_s` seconds and wrote its states to `states_csv`.
@@ -107,6 +116,7 @@ impl RunReport {
             nx: model.nx,
             ny: model.ny,
             dx: model.dx,
+            margin: model.margin,
             dx_at_min: min.map(|s| s.dx),
             mesh_angle_deg: model.mesh.degrees,
             apex_offset: [model.apex_offset.0, model.apex_offset.1],

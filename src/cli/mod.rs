@@ -3,6 +3,7 @@
 pub mod accuracy;
 pub mod bench;
 pub mod collect;
+pub mod coverage;
 pub mod crossed;
 pub mod devices;
 pub mod progress;

@@ -29,6 +29,12 @@ pub struct Args {
     /// grids below --max-grid.
     #[arg(long)]
     pub first_grid: Option<usize>,
+    /// Runs per grid (1 to 8), each at another domain margin (0.08, 0.13, 0.18, …, relative to
+    /// the initial contact's half-axes): where the contact's edge falls between element
+    /// centres (the grid phase) differs from run to run, so the fit averages its scatter
+    /// instead of taking one sample of it per grid.
+    #[arg(long, default_value_t = 1)]
+    pub phases: usize,
     /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.
     #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
     pub backend: BackendKind,
@@ -53,6 +59,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         target: args.target,
         max_grid: args.max_grid,
         first_grid: args.first_grid,
+        phases: args.phases,
         backend: BackendRequest {
             kind: args.backend,
             ..BackendRequest::default()

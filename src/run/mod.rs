@@ -10,6 +10,7 @@ pub mod accuracy;
 pub mod batch;
 pub mod bench;
 pub mod claim;
+pub mod coverage;
 pub mod crossed;
 pub mod open;
 pub mod pulloff;

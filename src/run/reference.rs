@@ -23,6 +23,9 @@ pub const REFERENCE_RATIOS: [f64; 12] = [
 /// Grids of a ladder at the least (the fit's model term needs three).
 pub const MIN_LEVELS: usize = 3;
 
+/// Runs per grid at the most ([`ReferenceRequest::phases`]).
+pub const MAX_PHASES: usize = 8;
+
 /// A request for reference values.
 #[derive(Debug, Clone)]
 pub struct ReferenceRequest {
@@ -34,6 +37,9 @@ pub struct ReferenceRequest {
     pub max_grid: usize,
     /// Nx of every ladder's first grid (`None`: the grid a 5 % plan takes for the ratio).
     pub first_grid: Option<usize>,
+    /// Runs per grid, at the domain margins [`crate::plan::phase_margins`]: each an observation of the same
+    /// limit at another grid phase (1: one run per grid, the default margin).
+    pub phases: usize,
     /// The backend.
     pub backend: BackendRequest,
     /// The table (CSV); each ratio's runs go beside it in `<stem>-runs/`.
@@ -68,7 +74,11 @@ pub struct ReferenceRow {
     pub target_met: bool,
     /// The grids Nx of the ladder, coarse to fine, `;`-separated.
     pub grids: String,
-    /// n_d of the finest run.
+    /// Runs per grid (each at another domain margin, [`crate::plan::phase_margins`]); 1 in tables written
+    /// before the column existed.
+    #[serde(default = "one_run_per_grid")]
+    pub runs_per_grid: usize,
+    /// n_d of the finest grid's run at the default margin.
     pub n_d: Option<f64>,
     /// CG iterations over all runs.
     pub cg_iterations: usize,
@@ -76,6 +86,22 @@ pub struct ReferenceRow {
     pub wall_s: f64,
     /// The command that produced the table.
     pub command: String,
+}
+
+/// The runs per grid of a row written before [`ReferenceRow::runs_per_grid`] existed.
+fn one_run_per_grid() -> usize {
+    1
+}
+
+/// The summary file of the run of R1/R2 = `ratio` on grid `nx` at the `phase`-th margin
+/// `margin` (the first keeps the name of a ladder with one run per grid, so its runs are
+/// reused).
+fn run_name(ratio: f64, nx: usize, phase: usize, margin: f64) -> String {
+    if phase == 0 {
+        format!("r{ratio}-n{nx}")
+    } else {
+        format!("r{ratio}-n{nx}-m{margin}")
+    }
 }
 
 /// What the request produced.
@@ -114,41 +140,54 @@ fn ladder(
         None => first_grid(&scene, &base)?,
     };
     let mut est = None;
-    while nx <= req.max_grid.min(MAX_GRID) {
-        let summary = dir.join(format!("r{ratio}-n{nx}.json"));
-        if let Some(run) = finished_run(&summary) {
-            watch.note(&format!(
-                "R1/R2 = {ratio}, grid {nx}: reusing {}",
-                summary.display()
-            ));
-            runs.push(run);
-        } else {
+    let mut levels = 0;
+    'grids: while nx <= req.max_grid.min(MAX_GRID) {
+        let margins = crate::plan::phase_margins(base.margin, req.phases);
+        for (phase, margin) in margins.into_iter().enumerate() {
+            let name = run_name(ratio, nx, phase, margin);
+            let summary = dir.join(format!("{name}.json"));
+            if let Some(run) = finished_run(&summary) {
+                watch.note(&format!(
+                    "R1/R2 = {ratio}, grid {nx}: reusing {}",
+                    summary.display()
+                ));
+                runs.push(run);
+                continue;
+            }
             let one = SimulateRequest {
                 scene,
-                options: ModelOptions { nx, ..base.clone() },
+                options: ModelOptions {
+                    nx,
+                    margin,
+                    ..base.clone()
+                },
                 backend: req.backend,
                 mode: Mode::Single,
-                out: Some(dir.join(format!("r{ratio}-n{nx}.csv"))),
+                out: Some(dir.join(format!("{name}.csv"))),
                 summary: Some(summary.clone()),
                 time_limit: None,
             };
             let done = match simulate(&one, watch) {
                 Ok(d) => d,
                 // A grid that no longer fits in memory ends the ladder.
-                Err(RunError::Input(e)) if !runs.is_empty() && e.contains("available") => {
+                Err(RunError::Input(e)) if levels > 0 && e.contains("available") => {
                     watch.warning(&format!(
                         "R1/R2 = {ratio}: the ladder stops at grid {nx}: {e}"
                     ));
-                    break;
+                    runs.retain(|r| r.nx != nx);
+                    break 'grids;
                 }
                 Err(e) => return Err(e),
             };
             if let Some(f) = done.failure {
-                return Err(failed(format!("R1/R2 = {ratio}, grid {nx}: {f}")));
+                return Err(failed(format!(
+                    "R1/R2 = {ratio}, grid {nx}, margin {margin}: {f}"
+                )));
             }
             runs.extend(done.summary.runs);
         }
-        if runs.len() >= MIN_LEVELS {
+        levels += 1;
+        if levels >= MIN_LEVELS {
             let e = estimate::reference(&runs).map_err(failed)?;
             let met = e.f_ad_bar.relative() <= req.target;
             watch.note(&format!(
@@ -170,7 +209,13 @@ fn ladder(
             req.max_grid
         ))
     })?;
-    let finest = runs.last().expect("a ladder has runs");
+    // The finest grid's run at the default margin (the first of its grid): the planner's
+    // re-gridding gain is measured against a model with that margin.
+    let finest_nx = runs.iter().map(|r| r.nx).max().expect("a ladder has runs");
+    let finest = runs
+        .iter()
+        .find(|r| r.nx == finest_nx)
+        .expect("the finest grid has runs");
     let row = ReferenceRow {
         ratio,
         f_ad_bar: Some(e.f_ad_bar.value),
@@ -182,11 +227,8 @@ fn ladder(
         k: Some(e.k.value),
         k_uncertainty: Some(e.k.uncertainty),
         target_met: e.f_ad_bar.relative() <= req.target,
-        grids: runs
-            .iter()
-            .map(|r| r.nx.to_string())
-            .collect::<Vec<_>>()
-            .join(";"),
+        grids: grids_text(&runs),
+        runs_per_grid: req.phases.max(1),
         n_d: finest.n_d,
         cg_iterations: runs.iter().map(|r| r.cg_iterations).sum(),
         wall_s: runs.iter().map(|r| r.wall_s).sum(),
@@ -195,9 +237,21 @@ fn ladder(
     Ok((row, runs))
 }
 
+/// The distinct grids Nx of `runs`, coarse to fine, `;`-separated.
+fn grids_text(runs: &[RunReport]) -> String {
+    let mut grids: Vec<usize> = runs.iter().map(|r| r.nx).collect();
+    grids.sort_unstable();
+    grids.dedup();
+    grids
+        .iter()
+        .map(|g| g.to_string())
+        .collect::<Vec<_>>()
+        .join(";")
+}
+
 /// The run of a summary an earlier job wrote, if it finished with a force minimum (so that an
 /// interrupted job resumes where it stopped).
-fn finished_run(summary: &std::path::Path) -> Option<RunReport> {
+pub(crate) fn finished_run(summary: &std::path::Path) -> Option<RunReport> {
     let text = std::fs::read_to_string(summary).ok()?;
     let v: serde_json::Value = serde_json::from_str(&text).ok()?;
     let run: RunReport = serde_json::from_value(v.get("runs")?.get(0)?.clone()).ok()?;
@@ -251,6 +305,12 @@ pub fn reference(req: &ReferenceRequest, watch: &mut dyn Watch) -> Result<Refere
                 req.max_grid
             )));
         }
+    }
+    if !(1..=MAX_PHASES).contains(&req.phases) {
+        return Err(input(format!(
+            "--phases {}: give the runs per grid, 1 to {MAX_PHASES}",
+            req.phases
+        )));
     }
     req.backend.check()?;
     let kept = existing_rows(&req.out)?;

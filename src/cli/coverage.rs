@@ -1,0 +1,102 @@
+//! `jkrbem coverage`: how honest the stated uncertainties are. Parses the flags; the work is
+//! [`jkrbem::run::coverage`].
+
+use super::progress::Progress;
+use super::{no_repeats, run_error, CliError};
+use jkrbem::backend::select::BackendKind;
+use jkrbem::run::coverage::{coverage, CaseVariant, CoverageRequest, DEFAULT_MARGINS};
+use jkrbem::run::open::BackendRequest;
+use jkrbem::run::reference::REFERENCE_RATIOS;
+use std::path::PathBuf;
+
+/// Arguments of `jkrbem coverage`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Ratios R1/R2, comma-separated: 1 (the sphere, against JKR's exact 1/2) or ratios of the
+    /// compiled-in reference table (against its Δx → 0 value) [default: every tabled ratio].
+    #[arg(long, value_delimiter = ',')]
+    pub ratios: Vec<f64>,
+    /// Case grids Nx for every ratio, comma-separated (powers of two), each at least two
+    /// levels below the finest grid of the ratio's reference ladder [default: that finest grid
+    /// over 8 and over 4, not below the ladder's first grid; the sphere: 32, 64, 128].
+    #[arg(long, value_delimiter = ',')]
+    pub grids: Vec<usize>,
+    /// Domain margins, comma-separated (relative to the initial contact's half-axes, in
+    /// [0, 10]): each moves where the contact's edge falls between element centres (the grid
+    /// phase) [default: 0.08, 0.13, 0.18, 0.23, 0.28].
+    #[arg(long, value_delimiter = ',')]
+    pub margins: Vec<f64>,
+    /// How each grid is run, comma-separated: `fixed` (one Δx) and `regrid` (re-gridded to
+    /// the shrinking contact); both with --measure adhesive-force.
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "fixed,regrid"
+    )]
+    pub variants: Vec<CaseVariant>,
+    /// Runs per case: each case is estimated from this many runs at consecutive margins of one
+    /// grid together (as `--accuracy` does with several runs per grid); every window of
+    /// consecutive margins is a case.
+    #[arg(long, default_value_t = 1)]
+    pub runs_per_case: usize,
+    /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.
+    #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
+    pub backend: BackendKind,
+    /// Output folder: every run's states and summary, coverage.csv (one row per case) and
+    /// coverage-summary.csv (one row per ratio, then all). Runs already there that reached
+    /// their force minimum are reused and estimated again with this program's law.
+    #[arg(long, default_value = "jkrbem-out/coverage")]
+    pub out: PathBuf,
+}
+
+/// Run `jkrbem coverage`.
+pub fn run(args: Args) -> Result<(), CliError> {
+    let ratios = if args.ratios.is_empty() {
+        REFERENCE_RATIOS.to_vec()
+    } else {
+        args.ratios
+    };
+    let margins = if args.margins.is_empty() {
+        DEFAULT_MARGINS.to_vec()
+    } else {
+        args.margins
+    };
+    no_repeats("--ratios", &ratios)?;
+    no_repeats("--margins", &margins)?;
+    no_repeats("--grids", &args.grids)?;
+    no_repeats("--variants", &args.variants)?;
+    let req = CoverageRequest {
+        ratios,
+        grids: (!args.grids.is_empty()).then_some(args.grids),
+        margins,
+        variants: args.variants,
+        runs_per_case: args.runs_per_case,
+        backend: BackendRequest {
+            kind: args.backend,
+            ..BackendRequest::default()
+        },
+        out: args.out,
+    };
+    let done = coverage(&req, &mut Progress::new()).map_err(run_error)?;
+    println!("R1/R2   cases  held          median width/|error|  RMS error/sd  half-widths");
+    for s in &done.summary {
+        println!(
+            "{:<7} {:>5}  {:>4} ({:>5.1} %)  {:>20.2}  {:>12.2}  {:.2}–{:.2} %",
+            s.ratio,
+            s.cases,
+            s.held,
+            100.0 * s.held_fraction,
+            s.median_width_over_error,
+            s.rms_error_over_sd,
+            100.0 * s.half_width_min,
+            100.0 * s.half_width_max
+        );
+    }
+    println!(
+        "written {} and {}",
+        done.csv.display(),
+        done.summary_csv.display()
+    );
+    Ok(())
+}

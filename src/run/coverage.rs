@@ -1,0 +1,408 @@
+//! How honest the stated uncertainties are: single-grid runs of the reference table's ratios at
+//! many grid phases (the domain's margin moves where the contact's edge falls between element
+//! centres), on fixed and re-gridded grids, each run's estimate ([`estimate::single_grid`],
+//! with the compiled-in convergence law) held against its reference: JKR's exact 1/2 for the
+//! sphere, else the table's Δx → 0 value from a ladder at least two levels finer than the
+//! case's grid. A case may also be several runs at consecutive margins estimated together, as
+//! `--accuracy` does with several runs per grid. Runs already in the output folder are reused
+//! and estimated again, so that a new law is checked on the same runs in seconds.
+
+use super::claim::{named, write_error, Outputs};
+use super::open::BackendRequest;
+use super::reference::finished_run;
+use super::simulate::{simulate, Mode, SimulateRequest};
+use super::{failed, input, RunError, Watch};
+use crate::analysis::convergence::{self, TableValue};
+use crate::analysis::estimate;
+use crate::model::{Measure, ModelOptions, Stepping, MAX_MARGIN};
+use crate::scene::Scene;
+use serde::Serialize;
+use std::fmt;
+use std::path::PathBuf;
+
+/// Levels a case's grid must lie below the finest grid of its reference's ladder (halvings):
+/// the reference is then known far better than a case's own estimate.
+pub const LEVELS_BELOW_REFERENCE: u32 = 2;
+
+/// The sphere's case grids (its reference, 1/2, is exact).
+pub const SPHERE_GRIDS: [usize; 3] = [32, 64, 128];
+
+/// The default domain margins: the default one and four more, 0.05 apart.
+pub const DEFAULT_MARGINS: [f64; 5] = [0.08, 0.13, 0.18, 0.23, 0.28];
+
+/// How each case's grid is run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum CaseVariant {
+    /// The same Δx throughout (`--measure adhesive-force`).
+    Fixed,
+    /// Re-gridded to the shrinking contact (`--measure adhesive-force --regrid`).
+    Regrid,
+}
+
+impl CaseVariant {
+    /// "fixed" or "regrid".
+    pub fn name(self) -> &'static str {
+        match self {
+            CaseVariant::Fixed => "fixed",
+            CaseVariant::Regrid => "regrid",
+        }
+    }
+}
+
+impl fmt::Display for CaseVariant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A request for the coverage study.
+#[derive(Debug, Clone)]
+pub struct CoverageRequest {
+    /// The ratios R1/R2 (each 1 or a ratio of the compiled-in reference table).
+    pub ratios: Vec<f64>,
+    /// Case grids Nx for every ratio (`None`: [`case_grids`]).
+    pub grids: Option<Vec<usize>>,
+    /// Domain margins (relative to the initial contact's half-axes).
+    pub margins: Vec<f64>,
+    /// Fixed, re-gridded or both.
+    pub variants: Vec<CaseVariant>,
+    /// Runs per case (1 to the number of margins): each case is estimated from this many runs
+    /// at consecutive margins of one grid and variant together, as `--accuracy` does with a
+    /// plan of several runs per grid; the cases are every such window of margins.
+    pub runs_per_case: usize,
+    /// The backend.
+    pub backend: BackendRequest,
+    /// Output folder: every run's states and summary, coverage.csv and coverage-summary.csv.
+    pub out: PathBuf,
+}
+
+/// One case: a run's single-grid estimate against its reference.
+#[derive(Debug, Clone, Serialize)]
+pub struct CoverageCase {
+    /// R1/R2.
+    pub ratio: f64,
+    /// "Nx×Ny".
+    pub grid: String,
+    /// The domain margin (the first of the case's runs).
+    pub margin: f64,
+    /// Runs the case's estimate is made from (at consecutive margins).
+    pub runs: usize,
+    /// fixed or regrid.
+    pub variant: &'static str,
+    /// Elements across the minor axis at the minimum (the runs' mean).
+    pub n_d: Option<f64>,
+    /// The runs' own |min F̄| (uncorrected; their mean).
+    pub f_ad_bar_grid: f64,
+    /// Its estimate of the Δx → 0 limit.
+    pub f_ad_bar: f64,
+    /// The estimate's stated half-width (absolute).
+    pub uncertainty: f64,
+    /// The reference (1/2 for the sphere, else the table's value).
+    pub reference: f64,
+    /// The reference's own stated half-width (0 for the sphere).
+    pub reference_uncertainty: f64,
+    /// f_ad_bar − reference (absolute, signed).
+    pub error: f64,
+    /// Whether the stated interval holds the reference.
+    pub held: bool,
+    /// uncertainty / |error| (dimensionless; large: the interval is wide for this case).
+    pub width_over_error: f64,
+}
+
+/// The cases of one ratio (or of all), summed up.
+#[derive(Debug, Clone, Serialize)]
+pub struct CoverageSummary {
+    /// R1/R2, or "all".
+    pub ratio: String,
+    /// Cases.
+    pub cases: usize,
+    /// Cases whose stated interval holds the reference.
+    pub held: usize,
+    /// held / cases.
+    pub held_fraction: f64,
+    /// The median of uncertainty / |error| (the issue's "not needlessly wide": at most 3).
+    pub median_width_over_error: f64,
+    /// The RMS of error / (uncertainty / 2): 1 for intervals of two calibrated standard
+    /// deviations.
+    pub rms_error_over_sd: f64,
+    /// The smallest stated half-width, relative.
+    pub half_width_min: f64,
+    /// The largest stated half-width, relative.
+    pub half_width_max: f64,
+}
+
+/// What the study produced.
+#[derive(Debug, Clone)]
+pub struct CoverageDone {
+    /// Every case, by ratio, grid, margin and variant.
+    pub cases: Vec<CoverageCase>,
+    /// One line per ratio, then "all".
+    pub summary: Vec<CoverageSummary>,
+    /// coverage.csv.
+    pub csv: PathBuf,
+    /// coverage-summary.csv.
+    pub summary_csv: PathBuf,
+}
+
+/// The reference of R1/R2 = `ratio`: (value, its half-width, the finest grid of its ladder;
+/// `None` for the exact 1/2 of the sphere).
+fn reference_of(ratio: f64, table: &[TableValue]) -> Result<(f64, f64, Option<usize>), RunError> {
+    if ratio == 1.0 {
+        return Ok((0.5, 0.0, None));
+    }
+    let row = table.iter().find(|r| r.ratio == ratio).ok_or_else(|| {
+        input(format!(
+            "--ratios {ratio}: the reference table has no row for it; give 1 or one of {}",
+            table
+                .iter()
+                .map(|r| crate::text::compact(r.ratio))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))
+    })?;
+    Ok((row.f_ad_bar, row.uncertainty, row.grids.last().copied()))
+}
+
+/// The default case grids of a ratio whose reference ladder is `ladder` (coarse to fine): its
+/// finest grid over 8 and over 4, those not below its first grid (where the convergence law
+/// was measured); the sphere's are [`SPHERE_GRIDS`].
+pub fn case_grids(ladder: Option<&[usize]>) -> Vec<usize> {
+    let Some(ladder) = ladder.filter(|l| !l.is_empty()) else {
+        return SPHERE_GRIDS.to_vec();
+    };
+    let finest = ladder[ladder.len() - 1];
+    [finest / 8, finest / 4]
+        .into_iter()
+        .filter(|&g| g >= ladder[0])
+        .collect()
+}
+
+/// The summary file of one case's run (its states go beside it as `.csv`).
+fn case_name(ratio: f64, nx: usize, margin: f64, variant: CaseVariant) -> String {
+    format!("r{ratio}-n{nx}-m{margin}-{variant}")
+}
+
+/// Check the request, then run (or reuse) every case, estimate each and sum them up.
+pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<CoverageDone, RunError> {
+    if req.ratios.is_empty() || req.margins.is_empty() || req.variants.is_empty() {
+        return Err(input(
+            "--ratios, --margins and --variants: give at least one of each",
+        ));
+    }
+    if !(1..=req.margins.len()).contains(&req.runs_per_case) {
+        return Err(input(format!(
+            "--runs-per-case {}: give 1 to the number of --margins ({})",
+            req.runs_per_case,
+            req.margins.len()
+        )));
+    }
+    if let Some(m) = req
+        .margins
+        .iter()
+        .find(|m| !(0.0..=MAX_MARGIN).contains(*m))
+    {
+        return Err(input(format!(
+            "--margins {m}: give margins in [0, {MAX_MARGIN}]"
+        )));
+    }
+    req.backend.check()?;
+    let table = convergence::reference_values();
+    // (ratio, grids, reference) per ratio, every one checked before any work.
+    let mut plan = Vec::new();
+    for &ratio in &req.ratios {
+        Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
+        let (value, half_width, finest) = reference_of(ratio, &table)?;
+        let ladder = table
+            .iter()
+            .find(|r| r.ratio == ratio && ratio != 1.0)
+            .map(|r| r.grids.as_slice());
+        let grids = match &req.grids {
+            Some(g) => g.clone(),
+            None => case_grids(ladder),
+        };
+        if let Some(finest) = finest {
+            if let Some(too_fine) = grids
+                .iter()
+                .find(|&&g| g << LEVELS_BELOW_REFERENCE > finest)
+            {
+                return Err(input(format!(
+                    "--grids {too_fine}: the reference of R1/R2 = {ratio} comes from grids up \
+                     to {finest}; give grids up to {} (at least {LEVELS_BELOW_REFERENCE} levels \
+                     coarser, so that the reference is known far better than a case)",
+                    finest >> LEVELS_BELOW_REFERENCE
+                )));
+            }
+        }
+        plan.push((ratio, grids, value, half_width));
+    }
+    let csv = req.out.join("coverage.csv");
+    let summary_csv = req.out.join("coverage-summary.csv");
+    let _claimed = Outputs::claim(&named("--out", [&csv, &summary_csv]))?;
+    let mut cases = Vec::new();
+    for (ratio, grids, reference, reference_uncertainty) in plan {
+        let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
+        for &nx in &grids {
+            for &variant in &req.variants {
+                // This grid's and variant's run at every margin, in order.
+                let mut runs = Vec::new();
+                for &margin in &req.margins {
+                    let name = case_name(ratio, nx, margin, variant);
+                    let summary = req.out.join(format!("{name}.json"));
+                    let run = match finished_run(&summary) {
+                        Some(run) => run,
+                        None => {
+                            let one = SimulateRequest {
+                                scene,
+                                options: ModelOptions {
+                                    nx,
+                                    margin,
+                                    regrid: variant == CaseVariant::Regrid,
+                                    measure: Measure::AdhesiveForce,
+                                    stepping: Stepping::Adaptive,
+                                    ..ModelOptions::default()
+                                },
+                                backend: req.backend,
+                                mode: Mode::Single,
+                                out: Some(req.out.join(format!("{name}.csv"))),
+                                summary: Some(summary.clone()),
+                                time_limit: None,
+                            };
+                            let done = simulate(&one, watch)?;
+                            if let Some(f) = done.failure {
+                                return Err(failed(format!("{name}: {f}")));
+                            }
+                            done.summary.runs.into_iter().next().ok_or_else(|| {
+                                failed(format!("{name}: the run wrote no summary"))
+                            })?
+                        }
+                    };
+                    runs.push((margin, run));
+                }
+                for window in runs.windows(req.runs_per_case) {
+                    let reports: Vec<_> = window.iter().map(|(_, r)| r.clone()).collect();
+                    let name = case_name(ratio, nx, window[0].0, variant);
+                    let e = estimate::from_runs(&reports)
+                        .map_err(|why| failed(format!("{name} ({} runs): {why}", reports.len())))?;
+                    let mean = |get: fn(&crate::analysis::report::RunReport) -> Option<f64>| {
+                        let v: Option<Vec<f64>> = reports.iter().map(get).collect();
+                        v.map(|v| v.iter().sum::<f64>() / v.len() as f64)
+                    };
+                    let (f, u) = (e.f_ad_bar.value, e.f_ad_bar.uncertainty);
+                    let error = f - reference;
+                    cases.push(CoverageCase {
+                        ratio,
+                        grid: reports[0].grid.clone(),
+                        margin: window[0].0,
+                        runs: reports.len(),
+                        variant: variant.name(),
+                        n_d: mean(|r| r.n_d),
+                        f_ad_bar_grid: mean(|r| r.f_ad_bar).unwrap_or(f64::NAN),
+                        f_ad_bar: f,
+                        uncertainty: u,
+                        reference,
+                        reference_uncertainty,
+                        error,
+                        held: error.abs() <= u,
+                        width_over_error: if error == 0.0 {
+                            f64::INFINITY
+                        } else {
+                            u / error.abs()
+                        },
+                    });
+                }
+            }
+        }
+    }
+    let mut summary: Vec<CoverageSummary> = req
+        .ratios
+        .iter()
+        .filter_map(|&r| {
+            let mine: Vec<&CoverageCase> = cases.iter().filter(|c| c.ratio == r).collect();
+            summarise(&crate::text::compact(r), &mine)
+        })
+        .collect();
+    summary.extend(summarise("all", &cases.iter().collect::<Vec<_>>()));
+    crate::output::file::write_csv(&csv, None, &cases).map_err(write_error("--out"))?;
+    crate::output::file::write_csv(&summary_csv, None, &summary).map_err(write_error("--out"))?;
+    Ok(CoverageDone {
+        cases,
+        summary,
+        csv,
+        summary_csv,
+    })
+}
+
+/// The summary line of `cases` (`None` if there are none).
+pub fn summarise(name: &str, cases: &[&CoverageCase]) -> Option<CoverageSummary> {
+    if cases.is_empty() {
+        return None;
+    }
+    let n = cases.len();
+    let held = cases.iter().filter(|c| c.held).count();
+    let mut ratios: Vec<f64> = cases.iter().map(|c| c.width_over_error).collect();
+    ratios.sort_by(f64::total_cmp);
+    let median = if n % 2 == 1 {
+        ratios[n / 2]
+    } else {
+        0.5 * (ratios[n / 2 - 1] + ratios[n / 2])
+    };
+    let z2 = cases
+        .iter()
+        .map(|c| (2.0 * c.error / c.uncertainty).powi(2))
+        .sum::<f64>();
+    let relative = |c: &&CoverageCase| c.uncertainty / c.f_ad_bar.abs();
+    Some(CoverageSummary {
+        ratio: name.to_string(),
+        cases: n,
+        held,
+        held_fraction: held as f64 / n as f64,
+        median_width_over_error: median,
+        rms_error_over_sd: (z2 / n as f64).sqrt(),
+        half_width_min: cases.iter().map(relative).fold(f64::INFINITY, f64::min),
+        half_width_max: cases.iter().map(relative).fold(0.0, f64::max),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case(error: f64, uncertainty: f64) -> CoverageCase {
+        CoverageCase {
+            ratio: 1.0,
+            grid: "64×64".into(),
+            margin: 0.08,
+            runs: 1,
+            variant: "fixed",
+            n_d: Some(30.0),
+            f_ad_bar_grid: 0.53,
+            f_ad_bar: 0.5 + error,
+            uncertainty,
+            reference: 0.5,
+            reference_uncertainty: 0.0,
+            error,
+            held: error.abs() <= uncertainty,
+            width_over_error: uncertainty / error.abs(),
+        }
+    }
+
+    #[test]
+    fn the_summary_counts_held_cases_and_takes_the_median_ratio() {
+        let cases = [case(0.001, 0.004), case(-0.003, 0.004), case(0.005, 0.004)];
+        let refs: Vec<&CoverageCase> = cases.iter().collect();
+        let s = summarise("1", &refs).unwrap();
+        assert_eq!((s.cases, s.held), (3, 2));
+        assert!((s.median_width_over_error - 0.004 / 0.003).abs() < 1e-12);
+        let rms = ((0.25f64 + 2.25 + 6.25) / 3.0).sqrt();
+        assert!((s.rms_error_over_sd - rms).abs() < 1e-12);
+        assert!(summarise("none", &[]).is_none());
+    }
+
+    #[test]
+    fn case_grids_lie_two_levels_below_the_ladder_and_not_below_its_start() {
+        assert_eq!(case_grids(Some(&[256, 512, 1024])), vec![256]);
+        assert_eq!(case_grids(Some(&[128, 256, 512, 1024])), vec![128, 256]);
+        assert_eq!(case_grids(Some(&[64, 128, 256, 512])), vec![64, 128]);
+        assert_eq!(case_grids(None), SPHERE_GRIDS.to_vec());
+    }
+}
