@@ -223,34 +223,8 @@ pub struct TableResolution {
     pub n_d: f64,
 }
 
-/// The resolution of every row of a reference table's CSV text (rows without n_d or grids
-/// are skipped).
-pub fn table_resolution(csv_text: &str) -> Vec<TableResolution> {
-    let Some((col, records)) = read_table(csv_text) else {
-        return Vec::new();
-    };
-    let (Some(ci), Some(cg), Some(cn)) = (col("ratio"), col("grids"), col("n_d")) else {
-        return Vec::new();
-    };
-    records
-        .into_iter()
-        .filter_map(|rec| {
-            let ratio = rec.get(ci)?.parse::<f64>().ok()?;
-            let nx = rec
-                .get(cg)?
-                .rsplit(';')
-                .next()?
-                .trim()
-                .parse::<usize>()
-                .ok()?;
-            let n_d = rec.get(cn)?.parse::<f64>().ok().filter(|v| *v > 0.0)?;
-            Some(TableResolution { ratio, nx, n_d })
-        })
-        .collect()
-}
-
-/// One reference row's value: |min F̄| at Δx → 0 with its stated half-width, and the grids
-/// of the ladder it came from.
+/// One reference row's value: |min F̄| at Δx → 0 with its stated half-width, the grids of the
+/// ladder it came from and the finest grid's n_d.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TableValue {
     /// R1/R2.
@@ -261,6 +235,8 @@ pub struct TableValue {
     pub uncertainty: f64,
     /// The ladder's grids Nx, coarse to fine.
     pub grids: Vec<usize>,
+    /// n_d of the finest grid's run at the default margin, where the table has it.
+    pub n_d: Option<f64>,
 }
 
 /// The value of every row of a reference table's CSV text (rows without a value, its
@@ -277,6 +253,7 @@ pub fn table_values(csv_text: &str) -> Vec<TableValue> {
     ) else {
         return Vec::new();
     };
+    let cn = col("n_d");
     records
         .into_iter()
         .filter_map(|rec| {
@@ -291,6 +268,7 @@ pub fn table_values(csv_text: &str) -> Vec<TableValue> {
                 f_ad_bar: num(cf)?,
                 uncertainty: num(cu)?,
                 grids: grids.filter(|g| !g.is_empty())?,
+                n_d: cn.and_then(num),
             })
         })
         .collect()
@@ -299,6 +277,21 @@ pub fn table_values(csv_text: &str) -> Vec<TableValue> {
 /// [`table_values`] of the compiled-in reference table.
 pub fn reference_values() -> Vec<TableValue> {
     table_values(REFERENCE_TABLE)
+}
+
+/// The resolution of every row of a reference table's CSV text (rows without n_d, grids or a
+/// value are skipped).
+pub fn table_resolution(csv_text: &str) -> Vec<TableResolution> {
+    table_values(csv_text)
+        .into_iter()
+        .filter_map(|v| {
+            Some(TableResolution {
+                ratio: v.ratio,
+                nx: *v.grids.last()?,
+                n_d: v.n_d.filter(|n| *n > 0.0)?,
+            })
+        })
+        .collect()
 }
 
 /// [`table_resolution`] of the compiled-in reference table.

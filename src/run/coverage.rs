@@ -9,8 +9,7 @@
 
 use super::claim::{named, write_error, Outputs};
 use super::open::BackendRequest;
-use super::reference::finished_run;
-use super::simulate::{simulate, Mode, SimulateRequest};
+use super::reference::run_or_reuse;
 use super::{failed, input, RunError, Watch};
 use crate::analysis::convergence::{self, TableValue};
 use crate::analysis::estimate;
@@ -247,35 +246,15 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
                 let mut runs = Vec::new();
                 for &margin in &req.margins {
                     let name = case_name(ratio, nx, margin, variant);
-                    let summary = req.out.join(format!("{name}.json"));
-                    let run = match finished_run(&summary) {
-                        Some(run) => run,
-                        None => {
-                            let one = SimulateRequest {
-                                scene,
-                                options: ModelOptions {
-                                    nx,
-                                    margin,
-                                    regrid: variant == CaseVariant::Regrid,
-                                    measure: Measure::AdhesiveForce,
-                                    stepping: Stepping::Adaptive,
-                                    ..ModelOptions::default()
-                                },
-                                backend: req.backend,
-                                mode: Mode::Single,
-                                out: Some(req.out.join(format!("{name}.csv"))),
-                                summary: Some(summary.clone()),
-                                time_limit: None,
-                            };
-                            let done = simulate(&one, watch)?;
-                            if let Some(f) = done.failure {
-                                return Err(failed(format!("{name}: {f}")));
-                            }
-                            done.summary.runs.into_iter().next().ok_or_else(|| {
-                                failed(format!("{name}: the run wrote no summary"))
-                            })?
-                        }
+                    let options = ModelOptions {
+                        nx,
+                        margin,
+                        regrid: variant == CaseVariant::Regrid,
+                        measure: Measure::AdhesiveForce,
+                        stepping: Stepping::Adaptive,
+                        ..ModelOptions::default()
                     };
+                    let run = run_or_reuse(&scene, options, req.backend, &req.out, &name, watch)?;
                     runs.push((margin, run));
                 }
                 for window in runs.windows(req.runs_per_case) {

@@ -145,30 +145,13 @@ fn ladder(
         let margins = crate::plan::phase_margins(base.margin, req.phases);
         for (phase, margin) in margins.into_iter().enumerate() {
             let name = run_name(ratio, nx, phase, margin);
-            let summary = dir.join(format!("{name}.json"));
-            if let Some(run) = finished_run(&summary) {
-                watch.note(&format!(
-                    "R1/R2 = {ratio}, grid {nx}: reusing {}",
-                    summary.display()
-                ));
-                runs.push(run);
-                continue;
-            }
-            let one = SimulateRequest {
-                scene,
-                options: ModelOptions {
-                    nx,
-                    margin,
-                    ..base.clone()
-                },
-                backend: req.backend,
-                mode: Mode::Single,
-                out: Some(dir.join(format!("{name}.csv"))),
-                summary: Some(summary.clone()),
-                time_limit: None,
+            let options = ModelOptions {
+                nx,
+                margin,
+                ..base.clone()
             };
-            let done = match simulate(&one, watch) {
-                Ok(d) => d,
+            match run_or_reuse(&scene, options, req.backend, &dir, &name, watch) {
+                Ok(run) => runs.push(run),
                 // A grid that no longer fits in memory ends the ladder.
                 Err(RunError::Input(e)) if levels > 0 && e.contains("available") => {
                     watch.warning(&format!(
@@ -178,13 +161,7 @@ fn ladder(
                     break 'grids;
                 }
                 Err(e) => return Err(e),
-            };
-            if let Some(f) = done.failure {
-                return Err(failed(format!(
-                    "R1/R2 = {ratio}, grid {nx}, margin {margin}: {f}"
-                )));
             }
-            runs.extend(done.summary.runs);
         }
         levels += 1;
         if levels >= MIN_LEVELS {
@@ -249,9 +226,45 @@ fn grids_text(runs: &[RunReport]) -> String {
         .join(";")
 }
 
+/// The run of `options` on `scene` whose summary is `<dir>/<name>.json` (its states beside it
+/// as `.csv`): an earlier job's, if it finished with a force minimum (said on `watch`), else
+/// run now. A run that stops early is a failure naming `name`.
+pub(crate) fn run_or_reuse(
+    scene: &Scene,
+    options: ModelOptions,
+    backend: BackendRequest,
+    dir: &std::path::Path,
+    name: &str,
+    watch: &mut dyn Watch,
+) -> Result<RunReport, RunError> {
+    let summary = dir.join(format!("{name}.json"));
+    if let Some(run) = finished_run(&summary) {
+        watch.note(&format!("{name}: reusing {}", summary.display()));
+        return Ok(run);
+    }
+    let one = SimulateRequest {
+        scene: *scene,
+        options,
+        backend,
+        mode: Mode::Single,
+        out: Some(dir.join(format!("{name}.csv"))),
+        summary: Some(summary),
+        time_limit: None,
+    };
+    let done = simulate(&one, watch)?;
+    if let Some(f) = done.failure {
+        return Err(failed(format!("{name}: {f}")));
+    }
+    done.summary
+        .runs
+        .into_iter()
+        .next()
+        .ok_or_else(|| failed(format!("{name}: the run wrote no summary")))
+}
+
 /// The run of a summary an earlier job wrote, if it finished with a force minimum (so that an
 /// interrupted job resumes where it stopped).
-pub(crate) fn finished_run(summary: &std::path::Path) -> Option<RunReport> {
+fn finished_run(summary: &std::path::Path) -> Option<RunReport> {
     let text = std::fs::read_to_string(summary).ok()?;
     let v: serde_json::Value = serde_json::from_str(&text).ok()?;
     let run: RunReport = serde_json::from_value(v.get("runs")?.get(0)?.clone()).ok()?;
