@@ -17,8 +17,8 @@ pub const MIN_PLAN_GRID: usize = 32;
 pub const MIN_PLAN_N_D: f64 = 20.0;
 
 /// A plan aims its predicted uncertainty at this fraction of the target, since the stated one
-/// also grows where the runs scatter more than the law expects, or n_d falls short of its
-/// prediction.
+/// also grows where n_d falls short of its prediction (the runs' own scatter, which widens an
+/// estimate of several runs, is in the prediction's bound already).
 pub const PLAN_MARGIN: f64 = 0.85;
 
 /// Δx at the force minimum over the initial Δx with re-gridding, from c̄0 = 1.5, where no
@@ -26,11 +26,6 @@ pub const PLAN_MARGIN: f64 = 0.85;
 /// 0.60–0.63 (R1/R2 = 1 and 5, 64²–256²) and 0.50 (R1/R2 = 25, 128×32); the last re-grid
 /// falls at c̄ ≤ 1.125, so 0.75 would be the bound.
 pub const REGRID_DX_GAIN: f64 = 0.65;
-
-/// Most runs per grid a plan takes ([`Plan::phases`]). Each further run at a grid costs what
-/// the first did, a grid twice as fine about twelve times as much (4× the elements, 3× the CG
-/// iterations): up to this many runs are always the cheaper way to average the grid phase.
-pub const MAX_PLAN_PHASES: usize = 3;
 
 /// The step between the domain margins of one grid's runs (relative to the initial contact's
 /// half-axes): the first run has the margin asked for, each further one this much more. 0.05
@@ -55,15 +50,13 @@ pub const PLAN_STEPS: usize = 100;
 pub struct Plan {
     /// Grids Nx to run, coarse to fine (one: a single grid; two: both fitted together).
     pub grids: Vec<usize>,
-    /// Runs per grid, at the domain margins [`phase_margins`] from the options' margin: each an
-    /// observation of the same limit at another grid phase, so that their grid-phase scatter
-    /// averages out (1: one run per grid).
-    pub phases: usize,
     /// The options each grid is run with (nx set per grid).
     pub options: ModelOptions,
     /// Predicted elements across the minor axis at the minimum on the finest grid.
     pub n_d: f64,
-    /// The relative uncertainty the estimate is predicted to state (dimensionless).
+    /// The relative uncertainty the estimate is predicted to state at most, nine times in ten
+    /// (dimensionless): for several runs, widened by the Birge ratio they may show
+    /// (`estimate::predicted_relative_uncertainty_bound`).
     pub predicted_uncertainty: f64,
     /// The target (relative).
     pub target: f64,
@@ -75,19 +68,6 @@ impl Plan {
         self.grids.len() > 1
     }
 
-    /// The runs of the plan as (Nx, domain margin), coarse to fine, the runs of each grid
-    /// together.
-    pub fn runs(&self) -> Vec<(usize, f64)> {
-        self.grids
-            .iter()
-            .flat_map(|&nx| {
-                phase_margins(self.options.margin, self.phases)
-                    .into_iter()
-                    .map(move |m| (nx, m))
-            })
-            .collect()
-    }
-
     /// What was chosen and why, for the user.
     pub fn describe(&self, ratio: f64) -> String {
         let how = if self.extrapolates() {
@@ -97,21 +77,6 @@ impl Plan {
                 "grid {}, corrected to Δx → 0 by the convergence law",
                 self.grids[0]
             )
-        };
-        let how = if self.phases > 1 {
-            format!(
-                "{how}; {} runs per grid at domain margins {} (each at another grid phase, \
-                 their scatter averaged: {} runs cost less than one grid twice as fine)",
-                self.phases,
-                phase_margins(self.options.margin, self.phases)
-                    .iter()
-                    .map(|m| compact(*m))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                self.phases
-            )
-        } else {
-            how
         };
         format!(
             "--accuracy {:.3} %: R1/R2 = {ratio}: {how}; predicted uncertainty ± {:.2} %; about \
@@ -181,16 +146,19 @@ fn regrid_gain(ratio: f64) -> f64 {
 /// `target` (e.g. 0.01) on `scene`, starting from the user's `base` options (CG settings,
 /// start radius, margin are kept). Grids double from [`MIN_PLAN_GRID`]: the first whose run
 /// alone is predicted within the target is taken, or it and the grid before it fitted
-/// together if that pair is and the grid alone is not; failing both, the same with 2 and
-/// then [`MAX_PLAN_PHASES`] runs per grid at other domain margins (cheaper than the next
-/// grid), where each run resolves the contact without a coarse-grid warning. A target that no grid fitting in
-/// memory (or up to the largest grid) reaches is refused, naming the finest reachable.
+/// together if that pair is and the grid alone is not. A pair is predicted with the Birge
+/// ratio its fit shows one time in ten (`estimate::predicted_relative_uncertainty_bound`),
+/// so that it keeps the target even where its two runs disagree; for the same reason no plan
+/// takes several runs of one grid at other domain margins (measured: two such runs of 128×64
+/// for R1/R2 = 5 and of 256×64 for 25 disagreed by twice their expected grid-phase scatter
+/// and stated ± 1.6 % for a 1 % target, where one run of the next grid keeps it). A target
+/// that no grid fitting in memory (or up to the largest grid) reaches is refused, naming the
+/// finest reachable.
 pub fn for_accuracy(scene: &Scene, target: f64, base: &ModelOptions) -> Result<Plan, ModelError> {
     plan(scene, target, base, available_memory(), true)
 }
 
-/// [`for_accuracy`] restricted to one run on one grid (for batches, where each scene is one
-/// run).
+/// [`for_accuracy`] restricted to one grid (for batches, where each scene is one run).
 pub fn for_accuracy_one_grid(
     scene: &Scene,
     target: f64,
@@ -209,22 +177,15 @@ pub fn for_accuracy_within(
     plan(scene, target, base, available, true)
 }
 
-/// The planner: grids double from [`MIN_PLAN_GRID`] until one (or, with `several`, it and the
-/// one before, and up to [`MAX_PLAN_PHASES`] runs per grid) is predicted within the target,
-/// or memory runs out.
+/// The planner: grids double from [`MIN_PLAN_GRID`] until one (or, with `pairs`, it and the
+/// one before) is predicted within the target, or memory runs out.
 fn plan(
     scene: &Scene,
     target: f64,
     base: &ModelOptions,
     available: Option<u64>,
-    several: bool,
+    pairs: bool,
 ) -> Result<Plan, ModelError> {
-    // Several runs (two grids, several runs per grid), or one.
-    let (pairs, max_phases) = if several {
-        (true, MAX_PLAN_PHASES)
-    } else {
-        (false, 1)
-    };
     if !(target.is_finite() && target > 0.0 && target < 1.0) {
         return Err(ModelError::Invalid {
             flag: "--accuracy",
@@ -265,42 +226,25 @@ fn plan(
         }
         let n_d = predicted_n_d(&model);
         if n_d >= MIN_PLAN_N_D {
-            let plan = |grids: Vec<usize>, phases: usize, u: f64| Plan {
+            let plan = |grids: Vec<usize>, u: f64| Plan {
                 grids,
-                phases,
                 options: options.clone(),
                 n_d,
                 predicted_uncertainty: u,
                 target,
             };
-            // Cheapest first: this grid alone, with the grid before, then more runs of each
-            // (a further run costs about 1, the grid before about 1/12).
-            let mut alone_best = f64::INFINITY;
-            // Several runs per grid only where each run is resolved well enough not to be
-            // warned about ([`convergence::COARSE_N_D`]): below it the first-order law is
-            // least certain, and averaging more such runs would state an interval the law
-            // does not support.
-            let phases_here = if n_d >= convergence::COARSE_N_D {
-                max_phases
-            } else {
-                1
-            };
-            for phases in 1..=phases_here {
-                let alone = estimate::predicted_relative_uncertainty(ratio, &vec![n_d; phases]);
-                alone_best = alone_best.min(alone);
-                if alone <= aim {
-                    return Ok(plan(vec![nx], phases, alone));
-                }
-                if let Some((coarse, coarse_n_d)) = previous.filter(|_| pairs) {
-                    let mut n_ds = vec![coarse_n_d; phases];
-                    n_ds.extend(vec![n_d; phases]);
-                    let pair = estimate::predicted_relative_uncertainty(ratio, &n_ds);
-                    if pair <= aim {
-                        return Ok(plan(vec![coarse, nx], phases, pair));
-                    }
+            let alone = estimate::predicted_relative_uncertainty_bound(ratio, &[n_d]);
+            if alone <= aim {
+                return Ok(plan(vec![nx], alone));
+            }
+            if let Some((coarse, coarse_n_d)) = previous.filter(|_| pairs) {
+                let pair =
+                    estimate::predicted_relative_uncertainty_bound(ratio, &[coarse_n_d, n_d]);
+                if pair <= aim {
+                    return Ok(plan(vec![coarse, nx], pair));
                 }
             }
-            finest = Some((nx, alone_best));
+            finest = Some((nx, alone));
             previous = Some((nx, n_d));
         }
         nx *= 2;
@@ -469,16 +413,17 @@ mod tests {
     #[test]
     fn looser_targets_take_coarser_grids_and_every_plan_predicts_its_target() {
         let base = ModelOptions::default();
-        for ratio in [1.0, 2.0, 5.0, 10.0, 15.0, 25.0, 35.0, 50.0] {
+        for ratio in [
+            1.0, 1.5, 2.0, 3.0, 5.0, 7.0, 10.0, 15.0, 20.0, 25.0, 35.0, 50.0,
+        ] {
             let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).unwrap();
             let mut last = 0;
             for target in [0.1, 0.05, 0.02, 0.01, 0.005] {
                 let p = for_accuracy_within(&scene, target, &base, None).unwrap();
                 println!(
-                    "R1/R2 = {ratio}, {} %: grids {:?} × {} runs, n_d {:.0}, predicted ± {:.2} %",
+                    "R1/R2 = {ratio}, {} %: grids {:?}, n_d {:.0}, predicted ± {:.2} %",
                     100.0 * target,
                     p.grids,
-                    p.phases,
                     p.n_d,
                     100.0 * p.predicted_uncertainty
                 );

@@ -377,9 +377,10 @@ fn a_time_limit_gives_the_best_answer_so_far_and_says_the_target_was_missed() {
 }
 
 #[test]
-fn an_accuracy_plan_with_several_runs_per_grid_averages_their_grid_phases() {
-    // 1 % for the sphere: two runs on 64², at margins 0.08 and 0.13, cost less than one 128²
-    // run and together state 1 %.
+fn an_accuracy_plan_keeps_its_target_with_one_run_not_several_that_may_disagree() {
+    // 1 % for the sphere: one 128² run. Two 64² runs at other margins would be predicted
+    // within 1 % only if they agreed; allowing for the Birge ratio they show one time in ten,
+    // they are not (two such runs for R1/R2 = 5 and 25 stated ± 1.6 %).
     let dir = tempfile::tempdir().unwrap();
     let o = jkrbem(
         &[
@@ -399,17 +400,12 @@ fn an_accuracy_plan_with_several_runs_per_grid_averages_their_grid_phases() {
     );
     let out = String::from_utf8_lossy(&o.stdout).to_string() + &stderr(&o);
     assert!(o.status.success(), "{out}");
-    assert!(
-        out.contains("2 runs per grid"),
-        "it says what it chose: {out}"
-    );
+    assert!(out.contains("grid 128"), "it says what it chose: {out}");
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("t.json")).unwrap()).unwrap();
     let runs = s["runs"].as_array().unwrap();
-    assert_eq!(runs.len(), 2, "{s}");
-    assert!(runs.iter().all(|r| r["nx"] == 64), "{s}");
-    assert_eq!(runs[0]["margin"], 0.08, "{s}");
-    assert_eq!(runs[1]["margin"], 0.13, "{s}");
+    assert_eq!(runs.len(), 1, "{s}");
+    assert_eq!(runs[0]["nx"], 128, "{s}");
     assert_eq!(s["estimate"], "single-grid", "{s}");
     assert_eq!(s["target_met"], true, "{s}");
     let (f, u) = (
@@ -417,5 +413,4 @@ fn an_accuracy_plan_with_several_runs_per_grid_averages_their_grid_phases() {
         s["f_ad_bar_uncertainty"].as_f64().unwrap(),
     );
     assert!((f - 0.5).abs() <= u && u / f <= 0.01, "{f} ± {u}");
-    assert!(dir.path().join("t-n64.csv").exists() && dir.path().join("t-n64-m0.13.csv").exists());
 }

@@ -412,6 +412,18 @@ pub fn predicted_relative_uncertainty(ratio: f64, n_ds: &[f64]) -> f64 {
     fit_line(&pts, prior).map_or(f64::INFINITY, |f| 2.0 * f.intercept_sd / f.intercept)
 }
 
+/// The relative uncertainty (dimensionless) [`from_runs`] is predicted to state at most, nine
+/// times in ten, for runs with `n_ds` elements across the minor axis at the minimum:
+/// [`predicted_relative_uncertainty`] widened by the 90 % quantile of the Birge ratio of
+/// their fit (`line_fit::birge_quantile_90`). One run has no residual to widen by; two runs or
+/// more do (their fit has one degree of freedom per run beyond the first, with the law's
+/// prior on k), and the stated interval grows where they disagree: a plan of several runs
+/// keeps its target only if it does so even then.
+pub fn predicted_relative_uncertainty_bound(ratio: f64, n_ds: &[f64]) -> f64 {
+    let dof = n_ds.len().saturating_sub(1);
+    predicted_relative_uncertainty(ratio, n_ds) * super::line_fit::birge_quantile_90(dof)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -534,6 +546,26 @@ mod tests {
         let coverage = held as f64 / cases as f64;
         assert!(coverage >= 0.9, "coverage {coverage} over {cases} cases");
         assert!(coverage < 0.999, "needlessly wide: coverage {coverage}");
+    }
+
+    #[test]
+    fn several_runs_are_predicted_with_the_birge_ratio_they_may_show() {
+        // One run has no residual: the bound is the prediction. Two runs (one degree of
+        // freedom with the law's prior) may disagree: 1.645× one time in ten.
+        assert_eq!(
+            predicted_relative_uncertainty_bound(5.0, &[60.0]),
+            predicted_relative_uncertainty(5.0, &[60.0])
+        );
+        let two = [40.0, 40.0];
+        let ratio = predicted_relative_uncertainty_bound(5.0, &two)
+            / predicted_relative_uncertainty(5.0, &two);
+        assert!((ratio - 1.644_85).abs() < 1e-4, "{ratio}");
+        // Two runs of one grid, bounded, state more than one run of that grid: averaging
+        // the grid phase does not pay for the risk that they disagree.
+        assert!(
+            predicted_relative_uncertainty_bound(5.0, &two)
+                > predicted_relative_uncertainty_bound(5.0, &[40.0])
+        );
     }
 
     #[test]

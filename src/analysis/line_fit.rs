@@ -58,6 +58,26 @@ impl LineFit {
     }
 }
 
+/// The 90 % quantile of the Birge ratio √(χ²/dof) of a fit with `dof` degrees of freedom
+/// whose points scatter exactly as their deviations say (dimensionless; 1 for `dof` 0, where
+/// no ratio is formed): one fit in ten widens its interval by more than this. From the χ²
+/// distribution's 90 % quantiles (tabled to 8 degrees of freedom, Wilson–Hilferty beyond).
+pub fn birge_quantile_90(dof: usize) -> f64 {
+    const CHI2_90: [f64; 8] = [
+        2.705_54, 4.605_17, 6.251_39, 7.779_44, 9.236_36, 10.644_64, 12.017_04, 13.361_57,
+    ];
+    let chi2 = match dof {
+        0 => return 1.0,
+        1..=8 => CHI2_90[dof - 1],
+        _ => {
+            let v = dof as f64;
+            let h = 2.0 / (9.0 * v);
+            v * (1.0 - h + 1.281_552 * h.sqrt()).powi(3)
+        }
+    };
+    (chi2 / dof as f64).sqrt().max(1.0)
+}
+
 /// Fit y = a + b·x to `points` with the slope's `prior`. `None` if there are no points, a
 /// deviation is not positive and finite, or the system is singular.
 pub fn fit_line(points: &[Point], prior: SlopePrior) -> Option<LineFit> {
@@ -150,6 +170,21 @@ mod tests {
         let f = fit_line(&p, SlopePrior { mean: 0.0, sd: 1.0 }).unwrap();
         assert!((f.intercept - 0.5).abs() < 1e-9, "{f:?}");
         assert!((f.slope - 1.6).abs() < 1e-6, "{f:?}");
+    }
+
+    #[test]
+    fn the_birge_quantile_follows_the_chi_squared_distribution() {
+        // √(χ²_0.9/dof): 1.645 (the two-sided 90 % normal point) for one degree of freedom.
+        assert!((birge_quantile_90(1) - 1.644_85).abs() < 1e-4);
+        assert_eq!(birge_quantile_90(0), 1.0);
+        // Wilson–Hilferty beyond the table: χ²_0.9 = 14.684 for 9, 28.412 for 20.
+        assert!((birge_quantile_90(9) - (14.684f64 / 9.0).sqrt()).abs() < 2e-3);
+        assert!((birge_quantile_90(20) - (28.412f64 / 20.0).sqrt()).abs() < 2e-3);
+        // More degrees of freedom, a tighter bound, towards 1.
+        for dof in 1..40 {
+            assert!(birge_quantile_90(dof + 1) < birge_quantile_90(dof));
+            assert!(birge_quantile_90(dof) > 1.0);
+        }
     }
 
     #[test]

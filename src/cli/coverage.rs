@@ -36,8 +36,8 @@ pub struct Args {
     )]
     pub variants: Vec<CaseVariant>,
     /// Runs per case: each case is estimated from this many runs at consecutive margins of one
-    /// grid together (as `--accuracy` does with several runs per grid); every window of
-    /// consecutive margins is a case.
+    /// grid together (as `reference --phases` does); every window of consecutive margins is a
+    /// case.
     #[arg(long, default_value_t = 1)]
     pub runs_per_case: usize,
     /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.

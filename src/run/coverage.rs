@@ -4,7 +4,7 @@
 //! with the compiled-in convergence law) held against its reference: JKR's exact 1/2 for the
 //! sphere, else the table's Δx → 0 value from a ladder at least two levels finer than the
 //! case's grid. A case may also be several runs at consecutive margins estimated together, as
-//! `--accuracy` does with several runs per grid. Runs already in the output folder are reused
+//! `reference --phases` does. Runs already in the output folder are reused
 //! and estimated again, so that a new law is checked on the same runs in seconds.
 
 use super::claim::{named, write_error, Outputs};
@@ -66,8 +66,8 @@ pub struct CoverageRequest {
     /// Fixed, re-gridded or both.
     pub variants: Vec<CaseVariant>,
     /// Runs per case (1 to the number of margins): each case is estimated from this many runs
-    /// at consecutive margins of one grid and variant together, as `--accuracy` does with a
-    /// plan of several runs per grid; the cases are every such window of margins.
+    /// at consecutive margins of one grid and variant together, as `reference --phases` does;
+    /// the cases are every such window of margins.
     pub runs_per_case: usize,
     /// The backend.
     pub backend: BackendRequest,

@@ -75,20 +75,12 @@ fn default_out(model: &Model) -> PathBuf {
     ))
 }
 
-/// The states file of `model`, one of several runs with stem `stem`: `<stem>-n<Nx>.csv`, and
-/// `<stem>-n<Nx>-m<margin>.csv` for a run at another margin than the request's `base_margin`
-/// (the further runs of a grid, each at another grid phase).
-fn grid_out(stem: &Path, model: &Model, base_margin: f64) -> PathBuf {
+/// The states file of grid `nx` of an extrapolation with stem `stem`.
+fn grid_out(stem: &Path, nx: usize) -> PathBuf {
     let name = stem
         .file_stem()
         .map_or("states".into(), |s| s.to_string_lossy().into_owned());
-    let nx = model.nx;
-    if model.margin == base_margin {
-        stem.with_file_name(format!("{name}-n{nx}.csv"))
-    } else {
-        let m = crate::text::compact(model.margin);
-        stem.with_file_name(format!("{name}-n{nx}-m{m}.csv"))
-    }
+    stem.with_file_name(format!("{name}-n{nx}.csv"))
 }
 
 /// Run the request: check every input, claim the outputs, run, estimate, write the summary.
@@ -129,10 +121,7 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
                     stem.display()
                 )));
             }
-            models
-                .iter()
-                .map(|m| grid_out(&stem, m, req.options.margin))
-                .collect()
+            models.iter().map(|m| grid_out(&stem, m.nx)).collect()
         }
     };
     let mut targets: Vec<(PathBuf, String)> =
@@ -307,15 +296,14 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
                 measure: Measure::AdhesiveForce,
                 ..p.options.clone()
             };
-            // (Nx, margin) of every run: each grid at each of the plan's margins.
-            let mut runs = p.runs();
+            let mut grids = p.grids.clone();
             let mut note = note;
             let mut fallback = 0;
             if req.time_limit.is_some() {
                 let first =
                     plan::coarsest_resolving_grid(&req.scene, &req.options).map_err(input)?;
-                if first < p.grids[0] {
-                    runs.insert(0, (first, options.margin));
+                if first < grids[0] {
+                    grids.insert(0, first);
                     fallback = 1;
                     note.push_str(&format!(
                         "; with --time-limit, grid {first} first (the coarsest that resolves \
@@ -324,18 +312,7 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
                     ));
                 }
             }
-            let models = runs
-                .iter()
-                .map(|&(nx, margin)| {
-                    let options = ModelOptions {
-                        nx,
-                        ny: None,
-                        margin,
-                        ..options.clone()
-                    };
-                    build(&options, "--accuracy")
-                })
-                .collect::<Result<Vec<_>, _>>()?;
+            let models = per_grid(&grids, &options, "--accuracy")?;
             Ok(Planned {
                 models,
                 target: Some(*target),
