@@ -27,20 +27,6 @@ pub const PLAN_MARGIN: f64 = 0.85;
 /// falls at c̄ ≤ 1.125, so 0.75 would be the bound.
 pub const REGRID_DX_GAIN: f64 = 0.65;
 
-/// The step between the domain margins of one grid's runs (relative to the initial contact's
-/// half-axes): the first run has the margin asked for, each further one this much more. 0.05
-/// moves Δx by about 5 %, which moves the contact's edge by a few elements across a resolved
-/// contact: the runs sample the grid phase rather than repeat one another.
-pub const PHASE_MARGIN_STEP: f64 = 0.05;
-
-/// The domain margins of one grid's `phases` runs: `base`, then [`PHASE_MARGIN_STEP`] more
-/// for each further run.
-pub fn phase_margins(base: f64, phases: usize) -> Vec<f64> {
-    (0..phases.max(1))
-        .map(|i| base + PHASE_MARGIN_STEP * i as f64)
-        .collect()
-}
-
 /// Load steps of a plan: with adaptive stepping the force minimum does not depend on them
 /// (measured: 0.5155 with 100 and 200 steps, 128², re-gridded).
 pub const PLAN_STEPS: usize = 100;

@@ -118,6 +118,12 @@ impl TableLaw {
             .sqrt()
     }
 
+    /// The standard deviations of (k_slender, k_round) (absolute).
+    pub fn sd(&self) -> (f64, f64) {
+        let c = &self.covariance;
+        (c[0][0].max(0.0).sqrt(), c[1][1].max(0.0).sqrt())
+    }
+
     /// The law point at `ratio`: k and its relative spread for one run (the law's own
     /// uncertainty combined with [`K_GRID_SPREAD`]).
     pub fn at(&self, ratio: f64) -> LawPoint {

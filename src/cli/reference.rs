@@ -86,19 +86,13 @@ pub fn run(args: Args) -> Result<(), CliError> {
         );
     }
     println!("written {}", done.path.display());
-    // The law `--accuracy` would fit to this table once compiled in.
-    let text = std::fs::read_to_string(&done.path).unwrap_or_default();
-    let points = jkrbem::analysis::convergence::table_points(&text);
-    if let Some(law) = jkrbem::analysis::convergence::fit_table_law(&points) {
-        let sd = |i: usize| law.covariance[i][i].max(0.0).sqrt();
+    if let Some(law) = done.law {
+        let (sd_slender, sd_round) = law.sd();
         println!(
             "the convergence law fitted to this table: k = {:.3} (± {:.3}) + {:.3} (± {:.3}) / \
              (R1/R2) (one standard deviation; compiled into --accuracy when the table is \
              docs/reference/adhesive-force.csv)",
-            law.k_slender,
-            sd(0),
-            law.k_round,
-            sd(1)
+            law.k_slender, sd_slender, law.k_round, sd_round
         );
     }
     Ok(())

@@ -8,6 +8,7 @@ use super::claim::{named, write_error, Outputs};
 use super::open::BackendRequest;
 use super::simulate::{simulate, Mode, SimulateRequest};
 use super::{failed, input, RunError, Watch};
+use crate::analysis::convergence::{self, TableLaw};
 use crate::analysis::estimate;
 use crate::analysis::report::RunReport;
 use crate::model::{Measure, ModelOptions, Stepping, MAX_GRID};
@@ -26,6 +27,20 @@ pub const MIN_LEVELS: usize = 3;
 /// Runs per grid at the most ([`ReferenceRequest::phases`]).
 pub const MAX_PHASES: usize = 8;
 
+/// The step between the domain margins of one grid's runs (relative to the initial contact's
+/// half-axes): the first run has the margin asked for, each further one this much more. 0.05
+/// moves Δx by about 5 %, which moves the contact's edge by a few elements across a resolved
+/// contact: the runs sample the grid phase rather than repeat one another.
+pub const PHASE_MARGIN_STEP: f64 = 0.05;
+
+/// The domain margins of one grid's `phases` runs: `base`, then [`PHASE_MARGIN_STEP`] more
+/// for each further run.
+pub fn phase_margins(base: f64, phases: usize) -> Vec<f64> {
+    (0..phases.max(1))
+        .map(|i| base + PHASE_MARGIN_STEP * i as f64)
+        .collect()
+}
+
 /// A request for reference values.
 #[derive(Debug, Clone)]
 pub struct ReferenceRequest {
@@ -37,7 +52,7 @@ pub struct ReferenceRequest {
     pub max_grid: usize,
     /// Nx of every ladder's first grid (`None`: the grid a 5 % plan takes for the ratio).
     pub first_grid: Option<usize>,
-    /// Runs per grid, at the domain margins [`crate::plan::phase_margins`]: each an observation of the same
+    /// Runs per grid, at the domain margins [`phase_margins`]: each an observation of the same
     /// limit at another grid phase (1: one run per grid, the default margin).
     pub phases: usize,
     /// The backend.
@@ -74,7 +89,7 @@ pub struct ReferenceRow {
     pub target_met: bool,
     /// The grids Nx of the ladder, coarse to fine, `;`-separated.
     pub grids: String,
-    /// Runs per grid (each at another domain margin, [`crate::plan::phase_margins`]); 1 in tables written
+    /// Runs per grid (each at another domain margin, [`phase_margins`]); 1 in tables written
     /// before the column existed.
     #[serde(default = "one_run_per_grid")]
     pub runs_per_grid: usize,
@@ -110,6 +125,9 @@ pub struct ReferenceDone {
     pub rows: Vec<ReferenceRow>,
     /// The table.
     pub path: PathBuf,
+    /// The convergence law fitted to the table as written (what `--accuracy` uses once this
+    /// table is the compiled-in one); `None` where too few rows have a k.
+    pub law: Option<TableLaw>,
 }
 
 /// The first grid of a ratio's ladder: the one a 5 % plan takes (n_d about 20–40).
@@ -142,7 +160,7 @@ fn ladder(
     let mut est = None;
     let mut levels = 0;
     'grids: while nx <= req.max_grid.min(MAX_GRID) {
-        let margins = crate::plan::phase_margins(base.margin, req.phases);
+        let margins = phase_margins(base.margin, req.phases);
         for (phase, margin) in margins.into_iter().enumerate() {
             let name = run_name(ratio, nx, phase, margin);
             let options = ModelOptions {
@@ -340,8 +358,10 @@ pub fn reference(req: &ReferenceRequest, watch: &mut dyn Watch) -> Result<Refere
         table.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
         crate::output::file::write_csv(&req.out, None, &table).map_err(write_error("--out"))?;
     }
+    let written = std::fs::read_to_string(&req.out).unwrap_or_default();
     Ok(ReferenceDone {
         rows,
         path: req.out.clone(),
+        law: convergence::fit_table_law(&convergence::table_points(&written)),
     })
 }
