@@ -243,6 +243,12 @@ pub struct TableValue {
     pub grids: Vec<usize>,
     /// n_d of the finest grid's run at the default margin, where the table has it.
     pub n_d: Option<f64>,
+    /// c̄ at the force minimum at Δx → 0 and its half-width (dimensionless), where the table
+    /// has them.
+    pub c_bar_at_min: Option<(f64, f64)>,
+    /// d̄ at the force minimum at Δx → 0 and its half-width (dimensionless), where the table
+    /// has them.
+    pub d_bar_at_min: Option<(f64, f64)>,
 }
 
 /// The value of every row of a reference table's CSV text (rows without a value, its
@@ -260,6 +266,11 @@ pub fn table_values(csv_text: &str) -> Vec<TableValue> {
         return Vec::new();
     };
     let cn = col("n_d");
+    let pair = |value: &str, half_width: &str| col(value).zip(col(half_width));
+    let (cc, cd) = (
+        pair("c_bar_at_min", "c_bar_at_min_uncertainty"),
+        pair("d_bar_at_min", "d_bar_at_min_uncertainty"),
+    );
     records
         .into_iter()
         .filter_map(|rec| {
@@ -275,6 +286,8 @@ pub fn table_values(csv_text: &str) -> Vec<TableValue> {
                 uncertainty: num(cu)?,
                 grids: grids.filter(|g| !g.is_empty())?,
                 n_d: cn.and_then(num),
+                c_bar_at_min: cc.and_then(|(v, u)| num(v).zip(num(u))),
+                d_bar_at_min: cd.and_then(|(v, u)| num(v).zip(num(u))),
             })
         })
         .collect()
@@ -363,6 +376,24 @@ pub const CORNER_SCATTER: f64 = 0.15;
 /// over-prediction is lower than the corner's (k ≈ 2.2–2.5 for the sphere), which the
 /// estimators cover by doubling k's spread.
 pub const OFFSET_SCATTER: f64 = 0.35;
+
+/// The grid-phase scatter of one run's c̄ and d̄ at the force minimum (one standard deviation,
+/// absolute) is this times √(1/n_d) for runs with the apex on an element corner: the force is
+/// flat at its minimum, so a scatter of the force ∝ 1/n_d moves where the lowest state lies by
+/// ∝ √(1/n_d). Measured over 36 groups of five runs at domain margins 0.08…0.28 (R1/R2 1…50,
+/// fixed and re-gridded, n_d 11…94): RMS of sd·√n_d 0.14 for c̄ and 0.15 for d̄. A force-like
+/// 0.15·|c̄|/n_d is ten times too small at n_d ≈ 30, which made the Birge ratio of two runs'
+/// c̄ fit state c̄ ± 0.9.
+pub const POSITION_SCATTER: f64 = 0.15;
+
+/// The slope of c̄ and d̄ at the force minimum against 1/n_d has no law; the estimators take it
+/// as 0 ± k·this (absolute, k the force's convergence coefficient). Measured as the mean of a
+/// grid's five margins against the reference row, |slope|/k is 0.2…0.5 (the sphere at n_d
+/// 16…60 the largest, 10:1 at 15, 25:1 at 17, 50:1 at 11), c̄ too high and d̄ too low or
+/// unbiased; c̄ and d̄ move by about the same absolute amount, so one scale serves both. With
+/// 0.4 the coverage study's 180 single-run cases hold c̄ 177 times and d̄ 179 times (the
+/// sphere's c̄ 28 of 30; with 0.3 only 24 of 30).
+pub const POSITION_SLOPE: f64 = 0.4;
 
 /// The range of k for R1/R2 (dimensionless): the central value ± 30 %, which holds every
 /// ratio's measurements and random apex offsets too (physics §7).

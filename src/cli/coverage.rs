@@ -79,10 +79,13 @@ pub fn run(args: Args) -> Result<(), CliError> {
         out: args.out,
     };
     let done = coverage(&req, &mut Progress::new()).map_err(run_error)?;
-    println!("R1/R2   cases  held          median width/|error|  RMS error/sd  half-widths");
+    println!(
+        "R1/R2   cases  held          median width/|error|  RMS error/sd  half-widths      \
+         c̄ held  d̄ held (of)"
+    );
     for s in &done.summary {
         println!(
-            "{:<7} {:>5}  {:>4} ({:>5.1} %)  {:>20.2}  {:>12.2}  {:.2}–{:.2} %",
+            "{:<7} {:>5}  {:>4} ({:>5.1} %)  {:>20.2}  {:>12.2}  {:>6.2}–{:<6.2} %  {:>6}  {:>6} ({})",
             s.ratio,
             s.cases,
             s.held,
@@ -90,7 +93,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
             s.median_width_over_error,
             s.rms_error_over_sd,
             100.0 * s.half_width_min,
-            100.0 * s.half_width_max
+            100.0 * s.half_width_max,
+            s.c_bar_held,
+            s.d_bar_held,
+            s.position_cases
         );
     }
     println!(

@@ -106,6 +106,55 @@ pub struct CoverageCase {
     pub held: bool,
     /// uncertainty / |error| (dimensionless; large: the interval is wide for this case).
     pub width_over_error: f64,
+    /// c̄ at the minimum: the case's estimate.
+    pub c_bar_at_min: Option<f64>,
+    /// Its stated half-width.
+    pub c_bar_uncertainty: Option<f64>,
+    /// Its reference (JKR's 2^(−1/3) for the sphere, else the table's).
+    pub c_bar_reference: Option<f64>,
+    /// The reference's half-width.
+    pub c_bar_reference_uncertainty: Option<f64>,
+    /// Whether |c̄ − reference| ≤ the two half-widths together.
+    pub c_bar_held: Option<bool>,
+    /// d̄ at the minimum: the case's estimate.
+    pub d_bar_at_min: Option<f64>,
+    /// Its stated half-width.
+    pub d_bar_uncertainty: Option<f64>,
+    /// Its reference (JKR's for the sphere, else the table's).
+    pub d_bar_reference: Option<f64>,
+    /// The reference's half-width.
+    pub d_bar_reference_uncertainty: Option<f64>,
+    /// Whether |d̄ − reference| ≤ the two half-widths together.
+    pub d_bar_held: Option<bool>,
+}
+
+/// A case's c̄ or d̄ at the minimum against its reference (JKR's exact value for the sphere,
+/// else the table's): held if the distance is at most the case's half-width plus the
+/// reference's own (all absolute, dimensionless).
+#[derive(Debug, Clone, Copy, Default)]
+struct PositionCheck {
+    estimate: Option<f64>,
+    uncertainty: Option<f64>,
+    reference: Option<f64>,
+    reference_uncertainty: Option<f64>,
+    held: Option<bool>,
+}
+
+impl PositionCheck {
+    /// The check of `estimate` against `reference` (value, half-width); empty if either is
+    /// missing.
+    fn of(estimate: Option<estimate::Estimate>, reference: Option<(f64, f64)>) -> Self {
+        let (Some(e), Some((r, ru))) = (estimate, reference) else {
+            return Self::default();
+        };
+        Self {
+            estimate: Some(e.value),
+            uncertainty: Some(e.uncertainty),
+            reference: Some(r),
+            reference_uncertainty: Some(ru),
+            held: Some((e.value - r).abs() <= e.uncertainty + ru),
+        }
+    }
 }
 
 /// The cases of one ratio (or of all), summed up.
@@ -128,6 +177,12 @@ pub struct CoverageSummary {
     pub half_width_min: f64,
     /// The largest stated half-width, relative.
     pub half_width_max: f64,
+    /// Cases with a c̄ check (and a d̄ check).
+    pub position_cases: usize,
+    /// Of those, cases whose c̄ interval holds its reference.
+    pub c_bar_held: usize,
+    /// Of those, cases whose d̄ interval holds its reference.
+    pub d_bar_held: usize,
 }
 
 /// What the study produced.
@@ -143,11 +198,30 @@ pub struct CoverageDone {
     pub summary_csv: PathBuf,
 }
 
-/// The reference of R1/R2 = `ratio`: (value, its half-width, the finest grid of its ladder;
-/// `None` for the exact 1/2 of the sphere).
-fn reference_of(ratio: f64, table: &[TableValue]) -> Result<(f64, f64, Option<usize>), RunError> {
+/// What a case of one ratio is held against.
+#[derive(Debug, Clone, Copy)]
+struct CaseReference {
+    /// |min F̄| and its half-width.
+    f_ad_bar: (f64, f64),
+    /// c̄ at the minimum and its half-width, where known.
+    c_bar_at_min: Option<(f64, f64)>,
+    /// d̄ at the minimum and its half-width, where known.
+    d_bar_at_min: Option<(f64, f64)>,
+    /// The finest grid of its ladder (`None` for the sphere's exact JKR values).
+    finest: Option<usize>,
+}
+
+/// The reference of R1/R2 = `ratio`: JKR's exact minimum for the sphere (|F̄| 1/2,
+/// c̄ = 2^(−1/3), d̄), else the table's row.
+fn reference_of(ratio: f64, table: &[TableValue]) -> Result<CaseReference, RunError> {
     if ratio == 1.0 {
-        return Ok((0.5, 0.0, None));
+        let jkr = crate::theory::jkr::jkr_force_min();
+        return Ok(CaseReference {
+            f_ad_bar: (-jkr.f_bar, 0.0),
+            c_bar_at_min: Some((jkr.c_bar, 0.0)),
+            d_bar_at_min: Some((jkr.d_bar, 0.0)),
+            finest: None,
+        });
     }
     let row = table.iter().find(|r| r.ratio == ratio).ok_or_else(|| {
         input(format!(
@@ -159,7 +233,12 @@ fn reference_of(ratio: f64, table: &[TableValue]) -> Result<(f64, f64, Option<us
                 .join(", ")
         ))
     })?;
-    Ok((row.f_ad_bar, row.uncertainty, row.grids.last().copied()))
+    Ok(CaseReference {
+        f_ad_bar: (row.f_ad_bar, row.uncertainty),
+        c_bar_at_min: row.c_bar_at_min,
+        d_bar_at_min: row.d_bar_at_min,
+        finest: row.grids.last().copied(),
+    })
 }
 
 /// The default case grids of a ratio whose reference ladder is `ladder` (coarse to fine): its
@@ -210,7 +289,7 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
     let mut plan = Vec::new();
     for &ratio in &req.ratios {
         Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
-        let (value, half_width, finest) = reference_of(ratio, &table)?;
+        let reference = reference_of(ratio, &table)?;
         let ladder = table
             .iter()
             .find(|r| r.ratio == ratio && ratio != 1.0)
@@ -219,7 +298,7 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
             Some(g) => g.clone(),
             None => case_grids(ladder),
         };
-        if let Some(finest) = finest {
+        if let Some(finest) = reference.finest {
             if let Some(too_fine) = grids
                 .iter()
                 .find(|&&g| g << LEVELS_BELOW_REFERENCE > finest)
@@ -232,13 +311,13 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
                 )));
             }
         }
-        plan.push((ratio, grids, value, half_width));
+        plan.push((ratio, grids, reference));
     }
     let csv = req.out.join("coverage.csv");
     let summary_csv = req.out.join("coverage-summary.csv");
     let _claimed = Outputs::claim(&named("--out", [&csv, &summary_csv]))?;
     let mut cases = Vec::new();
-    for (ratio, grids, reference, reference_uncertainty) in plan {
+    for (ratio, grids, reference) in plan {
         let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
         for &nx in &grids {
             for &variant in &req.variants {
@@ -267,7 +346,10 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
                         v.map(|v| v.iter().sum::<f64>() / v.len() as f64)
                     };
                     let (f, u) = (e.f_ad_bar.value, e.f_ad_bar.uncertainty);
-                    let error = f - reference;
+                    let (reference_value, reference_uncertainty) = reference.f_ad_bar;
+                    let error = f - reference_value;
+                    let c = PositionCheck::of(e.c_bar_at_min, reference.c_bar_at_min);
+                    let d = PositionCheck::of(e.d_bar_at_min, reference.d_bar_at_min);
                     cases.push(CoverageCase {
                         ratio,
                         grid: reports[0].grid.clone(),
@@ -278,7 +360,7 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
                         f_ad_bar_grid: mean(|r| r.f_ad_bar).unwrap_or(f64::NAN),
                         f_ad_bar: f,
                         uncertainty: u,
-                        reference,
+                        reference: reference_value,
                         reference_uncertainty,
                         error,
                         held: error.abs() <= u,
@@ -287,6 +369,16 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
                         } else {
                             u / error.abs()
                         },
+                        c_bar_at_min: c.estimate,
+                        c_bar_uncertainty: c.uncertainty,
+                        c_bar_reference: c.reference,
+                        c_bar_reference_uncertainty: c.reference_uncertainty,
+                        c_bar_held: c.held,
+                        d_bar_at_min: d.estimate,
+                        d_bar_uncertainty: d.uncertainty,
+                        d_bar_reference: d.reference,
+                        d_bar_reference_uncertainty: d.reference_uncertainty,
+                        d_bar_held: d.held,
                     });
                 }
             }
@@ -339,6 +431,9 @@ pub fn summarise(name: &str, cases: &[&CoverageCase]) -> Option<CoverageSummary>
         rms_error_over_sd: (z2 / n as f64).sqrt(),
         half_width_min: cases.iter().map(relative).fold(f64::INFINITY, f64::min),
         half_width_max: cases.iter().map(relative).fold(0.0, f64::max),
+        position_cases: cases.iter().filter(|c| c.c_bar_held.is_some()).count(),
+        c_bar_held: cases.iter().filter(|c| c.c_bar_held == Some(true)).count(),
+        d_bar_held: cases.iter().filter(|c| c.d_bar_held == Some(true)).count(),
     })
 }
 
@@ -362,6 +457,16 @@ mod tests {
             error,
             held: error.abs() <= uncertainty,
             width_over_error: uncertainty / error.abs(),
+            c_bar_at_min: Some(0.8),
+            c_bar_uncertainty: Some(0.05),
+            c_bar_reference: Some(0.79),
+            c_bar_reference_uncertainty: Some(0.0),
+            c_bar_held: Some(true),
+            d_bar_at_min: None,
+            d_bar_uncertainty: None,
+            d_bar_reference: None,
+            d_bar_reference_uncertainty: None,
+            d_bar_held: None,
         }
     }
 
@@ -371,10 +476,30 @@ mod tests {
         let refs: Vec<&CoverageCase> = cases.iter().collect();
         let s = summarise("1", &refs).unwrap();
         assert_eq!((s.cases, s.held), (3, 2));
+        assert_eq!((s.position_cases, s.c_bar_held, s.d_bar_held), (3, 3, 0));
         assert!((s.median_width_over_error - 0.004 / 0.003).abs() < 1e-12);
         let rms = ((0.25f64 + 2.25 + 6.25) / 3.0).sqrt();
         assert!((s.rms_error_over_sd - rms).abs() < 1e-12);
         assert!(summarise("none", &[]).is_none());
+    }
+
+    #[test]
+    fn a_position_is_held_within_its_half_width_and_its_reference_s() {
+        let e = |value, uncertainty| Some(estimate::Estimate { value, uncertainty });
+        assert_eq!(
+            PositionCheck::of(e(0.80, 0.011), Some((0.79, 0.0))).held,
+            Some(true)
+        );
+        assert_eq!(
+            PositionCheck::of(e(0.80, 0.005), Some((0.79, 0.004))).held,
+            Some(false)
+        );
+        assert_eq!(
+            PositionCheck::of(e(0.80, 0.005), Some((0.79, 0.006))).held,
+            Some(true)
+        );
+        assert_eq!(PositionCheck::of(None, Some((0.79, 0.0))).held, None);
+        assert_eq!(PositionCheck::of(e(0.8, 0.1), None).reference, None);
     }
 
     #[test]
