@@ -473,7 +473,11 @@ fn a_second_run_on_the_same_output_is_refused_and_a_killed_runs_lock_is_taken_ov
     let dir = tempfile::tempdir().unwrap();
     let mut first = long_run(dir.path(), "s.csv");
     let lock = dir.path().join(".s.csv.lock");
-    assert!(wait_for(Duration::from_secs(20), || lock.exists()));
+    // Both the lock and the run's partial states (written once its backend is open: under
+    // load that comes well after the lock).
+    let started =
+        || lock.exists() && !names_in(dir.path(), |n| n.starts_with("s.incomplete-")).is_empty();
+    assert!(wait_for(Duration::from_secs(60), started));
     let mut args = SHORT.to_vec();
     args.extend(["--out", "s.csv"]);
     let second = run_in(dir.path(), &args, &[]);
