@@ -391,7 +391,7 @@ pub const POSITION_SCATTER: f64 = 0.15;
 /// grid's five margins against the reference row, |slope|/k is 0.2…0.5 (the sphere at n_d
 /// 16…60 the largest, 10:1 at 15, 25:1 at 17, 50:1 at 11), c̄ too high and d̄ too low or
 /// unbiased; c̄ and d̄ move by about the same absolute amount, so one scale serves both. With
-/// 0.4 the coverage study's 180 single-run cases hold c̄ 177 times and d̄ 179 times (the
+/// 0.4 the coverage study's 180 single-run cases hold c̄ 177 times and d̄ 180 times (the
 /// sphere's c̄ 28 of 30; with 0.3 only 24 of 30).
 pub const POSITION_SLOPE: f64 = 0.4;
 
