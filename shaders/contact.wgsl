@@ -1,6 +1,6 @@
 // One sweep of the Pohrt–Popov rule on the contact set (mask = 1), f32:
-// detach elements of C with p < −σ_c, attach elements off C whose gap g = h − d + u < 0,
-// then p = 0 off C; count detached, attached, |C| and the elements of C on the domain's
+// detach elements of C with p < −σ_c, attach elements off C whose gap g = h − d + u < 0
+// (unless the sweep only detaches), then p = 0 off C; count detached, attached, |C| and the elements of C on the domain's
 // outer ring (workgroup atomics, then one global atomic per workgroup and counter).
 // CPU twin: `CpuBackend::update_contact`.
 
@@ -12,6 +12,11 @@ struct Params {
     d: f32,
     // Detachment stress σ_c (stress; 0 for the non-adhesive rule).
     sigma: f32,
+    // 1: attach elements off C whose gap is negative; 0: detach only (u is not read).
+    attach: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
@@ -37,7 +42,8 @@ fn update_contact(
     let i = gid.x + gid.y * nwg.x * WG;
     if i < params.nx * params.ny {
         var m = mask[i] != 0u;
-        let flip = select(profile[i] - params.d + u[i] < 0.0, p[i] < -params.sigma, m);
+        let attach = params.attach != 0u && profile[i] - params.d + u[i] < 0.0;
+        let flip = select(attach, p[i] < -params.sigma, m);
         if flip {
             atomicAdd(&local[select(1u, 0u, m)], 1u);
             m = !m;

@@ -1,13 +1,13 @@
 // Reductions over the contact set C (mask = 1) read by the host once per state, f32: the
-// state's measurement (total pressure, contact count, chords, index box), and the
-// first-crossing fraction of a load step.
+// state's measurement (total pressure, contact count, chords, index box), the
+// first-crossing fraction of a load step, and the largest |value| of a field on C.
 //
 // Two passes: each of G workgroups reduces a strided share of the elements (every thread
 // keeps a compensated (Kahan) running sum, then the workgroup adds its 256 sums as a
 // pairwise tree) into partials[g]; one workgroup then combines the G partials into a slot
 // (shared/slots.wgsl). The rounding error grows like log2(n) instead of n.
-// CPU twins: `jkrbem::backend::measure::measure_mask` and the f64 `first_crossing` of
-// `jkrbem::backend::cpu::CpuBackend`.
+// CPU twins: `jkrbem::backend::measure::measure_mask` and the f64 `first_crossing` and
+// `max_abs` of `jkrbem::backend::cpu::CpuBackend`.
 
 // Must stay in sync with `ReduceParams` in src/backend/gpu/backend.rs.
 struct Params {
@@ -159,6 +159,24 @@ fn crossing_partials(@builtin(local_invocation_index) lid: u32, @builtin(workgro
         let pb = b[i];
         if mask[i] != 0u && pb < -s && pb < pa {
             t = min(t, clamp((-s - pa) / (pb - pa), 0.0, 1.0));
+        }
+    }
+    red[lid] = t;
+    workgroupBarrier();
+    tree_min(lid);
+    if lid == 0u {
+        partials[wid.x] = red[0];
+    }
+}
+
+// −max over C of |a| (0 if C is empty), as a minimum so that `finish_min` completes it.
+@compute @workgroup_size(WG)
+fn max_abs_partials(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>) {
+    var t = 0.0;
+    let step = params.groups * WG;
+    for (var i = wid.x * WG + lid; i < params.n; i += step) {
+        if mask[i] != 0u {
+            t = min(t, -abs(a[i]));
         }
     }
     red[lid] = t;

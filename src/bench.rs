@@ -81,6 +81,9 @@ pub struct PulloffTiming {
     pub states: usize,
     /// The adhesive force |min F̄| (dimensionless), if any state was recorded.
     pub f_ad_bar: Option<f64>,
+    /// Where the run spent its work: states, steps, onsets, rounds, solves, CG iterations
+    /// and convolutions outside CG.
+    pub cost: crate::solver::cost::CostAccount,
     /// Why the run stopped early, if it did (the other fields then describe the part run).
     pub error: Option<SolverError>,
 }
@@ -348,6 +351,7 @@ pub fn time_pulloff<B: Backend>(backend: &mut B, model: &Model) -> PulloffTiming
         cg_iterations: outcome.cg_iterations(),
         states: outcome.states.len(),
         f_ad_bar: outcome.force_minimum().map(|s| s.f_bar.abs()),
+        cost: outcome.cost,
         error: outcome.error,
     }
 }

@@ -3,7 +3,7 @@
 //! (physics §7, [`crate::analysis::convergence`]).
 
 use crate::analysis::{convergence, estimate};
-use crate::model::{self, Measure, Model, ModelError, ModelOptions, Stepping, MAX_GRID};
+use crate::model::{self, Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID};
 use crate::scene::Scene;
 use crate::text::compact;
 use crate::theory::{self, TheoryModel};
@@ -183,7 +183,7 @@ fn plan(
     let options = ModelOptions {
         ny: None,
         steps: PLAN_STEPS,
-        stepping: Stepping::Adaptive,
+        onsets: Onsets::NearMinimum,
         measure: Measure::AdhesiveForce,
         regrid: true,
         ..base.clone()
@@ -461,12 +461,13 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("--grid") && e.contains("4096×4096"), "{e}");
-        // 1024² needs 64 MiB + 320 B × 1024² = 403 MB; 2048² 1.4 GB.
+        // 1024² needs 64 MiB + 320 B × 1024² + 21 kept states of 24 B per element = 931 MB;
+        // 2048² 1.9 GB.
         assert!(
             e.contains("the largest grid that fits is --grid 1024"),
             "{e}"
         );
-        assert!(e.contains("5.4 GB") && e.contains("1 GB"), "{e}");
+        assert!(e.contains("7 GB") && e.contains("1 GB"), "{e}");
         assert!(check_memory_within(&[&m], 1, "--grid", Some(u64::MAX)).is_ok());
         // Two at a time need twice as much.
         let small = Model::build(
@@ -477,7 +478,7 @@ mod tests {
             },
         )
         .unwrap();
-        let room = 700_000_000;
+        let room = 1_200_000_000;
         assert!(check_memory_within(&[&small, &small], 1, "--grid", Some(room)).is_ok());
         let e = check_memory_within(&[&small, &small], 2, "--grid", Some(room)).unwrap_err();
         assert!(e.to_string().contains("--jobs 2"), "{e}");

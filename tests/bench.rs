@@ -6,7 +6,9 @@ mod common;
 use common::{jkrbem, stderr};
 
 const HEADER: &str = "backend,precision,adapter,grid,nx,ny,convolution_ms,cg_iteration_ms,\
-dispatches_per_iteration,readbacks_per_iteration,pulloff_s,pulloff_cg_iterations,f_ad_bar";
+dispatches_per_iteration,readbacks_per_iteration,pulloff_s,pulloff_cg_iterations,f_ad_bar,\
+pulloff_states,pulloff_steps,pulloff_onsets,pulloff_rounds,pulloff_solves,\
+pulloff_convolutions,pulloff_readbacks";
 
 #[test]
 fn a_quick_cpu_bench_writes_one_row_per_grid_and_a_chart() {
@@ -69,7 +71,24 @@ fn a_quick_cpu_bench_writes_one_row_per_grid_and_a_chart() {
     );
     let its: usize = col(&rows[0], "pulloff_cg_iterations").parse().unwrap();
     assert!(its > 0);
-    for empty in ["pulloff_s", "pulloff_cg_iterations", "f_ad_bar"] {
+    // The cost account: the in-process run's, count for count (the same f64 run).
+    let cost = &reference.outcome.cost;
+    for (name, want) in [
+        ("pulloff_states", cost.states),
+        ("pulloff_steps", cost.steps),
+        ("pulloff_onsets", cost.onsets),
+        ("pulloff_rounds", cost.work.rounds),
+        ("pulloff_solves", cost.work.solves),
+    ] {
+        assert_eq!(col(&rows[0], name), want.to_string(), "{name}");
+    }
+    assert!(cost.work.solves >= cost.steps && cost.steps > 0 && cost.states > cost.steps);
+    for empty in [
+        "pulloff_s",
+        "pulloff_cg_iterations",
+        "f_ad_bar",
+        "pulloff_solves",
+    ] {
         assert_eq!(col(&rows[1], empty), "", "{empty} at 32² was not measured");
     }
     let svg = std::fs::read_to_string(dir.path().join("b/bench.svg")).unwrap();
@@ -81,6 +100,7 @@ fn a_quick_cpu_bench_writes_one_row_per_grid_and_a_chart() {
         stdout.contains("16×16") && stdout.contains("32×32"),
         "{stdout}"
     );
+    assert!(stdout.contains("pull-off cost account"), "{stdout}");
 }
 
 #[test]

@@ -126,7 +126,7 @@ fn a_good_run_writes_the_documented_csv_and_summary() {
     assert_eq!(
         text.lines().next().unwrap(),
         "step,phase,d,force,area,mean_radius,a_axis,b_axis,n_contact,cg_iterations,\
-         detach_sweeps,d_bar,f_bar,c_bar,a_bar,b_bar,cg_residual,dx"
+         detach_sweeps,d_bar,f_bar,c_bar,a_bar,b_bar,cg_residual,dx,onsets"
     );
     assert!(text.lines().count() > 40);
     let s: serde_json::Value =

@@ -73,7 +73,7 @@ const SUBCOMMANDS: &[(&str, &[&str])] = &[
             "--grid-y",
             "--start-radius",
             "--steps",
-            "--stepping",
+            "--onsets",
             "--measure",
             "--final-d",
             "--margin",

@@ -324,26 +324,58 @@ fn first_crossing<B: Backend>(mut s: Subject<B>) {
     s.assert_scalar("first_crossing", got, want, 1.0);
 }
 
+/// max over C of |f|, with NaN off C ignored.
+fn max_abs<B: Backend>(mut s: Subject<B>) {
+    let v: Vec<f64> = pseudo_random(NX * NY, 19)
+        .iter()
+        .map(|x| 3.0 * x - 1.0)
+        .collect();
+    let f = s.put(&poisoned(&v, &s.mask));
+    let got = s.b.max_abs(&f).unwrap();
+    let want = (0..NX * NY)
+        .filter(|&i| s.mask[i])
+        .map(|i| v[i].abs())
+        .fold(0.0f64, f64::max);
+    assert!(want > 0.0, "the inputs must be non-zero on C");
+    s.assert_scalar("max_abs", got, want, want);
+}
+
 /// One Pohrt–Popov sweep: detach p < −σ_c on C, attach negative gaps off C, p = 0 off the
 /// new C; counts, mask and p as the rule says.
-fn update_contact<B: Backend>(mut s: Subject<B>) {
+fn update_contact<B: Backend>(s: Subject<B>) {
+    sweep(s, Some(0.2));
+}
+
+/// A detach-only sweep (what an approximately solved cascade round makes): the same, but
+/// nothing attaches whatever the gap.
+fn update_contact_detach_only<B: Backend>(s: Subject<B>) {
+    sweep(s, None);
+}
+
+fn sweep<B: Backend>(mut s: Subject<B>, attach_at: Option<f64>) {
     let h = setup().profile;
-    let (d, sigma_c) = (0.2, 0.6);
+    let sigma_c = 0.6;
     let p = on_c(&pseudo_random(NX * NY, 15), &s.mask);
     let u: Vec<f64> = pseudo_random(NX * NY, 16).iter().map(|v| 0.5 * v).collect();
     let mut fp = s.put(&p);
     let fu = s.put(&u);
-    let change = s.b.update_contact(&mut fp, &fu, d, sigma_c).unwrap();
+    let change =
+        s.b.update_contact(&mut fp, &fu, attach_at, sigma_c)
+            .unwrap();
     let mut want_mask = s.mask.clone();
     let (mut detached, mut attached) = (0, 0);
     for i in 0..NX * NY {
         if s.mask[i] && p[i] < -sigma_c {
             want_mask[i] = false;
             detached += 1;
-        } else if !s.mask[i] && h[i] - d + u[i] < 0.0 {
+        } else if !s.mask[i] && attach_at.is_some_and(|d| h[i] - d + u[i] < 0.0) {
             want_mask[i] = true;
             attached += 1;
         }
+    }
+    assert!(detached > 0, "the inputs must detach some");
+    if attach_at.is_some() {
+        assert!(attached > 0, "the inputs must attach some");
     }
     assert_eq!((change.detached, change.attached), (detached, attached));
     assert_eq!(change.n_contact, want_mask.iter().filter(|m| **m).count());
@@ -526,7 +558,12 @@ fn checks<B: Backend + 'static>() -> Vec<(&'static str, Check<B>)> {
         ("xpay_ratio", xpay_ratio::<B>),
         ("lerp", lerp::<B>),
         ("first_crossing", first_crossing::<B>),
+        ("max_abs", max_abs::<B>),
         ("update_contact", update_contact::<B>),
+        (
+            "update_contact_detach_only",
+            update_contact_detach_only::<B>,
+        ),
         ("convolution", convolution::<B>),
         ("preconditioner", preconditioner::<B>),
         ("fused", fused::<B>),

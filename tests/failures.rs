@@ -6,7 +6,7 @@
 mod common;
 
 use common::{jkrbem, model_for, run_model, stderr};
-use jkrbem::model::{Measure, ModelOptions, Stepping};
+use jkrbem::model::{Measure, ModelOptions, Onsets};
 use jkrbem::solver::{Phase, SolverError};
 
 /// |min F̄| of a run.
@@ -19,30 +19,30 @@ fn sphere(options: ModelOptions) -> common::Run {
 }
 
 #[test]
-fn too_large_load_steps_change_the_answer_and_adaptive_steps_fix_it() {
-    let at = |steps, stepping| {
+fn too_large_load_steps_change_the_answer_and_located_onsets_fix_it() {
+    let at = |steps, onsets| {
         sphere(ModelOptions {
             nx: 64,
             steps,
-            stepping,
+            onsets,
             ..ModelOptions::default()
         })
     };
     // Whole steps: halving them moves the minimum (it lies at onsets inside the steps).
-    let (f20, f40) = (
-        f_ad(&at(20, Stepping::Fixed)),
-        f_ad(&at(40, Stepping::Fixed)),
-    );
+    let (f20, f40) = (f_ad(&at(20, Onsets::None)), f_ad(&at(40, Onsets::None)));
     let fixed_change = (f40 / f20 - 1.0).abs();
-    // Adaptive steps: every onset is found exactly, whatever the step.
+    // Onsets located (near the minimum, or all of them): the minimum is found exactly,
+    // whatever the step.
     let (a20, a200) = (
-        f_ad(&at(20, Stepping::Adaptive)),
-        f_ad(&at(200, Stepping::Adaptive)),
+        f_ad(&at(20, Onsets::NearMinimum)),
+        f_ad(&at(200, Onsets::NearMinimum)),
     );
-    let adaptive_change = (a200 / a20 - 1.0).abs();
+    let all = f_ad(&at(40, Onsets::All));
+    let adaptive_change = (a200 / a20 - 1.0).abs().max((all / a20 - 1.0).abs());
     println!(
-        "64² sphere |min F̄|: fixed 20 steps {f20:.5}, 40 steps {f40:.5} ({:.2} %); \
-         adaptive 20 steps {a20:.6}, 200 steps {a200:.6} ({adaptive_change:.1e})",
+        "64² sphere |min F̄|: whole steps 20 {f20:.5}, 40 {f40:.5} ({:.2} %); onsets near \
+         the minimum, 20 steps {a20:.6}, 200 steps {a200:.6}; every onset, 40 steps {all:.6} \
+         ({adaptive_change:.1e})",
         100.0 * fixed_change
     );
     assert!(
@@ -74,14 +74,7 @@ fn too_large_load_steps_are_reported() {
     let fixed = jkrbem(
         &[
             &args[..],
-            &[
-                "--stepping",
-                "fixed",
-                "--out",
-                "f.csv",
-                "--summary",
-                "f.json",
-            ],
+            &["--onsets", "none", "--out", "f.csv", "--summary", "f.json"],
         ]
         .concat(),
         dir.path(),
@@ -94,7 +87,7 @@ fn too_large_load_steps_are_reported() {
     let warnings = summary["warnings"].as_array().unwrap();
     assert!(warnings
         .iter()
-        .any(|w| w.as_str().unwrap().contains("--stepping adaptive")));
+        .any(|w| w.as_str().unwrap().contains("--onsets near-minimum")));
     let adaptive = jkrbem(&[&args[..], &["--out", "a.csv"]].concat(), dir.path());
     assert!(adaptive.status.success());
     assert!(!String::from_utf8_lossy(&adaptive.stdout).contains("load steps too large"));

@@ -241,8 +241,12 @@ fn contact_sweep_and_first_crossing_match_cpu() {
     assert!((tc - tg).abs() < 1e-6);
     let u: Vec<f64> = pseudo_random(n, 37).iter().map(|v| 0.2 * v).collect();
     let (cu, gu) = fields(&mut cpu, &mut gpu, &u);
-    let cc = cpu.update_contact(&mut c_new, &cu, 0.35, sigma).unwrap();
-    let gc = gpu.update_contact(&mut g_new, &gu, 0.35, sigma).unwrap();
+    let cc = cpu
+        .update_contact(&mut c_new, &cu, Some(0.35), sigma)
+        .unwrap();
+    let gc = gpu
+        .update_contact(&mut g_new, &gu, Some(0.35), sigma)
+        .unwrap();
     println!("contact sweep: CPU {cc:?}, GPU {gc:?}");
     assert_eq!(gc, cc);
     assert!(cc.detached > 0 && cc.attached > 0 && cc.at_edge > 0);

@@ -568,8 +568,9 @@ fn a_sweep_whose_runs_cannot_be_written_lists_every_ratio_as_incomplete() {
             "1,2",
             "--grid",
             "32",
+            // Enough states (one per step) that each run's CSV outgrows the 24 KB limit.
             "--steps",
-            "20",
+            "200",
             "--margin",
             "0.2",
             "--backend",

@@ -474,6 +474,9 @@ mod tests {
             regrids: Vec::new(),
             stopped_after_minimum: true,
             warnings: Vec::new(),
+            onsets: None,
+            cost: None,
+            refinement: None,
         }
     }
 

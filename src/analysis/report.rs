@@ -2,7 +2,9 @@
 //! cost and what to warn about. Built from a model and its outcome; `output` only writes it.
 
 use super::convergence;
-use crate::model::{Model, Stepping};
+use crate::model::{Model, Onsets};
+use crate::solver::cost::CostAccount;
+use crate::solver::window::Refinement;
 use crate::solver::{protocol::RegridEvent, Outcome};
 use serde::Serialize;
 use std::path::Path;
@@ -80,6 +82,19 @@ pub struct RunReport {
     /// Warnings about this run (CG retries and states accepted above the CG tolerance, too
     /// coarse a grid, too large load steps); empty for a healthy run.
     pub warnings: Vec<String>,
+    /// Which detachment onsets the run located ("near-minimum", "all", "none"); null in
+    /// reports written before it was recorded.
+    #[serde(default)]
+    pub onsets: Option<String>,
+    /// Where the run spent its work: states, steps, onsets, cascade rounds, solves, CG
+    /// iterations and convolutions outside CG, in all and per c̄ band; null in reports
+    /// written before it was recorded.
+    #[serde(default)]
+    pub cost: Option<CostAccount>,
+    /// Which load steps had their onsets located and the check that they hold the force
+    /// minimum (`--onsets near-minimum`); null otherwise.
+    #[serde(default)]
+    pub refinement: Option<Refinement>,
 }
 
 /// The margin of a report written before [`RunReport::margin`] existed: the default.
@@ -143,6 +158,9 @@ impl RunReport {
             regrids: outcome.regrids.clone(),
             stopped_after_minimum: outcome.stopped_after_minimum,
             warnings,
+            onsets: Some(model.onsets.name().to_string()),
+            cost: Some(outcome.cost.clone()),
+            refinement: outcome.refinement.clone(),
         }
     }
 
@@ -153,10 +171,10 @@ impl RunReport {
     }
 }
 
-/// With [`Stepping::Fixed`], a warning if the steps around the force minimum detached
+/// With [`Onsets::None`], a warning if the steps around the force minimum detached
 /// elements: the minimum then lies at an onset inside a step, which whole steps do not see.
 fn step_warning(model: &Model, outcome: &Outcome) -> Option<String> {
-    if model.stepping != Stepping::Fixed {
+    if model.onsets != Onsets::None {
         return None;
     }
     let states = &outcome.states;
@@ -178,10 +196,10 @@ fn step_warning(model: &Model, outcome: &Outcome) -> Option<String> {
     let f_min = states[k].f_bar.abs();
     (lost > 0).then(|| {
         format!(
-            "load steps too large to resolve the force minimum: with --stepping fixed, one step \
+            "load steps too large to resolve the force minimum: with --onsets none, one step \
              (Δd̄ = {:.4}) around it detached {lost} elements and changed F̄ by {:.1} % of |min F̄|, \
-             so the minimum lies at an onset inside a step; use --stepping adaptive (the \
-             default), which refines every step to its onsets",
+             so the minimum lies at an onset inside a step; use --onsets near-minimum (the \
+             default), which locates the onsets of every step that can hold the minimum",
             model.d_step / model.scene.scales().approach,
             100.0 * jump / f_min
         )

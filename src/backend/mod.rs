@@ -195,6 +195,12 @@ pub trait ElasticOperator: Device {
 
 /// The vector operations of conjugate gradients on the contact set C.
 pub trait CgKernels: ElasticOperator + Scalars {
+    /// The relative residual below which this backend's arithmetic cannot bring CG's true
+    /// residual (dimensionless): the solver stops there even if the tolerance asked is lower
+    /// (0: no floor above the tolerances accepted, as in f64).
+    fn residual_floor(&self) -> f64 {
+        0.0
+    }
     /// How often (iterations) the solver should read CG's residual back by default: 1 where
     /// each operation runs when called, more on a device that queues work ahead of the host
     /// and stops it itself ([`CgKernels::guard_cg`]).
@@ -295,14 +301,16 @@ pub trait ContactKernels: Device {
     fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError>;
     /// Read the contact mask back.
     fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError>;
-    /// One sweep of the Pohrt–Popov rule: detach elements of C with p < −σ_c, attach
-    /// elements off C whose gap g = h − d + u is negative; then p = 0 off C.
+    /// One sweep of the Pohrt–Popov rule: detach elements of C with p < −σ_c and, with
+    /// `attach_at` = Some(d), attach elements off C whose gap g = h − d + u at approach d
+    /// (length) is negative; then p = 0 off C. With `attach_at` = None the sweep only
+    /// detaches (`u` is not read): what a cascade round solved only approximately may do.
     /// σ_c is a stress; σ_c = 0 gives the non-adhesive (Signorini) rule.
     fn update_contact(
         &mut self,
         p: &mut Self::Field,
         u: &Self::Field,
-        d: f64,
+        attach_at: Option<f64>,
         sigma_c: f64,
     ) -> Result<ContactChange, BackendError>;
     /// The fraction t ∈ [0, 1] of a load step at which the first element of C reaches the
@@ -315,6 +323,8 @@ pub trait ContactKernels: Device {
         p_new: &Self::Field,
         sigma_c: f64,
     ) -> Result<f64, BackendError>;
+    /// max over C of |f| (0 if C is empty), reduced on the device.
+    fn max_abs(&mut self, f: &Self::Field) -> Result<f64, BackendError>;
     /// dst = a + t·(b − a) on C, 0 off C.
     fn lerp(
         &mut self,

@@ -71,6 +71,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
     print!("{}", bench_text::table_text(&done.rows, &done.measured));
     print!("{}", bench_text::ratios_text(&done.rows));
+    print!("{}", bench_text::cost_text(&done.rows));
     let names: Vec<String> = done.files.iter().map(|f| f.display().to_string()).collect();
     println!("written: {}", names.join(", "));
     failures("measurements", &done.problems, " or stopped early")

@@ -6,7 +6,7 @@ use super::progress::Progress;
 use super::{run_error, CliError};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::backend::Preconditioner;
-use jkrbem::model::{Measure, ModelOptions, Stepping};
+use jkrbem::model::{Measure, ModelOptions, Onsets};
 use jkrbem::run::open::{BackendRequest, Convolution};
 use jkrbem::run::simulate::{failure_error, simulate, Mode, SimulateRequest};
 use jkrbem::scene::Scene;
@@ -38,7 +38,7 @@ pub struct Args {
     /// The domain is the initial contact plus the margin, so Δx = 2·a0·(1 + margin)/Nx. A grid
     /// that leaves fewer than 8 elements across the first contact's minor axis (or an
     /// expected 4 at the force minimum) is refused with the grid that resolves it. Giving it
-    /// (or any of --grid-y, --steps, --stepping, --measure, --regrid, --final-d) runs that one
+    /// (or any of --grid-y, --steps, --onsets, --measure, --regrid, --final-d) runs that one
     /// grid, whose estimate states its expected bias [default: 256 with those flags; without
     /// any of them, `--accuracy 2%`].
     #[arg(long)]
@@ -52,14 +52,18 @@ pub struct Args {
     #[arg(long, default_value_t = 1.5)]
     pub start_radius: f64,
     /// Load steps from the initial approach d̄0 to the expected end of contact (1 to 100000)
-    /// [default: 200].
+    /// [default: 200; 20 with --measure adhesive-force without --regrid, whose answer does not
+    /// depend on them: the steps that can hold the minimum are searched for their onsets].
     #[arg(long)]
     pub steps: Option<usize>,
-    /// How load steps are taken: `adaptive` refines each step to every detachment onset in it
-    /// (the force minimum is then independent of --steps); `fixed` does not [default:
-    /// adaptive].
+    /// Which detachment onsets (the sawtooth's local minima) to locate and record. Every
+    /// step's end state is the same whichever is chosen. `near-minimum`: steps are taken
+    /// whole and only the onsets of the steps that can hold the force minimum are located
+    /// (the force minimum is the same as with `all`; the cheapest); `all`: every onset of every
+    /// step, the full sawtooth; `none`: whole steps only (the force minimum then depends on
+    /// --steps) [default: near-minimum]. The states CSV says which it holds (`onsets` column).
     #[arg(long, value_enum)]
-    pub stepping: Option<Stepping>,
+    pub onsets: Option<Onsets>,
     /// What to compute: the whole `curve`, or only the `adhesive-force` (stops once the force
     /// minimum is confirmed, refining load steps only near it; cheaper) [default: curve].
     #[arg(long, value_enum)]
@@ -112,6 +116,12 @@ pub struct Args {
     /// CG preconditioner.
     #[arg(long, value_enum, default_value_t = Preconditioner::Stiffness)]
     pub preconditioner: Preconditioner,
+    /// Solve every round of a detachment cascade to --cg-tolerance. By default the rounds
+    /// between are solved only as far as needed to tell which elements are over σ_c (1e-4,
+    /// detaching only those beyond it by 2 %) and the last round exactly: the same states at a
+    /// fraction of the CG iterations.
+    #[arg(long)]
+    pub exact_cascade: bool,
     /// Backend: `cpu` (f64, rustfft), `gpu` (f32, wgpu; the best adapter, a software one such
     /// as lavapipe included) or `auto` (a hardware GPU if present, else the CPU).
     #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
@@ -143,7 +153,7 @@ pub struct Args {
     /// [0.1 %, 50 %]: `5%`, `1%`; the unit is required) at the least cost: chooses the grid
     /// (or two grids fitted together), the domain, the load steps and what to compute so that
     /// the stated uncertainty is predicted within it (physics §7), says what it chose, and
-    /// overrides --grid, --grid-y, --steps, --stepping, --measure, --regrid and --extrapolate.
+    /// overrides --grid, --grid-y, --steps, --onsets, --measure, --regrid and --extrapolate.
     /// A target no grid that fits in memory reaches is refused, naming the finest reachable
     /// [default: 2% unless one grid or --extrapolate is asked for].
     #[arg(long, value_parser = parse_percentage)]
@@ -162,9 +172,6 @@ pub const DEFAULT_ACCURACY: f64 = 0.02;
 
 /// Nx of a one-grid run that names no --grid.
 pub const DEFAULT_GRID: usize = 256;
-
-/// Load steps of a one-grid run that names no --steps.
-pub const DEFAULT_STEPS: usize = 200;
 
 /// A percentage such as `5%` as a fraction (0.05). The `%` is required: a bare `0.05` could
 /// mean 5 % or 0.05 %.
@@ -234,7 +241,7 @@ impl Args {
         let one_grid = self.grid.is_some()
             || self.grid_y.is_some()
             || self.steps.is_some()
-            || self.stepping.is_some()
+            || self.onsets.is_some()
             || self.measure.is_some()
             || self.regrid
             || self.final_d.is_some();
@@ -271,7 +278,11 @@ impl Args {
             nx: self.grid.unwrap_or(DEFAULT_GRID),
             ny: self.grid_y,
             start_radius_bar: self.start_radius,
-            steps: self.steps.unwrap_or(DEFAULT_STEPS),
+            steps: self.steps.unwrap_or(jkrbem::model::default_steps(
+                self.measure.unwrap_or(Measure::Curve),
+                self.onsets.unwrap_or(Onsets::NearMinimum),
+                self.regrid,
+            )),
             final_d_bar: self.final_d,
             margin: self.margin,
             mesh_angle_deg: self.mesh_angle,
@@ -284,7 +295,8 @@ impl Args {
             cg_max_iterations: self.cg_max_iterations,
             cg_accept: self.cg_accept,
             preconditioner: self.preconditioner,
-            stepping: self.stepping.unwrap_or(Stepping::Adaptive),
+            onsets: self.onsets.unwrap_or(Onsets::NearMinimum),
+            loose_rounds: !self.exact_cascade,
             measure: self.measure.unwrap_or(Measure::Curve),
             regrid: self.regrid,
             ..ModelOptions::default()

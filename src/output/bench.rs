@@ -10,7 +10,9 @@ use std::path::Path;
 
 /// The CSV header, one column per [`BenchRow`] field.
 pub const HEADER: &str = "backend,precision,adapter,grid,nx,ny,convolution_ms,cg_iteration_ms,\
-dispatches_per_iteration,readbacks_per_iteration,pulloff_s,pulloff_cg_iterations,f_ad_bar";
+dispatches_per_iteration,readbacks_per_iteration,pulloff_s,pulloff_cg_iterations,f_ad_bar,\
+pulloff_states,pulloff_steps,pulloff_onsets,pulloff_rounds,pulloff_solves,\
+pulloff_convolutions,pulloff_readbacks";
 
 /// One backend on one grid. Times are medians of the run's repeats and include one scalar
 /// readback each (see [`crate::bench`]); cells left empty were not measured.
@@ -42,6 +44,20 @@ pub struct BenchRow {
     pub pulloff_cg_iterations: Option<usize>,
     /// Its adhesive force |min F̄| (dimensionless).
     pub f_ad_bar: Option<f64>,
+    /// States it recorded.
+    pub pulloff_states: Option<usize>,
+    /// Load steps it took.
+    pub pulloff_steps: Option<usize>,
+    /// Detachment onsets it located.
+    pub pulloff_onsets: Option<usize>,
+    /// Cascade rounds (sweeps that changed the contact set).
+    pub pulloff_rounds: Option<usize>,
+    /// CG solves.
+    pub pulloff_solves: Option<usize>,
+    /// Convolutions made outside CG's iterations.
+    pub pulloff_convolutions: Option<usize>,
+    /// Blocking readbacks (0 on the CPU).
+    pub pulloff_readbacks: Option<u64>,
 }
 
 impl BenchRow {
@@ -62,6 +78,13 @@ impl BenchRow {
             pulloff_s: pulloff.map(|p| p.wall_s),
             pulloff_cg_iterations: pulloff.map(|p| p.cg_iterations),
             f_ad_bar: pulloff.and_then(|p| p.f_ad_bar),
+            pulloff_states: pulloff.map(|p| p.cost.states),
+            pulloff_steps: pulloff.map(|p| p.cost.steps),
+            pulloff_onsets: pulloff.map(|p| p.cost.onsets),
+            pulloff_rounds: pulloff.map(|p| p.cost.work.rounds),
+            pulloff_solves: pulloff.map(|p| p.cost.work.solves),
+            pulloff_convolutions: pulloff.map(|p| p.cost.work.convolutions),
+            pulloff_readbacks: pulloff.map(|p| p.cost.readbacks),
         }
     }
 }
@@ -164,6 +187,61 @@ pub fn table_text(rows: &[BenchRow], measured: &[Measurement]) -> String {
     out
 }
 
+/// The pull-offs' cost accounts as a table: per backend and grid, the states, steps,
+/// onsets, cascade rounds, solves, CG iterations and convolutions outside CG, and the growth
+/// of the solves and CG iterations from the grid before (×, per doubling of Nx). Empty if no
+/// pull-off was timed.
+pub fn cost_text(rows: &[BenchRow]) -> String {
+    let mut out = String::new();
+    let timed: Vec<&BenchRow> = rows.iter().filter(|r| r.pulloff_steps.is_some()).collect();
+    if timed.is_empty() {
+        return out;
+    }
+    let _ = writeln!(
+        out,
+        "pull-off cost account (whole curve, --onsets near-minimum):\n{:<8} {:>9} {:>7} {:>6} \
+         {:>7} {:>7} {:>7} {:>8} {:>7} {:>9} {:>9}",
+        "backend",
+        "grid",
+        "states",
+        "steps",
+        "onsets",
+        "rounds",
+        "solves",
+        "CG its",
+        "conv",
+        "×solves",
+        "×CG its"
+    );
+    let n = |v: Option<usize>| v.map_or_else(|| "—".into(), |n| n.to_string());
+    for (i, r) in timed.iter().enumerate() {
+        let before = timed[..i]
+            .iter()
+            .rev()
+            .find(|b| b.backend == r.backend && b.precision == r.precision && b.nx * 2 == r.nx);
+        let growth = |f: fn(&BenchRow) -> Option<usize>| match (before.and_then(|b| f(b)), f(r)) {
+            (Some(a), Some(b)) if a > 0 => format!("{:.2}", b as f64 / a as f64),
+            _ => "—".into(),
+        };
+        let _ = writeln!(
+            out,
+            "{:<8} {:>9} {:>7} {:>6} {:>7} {:>7} {:>7} {:>8} {:>7} {:>9} {:>9}",
+            format!("{} {}", r.backend, r.precision),
+            format!("{}×{}", r.nx, r.ny),
+            n(r.pulloff_states),
+            n(r.pulloff_steps),
+            n(r.pulloff_onsets),
+            n(r.pulloff_rounds),
+            n(r.pulloff_solves),
+            n(r.pulloff_cg_iterations),
+            n(r.pulloff_convolutions),
+            growth(|r| r.pulloff_solves),
+            growth(|r| r.pulloff_cg_iterations),
+        );
+    }
+    out
+}
+
 /// One grid's kernel profile: time, bytes and bandwidth per CG iteration, and the kernels'
 /// bytes against the iteration's floor.
 pub fn profile_text(p: &GridProfile) -> String {
@@ -257,6 +335,13 @@ mod tests {
             pulloff_s: pulloff,
             pulloff_cg_iterations: pulloff.map(|_| 10),
             f_ad_bar: pulloff.map(|_| 0.5),
+            pulloff_states: pulloff.map(|_| 5),
+            pulloff_steps: pulloff.map(|_| 4),
+            pulloff_onsets: pulloff.map(|_| 1),
+            pulloff_rounds: pulloff.map(|_| 2),
+            pulloff_solves: pulloff.map(|_| 6),
+            pulloff_convolutions: pulloff.map(|_| 7),
+            pulloff_readbacks: pulloff.map(|_| 0),
         }
     }
 
@@ -268,10 +353,28 @@ mod tests {
         let text = fs::read_to_string(&path).unwrap();
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines[0], HEADER);
-        assert!(lines[1].ends_with(",1.5,10,0.5"), "{}", lines[1]);
-        assert!(lines[2].ends_with(",,,"), "{}", lines[2]);
+        assert!(
+            lines[1].ends_with(",1.5,10,0.5,5,4,1,2,6,7,0"),
+            "{}",
+            lines[1]
+        );
+        assert!(lines[2].ends_with(",,,,,,,,,,"), "{}", lines[2]);
         write_csv(&path, &[]).unwrap();
         assert_eq!(fs::read_to_string(&path).unwrap().trim_end(), HEADER);
+    }
+
+    #[test]
+    fn cost_table_gives_the_growth_per_doubling() {
+        let mut a = row("cpu", 16, Some(1.0));
+        let mut b = row("cpu", 32, Some(2.0));
+        a.pulloff_cg_iterations = Some(100);
+        b.pulloff_cg_iterations = Some(250);
+        let t = cost_text(&[a, b, row("cpu", 64, None)]);
+        let lines: Vec<&str> = t.lines().collect();
+        assert_eq!(lines.len(), 4, "{t}");
+        assert!(lines[2].ends_with("—         —"), "{t}");
+        assert!(lines[3].ends_with("1.00      2.50"), "{t}");
+        assert!(cost_text(&[row("cpu", 16, None)]).is_empty());
     }
 
     #[test]

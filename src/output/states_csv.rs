@@ -9,21 +9,27 @@ use super::OutputError;
 use crate::solver::State;
 use std::path::{Path, PathBuf};
 
-/// The CSV header, one column per [`State`] field.
+/// The CSV header: one column per [`State`] field, then `onsets`, which onsets the file
+/// holds (the run's `--onsets`, the same on every row): `near-minimum` (every step's end
+/// state, and the onsets of the steps that could hold the force minimum), `all` (the whole
+/// sawtooth) or `none` (step ends only).
 pub const HEADER: &str = "step,phase,d,force,area,mean_radius,a_axis,b_axis,n_contact,\
-cg_iterations,detach_sweeps,d_bar,f_bar,c_bar,a_bar,b_bar,cg_residual,dx";
+cg_iterations,detach_sweeps,d_bar,f_bar,c_bar,a_bar,b_bar,cg_residual,dx,onsets";
 
 /// A CSV of states being written.
 pub struct StateWriter {
     partial: PathBuf,
     writer: csv::Writer<PartialFile>,
+    /// The `onsets` column's value.
+    onsets: &'static str,
 }
 
 impl StateWriter {
     /// Create the folder and start writing, header first, under this run's partial name
-    /// beside `path`. An existing file at `path` is not touched; a `path` that exists and is
-    /// not a regular file is refused.
-    pub fn create(path: &Path) -> Result<Self, OutputError> {
+    /// beside `path`, for a run that locates `onsets` ("near-minimum", "all", "none"). An
+    /// existing file at `path` is not touched; a `path` that exists and is not a regular file
+    /// is refused.
+    pub fn create(path: &Path, onsets: &'static str) -> Result<Self, OutputError> {
         let file = PartialFile::create(path)?;
         let partial = file.partial_path().to_path_buf();
         let mut writer = csv::WriterBuilder::new()
@@ -33,7 +39,11 @@ impl StateWriter {
             .write_record(HEADER.split(','))
             .map_err(|e| OutputError::csv(&partial, e))?;
         writer.flush().map_err(|e| OutputError::io(&partial, e))?;
-        Ok(StateWriter { partial, writer })
+        Ok(StateWriter {
+            partial,
+            writer,
+            onsets,
+        })
     }
 
     /// Where the states are being written now (the partial name).
@@ -44,7 +54,7 @@ impl StateWriter {
     /// Append one state and flush it to disk.
     pub fn write(&mut self, state: &State) -> Result<(), OutputError> {
         self.writer
-            .serialize(state)
+            .serialize((state, self.onsets))
             .map_err(|e| OutputError::csv(&self.partial, e))?;
         self.writer
             .flush()
@@ -89,7 +99,7 @@ mod tests {
     fn a_file_written_before_the_cg_residual_column_still_reads() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("old.csv");
-        let old_header = HEADER.strip_suffix(",cg_residual,dx").unwrap();
+        let old_header = HEADER.strip_suffix(",cg_residual,dx,onsets").unwrap();
         fs::write(
             &path,
             format!("{old_header}\n0,approach,1,2,3,4,5,6,7,8,9,10,11,12,13,14\n"),

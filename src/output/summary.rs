@@ -211,6 +211,15 @@ fn run_text(r: &RunReport) -> String {
         "  {} backend ({}), {} states, {} CG iterations, {:.2} s\n",
         r.backend, r.precision, r.states, r.cg_iterations, r.wall_s
     );
+    if let Some(cost) = &r.cost {
+        s += &format!("  cost: {}\n", cost.line());
+        for line in cost.band_lines() {
+            s += &format!("    {line}\n");
+        }
+    }
+    if let Some(w) = &r.refinement {
+        s += &format!("  {}\n", refinement_line(w));
+    }
     if r.cg_retries > 0 {
         s += &format!(
             "  CG: {} solve(s) retried in the safer mode, worst relative residual {} (warnings \
@@ -229,6 +238,39 @@ fn run_text(r: &RunReport) -> String {
         s += "  stopped once the force minimum was confirmed (--measure adhesive-force)\n";
     }
     s
+}
+
+/// Which steps had their onsets located, in words.
+fn refinement_line(w: &crate::solver::window::Refinement) -> String {
+    let span = match (w.d_bar_from, w.d_bar_to) {
+        (Some(a), Some(b)) => format!(" (d̄ {a:.4} to {b:.4})"),
+        _ => String::new(),
+    };
+    let margin = w.margin_f_bar.map_or(String::new(), |m| {
+        format!(
+            "; every step left whole has its bound ≥ the minimum (margin {m:.2e} in F̄{})",
+            if w.bound_violation_f_bar > 0.0 {
+                format!(
+                    ", but a located onset fell {:.2e} below its bound: window widened",
+                    w.bound_violation_f_bar
+                )
+            } else {
+                String::new()
+            }
+        )
+    });
+    format!(
+        "onsets located in {} of {} steps{span}: {} candidate steps, {} parts pruned, {} split, \
+         {} walked ({} cut short), {} starts recomputed{margin}",
+        w.steps.len(),
+        w.steps.len() + w.whole_steps,
+        w.candidates,
+        w.pruned,
+        w.splits,
+        w.walks,
+        w.cut_short,
+        w.recomputed
+    )
 }
 
 /// `v` with `decimals` decimals and its sign ("+2.05", "-0.31"), never "-0.00".
@@ -280,6 +322,8 @@ mod tests {
             stopped_after_minimum: false,
             cg_retries: Vec::new(),
             warnings: Vec::new(),
+            cost: Default::default(),
+            refinement: None,
         }
     }
 

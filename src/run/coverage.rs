@@ -13,7 +13,7 @@ use super::reference::run_or_reuse;
 use super::{failed, input, RunError, Watch};
 use crate::analysis::convergence::{self, TableValue};
 use crate::analysis::estimate;
-use crate::model::{Measure, ModelOptions, Stepping, MAX_MARGIN};
+use crate::model::{Measure, ModelOptions, Onsets, MAX_MARGIN};
 use crate::scene::Scene;
 use serde::Serialize;
 use std::fmt;
@@ -330,7 +330,12 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
                         margin,
                         regrid: variant == CaseVariant::Regrid,
                         measure: Measure::AdhesiveForce,
-                        stepping: Stepping::Adaptive,
+                        onsets: Onsets::NearMinimum,
+                        steps: crate::model::default_steps(
+                            Measure::AdhesiveForce,
+                            Onsets::NearMinimum,
+                            variant == CaseVariant::Regrid,
+                        ),
                         ..ModelOptions::default()
                     };
                     let run = run_or_reuse(&scene, options, req.backend, &req.out, &name, watch)?;

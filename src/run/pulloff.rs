@@ -40,7 +40,7 @@ pub fn pulloff_to_file<B: Backend>(
     mut capture: Option<&mut ContactCapture>,
     deadline: Option<Instant>,
 ) -> Result<Pulloff, RunError> {
-    let mut writer = StateWriter::create(out).map_err(write_error(flag))?;
+    let mut writer = StateWriter::create(out, model.onsets.name()).map_err(write_error(flag))?;
     let mut write_error_at = None;
     let mut timed_out = false;
     watch.pulloff_started(model);

@@ -11,7 +11,7 @@ use super::{failed, input, RunError, Watch};
 use crate::analysis::convergence::{self, TableLaw};
 use crate::analysis::estimate;
 use crate::analysis::report::RunReport;
-use crate::model::{Measure, ModelOptions, Stepping, MAX_GRID};
+use crate::model::{Measure, ModelOptions, Onsets, MAX_GRID};
 use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -146,7 +146,7 @@ fn ladder(
     let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
     let base = ModelOptions {
         steps: crate::plan::PLAN_STEPS,
-        stepping: Stepping::Adaptive,
+        onsets: Onsets::NearMinimum,
         measure: Measure::AdhesiveForce,
         regrid: true,
         ..ModelOptions::default()

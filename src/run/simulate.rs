@@ -7,7 +7,7 @@ use super::open::{open_for, BackendRequest};
 use super::pulloff::{pulloff_to_file, Pulloff};
 use super::{failed, input, RunError, Watch};
 use crate::analysis::estimate::{self, AdhesiveResult};
-use crate::model::{Measure, Model, ModelOptions, Stepping};
+use crate::model::{Measure, Model, ModelOptions, Onsets};
 use crate::output::summary::Summary;
 use crate::plan;
 use crate::scene::Scene;
@@ -292,7 +292,7 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
             let p = plan::for_accuracy(&req.scene, *target, &req.options).map_err(input)?;
             let note = p.describe(req.scene.ratio());
             let options = ModelOptions {
-                stepping: Stepping::Adaptive,
+                onsets: Onsets::NearMinimum,
                 measure: Measure::AdhesiveForce,
                 ..p.options.clone()
             };

@@ -160,6 +160,9 @@ pub struct CgReport {
     pub best: f64,
     /// What ended the solve.
     pub end: CgEnd,
+    /// Convolutions made outside the iterations: the start residual (unless K p was
+    /// given) and each recomputed true residual.
+    pub convolutions: usize,
 }
 
 impl CgReport {
@@ -237,25 +240,36 @@ impl Scale {
     }
 }
 
-/// Start a solve at approach `d` (length): q = K p and r = (d − h − q)_C, the true residual
-/// of the warm start. Returns the scale ‖(d − h)_C‖ and that residual's relative norm, read
-/// back together.
+/// Start a solve at approach `d` (length): r = (d − h − K p)_C, the true residual of the warm
+/// start, with K p taken from `known` where the caller has it (else convolved into q).
+/// Returns the scale ‖(d − h)_C‖, that residual's relative norm (read back together) and
+/// the convolutions made (0 or 1).
 fn start<B: CgKernels>(
     backend: &mut B,
     work: &mut CgWork<B::Field>,
     p: &B::Field,
     d: f64,
-) -> Result<(Scale, f64), BackendError> {
+    known: Option<&B::Field>,
+) -> Result<(Scale, f64, usize), BackendError> {
     let CgSlots { rr, bb, .. } = work.slots;
     backend.residual(&work.zero, d, &mut work.r)?;
     backend.dot(&work.r, &work.r, bb)?;
-    backend.convolve(p, &mut work.q)?;
-    backend.residual(&work.q, d, &mut work.r)?;
+    let convolutions = match known {
+        Some(u) => {
+            backend.residual(u, d, &mut work.r)?;
+            0
+        }
+        None => {
+            backend.convolve(p, &mut work.q)?;
+            backend.residual(&work.q, d, &mut work.r)?;
+            1
+        }
+    };
     backend.dot(&work.r, &work.r, rr)?;
     let mut v = [0.0; 2];
     backend.read_slots(&[rr, bb], &mut v)?;
     let scale = Scale(v[1].sqrt());
-    Ok((scale, scale.relative(v[0])))
+    Ok((scale, scale.relative(v[0]), convolutions))
 }
 
 /// The relative residual of r, with r·r already in its slot, read back from the device.
@@ -331,6 +345,29 @@ fn next_direction<B: CgKernels>(
     Ok(new)
 }
 
+/// The settings the solver's solves on `backend` run with: the tolerance raised to the
+/// backend's residual floor ([`CgKernels::residual_floor`]), below which its arithmetic
+/// cannot bring the true residual, so that iterations past it buy nothing. ([`solve`]
+/// itself takes the settings as given: a tolerance of 0 makes every iteration asked.)
+pub fn effective<B: CgKernels>(backend: &B, settings: &CgSettings) -> CgSettings {
+    CgSettings {
+        tolerance: settings.tolerance.max(backend.residual_floor()),
+        ..*settings
+    }
+}
+
+/// What a solve is for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Goal {
+    /// A state: converged when the true residual, recomputed from p, is within
+    /// [`TRUE_RESIDUAL_SLACK`] of the tolerance; `work.q` then holds K p.
+    Exact,
+    /// Only an approximate p (a cascade round that decides which elements are over σ_c):
+    /// converged when the recurrence reaches the tolerance, with no true residual
+    /// recomputed, so `work.q` does not hold K p.
+    Loose,
+}
+
 /// Solve for p on the backend's contact set at approach `d` (length), warm-started from
 /// the p given (which must be zero off C), in the normal mode (see the module's notes).
 /// Ends converged, stagnated, diverged, non-finite, at the iteration limit or with a
@@ -342,12 +379,29 @@ pub fn solve<B: CgKernels>(
     d: f64,
     settings: &CgSettings,
 ) -> Result<CgReport, BackendError> {
-    let (scale, initial) = start(backend, work, p, d)?;
+    solve_with(backend, work, p, d, settings, None, Goal::Exact)
+}
+
+/// [`solve`] with K p of the warm start `known` where the caller has it (its convolution is
+/// then saved), for the `goal` given. After [`CgEnd::Converged`] with [`Goal::Exact`],
+/// `work.q` holds K p, except when the warm start already met the tolerance with K p
+/// `known` (no iteration made: K p is that field, and `work.q` is untouched).
+pub fn solve_with<B: CgKernels>(
+    backend: &mut B,
+    work: &mut CgWork<B::Field>,
+    p: &mut B::Field,
+    d: f64,
+    settings: &CgSettings,
+    known: Option<&B::Field>,
+    goal: Goal,
+) -> Result<CgReport, BackendError> {
+    let (scale, initial, convolutions) = start(backend, work, p, d, known)?;
     let mut report = CgReport {
         iterations: 0,
         residual: initial,
         best: initial,
         end: CgEnd::Converged,
+        convolutions,
     };
     if initial <= settings.tolerance {
         return Ok(report);
@@ -393,7 +447,8 @@ pub fn solve<B: CgKernels>(
     };
     backend.guard_cg(None)?;
     match end {
-        Some(None) => verify(backend, work, p, d, scale, settings, report),
+        Some(None) if goal == Goal::Exact => verify(backend, work, p, d, scale, settings, report),
+        Some(None) => Ok(report),
         Some(Some(end)) => {
             report.end = end;
             Ok(report)
@@ -419,6 +474,7 @@ fn verify<B: CgKernels>(
     mut report: CgReport,
 ) -> Result<CgReport, BackendError> {
     let t = true_residual(backend, p, work, d, scale)?;
+    report.convolutions += 1;
     report.residual = t;
     if t <= TRUE_RESIDUAL_SLACK * settings.tolerance {
         report.end = CgEnd::Converged;
@@ -441,13 +497,14 @@ pub fn solve_safe<B: CgKernels>(
     d: f64,
     settings: &CgSettings,
 ) -> Result<CgReport, BackendError> {
-    let (scale, mut t) = start(backend, work, p, d)?;
+    let (scale, mut t, convolutions) = start(backend, work, p, d, None)?;
     let mut history = ResidualHistory::new(1);
     let mut report = CgReport {
         iterations: 0,
         residual: f64::INFINITY,
         best: f64::INFINITY,
         end: CgEnd::IterationLimit,
+        convolutions,
     };
     loop {
         if t < report.best {
@@ -475,6 +532,7 @@ pub fn solve_safe<B: CgKernels>(
         let n = REPLACE_EVERY.min(settings.max_iterations - report.iterations);
         report.iterations += segment(backend, work, p, scale, settings.tolerance, n)?;
         t = true_residual(backend, p, work, d, scale)?;
+        report.convolutions += 1;
     }
 }
 

@@ -3,10 +3,13 @@
 //! knows which backend runs it.
 
 pub mod cg;
+pub mod cost;
 pub mod equilibrium;
+mod onsets;
 pub mod protocol;
 pub mod retry;
 pub mod state;
+pub mod window;
 
 pub use protocol::{run, run_until, run_with_contact, Outcome};
 pub use state::{Phase, State};

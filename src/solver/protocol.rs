@@ -1,19 +1,25 @@
 //! The approach and pull-off protocol (physics §6): a non-adhesive press to d0, then the
 //! approach decreases step by step until the contact vanishes or d passes its final value.
 //!
-//! Two options of the model change how much of it is computed: with
-//! [`Measure::AdhesiveForce`] the steps are taken whole (no onset refinement) while the force
-//! falls, the last [`WINDOW`] steps are kept so that the run can go back and take them again
-//! with every onset refined once the force has turned, and the run stops once the minimum is
-//! confirmed; with `regrid` the grid is refined as the contact shrinks.
+//! Every load step starts with a *probe*: the contact set it starts from, solved at the
+//! step's end. The probe is a lower bound of the step: the detachment rule is monotone, so
+//! every onset inside the step (a local minimum of the sawtooth F(d)) has a force at least
+//! the probe's. With [`Onsets::NearMinimum`] the steps are taken whole (the probe, then the
+//! detachment cascade at the step's end) until the force minimum is confirmed; then the
+//! steps whose probe lies below the lowest onset known are gone back to and their onsets
+//! located, lowest bound first, each pruned as soon as its remaining bound lies above the
+//! lowest onset found ([`super::window`]). With `regrid` the grid is refined as the contact
+//! shrinks.
 
-use super::equilibrium::{equilibrate, solve_fixed, Equilibrium, Fields};
+use super::cost::{CostAccount, Work};
+use super::equilibrium::{equilibrate, settle, Equilibrium, Fields, Held};
+use super::onsets::{self, Through};
 use super::retry::{self, CgRetry};
 use super::state::{Phase, State};
+use super::window::{Refinement, Window};
 use super::SolverError;
 use crate::backend::{Backend, ContactKernels};
-use crate::model::{Measure, Model, Stepping};
-use std::collections::VecDeque;
+use crate::model::{Measure, Model, Onsets};
 use std::f64::consts::PI;
 
 /// What a run produced: the states recorded so far and, if it stopped early, why.
@@ -32,6 +38,11 @@ pub struct Outcome {
     /// What the user should know about a run that went on: CG retries, and states accepted
     /// above the CG tolerance (empty for a healthy run).
     pub warnings: Vec<String>,
+    /// Where the run spent its work.
+    pub cost: CostAccount,
+    /// Which load steps had their onsets located, and the check that they hold the force
+    /// minimum ([`Onsets::NearMinimum`]; `None` otherwise or before any such step).
+    pub refinement: Option<Refinement>,
 }
 
 /// One change of grid during a run.
@@ -51,9 +62,9 @@ impl Outcome {
         self.error.is_none()
     }
 
-    /// Total CG iterations over all states.
+    /// Total CG iterations of the run, those of states that were not kept included.
     pub fn cg_iterations(&self) -> usize {
-        self.states.iter().map(|s| s.cg_iterations).sum()
+        self.cost.work.cg_iterations
     }
 
     /// The largest relative CG residual of any recorded state (dimensionless), if any
@@ -107,7 +118,7 @@ impl Outcome {
 /// Measure and normalise the state of pressure `p` on the backend's contact set (reduced on
 /// the backend's device); also returns the contact's index box (`None` without contact).
 #[allow(clippy::too_many_arguments)]
-fn record<B: Backend>(
+pub(super) fn record<B: Backend>(
     backend: &mut B,
     model: &Model,
     p: &B::Field,
@@ -134,8 +145,8 @@ fn record<B: Backend>(
         a_axis: a_el * dx,
         b_axis: b_el * dx,
         n_contact: n,
-        cg_iterations: eq.cg_iterations,
-        detach_sweeps: eq.sweeps,
+        cg_iterations: eq.work.cg_iterations,
+        detach_sweeps: eq.work.rounds,
         cg_residual: eq.cg_residual,
         d_bar: d / sc.approach,
         f_bar: force / sc.force,
@@ -145,6 +156,16 @@ fn record<B: Backend>(
         dx,
     };
     Ok((state, m.bounds))
+}
+
+/// The force (force) of pressure `p` on the backend's contact set, reduced on its device.
+pub(super) fn force_of<B: Backend>(
+    backend: &mut B,
+    model: &Model,
+    p: &B::Field,
+) -> Result<f64, SolverError> {
+    let m = backend.measure(p, model.mesh.chord_axes())?;
+    Ok(m.sum * model.dx * model.dx)
 }
 
 /// Run the whole protocol on `backend`, calling `observe` with each recorded state.
@@ -184,6 +205,8 @@ pub fn run_until<B: Backend>(
 ) -> Outcome {
     let mut states = Vec::new();
     let go_on = std::cell::Cell::new(true);
+    let readbacks = backend.counters().readbacks;
+    let floor = backend.residual_floor();
     let mut out = Emitter {
         push: &mut |s: State, mask: Option<&[bool]>| {
             if !observe(&s, mask) {
@@ -198,25 +221,43 @@ pub fn run_until<B: Backend>(
         regrids: Vec::new(),
         stopped_after_minimum: false,
         retries: Vec::new(),
+        cost: CostAccount::default(),
+        refinement: None,
     };
     let error = run_inner(backend, model, &mut out).err();
-    out.flush(usize::MAX);
-    let (regrids, stopped_after_minimum) = (out.regrids, out.stopped_after_minimum);
-    let cg_retries = out.retries;
-    let warnings = retry::warnings(&cg_retries, &model.cg);
+    out.release(usize::MAX);
+    out.cost.readbacks = backend.counters().readbacks.saturating_sub(readbacks);
+    let Emitter {
+        regrids,
+        stopped_after_minimum,
+        retries,
+        cost,
+        refinement,
+        ..
+    } = out;
+    let mut warnings = retry::warnings(&retries, &model.cg);
+    let worst = states.iter().map(|s| s.cg_residual).reduce(f64::max);
+    warnings.extend(retry::floor_warning(
+        floor,
+        &model.cg,
+        backend.precision(),
+        worst,
+    ));
     Outcome {
         states,
         error,
         regrids,
         stopped_after_minimum,
-        cg_retries,
+        cg_retries: retries,
         warnings,
+        cost,
+        refinement,
     }
 }
 
-/// Where states go: to the observer at once, or held while the steps that produced them may
-/// still be taken again.
-struct Emitter<'a> {
+/// Where states go: to the observer at once, or held while onsets may still be located
+/// among them; and the run's account.
+pub(super) struct Emitter<'a> {
     push: &'a mut dyn FnMut(State, Option<&[bool]>),
     /// Whether the observer sees each state's contact mask.
     with_contact: bool,
@@ -230,17 +271,31 @@ struct Emitter<'a> {
     stopped_after_minimum: bool,
     /// The safer CG retries of every equilibrium so far.
     retries: Vec<CgRetry>,
+    /// The run's cost account.
+    pub(super) cost: CostAccount,
+    /// The window of located onsets, once there is one.
+    pub(super) refinement: Option<Refinement>,
 }
 
 impl Emitter<'_> {
-    /// Hand a state of `backend`'s current contact on (held if `hold`), with the contact mask
-    /// read back if the observer sees masks.
-    fn emit<B: ContactKernels>(
+    /// Record a state: its work goes to the account (in its c̄ band), its retries to the
+    /// run's; then it is handed on, or held if `hold`, with the contact mask read back if
+    /// the observer sees masks.
+    pub(super) fn emit<B: ContactKernels>(
         &mut self,
         backend: &mut B,
         state: State,
+        eq: &mut Equilibrium,
         hold: bool,
     ) -> Result<(), SolverError> {
+        self.cost.charge(state.c_bar, eq.work);
+        eq.work = Work::default();
+        self.retries.append(&mut eq.retries);
+        if state.phase == Phase::Onset {
+            self.cost.onset(state.c_bar);
+        } else if state.phase == Phase::Pulloff {
+            self.cost.step(state.c_bar);
+        }
         let mask = if self.with_contact {
             let (nx, ny) = backend.shape();
             let mut mask = vec![false; nx * ny];
@@ -249,29 +304,49 @@ impl Emitter<'_> {
         } else {
             None
         };
-        if hold {
-            self.pending.push((state, mask));
-        } else {
-            self.flush(usize::MAX);
-            self.hand_on(state, mask.as_deref());
+        self.cost.states += 1;
+        self.pending.push((state, mask));
+        if !hold {
+            self.release(usize::MAX);
         }
         Ok(())
     }
 
-    fn hand_on(&mut self, state: State, mask: Option<&[bool]>) {
-        if self.least.is_none_or(|(f, _)| state.force < f) {
-            self.least = Some((state.force, state.d_bar));
+    /// Charge work that produced no state of its own (a step's onsets located on going
+    /// back) to the band of `c_bar`, and to the end state of `step` if it is still held (so
+    /// that the states' `cg_iterations` add up to the run's).
+    pub(super) fn charge(&mut self, step: usize, c_bar: f64, eq: &mut Equilibrium) {
+        self.cost.charge(c_bar, eq.work);
+        if let Some((s, _)) = self
+            .pending
+            .iter_mut()
+            .find(|(s, _)| s.step == step && s.phase == Phase::Pulloff)
+        {
+            s.cg_iterations += eq.work.cg_iterations;
+            s.detach_sweeps += eq.work.rounds;
+            s.cg_residual = s.cg_residual.max(eq.cg_residual);
         }
-        (self.push)(state, mask);
+        eq.work = Work::default();
+        self.retries.append(&mut eq.retries);
     }
 
-    /// Hand on the first `n` held states.
-    fn flush(&mut self, n: usize) {
-        let n = n.min(self.pending.len());
-        let held: Vec<_> = self.pending.drain(..n).collect();
-        for (s, m) in held {
-            self.hand_on(s, m.as_deref());
+    /// Hand on the held states of load steps before `step`, in the order of the load
+    /// (decreasing approach; an onset before the step end it precedes).
+    pub(super) fn release(&mut self, step: usize) {
+        self.pending.sort_by(|a, b| b.0.d.total_cmp(&a.0.d));
+        let n = self.pending.iter().take_while(|s| s.0.step < step).count();
+        let released: Vec<_> = self.pending.drain(..n).collect();
+        for (s, m) in released {
+            if self.least.is_none_or(|(f, _)| s.force < f) {
+                self.least = Some((s.force, s.d_bar));
+            }
+            (self.push)(s, m.as_deref());
         }
+    }
+
+    /// Whether the observer still wants states.
+    pub(super) fn go_on(&self) -> bool {
+        self.go_on.get()
     }
 
     /// Least force (force) since the last re-grid, held states included, and its d̄.
@@ -292,15 +367,6 @@ impl Emitter<'_> {
     }
 }
 
-/// Steps kept for going back in [`Measure::AdhesiveForce`]: should the step-end force turn
-/// before onsets are refined, these steps are taken again with every onset refined.
-pub const WINDOW: usize = 3;
-
-/// Mean contact radius c̄ below which [`Measure::AdhesiveForce`] refines onsets: 1.3× the
-/// largest c̄ at the force minimum of the closed forms (JKR's 2^(−1/3) = 0.794) and of our
-/// runs (0.74–0.84 from 32² to 128², R1/R2 = 1…50).
-pub const REFINE_BELOW_C_BAR: f64 = 1.1;
-
 /// How far past the force minimum (in d̄) the approach must go to confirm it: the sawtooth's
 /// period on coarse grids is a few hundredths; on JKR's curve F̄ has risen by 3.4 % there.
 pub const CONFIRM_D_BAR: f64 = 0.1;
@@ -317,31 +383,32 @@ pub const REGRID_BELOW: f64 = 0.8;
 /// the last, finest grid, where [`Outcome::force_minimum`] looks for it.
 pub const REGRID_ABOVE_C_BAR: f64 = 0.9;
 
-/// A step-end state kept for going back: the spare fields that hold its p and its contact
-/// set (on the device).
-struct Snapshot {
-    field: usize,
-    step: usize,
-    d: f64,
-    /// States held before this snapshot's.
-    held: usize,
+/// The pull-off's progress: the current grid and fields, and what the onset policy keeps.
+pub(super) struct Progress<F> {
+    /// The model of the current grid.
+    pub model: Model,
+    /// The solver's fields.
+    pub fields: Fields<F>,
+    /// The approach (length) of the state whose p `fields.p_last` holds, if it is the step
+    /// end before the current one on this grid (for the probe's predicted start).
+    pub last_d: Option<f64>,
+    /// The stable state held at the last step's end (or the press, or the re-grid).
+    pub held: State,
+    /// The least force (force) of an onset located exactly on this grid (+∞ before any).
+    pub best: f64,
+    /// The steps' bounds and the snapshots to go back to ([`Onsets::NearMinimum`]).
+    pub window: Window<F>,
+    /// Whether re-gridding is still allowed (not once the minimum is confirmed).
+    pub may_regrid: bool,
 }
 
-/// The pull-off's progress: the current grid, fields and contact, and what the measure
-/// asks to keep.
-struct Progress<F> {
-    model: Model,
-    fields: Fields<F>,
-    /// Whether onsets are refined in the steps now taken.
-    refine: bool,
-    /// Snapshots of the last steps (measure mode, before refining).
-    window: VecDeque<Snapshot>,
-    /// Device fields that hold the snapshots' p.
-    spare: Vec<F>,
-    /// Device fields that hold the snapshots' contact sets.
-    spare_contact: Vec<F>,
-    /// Whether re-gridding is still allowed (not once the minimum is confirmed).
-    may_regrid: bool,
+/// How a load step ended.
+struct StepEnd {
+    force: f64,
+    d_bar: f64,
+    c_bar: f64,
+    bounds: Option<[usize; 4]>,
+    vanished: bool,
 }
 
 fn run_inner<B: Backend>(
@@ -349,148 +416,137 @@ fn run_inner<B: Backend>(
     model: &Model,
     out: &mut Emitter,
 ) -> Result<(), SolverError> {
-    let measure = model.measure == Measure::AdhesiveForce;
     backend.set_contact(&model.initial_contact())?;
     let mut fields = Fields::new(backend)?;
     // 1. Non-adhesive press to d0.
     let mut eq = equilibrate(backend, model, &mut fields, model.d0, 0.0)?;
-    out.retries.append(&mut eq.retries);
     let (state, _) = record(backend, model, &fields.p, 0, Phase::Approach, model.d0, &eq)?;
-    out.emit(backend, state, false)?;
-    let (mut spare, mut spare_contact) = (Vec::new(), Vec::new());
-    if measure {
-        for _ in 0..WINDOW {
-            spare.push(backend.field()?);
-            spare_contact.push(backend.field()?);
-        }
-    }
+    let held = state.clone();
+    out.emit(backend, state, &mut eq, false)?;
     let mut run = Progress {
         model: model.clone(),
         fields,
-        refine: !measure && model.stepping == Stepping::Adaptive,
-        window: VecDeque::new(),
-        spare,
-        spare_contact,
+        held,
+        last_d: None,
+        best: f64::INFINITY,
+        window: Window::new(model.onsets == Onsets::NearMinimum, model.nx * model.ny),
         may_regrid: true,
     };
-    // 2. Adhesive pull-off, step by step.
+    let result = pull_off(backend, &mut run, out, model);
+    out.refinement = run.window.report(&run.model, run.best);
+    result
+}
+
+/// 2. The adhesive pull-off, step by step.
+fn pull_off<B: Backend>(
+    backend: &mut B,
+    run: &mut Progress<B::Field>,
+    out: &mut Emitter,
+    model: &Model,
+) -> Result<(), SolverError> {
     let mut d_prev = model.d0;
     let mut step = 0;
     loop {
-        if !out.go_on.get() {
+        if !out.go_on() {
             return Err(SolverError::Interrupted);
         }
         step += 1;
         let d = model.d0 - step as f64 * model.d_step;
         if d < model.d_final {
-            return Ok(());
+            break;
         }
-        let hold = measure && !run.refine;
-        let m = run.model.clone();
-        let mut eq = if run.refine {
-            advance_through_onsets(backend, &m, &mut run, step, d_prev, d, out)?
-        } else {
-            Equilibrium::default()
-        };
-        let last = equilibrate(backend, &m, &mut run.fields, d, m.sigma_c)?;
-        eq.absorb(last);
-        out.retries.append(&mut eq.retries);
-        let (state, bounds) = record(backend, &m, &run.fields.p, step, Phase::Pulloff, d, &eq)?;
-        let (force, d_bar, c_bar) = (state.force, state.d_bar, state.c_bar);
-        out.emit(backend, state, hold)?;
+        let end = load_step(backend, run, out, step, d_prev, d)?;
         d_prev = d;
-        if eq.n_contact == 0 {
-            return Ok(());
+        if end.vanished {
+            break;
         }
-        if out.minimum_confirmed(force, d_bar) {
-            if measure && run.refine {
+        if out.minimum_confirmed(end.force, end.d_bar) {
+            run.may_regrid = false;
+            super::window::refine(backend, run, out)?;
+            if model.measure == Measure::AdhesiveForce {
                 out.stopped_after_minimum = true;
                 return Ok(());
             }
-            run.may_regrid = false;
         }
-        if measure && !run.refine {
-            let turned = out
-                .minimum()
-                .is_some_and(|(f_min, _)| force - f_min > CONFIRM_RISE * f_min.abs());
-            if turned {
-                // The step-end force has turned: take the last steps again, refined.
-                if let Some((s, d_s)) = run.go_back(backend, out)? {
-                    (step, d_prev) = (s, d_s);
-                }
-                continue;
-            }
-            if c_bar <= REFINE_BELOW_C_BAR {
-                run.refine = true;
-                run.window.clear();
-                out.flush(usize::MAX);
-            } else {
-                run.keep(backend, step, d, out)?;
-            }
-        }
-        if run.model.regrid && run.may_regrid && c_bar > REGRID_ABOVE_C_BAR {
-            if let Some(bounds) = bounds {
-                regrid_if_shrunk(backend, &mut run, step, d, bounds, out)?;
+        if run.model.regrid && run.may_regrid && end.c_bar > REGRID_ABOVE_C_BAR {
+            if let Some(bounds) = end.bounds {
+                regrid_if_shrunk(backend, run, step, d, bounds, out)?;
             }
         }
     }
+    // The contact vanished, or the final approach came first: locate what is left to locate.
+    super::window::refine(backend, run, out)
 }
 
-impl<F> Progress<F> {
-    /// Refine from now on, restarting from the oldest snapshot kept: its contact and p are
-    /// restored and the states held since are dropped. Returns the step and approach d
-    /// (length) to go on from, if there was a snapshot.
-    fn go_back<B: Backend<Field = F>>(
-        &mut self,
-        backend: &mut B,
-        out: &mut Emitter,
-    ) -> Result<Option<(usize, f64)>, SolverError> {
-        let snap = self.window.pop_front();
-        self.window.clear();
-        self.refine = true;
-        let resume = match snap {
-            Some(s) => {
-                out.pending.truncate(s.held);
-                backend.restore_contact(&self.spare_contact[s.field])?;
-                backend.copy(&self.spare[s.field], &mut self.fields.p)?;
-                Some((s.step, s.d))
-            }
-            None => None,
-        };
-        out.flush(usize::MAX);
-        Ok(resume)
+/// One load step from `d_prev` to `d` (lengths): the probe, then the step taken whole or
+/// through its onsets, as the onset policy says; the step-end state is recorded.
+fn load_step<B: Backend>(
+    backend: &mut B,
+    run: &mut Progress<B::Field>,
+    out: &mut Emitter,
+    step: usize,
+    d_prev: f64,
+    d: f64,
+) -> Result<StepEnd, SolverError> {
+    let m = run.model.clone();
+    let mut eq = Equilibrium::default();
+    let probe = onsets::probe(backend, run, d_prev, d, run.last_d, run.held.force, &mut eq)?;
+    let refine = match m.onsets {
+        Onsets::All => true,
+        Onsets::None => false,
+        Onsets::NearMinimum => {
+            run.window
+                .note(backend, &run.fields, step, d_prev, d, &probe)?;
+            run.window.is_done() && probe.lower < run.best
+        }
+    };
+    let hold = run.window.holds(step);
+    // The step's first onset is known exactly from its probe, at no cost: recorded unless
+    // only step ends are asked for.
+    if m.onsets != Onsets::None {
+        if let Some(state) = onsets::first_onset_state(run, &probe, step, d_prev, d) {
+            run.best = run.best.min(state.force);
+            out.emit(backend, state, &mut Equilibrium::default(), hold)?;
+        }
     }
-
-    /// Keep this step's end state as a snapshot, dropping (and handing on the states of) the
-    /// oldest beyond [`WINDOW`].
-    fn keep<B: Backend<Field = F>>(
-        &mut self,
-        backend: &mut B,
-        step: usize,
-        d: f64,
-        out: &mut Emitter,
-    ) -> Result<(), SolverError> {
-        let field = if self.window.len() == WINDOW {
-            let old = self.window.pop_front().map_or(0, |s| s.field);
-            let released = self.window.front().map_or(out.pending.len(), |s| s.held);
-            out.flush(released);
-            for s in &mut self.window {
-                s.held -= released;
-            }
-            old
-        } else {
-            self.window.len()
-        };
-        backend.copy(&self.fields.p, &mut self.spare[field])?;
-        backend.save_contact(&mut self.spare_contact[field])?;
-        self.window.push_back(Snapshot {
-            field,
-            step,
-            d,
-            held: out.pending.len(),
-        });
-        Ok(())
+    let through = Through {
+        step,
+        d_from: d_prev,
+        d_to: d,
+        prune: m.onsets != Onsets::All,
+        finish: true,
+        hold,
+        record_first: false,
+    };
+    let vanished = if refine {
+        run.window.walked_online(step);
+        onsets::through(backend, run, out, &through, probe, &mut eq)?
+    } else {
+        let settled = settle(backend, &m, &mut run.fields, d, m.sigma_c, Held::Solved)?;
+        let vanished = settled.n_contact == 0;
+        eq.absorb(settled);
+        vanished
+    };
+    // The next probe may start on the line through this step's start and end if the
+    // contact set did not change in between.
+    run.last_d = None;
+    if eq.work.rounds == 0 && probe.t >= 1.0 {
+        run.last_d = Some(d_prev);
+        backend.copy(&run.fields.p_base, &mut run.fields.p_last)?;
     }
+    let (state, bounds) = record(backend, &m, &run.fields.p, step, Phase::Pulloff, d, &eq)?;
+    run.held = state.clone();
+    let end = StepEnd {
+        force: state.force,
+        d_bar: state.d_bar,
+        c_bar: state.c_bar,
+        bounds,
+        vanished,
+    };
+    run.window.step_ended(step, state.c_bar);
+    out.emit(backend, state, &mut eq, hold)?;
+    out.release(run.window.hold_from());
+    Ok(end)
 }
 
 /// If the contact (index box `bounds`, with the model's margin) now fits in
@@ -520,29 +576,24 @@ fn regrid_if_shrunk<B: Backend>(
     let mut coarse_mask = vec![false; m.nx * m.ny];
     backend.contact(&mut coarse_mask)?;
     let mask = m.resample(&fine, &coarse_mask, false);
+    // The kept states of the coarse grid go first, so that both grids are not held at once.
+    run.window.reset();
     *backend = backend.sibling(&fine.grid_setup())?;
     backend.set_contact(&mask)?;
     let mut fields = Fields::new(backend)?;
     backend.upload(&mut fields.p, &p)?;
-    let (mut spare, mut spare_contact) = (Vec::new(), Vec::new());
-    for _ in 0..run.spare.len() {
-        spare.push(backend.field()?);
-        spare_contact.push(backend.field()?);
-    }
-    out.flush(usize::MAX);
+    out.release(usize::MAX);
     out.least = None;
     out.regrids.push(RegridEvent {
         d_bar: d / m.scene.scales().approach,
         dx_from: m.dx,
         dx_to: fine.dx,
     });
-    run.window.clear();
-    run.spare = spare;
-    run.spare_contact = spare_contact;
+    run.best = f64::INFINITY;
+    run.last_d = None;
     run.fields = fields;
     run.model = fine;
     let mut eq = equilibrate(backend, &run.model, &mut run.fields, d, run.model.sigma_c)?;
-    out.retries.append(&mut eq.retries);
     let (state, _) = record(
         backend,
         &run.model,
@@ -552,69 +603,7 @@ fn regrid_if_shrunk<B: Backend>(
         d,
         &eq,
     )?;
-    out.emit(backend, state, false)?;
+    run.held = state.clone();
+    out.emit(backend, state, &mut eq, false)?;
     Ok(())
-}
-
-/// Fraction of the rest of a step by which the load is pushed past an onset, so that the
-/// element that reached σ_c is beyond it by more than CG's round-off.
-const ONSET_PUSH: f64 = 1e-4;
-
-/// Limit on onsets handled inside one load step before the rest of it is taken at once.
-const MAX_ONSETS_PER_STEP: usize = 100_000;
-
-/// Move the load from `d_from` towards `d_to` (lengths) through every detachment onset on
-/// the way: with the contact set fixed p is linear in d, so the approach at which the first
-/// element reaches σ_c is found exactly; that state (a local minimum of the sawtooth F(d)) is
-/// recorded, the detachment cascade is resolved there, and the search goes on. This makes
-/// the curve, and its force minimum, independent of the step size.
-fn advance_through_onsets<B: Backend>(
-    backend: &mut B,
-    model: &Model,
-    run: &mut Progress<B::Field>,
-    step: usize,
-    d_from: f64,
-    d_to: f64,
-    out: &mut Emitter,
-) -> Result<Equilibrium, SolverError> {
-    let mut total = Equilibrium::default();
-    let mut d_c = d_from;
-    let fields = &mut run.fields;
-    for _ in 0..MAX_ONSETS_PER_STEP {
-        backend.copy(&fields.p, &mut fields.p_prev)?;
-        let solve = solve_fixed(backend, model, fields, d_to)?;
-        // The onset state interpolates to this solve: no work of its own, its residual.
-        let onset = Equilibrium {
-            cg_residual: solve.residual,
-            ..Equilibrium::default()
-        };
-        total.add_solve(solve);
-        let t = backend.first_crossing(&fields.p_prev, &fields.p, model.sigma_c)?;
-        if t >= 1.0 {
-            break;
-        }
-        backend.lerp(&fields.p_prev, &fields.p, t, &mut fields.p_onset)?;
-        let d_on = d_c + t * (d_to - d_c);
-        let (state, _) = record(
-            backend,
-            model,
-            &fields.p_onset,
-            step,
-            Phase::Onset,
-            d_on,
-            &onset,
-        )?;
-        out.emit(backend, state, false)?;
-        let t_push = (t + ONSET_PUSH).min(1.0);
-        backend.lerp(&fields.p_prev, &fields.p, t_push, &mut fields.p_onset)?;
-        backend.copy(&fields.p_onset, &mut fields.p)?;
-        d_c += t_push * (d_to - d_c);
-        let eq = equilibrate(backend, model, fields, d_c, model.sigma_c)?;
-        let vanished = eq.n_contact == 0;
-        total.absorb(eq);
-        if vanished || t_push >= 1.0 {
-            break;
-        }
-    }
-    Ok(total)
 }

@@ -1,7 +1,7 @@
 //! CG solves that failed in the normal mode and were retried in the safer one, and the
 //! warnings a run gives about them.
 
-use super::cg::{CgEnd, CgReport, REPLACE_EVERY};
+use super::cg::{CgEnd, CgReport, REPLACE_EVERY, TRUE_RESIDUAL_SLACK};
 use crate::model::CgSettings;
 
 /// What became of a safer retry.
@@ -51,6 +51,28 @@ impl CgRetry {
     pub fn iterations(&self) -> usize {
         self.first.iterations + self.retry.iterations
     }
+}
+
+/// The warning for a run whose backend stopped CG at its precision floor `floor` (relative
+/// residual), far above the tolerance asked for (more than [`TRUE_RESIDUAL_SLACK`] times it,
+/// what a solve would otherwise accept); `None` otherwise, `worst` being the worst residual
+/// of its states.
+pub fn floor_warning(
+    floor: f64,
+    settings: &CgSettings,
+    precision: &str,
+    worst: Option<f64>,
+) -> Option<String> {
+    (floor > TRUE_RESIDUAL_SLACK * settings.tolerance).then(|| {
+        format!(
+            "CG stopped at the {precision} precision floor of this backend, at relative \
+             residual {floor:.1e}, above --cg-tolerance {:.1e}, which {precision} cannot \
+             reach (the worst state's residual, in the cg_residual column of the states CSV: \
+             {}); use --backend cpu (f64) to reach it",
+            settings.tolerance,
+            worst.map_or("—".into(), |w| format!("{w:.2e}"))
+        )
+    })
 }
 
 /// What to try when CG ended as `end` above the tolerance.
@@ -142,6 +164,7 @@ mod tests {
             residual,
             best: residual,
             end,
+            convolutions: 0,
         }
     }
 

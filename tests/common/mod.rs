@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod cg_failures;
+pub mod same_answers;
 
 use jkrbem::backend::cpu::CpuBackend;
 use jkrbem::backend::prelude::*;

@@ -268,11 +268,12 @@ impl ContactKernels for CpuBackend {
         &mut self,
         p: &mut Vec<f64>,
         u: &Vec<f64>,
-        d: f64,
+        attach_at: Option<f64>,
         sigma_c: f64,
     ) -> Result<ContactChange, BackendError> {
         let (nx, ny) = (self.nx, self.ny);
         let h = &self.profile;
+        let (attach, d) = (attach_at.is_some(), attach_at.unwrap_or(0.0));
         let (detached, attached) = self
             .mask
             .par_iter_mut()
@@ -283,7 +284,7 @@ impl ContactKernels for CpuBackend {
                 let flip = if *m {
                     *pi < -sigma_c
                 } else {
-                    h[i] - d + u[i] < 0.0
+                    attach && h[i] - d + u[i] < 0.0
                 };
                 let out = match (flip, *m) {
                     (true, true) => (1, 0),
@@ -331,6 +332,14 @@ impl ContactKernels for CpuBackend {
                 }
             })
             .reduce(|| 1.0, f64::min))
+    }
+    fn max_abs(&mut self, f: &Vec<f64>) -> Result<f64, BackendError> {
+        let mask = &self.mask;
+        Ok(f.par_iter()
+            .with_min_len(PAR_MIN)
+            .zip(mask.par_iter())
+            .map(|(v, &m)| if m { v.abs() } else { 0.0 })
+            .reduce(|| 0.0, f64::max))
     }
     fn lerp(
         &mut self,

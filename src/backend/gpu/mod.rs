@@ -12,5 +12,5 @@ pub mod spectral;
 pub mod traffic;
 pub mod twin;
 
-pub use backend::{GpuBackend, GpuField};
+pub use backend::{GpuBackend, GpuField, F32_RESIDUAL_FLOOR};
 pub use context::{list_adapters, test_context, AdapterInfoLine, AdapterPreference, GpuContext};

@@ -153,6 +153,10 @@ pub const REDUCE_KERNELS: &[KernelLayout] = &[
         ],
     },
     KernelLayout {
+        entry: "max_abs_partials",
+        bindings: &[(0, Uniform), (1, Read), (3, Read), (4, ReadWrite)],
+    },
+    KernelLayout {
         entry: "finish_measure",
         bindings: &[(0, Uniform), (4, ReadWrite), (5, ReadWrite), (8, ReadWrite)],
     },
