@@ -14,10 +14,10 @@ pub struct Args {
     /// Output folder: sweep/, crossed/, the charts and index.html.
     #[arg(long, default_value = "jkrbem-out/reproduce")]
     pub out: PathBuf,
-    /// One coarse grid per ratio (Nx 64 … 256; about a minute on 2 CPU cores), each force
+    /// One coarse grid per ratio (Nx 64 … 256; about 20 s on 2 CPU cores), each force
     /// corrected by the convergence law and the branch laws without uncertainties, instead
     /// of the full study: three grids per ratio (up to Nx 1024), every force and branch law
-    /// extrapolated to Δx → 0 with its uncertainty (about 26 minutes on 2 CPU cores with
+    /// extrapolated to Δx → 0 with its uncertainty (about 6 minutes on 2 CPU cores with
     /// --jobs 2).
     #[arg(long)]
     pub quick: bool,
