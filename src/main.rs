@@ -1,8 +1,25 @@
 //! The `jkrbem` command: parses arguments, builds a scene, calls the library, writes outputs.
 
+/// `print!` that never panics: see [`cli::write_stdout`].
+macro_rules! out {
+    ($($arg:tt)*) => {
+        $crate::cli::write_stdout(format_args!($($arg)*))
+    };
+}
+
+/// `println!` that never panics: see [`cli::write_stdout`].
+macro_rules! outln {
+    () => {
+        $crate::cli::write_stdout(format_args!("\n"))
+    };
+    ($($arg:tt)*) => {
+        $crate::cli::write_stdout(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
 mod cli;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
 
 /// FFT-based BEM solver for JKR-type adhesive contact of a rigid ellipsoid
@@ -17,6 +34,10 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Replace output files that are write-protected (without it they are refused, as the
+    /// shell's `>` refuses them).
+    #[arg(long, global = true)]
+    force: bool,
 }
 
 // Every subcommand lets negative numbers through to its range checks (`--ratio -5` is
@@ -62,6 +83,85 @@ enum Command {
     Bench(cli::bench::Args),
 }
 
+/// The system allocator, except that an allocation the system refuses (a process limit such
+/// as `ulimit -v`, or memory that ran out after the planner's check) ends the run as an error
+/// with exit code 1, its lock and temporary files removed, instead of an abort.
+struct ExitOnOutOfMemory;
+
+// SAFETY: every call is passed to the system allocator unchanged; only a null result is
+// handled, by exiting the process.
+unsafe impl std::alloc::GlobalAlloc for ExitOnOutOfMemory {
+    unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
+        checked(std::alloc::System.alloc(layout), layout.size())
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: std::alloc::Layout) -> *mut u8 {
+        checked(std::alloc::System.alloc_zeroed(layout), layout.size())
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
+        std::alloc::System.dealloc(ptr, layout)
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: std::alloc::Layout, size: usize) -> *mut u8 {
+        checked(std::alloc::System.realloc(ptr, layout, size), size)
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: ExitOnOutOfMemory = ExitOnOutOfMemory;
+
+/// `ptr` if the allocation of `bytes` succeeded; otherwise remove this run's lock and
+/// temporary files, say so and exit with code 1 (without allocating for the message).
+fn checked(ptr: *mut u8, bytes: usize) -> *mut u8 {
+    if !ptr.is_null() {
+        return ptr;
+    }
+    use std::io::Write;
+    let mut message = [0u8; 400];
+    let mut w = &mut message[..];
+    let _ = write!(
+        w,
+        "\nerror: out of memory: an allocation of {bytes} bytes failed (the machine, its \
+         control group or this process's limits, e.g. `ulimit -v`, allow less than the run \
+         needs); choose a smaller --grid\n"
+    );
+    let left = w.len();
+    let _ = std::io::stderr().write_all(&message[..message.len() - left]);
+    jkrbem::output::file::try_remove_registered();
+    std::process::exit(1)
+}
+
+/// Flags that name files: a value starting with `-` there is more likely a forgotten value
+/// followed by the next flag, and stays refused as an unknown argument.
+const PATH_FLAGS: &[&str] = &["out", "summary"];
+
+/// Let every other flag of every subcommand take a value that starts with `-` (`-5`, `-NaN`,
+/// `-inf`, `-1%`, `-1s`), so that the flag's own check refuses it and names the flag, rather
+/// than the parser saying "unexpected argument '-5'".
+fn values_may_start_with_a_hyphen(command: clap::Command) -> clap::Command {
+    let names: Vec<String> = command
+        .get_subcommands()
+        .map(|s| s.get_name().to_string())
+        .collect();
+    names.iter().fold(command, |command, name| {
+        command.mut_subcommand(name, |sub| {
+            let ids: Vec<clap::Id> = sub
+                .get_arguments()
+                .filter(|a| {
+                    !a.is_positional()
+                        && a.get_action().takes_values()
+                        && !PATH_FLAGS.contains(&a.get_id().as_str())
+                })
+                .map(|a| a.get_id().clone())
+                .collect();
+            ids.into_iter().fold(sub, |sub, id| {
+                sub.mut_arg(id, |a| a.allow_hyphen_values(true))
+            })
+        })
+    })
+}
+
 /// On SIGINT, SIGTERM or SIGHUP: remove the temporary and lock files of this run (the files
 /// under the names asked for are untouched, partial states keep their `.incomplete-<pid>`
 /// names) and exit with 128 + the signal. SIGXFSZ (a file-size limit reached) is caught so
@@ -96,7 +196,9 @@ fn install_signal_handlers() {
 
 fn main() -> ExitCode {
     install_signal_handlers();
-    let cli = Cli::parse();
+    let command = values_may_start_with_a_hyphen(Cli::command());
+    let cli = Cli::from_arg_matches(&command.get_matches()).unwrap_or_else(|e| e.exit());
+    jkrbem::output::file::set_force(cli.force);
     let result = match cli.command {
         Command::Simulate(a) => cli::simulate::run(a),
         Command::Theory(a) => cli::theory::run(a),
@@ -110,10 +212,20 @@ fn main() -> ExitCode {
         Command::Devices(a) => cli::devices::run(a),
         Command::Bench(a) => cli::bench::run(a),
     };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
+    // What standard output could not take (a closed pipe ends quietly; a full disk or
+    // another error is a failure of the run, after its other messages).
+    let stdout_error = cli::finish_stdout();
+    match (result, stdout_error) {
+        (Ok(()), None) => ExitCode::SUCCESS,
+        (Ok(()), Some(e)) => {
             eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
+        (Err(e), stdout_error) => {
+            eprintln!("error: {e}");
+            if let Some(s) = stdout_error {
+                eprintln!("error: {s}");
+            }
             e.exit_code()
         }
     }

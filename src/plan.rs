@@ -264,8 +264,9 @@ pub fn coarsest_resolving_grid(scene: &Scene, base: &ModelOptions) -> Result<usi
     Ok(plan.grids[0])
 }
 
-/// The memory this machine can give a run (bytes): the smaller of the memory available now
-/// (`MemAvailable` in /proc/meminfo) and what the process's control group may still use; or
+/// The memory this machine can give a run (bytes): the smallest of the memory available now
+/// (`MemAvailable` in /proc/meminfo), what the process's control group may still use and what
+/// its own limits leave it ([`limits_room`]); or
 /// the value of the environment variable `JKRBEM_MEMORY_LIMIT` (bytes) if set, to plan for
 /// less. `None` where neither can be read (the check is then skipped).
 pub fn available_memory() -> Option<u64> {
@@ -290,10 +291,50 @@ pub fn available_memory() -> Option<u64> {
     };
     let cgroup = read("/sys/fs/cgroup/memory.max")
         .map(|max| max.saturating_sub(read("/sys/fs/cgroup/memory.current").unwrap_or(0)));
-    match (available, cgroup) {
-        (Some(a), Some(c)) => Some(a.min(c)),
-        (a, c) => a.or(c),
+    [available, cgroup, limits_room()]
+        .into_iter()
+        .flatten()
+        .min()
+}
+
+/// What the process's own limits (`ulimit -v`, `ulimit -d`) leave it: RLIMIT_AS less the
+/// address space it has mapped now (VmSize), and RLIMIT_DATA less its data now (VmData),
+/// whichever is smaller; `None` where neither is limited.
+pub fn limits_room() -> Option<u64> {
+    #[cfg(unix)]
+    {
+        let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+        let used = |key: &str| {
+            status
+                .lines()
+                .find(|l| l.starts_with(key))
+                .and_then(|l| l.split_whitespace().nth(1))
+                .and_then(|kb| kb.parse::<u64>().ok())
+                .map_or(0, |kb| kb * 1024)
+        };
+        let limit = |resource| {
+            let mut r = libc::rlimit {
+                rlim_cur: 0,
+                rlim_max: 0,
+            };
+            // SAFETY: getrlimit writes only to the struct it is given.
+            let ok = unsafe { libc::getrlimit(resource, &mut r) } == 0;
+            // rlim_t is u64 here but not on every platform.
+            #[allow(clippy::unnecessary_cast)]
+            let current = r.rlim_cur as u64;
+            (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(current)
+        };
+        let room = |resource, key: &str| limit(resource).map(|l| l.saturating_sub(used(key)));
+        [
+            room(libc::RLIMIT_AS, "VmSize:"),
+            room(libc::RLIMIT_DATA, "VmData:"),
+        ]
+        .into_iter()
+        .flatten()
+        .min()
     }
+    #[cfg(not(unix))]
+    None
 }
 
 /// Bytes in words: "8.8 TB", "420 MB".
@@ -355,7 +396,7 @@ pub fn check_memory_within(
         value: format!("{}", big.nx),
         expected: format!(
             "a {}×{} grid needs about {}{at_a_time}, more than the {} this machine has \
-             available; {}",
+             available (free memory, control group and process limits); {}",
             big.nx,
             big.ny,
             bytes_text(total),

@@ -2,9 +2,8 @@
 //! subcommand never make `jkrbem` panic or die by a signal, and it exits with 0, 1 or 2 only.
 //!
 //! `JKRBEM_MEMORY_LIMIT=1` makes every pull-off that passes its checks stop at the memory check
-//! (exit 2) instead of running, so that the test stays fast; `theory` and `collect` run for
-//! real. `bench` and `devices` are left out: a valid bench times whole pull-offs, and devices
-//! has no flags.
+//! (exit 2) instead of running, so that the test stays fast (`reference`, `coverage` and
+//! `bench` too); `theory` and `collect` run for real. `devices` is left out: it has no flags.
 
 use proptest::prelude::*;
 use std::process::Command;
@@ -58,6 +57,12 @@ const VALUES: &[&str] = &[
     "1e",
     "0x10",
     "9999999999",
+    "-NaN",
+    "-1%",
+    "-1s",
+    "90s",
+    "newdir/",
+    "-64",
 ];
 
 const SUBCOMMANDS: &[(&str, &[&str])] = &[
@@ -127,6 +132,43 @@ const SUBCOMMANDS: &[(&str, &[&str])] = &[
         &["--ratio", "--grids", "--backends", "--variants", "--out"],
     ),
     ("theory", &["--model", "--ratio", "--points", "--out"]),
+    (
+        "reference",
+        &[
+            "--ratios",
+            "--target",
+            "--max-grid",
+            "--first-grid",
+            "--phases",
+            "--backend",
+            "--out",
+        ],
+    ),
+    (
+        "coverage",
+        &[
+            "--ratios",
+            "--grids",
+            "--margins",
+            "--runs-per-case",
+            "--backend",
+            "--out",
+        ],
+    ),
+    (
+        "bench",
+        &[
+            "--backends",
+            "--grids",
+            "--pulloff-max-grid",
+            "--repeats",
+            "--cg-iterations",
+            "--ratio",
+            "--start-radius",
+            "--margin",
+            "--out",
+        ],
+    ),
     ("collect", &[]),
 ];
 

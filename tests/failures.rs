@@ -88,6 +88,12 @@ fn too_large_load_steps_are_reported() {
     assert!(warnings
         .iter()
         .any(|w| w.as_str().unwrap().contains("--onsets near-minimum")));
+    // An unresolved minimum has no answer with an error bar.
+    assert!(text.contains("NO ADHESIVE FORCE"), "{text}");
+    assert!(!text.contains("adhesive force |min F̄| ="), "{text}");
+    assert!(summary["f_ad_bar"].is_null(), "{summary}");
+    assert!(summary["f_ad_bar_uncertainty"].is_null(), "{summary}");
+    assert_eq!(summary["runs"][0]["min_resolved"], false);
     let adaptive = jkrbem(&[&args[..], &["--out", "a.csv"]].concat(), dir.path());
     assert!(adaptive.status.success());
     assert!(!String::from_utf8_lossy(&adaptive.stdout).contains("load steps too large"));

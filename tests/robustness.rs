@@ -62,6 +62,8 @@ const REPRODUCE: &[&str] = &["reproduce", "--out", "rp", "--backend", "cpu"];
 const ACCURACY: &[&str] = &["accuracy", "--out", "acc"];
 const THEORY: &[&str] = &["theory", "--out", "th/t.csv"];
 const BENCH: &[&str] = &["bench", "--out", "bn", "--backends", "cpu"];
+const REFERENCE: &[&str] = &["reference", "--out", "ref/table.csv", "--backend", "cpu"];
+const COVERAGE: &[&str] = &["coverage", "--out", "cov", "--backend", "cpu"];
 const NONE: &[(&str, &str)] = &[];
 const SMALL_MEMORY: &[(&str, &str)] = &[("JKRBEM_MEMORY_LIMIT", "1e9")];
 
@@ -182,6 +184,34 @@ pub const CASES: &[Case] = &[
         "--extrapolate-grids",
         NONE,
     ),
+    // signed values that are not plain numbers reach the flag's own check
+    (SIM, &["--ratio", "-NaN"], "--ratio", NONE),
+    (SIM, &["--ratio", "-inf"], "--ratio", NONE),
+    (SIM, &["--r2", "-inf"], "--r2", NONE),
+    (SIM, &["--accuracy", "-1%"], "--accuracy", NONE),
+    (SIM, &["--time-limit", "-1s"], "--time-limit", NONE),
+    (SIM, &["--steps", "-NaN"], "--steps", NONE),
+    // simulate: names that end in a folder are refused before the work
+    (&["simulate"], &["--out", "newdir/"], "--out", NONE),
+    (&["simulate"], &["--out", "newdir/."], "--out", NONE),
+    (
+        &["simulate"],
+        &["--out", "s.csv", "--summary", "newdir/"],
+        "--summary",
+        NONE,
+    ),
+    (
+        THEORY,
+        &["--model", "jg", "--ratio", "-NaN"],
+        "--ratio",
+        NONE,
+    ),
+    (
+        &["theory", "--model", "jkr"],
+        &["--out", "th/"],
+        "--out",
+        NONE,
+    ),
     // simulate: clashing outputs
     (
         &["simulate"],
@@ -238,6 +268,28 @@ pub const CASES: &[Case] = &[
     ),
     (CROSSED, &["--jobs", "0"], "--jobs", NONE),
     (CROSSED, &["--grid", "12"], "--grid", NONE),
+    (SWEEP, &["--accuracy", "-1%"], "--accuracy", NONE),
+    (SWEEP, &["--ratios", "-NaN"], "--ratios", NONE),
+    (SWEEP, &["--margin", "-inf"], "--margin", NONE),
+    (CROSSED, &["--angles", "-NaN"], "--angles", NONE),
+    // reference
+    (REFERENCE, &["--ratios", "-5"], "--ratios", NONE),
+    (REFERENCE, &["--ratios", "-NaN"], "--ratios", NONE),
+    (REFERENCE, &["--phases", "-1"], "--phases", NONE),
+    (REFERENCE, &["--target", "-1%"], "--target", NONE),
+    (REFERENCE, &["--max-grid", "-64"], "--max-grid", NONE),
+    (REFERENCE, &["--backend", "tpu"], "--backend", NONE),
+    // coverage
+    (COVERAGE, &["--ratios", "-1"], "--ratio", NONE),
+    (COVERAGE, &["--margins", "-0.1"], "--margins", NONE),
+    (COVERAGE, &["--margins", "-NaN"], "--margins", NONE),
+    (COVERAGE, &["--grids", "-64"], "--grids", NONE),
+    (
+        COVERAGE,
+        &["--runs-per-case", "-1"],
+        "--runs-per-case",
+        NONE,
+    ),
     // reproduce
     (REPRODUCE, &["--jobs", "0"], "--jobs", NONE),
     (REPRODUCE, &["--jobs", "-1"], "--jobs", NONE),
@@ -253,6 +305,8 @@ pub const CASES: &[Case] = &[
     (ACCURACY, &["--grids", "32,100"], "--grids", NONE),
     (ACCURACY, &["--ratio", "-2"], "--ratio", NONE),
     (ACCURACY, &["--ratio", "2000"], "--ratio", NONE),
+    (ACCURACY, &["--ratio", "-inf"], "--ratio", NONE),
+    (ACCURACY, &["--grids", "-32,64"], "--grids", NONE),
     // theory
     (
         THEORY,
@@ -303,6 +357,9 @@ pub const CASES: &[Case] = &[
     (BENCH, &["--ratio", "-5"], "--ratio", NONE),
     (BENCH, &["--margin", "1e300"], "--margin", NONE),
     (BENCH, &["--start-radius", "0"], "--start-radius", NONE),
+    (BENCH, &["--ratio", "-NaN"], "--ratio", NONE),
+    (BENCH, &["--repeats", "-1"], "--repeats", NONE),
+    (&["collect", "."], &["--allow-missing", "-1"], "-1", NONE),
     (&["devices"], &["--foo"], "--foo", NONE),
     (&["frobnicate"], &[], "frobnicate", NONE),
 ];
@@ -865,5 +922,309 @@ mod collect {
         assert_eq!(shard.sweep.ratios, vec![1.0, 2.0]);
         assert_eq!((shard.shard, shard.of), (3, 3));
         assert!(shard.rows.is_empty());
+    }
+}
+
+/// Hardening, round two (issue 23): links, pipes, process limits, write-protected files, and
+/// refusals before any work.
+mod round_two {
+    use super::*;
+    use std::os::unix::fs::{symlink, PermissionsExt};
+
+    fn is_root() -> bool {
+        // SAFETY: geteuid has no preconditions.
+        unsafe { libc::geteuid() == 0 }
+    }
+
+    #[test]
+    fn a_link_at_the_lock_name_is_never_followed() {
+        // Before: the lock file was opened through the link and the victim truncated to a pid.
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("victim.txt"), "DATA\n").unwrap();
+        symlink("victim.txt", dir.path().join(".s.csv.lock")).unwrap();
+        let mut args = SHORT.to_vec();
+        args.extend(["--out", "s.csv"]);
+        let o = run_in(dir.path(), &args, NONE);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains("symbolic link") && err.contains(".s.csv.lock"),
+            "{err}"
+        );
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join("victim.txt")).unwrap(),
+            "DATA\n"
+        );
+        assert!(!dir.path().join("s.csv").exists());
+        // A dangling link there is not followed either (it would create the file it names).
+        std::fs::remove_file(dir.path().join(".s.csv.lock")).unwrap();
+        symlink("created.txt", dir.path().join(".s.csv.lock")).unwrap();
+        let o = run_in(dir.path(), &args, NONE);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(!dir.path().join("created.txt").exists());
+    }
+
+    #[test]
+    fn a_lock_file_with_a_second_name_is_refused() {
+        // A hard link at the lock name to a file of the runner's would be truncated.
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("victim.txt"), "DATA\n").unwrap();
+        std::fs::hard_link(
+            dir.path().join("victim.txt"),
+            dir.path().join(".s.csv.lock"),
+        )
+        .unwrap();
+        let mut args = SHORT.to_vec();
+        args.extend(["--out", "s.csv"]);
+        let o = run_in(dir.path(), &args, NONE);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains("lock file"), "{err}");
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join("victim.txt")).unwrap(),
+            "DATA\n"
+        );
+    }
+
+    #[test]
+    fn a_link_at_the_output_owned_by_another_user_is_refused() {
+        // Before: a link planted by another user redirected the write to the runner's file.
+        if !is_root() {
+            println!("skipped: giving a link another owner needs root (CI runs as root)");
+            return;
+        }
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(dir.path().join("private")).unwrap();
+        std::fs::create_dir_all(dir.path().join("shared")).unwrap();
+        std::fs::write(dir.path().join("private/secret.conf"), "SECRET\n").unwrap();
+        let link = dir.path().join("shared/s.csv");
+        symlink("../private/secret.conf", &link).unwrap();
+        std::os::unix::fs::lchown(&link, Some(65534), None).unwrap();
+        let mut args = SHORT.to_vec();
+        args.extend(["--out", "shared/s.csv"]);
+        let o = run_in(dir.path(), &args, NONE);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains("owned by another user"), "{err}");
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join("private/secret.conf")).unwrap(),
+            "SECRET\n"
+        );
+        // The runner's own link is still followed (and kept).
+        std::os::unix::fs::lchown(&link, Some(0), None).unwrap();
+        let o = run_in(dir.path(), &args, NONE);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(
+            std::fs::read_to_string(dir.path().join("private/secret.conf"))
+                .unwrap()
+                .starts_with("step,")
+        );
+        assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
+    }
+
+    #[test]
+    fn a_closed_or_full_standard_output_never_panics() {
+        // Before: "failed printing to stdout", exit 101.
+        let dir = tempfile::tempdir().unwrap();
+        let cases: [&[&str]; 4] = [
+            &[
+                "simulate",
+                "--ratio",
+                "1",
+                "--grid",
+                "32",
+                "--steps",
+                "20",
+                "--backend",
+                "cpu",
+                "--out",
+                "s.csv",
+            ],
+            &["theory", "--model", "jg", "--ratio", "3", "--out", "t.csv"],
+            &[
+                "sweep",
+                "--ratios",
+                "1",
+                "--grid",
+                "32",
+                "--steps",
+                "20",
+                "--backend",
+                "cpu",
+                "--out",
+                "sw",
+            ],
+            &["devices"],
+        ];
+        for args in cases {
+            // A reader that has gone away: the run ends quietly, its files written.
+            let mut child = bin()
+                .args(args)
+                .current_dir(dir.path())
+                .stdout(Stdio::piped())
+                .stderr(Stdio::piped())
+                .spawn()
+                .unwrap();
+            drop(child.stdout.take());
+            let o = child.wait_with_output().unwrap();
+            let err = stderr(&o);
+            assert!(!err.contains("panicked"), "{args:?}: {err}");
+            assert_eq!(o.status.code(), Some(0), "{args:?}: {err}");
+            // A full device: an error naming standard output, exit code 1.
+            let full = std::fs::OpenOptions::new()
+                .write(true)
+                .open("/dev/full")
+                .unwrap();
+            let o = bin()
+                .args(args)
+                .current_dir(dir.path())
+                .stdout(full)
+                .output()
+                .unwrap();
+            let err = stderr(&o);
+            assert!(!err.contains("panicked"), "{args:?}: {err}");
+            assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+            assert!(err.contains("standard output"), "{args:?}: {err}");
+        }
+        assert!(dir.path().join("s.csv").exists() && dir.path().join("t.csv").exists());
+    }
+
+    /// `args` under `ulimit -v <kb>` in `dir`, with `env`.
+    fn address_limited(dir: &Path, kb: u64, args: &[&str], env: &[(&str, &str)]) -> Output {
+        let mut c = Command::new("sh");
+        c.arg("-c")
+            .arg(format!("ulimit -v {kb}; exec \"$0\" \"$@\""))
+            .arg(env!("CARGO_BIN_EXE_jkrbem"))
+            .args(args)
+            .current_dir(dir)
+            .env_remove("JKRBEM_MEMORY_LIMIT");
+        for (k, v) in env {
+            c.env(k, v);
+        }
+        c.output().unwrap()
+    }
+
+    #[test]
+    fn the_memory_check_counts_the_process_limits_and_a_failed_allocation_is_an_error() {
+        // Before: `ulimit -v` passed the check, the allocation aborted (exit 134) and left a
+        // stale lock.
+        let dir = tempfile::tempdir().unwrap();
+        let args = [
+            "simulate",
+            "--ratio",
+            "1",
+            "--grid",
+            "4096",
+            "--backend",
+            "cpu",
+            "--out",
+            "big.csv",
+        ];
+        let o = address_limited(dir.path(), 2_000_000, &args, NONE);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains("--grid") && err.contains("GB"), "{err}");
+        assert!(listing(dir.path()).is_empty(), "{:?}", listing(dir.path()));
+        // With the check told there is plenty, the allocation itself fails: exit 1, a
+        // message, and no lock or temporary file left.
+        let o = address_limited(
+            dir.path(),
+            2_000_000,
+            &args,
+            &[("JKRBEM_MEMORY_LIMIT", "1e12")],
+        );
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        assert!(err.contains("out of memory"), "{err}");
+        let left: Vec<_> = listing(dir.path())
+            .into_iter()
+            .filter(|p| !p.to_string_lossy().contains(".incomplete-"))
+            .collect();
+        assert!(left.is_empty(), "{left:?}");
+    }
+
+    #[test]
+    fn refusals_before_any_work_exit_with_2() {
+        // Before: a name too long or a file where a folder should be exited with 1.
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("afile"), "x").unwrap();
+        let long = format!("{}.csv", "n".repeat(300));
+        for out in ["afile/s.csv", long.as_str()] {
+            let mut args = SHORT.to_vec();
+            args.extend(["--out", out]);
+            let o = run_in(dir.path(), &args, NONE);
+            let err = stderr(&o);
+            assert_eq!(o.status.code(), Some(2), "{out}: {err}");
+            assert!(err.contains("--out"), "{err}");
+        }
+        assert_eq!(listing(dir.path()).len(), 1, "{:?}", listing(dir.path()));
+    }
+
+    #[test]
+    fn a_write_protected_output_is_refused_unless_forced() {
+        // Before: a 0444 file was replaced silently.
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("s.csv");
+        std::fs::write(&target, "KEEP\n").unwrap();
+        std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o444)).unwrap();
+        let mut args = SHORT.to_vec();
+        args.extend(["--out", "s.csv"]);
+        let o = run_in(dir.path(), &args, NONE);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains("write-protected") && err.contains("--force"),
+            "{err}"
+        );
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "KEEP\n");
+        args.push("--force");
+        let o = run_in(dir.path(), &args, NONE);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(std::fs::read_to_string(&target)
+            .unwrap()
+            .starts_with("step,"));
+        let mode = std::fs::metadata(&target).unwrap().permissions().mode();
+        assert_eq!(mode & 0o777, 0o444, "the file keeps its permissions");
+    }
+
+    #[test]
+    fn a_summary_that_fails_after_the_states_names_them_and_still_gives_the_answer() {
+        // Before: the answer was lost and the message did not say the states were written.
+        let dir = tempfile::tempdir().unwrap();
+        let child = bin()
+            .args([
+                "simulate",
+                "--ratio",
+                "1",
+                "--grid",
+                "128",
+                "--backend",
+                "cpu",
+                "--out",
+                "s.csv",
+                "--summary",
+                "s.json",
+            ])
+            .current_dir(dir.path())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // Once the run is under way, a folder takes the summary's name.
+        assert!(wait_for(Duration::from_secs(60), || !names_in(
+            dir.path(),
+            |n| n.starts_with("s.incomplete-")
+        )
+        .is_empty()));
+        std::fs::create_dir(dir.path().join("s.json")).unwrap();
+        let o = child.wait_with_output().unwrap();
+        let err = stderr(&o);
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        assert!(err.contains("--summary") && err.contains("s.csv"), "{err}");
+        assert!(out.contains("adhesive force |min F̄| ="), "{out}");
+        assert!(std::fs::read_to_string(dir.path().join("s.csv"))
+            .unwrap()
+            .starts_with("step,"));
     }
 }

@@ -330,6 +330,12 @@ fn from_runs_with(runs: &[RunReport], spread: Option<f64>) -> Result<AdhesiveEst
             r.grid
         ));
     }
+    if let Some(r) = runs.iter().find(|r| !r.min_resolved) {
+        return Err(format!(
+            "the {} run's load steps were too large to resolve the force minimum",
+            r.grid
+        ));
+    }
     if runs.iter().any(|r| r.n_d.is_none()) {
         return Err("a run has no contact width at its minimum".into());
     }
@@ -454,6 +460,7 @@ mod tests {
             sigma_c: 1.0,
             f_ad_bar: Some(f),
             min_reached: true,
+            min_resolved: true,
             lowest_f_bar: Some(-f),
             d_bar_at_lowest: Some(-0.3),
             c_bar_at_min: Some(0.8 * (1.0 + 1.0 / n_d)),

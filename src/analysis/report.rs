@@ -40,6 +40,11 @@ pub struct RunReport {
     /// approach went 0.1 past it with the force 2 % above it. When false, `f_ad_bar` is null
     /// and `lowest_f_bar` is only the lowest force seen.
     pub min_reached: bool,
+    /// Whether the force minimum is resolved: false where whole load steps (`--onsets none`)
+    /// detached elements around it, so that the minimum lies at an onset inside a step and
+    /// the lowest state seen is not it. No adhesive force is estimated from such a run.
+    #[serde(default = "resolved")]
+    pub min_resolved: bool,
     /// The lowest F̄ recorded (dimensionless), minimum or not; null if no state was recorded.
     pub lowest_f_bar: Option<f64>,
     /// d̄ of that state.
@@ -97,6 +102,11 @@ pub struct RunReport {
     pub refinement: Option<Refinement>,
 }
 
+/// A report written before [`RunReport::min_resolved`] existed had its minimum resolved.
+fn resolved() -> bool {
+    true
+}
+
 /// The margin of a report written before [`RunReport::margin`] existed: the default.
 fn default_margin() -> f64 {
     crate::model::ModelOptions::default().margin
@@ -119,10 +129,12 @@ impl RunReport {
         // 2b/Δx is a count of elements (half-integers on an aligned mesh): rounded to 1e-6 so
         // that it does not read 25.999999999999996.
         let n_d = min.map(|s| (2e6 * s.b_axis / s.dx).round() / 1e6);
+        let unresolved = step_warning(model, outcome);
+        let min_resolved = unresolved.is_none();
         let warnings = n_d
             .and_then(|n| convergence::coarse_grid_warning(ratio, n))
             .into_iter()
-            .chain(step_warning(model, outcome))
+            .chain(unresolved)
             .chain(outcome.warnings.iter().cloned())
             .collect();
         RunReport {
@@ -138,6 +150,7 @@ impl RunReport {
             sigma_c: model.sigma_c,
             f_ad_bar: min.map(|s| -s.f_bar),
             min_reached,
+            min_resolved,
             lowest_f_bar: lowest.map(|s| s.f_bar),
             d_bar_at_lowest: lowest.map(|s| s.d_bar),
             c_bar_at_min: min.map(|s| s.c_bar),

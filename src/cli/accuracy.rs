@@ -54,10 +54,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
         out: args.out,
     };
     let done = accuracy(&req, &|line: &str| eprintln!("{line}")).map_err(run_error)?;
-    println!("reference: {}", done.reference);
-    println!("variant  backend  grid                         |min F̄|   error      wall (s)");
+    outln!("reference: {}", done.reference);
+    outln!("variant  backend  grid                         |min F̄|   error      wall (s)");
     for r in &done.rows {
-        println!(
+        outln!(
             "{:<8} {:<8} {:<28} {:<9} {:<10} {:.2}",
             r.variant,
             r.backend,
@@ -68,6 +68,6 @@ pub fn run(args: Args) -> Result<(), CliError> {
             r.wall_s
         );
     }
-    println!("written {} and {}", done.csv.display(), done.svg.display());
+    outln!("written {} and {}", done.csv.display(), done.svg.display());
     failures("runs", &done.failures, "")
 }

@@ -67,12 +67,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
     };
     let done = bench(&req, &|line: &str| eprintln!("{line}")).map_err(run_error)?;
     for p in &done.profiles {
-        print!("{}", bench_text::profile_text(p));
+        out!("{}", bench_text::profile_text(p));
     }
-    print!("{}", bench_text::table_text(&done.rows, &done.measured));
-    print!("{}", bench_text::ratios_text(&done.rows));
-    print!("{}", bench_text::cost_text(&done.rows));
+    out!("{}", bench_text::table_text(&done.rows, &done.measured));
+    out!("{}", bench_text::ratios_text(&done.rows));
+    out!("{}", bench_text::cost_text(&done.rows));
     let names: Vec<String> = done.files.iter().map(|f| f.display().to_string()).collect();
-    println!("written: {}", names.join(", "));
+    outln!("written: {}", names.join(", "));
     failures("measurements", &done.problems, " or stopped early")
 }

@@ -91,13 +91,13 @@ pub fn run(args: Args) -> Result<(), CliError> {
         out: args.out.clone(),
     };
     let done = crossed(&request, &flag, &|line| eprintln!("jkrbem: {line}")).map_err(run_error)?;
-    println!("θ (deg)  R1/R2    F_ad                    JG F_ad    n_d");
+    outln!("θ (deg)  R1/R2    F_ad                    JG F_ad    n_d");
     for r in &done.rows {
         let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4e}"));
         let u = r
             .f_ad_uncertainty
             .map_or(String::new(), |u| format!(" ± {u:.2e}"));
-        println!(
+        outln!(
             "{:<8} {:<8.3} {:<23} {:<10} {}",
             r.angle_deg,
             r.ratio,
@@ -107,9 +107,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
         );
     }
     for w in &done.warnings {
-        println!("WARNING: {w}");
+        outln!("WARNING: {w}");
     }
-    println!(
+    outln!(
         "written {} and {}",
         done.files[0].display(),
         done.files[1].display()

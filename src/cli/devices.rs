@@ -10,7 +10,7 @@ pub struct Args {}
 /// Run `jkrbem devices`.
 #[cfg(not(feature = "gpu"))]
 pub fn run(_args: Args) -> Result<(), CliError> {
-    println!(
+    outln!(
         "this jkrbem was built without the `gpu` feature: no GPU adapter is looked for, and \
          every run uses the CPU backend"
     );
@@ -23,21 +23,21 @@ pub fn run(_args: Args) -> Result<(), CliError> {
     use jkrbem::backend::gpu::list_adapters;
     let adapters = list_adapters();
     if adapters.is_empty() {
-        println!(
+        outln!(
             "no GPU adapter with compute shaders was found; `--backend auto` will use the CPU \
              (on Linux without a GPU, Mesa's lavapipe gives a software adapter: \
              apt-get install mesa-vulkan-drivers libvulkan1)"
         );
         return Ok(());
     }
-    println!("GPU adapters, best first (`--backend gpu` takes the first):");
+    outln!("GPU adapters, best first (`--backend gpu` takes the first):");
     for (i, a) in adapters.iter().enumerate() {
         let software = if a.device_type == "Cpu" {
             "  [software: `--backend auto` skips it]"
         } else {
             ""
         };
-        println!("{}. {a}{software}", i + 1);
+        outln!("{}. {a}{software}", i + 1);
     }
     Ok(())
 }

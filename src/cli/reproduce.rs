@@ -41,7 +41,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         jobs: args.jobs,
     };
     let done = study(&req, &|line: &str| eprintln!("jkrbem: {line}")).map_err(run_error)?;
-    println!(
+    outln!(
         "report: {} ({} charts, {:.0} s)",
         done.index.display(),
         done.charts,

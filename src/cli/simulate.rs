@@ -312,9 +312,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
     if let Some(plan) = &done.plan {
         eprintln!("jkrbem: {plan}");
     }
-    print!("{}", done.summary.to_text());
+    out!("{}", done.summary.to_text());
     for path in &done.states {
-        println!("states written to {}", path.display());
+        outln!("states written to {}", path.display());
     }
     failure_error(done.failure).map_err(run_error)
 }

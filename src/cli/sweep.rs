@@ -83,13 +83,13 @@ pub fn run(args: Args) -> Result<(), CliError> {
         out: args.out.clone(),
     };
     let done = sweep(&request, &|line| eprintln!("jkrbem: {line}")).map_err(run_error)?;
-    println!("ratio   |min F̄|            JG      n_d    wall (s)");
+    outln!("ratio   |min F̄|            JG      n_d    wall (s)");
     for r in &done.rows {
         let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4}"));
         let u = r
             .f_ad_bar_uncertainty
             .map_or(String::new(), |u| format!(" ± {u:.4}"));
-        println!(
+        outln!(
             "{:<7} {:<18} {:<7} {:<6} {:.1}",
             r.ratio,
             format!("{}{u}", f(r.f_ad_bar)),
@@ -99,17 +99,17 @@ pub fn run(args: Args) -> Result<(), CliError> {
         );
     }
     if done.ran == 0 {
-        println!(
+        outln!(
             "(this shard got no ratio: --ratios has only {} value(s))",
             args.ratios.len()
         );
     }
     for w in &done.warnings {
-        println!("WARNING: {w}");
+        outln!("WARNING: {w}");
     }
-    println!("summary written to {}", done.summary_path.display());
+    outln!("summary written to {}", done.summary_path.display());
     if let Some([a, b]) = &done.charts {
-        println!("charts written to {} and {}", a.display(), b.display());
+        outln!("charts written to {} and {}", a.display(), b.display());
     }
     super::failures(
         "pull-offs",

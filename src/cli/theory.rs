@@ -61,7 +61,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             .map(|p| (p.c_bar, p.f_bar, p.d_bar, p.a_bar, p.b_bar)),
     )
     .map_err(write_error("--out"))?;
-    println!(
+    outln!(
         "{} points of {} at R1/R2 = {} written to {}",
         curve.len(),
         name.to_uppercase(),
@@ -72,13 +72,15 @@ pub fn run(args: Args) -> Result<(), CliError> {
         let p = theory::pull_off(model, args.ratio).map_err(input)?;
         let f = p.force_min;
         let e = p.end_of_contact;
-        println!(
+        outln!(
             "force-controlled pull-off (min F̄): F̄ = {:.6}, c̄ = {:.6}, d̄ = {:.6}, ā = {:.6}, b̄ = {:.6}",
             f.f_bar, f.c_bar, f.d_bar, f.a_bar, f.b_bar
         );
-        println!(
+        outln!(
             "displacement-controlled end of contact (min d̄): F̄ = {:.6}, c̄ = {:.6}, d̄ = {:.6}",
-            e.f_bar, e.c_bar, e.d_bar
+            e.f_bar,
+            e.c_bar,
+            e.d_bar
         );
     }
     Ok(())

@@ -43,10 +43,20 @@ fn unregister(path: &Path) {
 /// Remove every temporary and lock file that is registered now (for a signal handler, just
 /// before the process exits). Returns how many were removed.
 pub fn remove_registered() -> usize {
-    let paths = match REGISTERED.lock() {
-        Ok(mut r) => std::mem::take(&mut *r),
-        Err(_) => return 0,
-    };
+    REGISTERED
+        .lock()
+        .map_or(0, |mut r| remove_all(std::mem::take(&mut *r)))
+}
+
+/// [`remove_registered`] where the list may be held by this very thread (an allocation that
+/// failed while registering): removes nothing then, rather than wait for itself.
+pub fn try_remove_registered() -> usize {
+    REGISTERED
+        .try_lock()
+        .map_or(0, |mut r| remove_all(std::mem::take(&mut *r)))
+}
+
+fn remove_all(paths: Vec<PathBuf>) -> usize {
     paths.iter().filter(|p| fs::remove_file(p).is_ok()).count()
 }
 
@@ -64,11 +74,100 @@ fn folder(path: &Path) -> PathBuf {
     }
 }
 
-/// Refuse `path` if it exists and is not a regular file (after following a symbolic link):
-/// writing there would replace a device, a FIFO or a folder with a file.
+/// Whether an existing write-protected target may be replaced (`--force`); set once by the
+/// command line.
+static FORCE: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Let writes replace write-protected targets (the command line's `--force`).
+pub fn set_force(force: bool) {
+    FORCE.store(force, std::sync::atomic::Ordering::Relaxed);
+}
+
+fn refused(path: &Path, reason: impl Into<String>) -> OutputError {
+    OutputError::Refused {
+        path: path.display().to_string(),
+        flag: None,
+        reason: reason.into(),
+    }
+}
+
+/// The user id this process acts as (files it creates are owned by it).
+#[cfg(unix)]
+fn effective_uid() -> u32 {
+    // SAFETY: geteuid has no preconditions and cannot fail.
+    unsafe { libc::geteuid() }
+}
+
+/// Refuse a symbolic link at `path` that another user owns: following it would let that user
+/// redirect this run's write to any file the runner may write (the rule of Linux's
+/// `protected_symlinks`). The runner's own links are followed.
+#[cfg(unix)]
+fn check_link_owner(path: &Path, uid: u32) -> Result<(), OutputError> {
+    use std::os::unix::fs::MetadataExt;
+    match fs::symlink_metadata(path) {
+        Ok(m) if m.file_type().is_symlink() && m.uid() != uid => Err(refused(
+            path,
+            format!(
+                "it is a symbolic link owned by another user (uid {}, this run's is {uid}): a \
+                 link planted by someone else could redirect the write to any file; remove it \
+                 or name the file it points to",
+                m.uid()
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Refuse a name that ends in `/` (or `/.`, `/..`): it names a folder, and the write would
+/// only fail after the work.
+fn check_file_name(path: &Path) -> Result<(), OutputError> {
+    let text = path.to_string_lossy();
+    let folder_like = text.ends_with('/')
+        || text.ends_with("/.")
+        || text.ends_with("/..")
+        || matches!(&*text, "." | "..")
+        || path.file_name().is_none();
+    if folder_like {
+        Err(refused(
+            path,
+            "the name ends in a folder, not a file: give a file name (e.g. out/states.csv)",
+        ))
+    } else {
+        Ok(())
+    }
+}
+
+/// Refuse an existing target without write permission for its owner (as the shell's `>`
+/// would for a non-root user), unless forced.
+fn check_writable(path: &Path, meta: &fs::Metadata) -> Result<(), OutputError> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        if meta.permissions().mode() & 0o200 == 0
+            && !FORCE.load(std::sync::atomic::Ordering::Relaxed)
+        {
+            return Err(refused(
+                path,
+                "it exists and is write-protected: make it writable (chmod u+w), choose \
+                 another name, or pass --force to replace it",
+            ));
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = (path, meta);
+    Ok(())
+}
+
+/// Refuse `path` if its name ends in a folder, if it is a symbolic link owned by another user,
+/// if it exists and is not a regular file (after following a symbolic link: writing there
+/// would replace a device, a FIFO or a folder with a file), or if it is write-protected
+/// (unless forced).
 pub fn check_target(path: &Path) -> Result<(), OutputError> {
+    check_file_name(path)?;
+    #[cfg(unix)]
+    check_link_owner(path, effective_uid())?;
     match fs::metadata(path) {
-        Ok(m) if m.is_file() => Ok(()),
+        Ok(m) if m.is_file() => check_writable(path, &m),
         Ok(m) => Err(OutputError::Refused {
             path: path.display().to_string(),
             flag: None,
@@ -92,7 +191,9 @@ pub fn check_target(path: &Path) -> Result<(), OutputError> {
                 Err(_) => Ok(()),
             }
         }
-        Err(e) => Err(OutputError::io(path, e)),
+        // A file where a folder should be, a name too long, a folder that may not be read:
+        // the path cannot be written, whatever the run computes.
+        Err(e) => Err(refused(path, e.to_string())),
     }
 }
 
@@ -332,6 +433,64 @@ fn same_file(_file: &File, path: &Path) -> bool {
     path.exists()
 }
 
+/// Open (or create) the lock file at `path` without following a symbolic link there and
+/// without blocking on a FIFO, and refuse anything but a regular file with one name that this
+/// user owns: a lock file is truncated and written, so one planted by someone else (a link
+/// or a hard link to a file of the runner's) must never be opened for writing.
+fn open_lock_file(path: &Path) -> Result<File, OutputError> {
+    let mut open = OpenOptions::new();
+    open.read(true).write(true).create(true).truncate(false);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        open.custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK);
+    }
+    let file = match open.open(path) {
+        Ok(f) => f,
+        Err(e) if is_link_error(&e, path) => {
+            return Err(refused(
+                path,
+                "the lock file's name is a symbolic link: a lock is never opened through a \
+                 link (it could point at any file); remove the link",
+            ))
+        }
+        Err(e) => return Err(OutputError::io(path, e)),
+    };
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let m = file.metadata().map_err(|e| OutputError::io(path, e))?;
+        if !m.is_file() {
+            return Err(refused(
+                path,
+                "the lock file's name is taken by something that is not a regular file",
+            ));
+        }
+        if m.uid() != effective_uid() || m.nlink() != 1 {
+            return Err(refused(
+                path,
+                format!(
+                    "the lock file exists and belongs to another user (uid {}) or has other \
+                     names ({} links): it is not this user's lock; remove it",
+                    m.uid(),
+                    m.nlink()
+                ),
+            ));
+        }
+    }
+    Ok(file)
+}
+
+/// Whether opening `path` failed because it is a symbolic link (`O_NOFOLLOW`).
+fn is_link_error(e: &io::Error, path: &Path) -> bool {
+    #[cfg(unix)]
+    if e.raw_os_error() == Some(libc::ELOOP) {
+        return true;
+    }
+    let _ = e;
+    fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink())
+}
+
 impl OutputLock {
     /// Lock `target` for this process (creating its folder). Refused, naming the process that
     /// holds it, while another process holds it.
@@ -340,13 +499,7 @@ impl OutputLock {
         create_folder(&target)?;
         let path = lock_path(&target);
         for _ in 0..100 {
-            let mut file = OpenOptions::new()
-                .read(true)
-                .write(true)
-                .create(true)
-                .truncate(false)
-                .open(&path)
-                .map_err(|e| OutputError::io(&path, e))?;
+            let mut file = open_lock_file(&path)?;
             match file.try_lock() {
                 Ok(()) => {
                     // A holder that finished removes its lock file before it unlocks: if
@@ -360,6 +513,8 @@ impl OutputLock {
                         .and_then(|_| writeln!(file, "{}", std::process::id()))
                         .and_then(|_| file.flush());
                     if let Err(e) = written {
+                        // Still holding the lock: remove the empty file it would leave.
+                        let _ = fs::remove_file(&path);
                         unregister(&path);
                         return Err(OutputError::io(&path, e));
                     }

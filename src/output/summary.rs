@@ -145,6 +145,21 @@ impl Summary {
                 }
                 s += "\n";
             }
+            _ if self.min_reached && self.runs.iter().any(|r| !r.min_resolved) => {
+                let grids: Vec<&str> = self
+                    .runs
+                    .iter()
+                    .filter(|r| !r.min_resolved)
+                    .map(|r| r.grid.as_str())
+                    .collect();
+                s += &format!(
+                    "NO ADHESIVE FORCE: the load steps of the {} run were too large to resolve \
+                     the force minimum (see the WARNING below): its lowest state is not the \
+                     minimum, so no answer with an uncertainty is given; leave out --onsets none \
+                     or use more --steps\n",
+                    grids.join(", ")
+                );
+            }
             _ => {
                 let lowest = self.runs.iter().find(|r| !r.min_reached);
                 let seen = match lowest.and_then(|r| r.lowest_f_bar.zip(r.d_bar_at_lowest)) {

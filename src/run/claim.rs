@@ -55,14 +55,16 @@ impl Outputs {
     /// Claim every `(path, flag)` for this command: refuse two that name the same file, a
     /// target that exists and is not a regular file, and one that another run holds. Nothing
     /// is created unless all pass the first two checks; the folders are then created and the
-    /// locks taken.
+    /// locks taken. Every failure here comes before any work and is bad input (exit code 2).
     pub fn claim(targets: &[(PathBuf, String)]) -> Result<Outputs, RunError> {
         Self::check(targets)?;
         let mut outputs = Outputs::default();
         for (path, flag) in targets {
-            outputs
-                .locks
-                .push(OutputLock::acquire(path).map_err(write_error(flag))?);
+            // Nothing has been computed yet: a lock that cannot be taken (held by another
+            // run, a read-only or full folder, a name too long, a file where a folder should
+            // be) is a refusal of the request, exit code 2.
+            let lock = OutputLock::acquire(path).map_err(|e| input(e.with_flag(flag)))?;
+            outputs.locks.push(lock);
         }
         Ok(outputs)
     }

@@ -2,7 +2,7 @@
 //! a requested accuracy needs. Every run's states go to a CSV; the summary (one shape for all
 //! three) is returned, and written as JSON when asked.
 
-use super::claim::{write_error, Outputs};
+use super::claim::Outputs;
 use super::open::{open_for, BackendRequest};
 use super::pulloff::{pulloff_to_file, Pulloff};
 use super::{failed, input, RunError, Watch};
@@ -224,7 +224,21 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
         ));
     }
     if let Some(p) = &req.summary {
-        summary.write_json(p).map_err(write_error("--summary"))?;
+        // The answer is computed and the states are written: a summary that cannot be
+        // written fails the run, but the answer is still given and the files already
+        // replaced are named.
+        if let Err(e) = summary.write_json(p) {
+            let written: Vec<String> = states.iter().map(|s| s.display().to_string()).collect();
+            let why = format!(
+                "{}; the states were written (complete): {}",
+                e.with_flag("--summary"),
+                written.join(", ")
+            );
+            failure = Some(match failure {
+                Some(f) => format!("{f}\n  {why}"),
+                None => why,
+            });
+        }
     }
     Ok(Simulated {
         summary,
