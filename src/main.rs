@@ -17,6 +17,15 @@ macro_rules! outln {
     };
 }
 
+/// `eprintln!` that never panics: a message standard error cannot take (a closed pipe, a full
+/// disk) is dropped, as there is nowhere else to say it.
+macro_rules! errln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 mod cli;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
@@ -183,7 +192,7 @@ fn install_signal_handlers() {
                 SIGTERM => "SIGTERM",
                 _ => "SIGHUP",
             };
-            eprintln!(
+            errln!(
                 "\njkrbem: stopped by {name}: outputs already finished are complete, unfinished \
                  ones were not written under their names (partial states keep their \
                  .incomplete-{} names)",
@@ -218,13 +227,13 @@ fn main() -> ExitCode {
     match (result, stdout_error) {
         (Ok(()), None) => ExitCode::SUCCESS,
         (Ok(()), Some(e)) => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             ExitCode::from(1)
         }
         (Err(e), stdout_error) => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             if let Some(s) = stdout_error {
-                eprintln!("error: {s}");
+                errln!("error: {s}");
             }
             e.exit_code()
         }

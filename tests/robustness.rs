@@ -1085,6 +1085,19 @@ mod round_two {
             assert!(!err.contains("panicked"), "{args:?}: {err}");
             assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
             assert!(err.contains("standard output"), "{args:?}: {err}");
+            // Standard error full: its messages are dropped, the run is not affected.
+            let full = std::fs::OpenOptions::new()
+                .write(true)
+                .open("/dev/full")
+                .unwrap();
+            let o = bin()
+                .args(args)
+                .current_dir(dir.path())
+                .stdout(Stdio::null())
+                .stderr(full)
+                .output()
+                .unwrap();
+            assert_eq!(o.status.code(), Some(0), "{args:?} with stderr full");
         }
         assert!(dir.path().join("s.csv").exists() && dir.path().join("t.csv").exists());
     }

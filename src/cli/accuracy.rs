@@ -53,7 +53,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         variants: args.variants,
         out: args.out,
     };
-    let done = accuracy(&req, &|line: &str| eprintln!("{line}")).map_err(run_error)?;
+    let done = accuracy(&req, &|line: &str| errln!("{line}")).map_err(run_error)?;
     outln!("reference: {}", done.reference);
     outln!("variant  backend  grid                         |min F̄|   error      wall (s)");
     for r in &done.rows {

@@ -65,7 +65,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         profile: args.profile,
         out: args.out,
     };
-    let done = bench(&req, &|line: &str| eprintln!("{line}")).map_err(run_error)?;
+    let done = bench(&req, &|line: &str| errln!("{line}")).map_err(run_error)?;
     for p in &done.profiles {
         out!("{}", bench_text::profile_text(p));
     }

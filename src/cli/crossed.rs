@@ -90,7 +90,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         jobs: args.jobs,
         out: args.out.clone(),
     };
-    let done = crossed(&request, &flag, &|line| eprintln!("jkrbem: {line}")).map_err(run_error)?;
+    let done = crossed(&request, &flag, &|line| errln!("jkrbem: {line}")).map_err(run_error)?;
     outln!("θ (deg)  R1/R2    F_ad                    JG F_ad    n_d");
     for r in &done.rows {
         let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4e}"));

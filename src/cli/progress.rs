@@ -47,7 +47,7 @@ impl Progress {
 
 impl Watch for Progress {
     fn note(&mut self, line: &str) {
-        eprintln!("jkrbem: {line}");
+        errln!("jkrbem: {line}");
     }
 
     fn pulloff_started(&mut self, model: &Model) {
@@ -76,7 +76,7 @@ impl Watch for Progress {
     }
 
     fn warning(&mut self, line: &str) {
-        eprintln!("jkrbem: warning: {line}");
+        errln!("jkrbem: warning: {line}");
     }
 }
 

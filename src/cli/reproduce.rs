@@ -40,7 +40,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         },
         jobs: args.jobs,
     };
-    let done = study(&req, &|line: &str| eprintln!("jkrbem: {line}")).map_err(run_error)?;
+    let done = study(&req, &|line: &str| errln!("jkrbem: {line}")).map_err(run_error)?;
     outln!(
         "report: {} ({} charts, {:.0} s)",
         done.index.display(),

@@ -310,7 +310,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let mut progress = Progress::new();
     let done = simulate(&request, &mut progress).map_err(run_error)?;
     if let Some(plan) = &done.plan {
-        eprintln!("jkrbem: {plan}");
+        errln!("jkrbem: {plan}");
     }
     out!("{}", done.summary.to_text());
     for path in &done.states {

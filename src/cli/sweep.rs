@@ -82,7 +82,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         jobs: args.jobs,
         out: args.out.clone(),
     };
-    let done = sweep(&request, &|line| eprintln!("jkrbem: {line}")).map_err(run_error)?;
+    let done = sweep(&request, &|line| errln!("jkrbem: {line}")).map_err(run_error)?;
     outln!("ratio   |min F̄|            JG      n_d    wall (s)");
     for r in &done.rows {
         let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4}"));
