@@ -1162,7 +1162,9 @@ mod round_two {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("afile"), "x").unwrap();
         let long = format!("{}.csv", "n".repeat(300));
-        for out in ["afile/s.csv", long.as_str()] {
+        // Fits the system's 255 bytes, but its partial-states name would not.
+        let longish = format!("{}.csv", "n".repeat(236));
+        for out in ["afile/s.csv", long.as_str(), longish.as_str()] {
             let mut args = SHORT.to_vec();
             args.extend(["--out", out]);
             let o = run_in(dir.path(), &args, NONE);
@@ -1171,6 +1173,14 @@ mod round_two {
             assert!(err.contains("--out"), "{err}");
         }
         assert_eq!(listing(dir.path()).len(), 1, "{:?}", listing(dir.path()));
+        // An output named as another's lock file (before: the summary was deleted with the
+        // lock at the end of the run, exit 0).
+        let mut args = SHORT.to_vec();
+        args.extend(["--out", "s.csv", "--summary", ".s.csv.lock"]);
+        let o = run_in(dir.path(), &args, NONE);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains("lock file of --out"), "{err}");
     }
 
     #[test]

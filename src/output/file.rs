@@ -118,8 +118,12 @@ fn check_link_owner(path: &Path, uid: u32) -> Result<(), OutputError> {
     }
 }
 
+/// The longest output file name (bytes): the lock, temporary and partial names beside it add
+/// up to 30 bytes to it, and a file name may have 255.
+pub const MAX_NAME_BYTES: usize = 225;
+
 /// Refuse a name that ends in `/` (or `/.`, `/..`): it names a folder, and the write would
-/// only fail after the work.
+/// only fail after the work; and a file name too long for the names written beside it.
 fn check_file_name(path: &Path) -> Result<(), OutputError> {
     let text = path.to_string_lossy();
     let folder_like = text.ends_with('/')
@@ -128,13 +132,23 @@ fn check_file_name(path: &Path) -> Result<(), OutputError> {
         || matches!(&*text, "." | "..")
         || path.file_name().is_none();
     if folder_like {
-        Err(refused(
+        return Err(refused(
             path,
             "the name ends in a folder, not a file: give a file name (e.g. out/states.csv)",
-        ))
-    } else {
-        Ok(())
+        ));
     }
+    let name_bytes = path.file_name().map_or(0, |n| n.len());
+    if name_bytes > MAX_NAME_BYTES {
+        return Err(refused(
+            path,
+            format!(
+                "the file name is {name_bytes} bytes long; at most {MAX_NAME_BYTES} (the \
+                 files written beside it, `.<name>.lock` and `<stem>.incomplete-<pid>.<ext>`, \
+                 need the rest of the system's 255)"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Refuse an existing target without write permission for its owner (as the shell's `>`

@@ -5,7 +5,7 @@
 //! [`crate::output::file`].
 
 use super::{failed, input, RunError};
-use crate::output::file::{check_target, OutputLock};
+use crate::output::file::{check_target, lock_path, OutputLock};
 use crate::output::OutputError;
 use std::path::{Path, PathBuf};
 
@@ -92,6 +92,18 @@ impl Outputs {
             }
             check_target(path).map_err(write_error(flag))?;
             seen.push((id, path, flag));
+        }
+        // An output named as another's lock file would be removed with the lock at the end.
+        for (id, path, flag) in &seen {
+            for (_, other, other_flag) in &seen {
+                if *id == identity(&lock_path(other)) {
+                    return Err(input(format!(
+                        "{flag} {} is the lock file of {other_flag} {}: give it another name",
+                        path.display(),
+                        other.display()
+                    )));
+                }
+            }
         }
         Ok(())
     }
