@@ -278,7 +278,12 @@ pub const CASES: &[Case] = &[
     (REFERENCE, &["--phases", "-1"], "--phases", NONE),
     (REFERENCE, &["--target", "-1%"], "--target", NONE),
     (REFERENCE, &["--max-grid", "-64"], "--max-grid", NONE),
-    (REFERENCE, &["--backend", "tpu"], "--backend", NONE),
+    (
+        &["reference", "--out", "ref/table.csv"],
+        &["--backend", "tpu"],
+        "--backend",
+        NONE,
+    ),
     // coverage
     (COVERAGE, &["--ratios", "-1"], "--ratio", NONE),
     (COVERAGE, &["--margins", "-0.1"], "--margins", NONE),
