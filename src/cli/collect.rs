@@ -1,6 +1,8 @@
 //! `jkrbem collect DIR`: merge the shard files sweep-shard-K-of-N.json of a split sweep into
-//! DIR/sweep.csv, after checking that they are of one sweep and that no ratio appears twice;
-//! missing and incomplete ratios are named by value. The work is
+//! DIR/sweep.csv, after checking that they are of one sweep, that no ratio appears twice and
+//! that each row holds what its ratio's own summary (beside the shards) says; missing and
+//! incomplete ratios are named by value, and rows that could not be checked or drawn are
+//! warned of. The work is
 //! [`jkrbem::run::sweep::collect_shards`].
 
 use super::{run_error, CliError};
@@ -31,6 +33,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
     );
     for p in &m.problems {
         println!("warning (--allow-missing): {p}");
+    }
+    for w in &m.warnings {
+        println!("warning: {w}");
     }
     println!(
         "charts written to {} and {}",

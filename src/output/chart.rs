@@ -84,7 +84,8 @@ impl LogLogChart {
     /// panel to its right.
     pub fn to_svg(&self) -> Result<String, String> {
         let width = legend_width(self.series.iter().map(|s| s.label.as_str()));
-        let size = with_legend(self.size, width, self.series.len());
+        let lines = legend_line_count(self.series.iter().map(|s| s.label.as_str()));
+        let size = with_legend(self.size, width, lines);
         render_svg(size, |root| {
             root.fill(&WHITE).map_err(|e| e.to_string())?;
             let (plot, legend) = root.split_horizontally(size.0 - width);
@@ -184,26 +185,68 @@ const LEGEND_SAMPLE: i32 = 36;
 /// Legend font size (pixels).
 const LEGEND_FONT: u32 = 14;
 
-/// The width (pixels) of a legend panel holding `labels`: the sample, and the text at an
-/// estimate of 0.5 em per character of a sans-serif font (a little above its mean).
+/// Most characters on one line of a legend label; a longer label wraps onto further lines.
+const LEGEND_LINE_CHARS: usize = 56;
+
+/// `label` cut into lines of at most [`LEGEND_LINE_CHARS`] characters, at spaces where it can
+/// be (a longer word is cut where it must), so that a long label (a sweep's list of grids, say)
+/// stays inside the picture.
+pub(crate) fn legend_lines(label: &str) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in label.split(' ') {
+        let mut word: Vec<char> = word.chars().collect();
+        let used = line.chars().count();
+        if used > 0 && used + 1 + word.len() <= LEGEND_LINE_CHARS {
+            line.push(' ');
+            line.extend(word.iter());
+            continue;
+        }
+        if used > 0 {
+            lines.push(std::mem::take(&mut line));
+        }
+        while word.len() > LEGEND_LINE_CHARS {
+            lines.push(word.drain(..LEGEND_LINE_CHARS).collect());
+        }
+        line = word.into_iter().collect();
+    }
+    if !line.is_empty() || lines.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
+/// The lines a legend of `labels` takes (see [`legend_lines`]).
+pub(crate) fn legend_line_count<'a>(labels: impl Iterator<Item = &'a str>) -> usize {
+    labels.map(|l| legend_lines(l).len()).sum()
+}
+
+/// The width (pixels) of a legend panel holding `labels`: the sample, and the text (its longest
+/// line, see [`legend_lines`]) at an estimate of 0.5 em per character of a sans-serif font (a
+/// little above its mean).
 pub(crate) fn legend_width<'a>(labels: impl Iterator<Item = &'a str>) -> u32 {
-    let chars = labels.map(|l| l.chars().count()).max().unwrap_or(0);
+    let chars = labels
+        .flat_map(legend_lines)
+        .map(|l| l.chars().count())
+        .max()
+        .unwrap_or(0);
     if chars == 0 {
         return 0;
     }
     let text = (chars as f64 * 0.5 * LEGEND_FONT as f64).ceil() as u32;
-    (12 + LEGEND_SAMPLE as u32 + 8 + text + 16).min(900)
+    12 + LEGEND_SAMPLE as u32 + 8 + text + 16
 }
 
 /// The picture's size for a chart area of `size` with a legend panel of `width` beside it,
-/// tall enough for `rows` legend rows.
-pub(crate) fn with_legend(size: (u32, u32), width: u32, rows: usize) -> (u32, u32) {
-    let needed = 40 + LEGEND_ROW as u32 * rows as u32 + 20;
+/// tall enough for `lines` legend lines ([`legend_line_count`]).
+pub(crate) fn with_legend(size: (u32, u32), width: u32, lines: usize) -> (u32, u32) {
+    let needed = 40 + LEGEND_ROW as u32 * lines as u32 + 20;
     (size.0 + width, size.1.max(needed))
 }
 
 /// Draw the legend in its own panel `area`, to the right of the plot, so that it never covers
-/// data: one row per entry, the sample drawn as the series is, then its label.
+/// data: one row per entry (more for a long label, see [`legend_lines`]), the sample drawn as
+/// the series is, then its label.
 pub(crate) fn draw_legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     entries: &[(String, Sample)],
@@ -213,13 +256,15 @@ pub(crate) fn draw_legend<DB: DrawingBackend>(
     }
     let (w, _) = area.dim_in_pixel();
     let top = 40;
-    let bottom = top + LEGEND_ROW * entries.len() as i32 + 8;
+    let lines = legend_line_count(entries.iter().map(|e| e.0.as_str()));
+    let bottom = top + LEGEND_ROW * lines as i32 + 8;
     area.draw(&Rectangle::new(
         [(4, top - 8), (w as i32 - 6, bottom)],
         BLACK.mix(0.4).stroke_width(1),
     ))?;
-    for (k, (label, sample)) in entries.iter().enumerate() {
-        let y = top + LEGEND_ROW * k as i32 + LEGEND_ROW / 2 - 4;
+    let mut row = 0;
+    for (label, sample) in entries {
+        let y = top + LEGEND_ROW * row + LEGEND_ROW / 2 - 4;
         let x0 = 12;
         let style = sample.color.stroke_width(2);
         match sample.line {
@@ -247,11 +292,17 @@ pub(crate) fn draw_legend<DB: DrawingBackend>(
                 area.draw(&Circle::new(at, r, style))?;
             }
         }
-        area.draw(&Text::new(
-            label.clone(),
-            (x0 + LEGEND_SAMPLE + 8, y - LEGEND_FONT as i32 / 2 + 1),
-            ("sans-serif", LEGEND_FONT).into_font(),
-        ))?;
+        for (k, line) in legend_lines(label).into_iter().enumerate() {
+            area.draw(&Text::new(
+                line,
+                (
+                    x0 + LEGEND_SAMPLE + 8,
+                    y + LEGEND_ROW * k as i32 - LEGEND_FONT as i32 / 2 + 1,
+                ),
+                ("sans-serif", LEGEND_FONT).into_font(),
+            ))?;
+            row += 1;
+        }
     }
     Ok(())
 }
@@ -328,7 +379,11 @@ fn axis(values: &[f64], data_ticks: bool) -> (std::ops::Range<f64>, Vec<f64>) {
 /// A tick value with three significant digits and no trailing zeros ("0.002", "1.5", "256");
 /// scientific notation outside [10⁻³, 10⁵).
 pub fn tick_label(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
+    if v == 0.0 {
+        // −0 (from arithmetic on the tick values) reads as 0.
+        return "0".into();
+    }
+    if !v.is_finite() {
         return format!("{v}");
     }
     let e = v.abs().log10().floor() as i32;
@@ -343,6 +398,14 @@ pub fn tick_label(v: f64) -> String {
     }
 }
 
+/// A tick value of a linear axis, rounded to three decimals ("0.25", "-1.5", "3"); a value
+/// that rounds to zero reads "0", never "-0".
+pub fn linear_tick_label(v: f64) -> String {
+    let rounded = (v * 1000.0).round() / 1000.0;
+    // Adding +0 turns −0 into +0 and leaves every other value as it is.
+    format!("{}", rounded + 0.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -354,6 +417,72 @@ mod tests {
         assert_eq!(tick_label(256.0), "256");
         assert_eq!(tick_label(20.0), "20");
         assert_eq!(tick_label(1e-5), "1e-5");
+    }
+
+    #[test]
+    fn no_tick_label_reads_minus_zero() {
+        // Before: a tick a rounding error below zero (−1e-17) read "-0" on the linear charts
+        // of `reproduce` (f_of_c.svg, f_of_d.svg, d_of_c.svg), and −0 read "-0" on log ones.
+        for v in [-0.0, -1e-17, -4e-4, -0.0004999, 1e-17, 0.0] {
+            assert_eq!(linear_tick_label(v), "0", "{v:e}");
+        }
+        assert_eq!(tick_label(-0.0), "0");
+        assert_eq!(linear_tick_label(-0.25), "-0.25");
+        assert_eq!(linear_tick_label(-0.0005), "-0.001");
+        assert_eq!(linear_tick_label(1.5), "1.5");
+        assert_eq!(linear_tick_label(-2.0), "-2");
+        // Ticks as an axis computes them (k steps from a start), many a rounding error off 0.
+        for (start, step) in [(-0.3, 0.1), (-0.35, 0.05), (-1.2, 0.2), (-0.07, 0.01)] {
+            for k in 0..=100 {
+                let t = linear_tick_label(start + k as f64 * step);
+                assert_ne!(t, "-0", "{start} + {k} × {step}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_long_legend_label_wraps_inside_the_picture() {
+        // Before: a 30-ratio sweep's label ran past the picture's right edge.
+        let grids = vec!["32"; 30].join(", ");
+        let label = format!("jkrbem at Δx → 0, ± stated uncertainty (Nx = {grids})");
+        let lines = legend_lines(&label);
+        assert!(lines.len() > 1, "{lines:?}");
+        assert!(lines.iter().all(|l| l.chars().count() <= LEGEND_LINE_CHARS));
+        assert_eq!(lines.join(" "), label, "wrapping keeps every word");
+        let long_word = "x".repeat(130);
+        let cut = legend_lines(&long_word);
+        assert_eq!(cut.concat(), long_word);
+        assert!(cut.iter().all(|l| l.chars().count() <= LEGEND_LINE_CHARS));
+        assert_eq!(legend_lines("short"), vec!["short"]);
+        let mut c = LogLogChart::new("t", "x", "y");
+        c.push(Series {
+            label,
+            points: vec![(1.0, 1.0), (2.0, 3.0)],
+            color: 0,
+            dashed: false,
+        });
+        let svg = c.to_svg().unwrap();
+        let width: f64 = svg
+            .split_once("width=\"")
+            .and_then(|(_, r)| r.split_once('"'))
+            .and_then(|(w, _)| w.parse().ok())
+            .unwrap();
+        for part in svg.split("<text").skip(1) {
+            let x: f64 = part
+                .split_once(" x=\"")
+                .and_then(|(_, r)| r.split_once('"'))
+                .and_then(|(x, _)| x.parse().ok())
+                .unwrap();
+            let text = part
+                .split_once('>')
+                .unwrap()
+                .1
+                .split("</text>")
+                .next()
+                .unwrap();
+            let right = x + text.trim().chars().count() as f64 * 0.5 * LEGEND_FONT as f64;
+            assert!(right <= width, "{text:?} ends at {right} > {width}");
+        }
     }
 
     #[test]

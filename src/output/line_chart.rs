@@ -4,7 +4,8 @@
 //! drawn with equal scales on both axes.
 
 use super::chart::{
-    draw_legend, legend_width, render_svg, with_legend, write_svg_document, Sample, PALETTE,
+    draw_legend, legend_line_count, legend_width, linear_tick_label, render_svg, with_legend,
+    write_svg_document, Sample, PALETTE,
 };
 use super::OutputError;
 use plotters::prelude::*;
@@ -111,7 +112,8 @@ impl LineChart {
     /// panel to its right.
     pub fn to_svg(&self) -> Result<String, String> {
         let width = legend_width(self.curves.iter().map(|c| c.label.as_str()));
-        let size = with_legend(self.size, width, self.curves.len());
+        let lines = legend_line_count(self.curves.iter().map(|c| c.label.as_str()));
+        let size = with_legend(self.size, width, lines);
         render_svg(size, |root| {
             root.fill(&WHITE).map_err(|e| e.to_string())?;
             let (plot, legend) = root.split_horizontally(size.0 - width);
@@ -282,8 +284,8 @@ impl LineChart {
             .x_label_area_size(X_LABELS)
             .y_label_area_size(Y_LABELS)
             .build_cartesian_2d(xr, yr)?;
-        let x_fmt = |v: &f64| format!("{}", (v * 1000.0).round() / 1000.0);
-        let y_fmt = |v: &f64| format!("{}", (v * 1000.0).round() / 1000.0);
+        let x_fmt = |v: &f64| linear_tick_label(*v);
+        let y_fmt = |v: &f64| linear_tick_label(*v);
         chart
             .configure_mesh()
             .x_desc(self.x_label.as_str())
@@ -461,6 +463,44 @@ mod tests {
         };
         assert_eq!(pieces(PALETTE[0]), 1, "the solid sample is one line");
         assert!(pieces(PALETTE[1]) >= 3, "the dashed sample is dashed");
+    }
+
+    #[test]
+    fn no_axis_reads_minus_zero() {
+        // Before: `reproduce --quick` drew "-0" ticks on f_of_c.svg, f_of_d.svg and
+        // d_of_c.svg, whose axes cross zero.
+        for (lo, hi) in [
+            (-0.3, 0.7),
+            (-0.55, 3.4),
+            (-1.3, 0.45),
+            (-0.07, 0.02),
+            (-0.62, 0.11),
+            (-2.1, 9.7),
+        ] {
+            let mut c = LineChart::new("t", "x", "y");
+            c.push(
+                "a line",
+                (0..=40)
+                    .map(|i| {
+                        let t = i as f64 / 40.0;
+                        (lo + (hi - lo) * t, hi - (hi - lo) * t * t)
+                    })
+                    .collect(),
+                0,
+                Style::Line,
+            );
+            let labels: Vec<String> = texts(&c.to_svg().unwrap())
+                .into_iter()
+                .map(|t| t.2)
+                .collect();
+            assert!(labels.iter().any(|t| t == "0"), "{lo}..{hi}: {labels:?}");
+            assert!(
+                !labels
+                    .iter()
+                    .any(|t| t.starts_with('-') && t.parse::<f64>() == Ok(0.0)),
+                "{lo}..{hi}: {labels:?}"
+            );
+        }
     }
 
     #[test]

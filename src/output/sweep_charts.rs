@@ -55,25 +55,64 @@ fn theory_curve(ratio: f64, d_max: f64) -> Vec<(f64, f64)> {
 
 /// F̄(d̄) of every ratio of a sweep (states read from `dir`), with the closed forms dashed.
 pub fn pulloff_curves_chart(dir: &Path, rows: &[SweepRow]) -> Result<LineChart, OutputError> {
+    pulloff_curves_chart_noting(dir, rows).map(|(chart, _)| chart)
+}
+
+/// The states file of `row` in `dir`: its complete file if that is a regular file, else its
+/// newest partial file; or why there is none, in words.
+fn states_file(dir: &Path, row: &SweepRow) -> Result<std::path::PathBuf, String> {
+    let name = format!("r{}-n{}.csv", row.ratio, row.grid);
+    let complete = dir.join(&name);
+    match std::fs::metadata(&complete) {
+        Ok(m) if m.is_file() => return Ok(complete),
+        Ok(_) => {
+            return Err(format!(
+                "{} is not a regular file (a FIFO, a device or a folder)",
+                complete.display()
+            ))
+        }
+        Err(_) => {}
+    }
+    newest_partial(dir, &name)
+        .filter(|p| p.metadata().is_ok_and(|m| m.is_file()))
+        .ok_or_else(|| format!("its states file {} is missing", complete.display()))
+}
+
+/// [`pulloff_curves_chart`], and one line per ratio whose states it could not draw (its
+/// states file missing or not a regular file): that ratio's legend entry says so and only
+/// its closed form is drawn.
+pub fn pulloff_curves_chart_noting(
+    dir: &Path,
+    rows: &[SweepRow],
+) -> Result<(LineChart, Vec<String>), OutputError> {
     let mut chart = LineChart::new(
         "Pull-off: force against approach (markers: jkrbem, dashed: JKR / JG)",
         "approach d̄ = d·Re/c_r²",
         "force F̄ = F/(3π Re Δγ)",
     );
+    let mut notes = Vec::new();
     for (i, r) in rows.iter().enumerate() {
-        let name = format!("r{}-n{}.csv", r.ratio, r.grid);
-        let complete = dir.join(&name);
-        let path = if complete.exists() {
-            Some(complete)
-        } else {
-            newest_partial(dir, &name)
-        };
         let mut d_max = 1.0;
-        if let Some(path) = path {
-            let label = format!("R1/R2 = {} ({}×{})", r.ratio, r.grid, r.ny);
-            let points = pulloff_points(&path)?;
-            d_max = points.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
-            chart.push(&label, points, i, Style::Markers);
+        let label = format!("R1/R2 = {} ({}×{})", r.ratio, r.grid, r.ny);
+        match states_file(dir, r) {
+            Ok(path) => {
+                let points = pulloff_points(&path)?;
+                d_max = points.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+                chart.push(&label, points, i, Style::Markers);
+            }
+            Err(why) => {
+                notes.push(format!(
+                    "R1/R2 = {}: {why}, so pulloff_curves.svg draws only its closed form \
+                     (its legend says so)",
+                    r.ratio
+                ));
+                chart.push(
+                    &format!("{label}: no states file"),
+                    Vec::new(),
+                    i,
+                    Style::Markers,
+                );
+            }
         }
         let reference = TheoryModel::adhesive_reference(r.ratio)
             .name()
@@ -85,7 +124,7 @@ pub fn pulloff_curves_chart(dir: &Path, rows: &[SweepRow]) -> Result<LineChart, 
             Style::Dashed,
         );
     }
-    Ok(chart)
+    Ok((chart, notes))
 }
 
 /// |min F̄| against R1/R2 (log axis): the sweep's points beside JG's pull-off force.
@@ -123,7 +162,6 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
             Style::Dashed,
         );
     }
-    let grids: Vec<String> = rows.iter().map(|r| r.grid.to_string()).collect();
     let errors = rows
         .iter()
         .filter(|r| r.f_ad_bar.is_some())
@@ -132,7 +170,7 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
     chart.push_with_errors(
         &format!(
             "jkrbem at Δx → 0, ± stated uncertainty (Nx = {})",
-            grids.join(", ")
+            grids_text(rows)
         ),
         sim,
         errors,
@@ -141,10 +179,30 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
     chart
 }
 
-/// Write `force_vs_ratio.svg` and `pulloff_curves.svg` into `dir`.
-pub fn write_sweep_charts(dir: &Path, rows: &[SweepRow]) -> Result<(), OutputError> {
+/// The grids Nx of a sweep's rows in a few words: each distinct one ("64, 128") when there are
+/// at most four, else their range ("64 to 2048, 9 grids").
+fn grids_text(rows: &[SweepRow]) -> String {
+    let mut grids: Vec<usize> = rows.iter().map(|r| r.grid).collect();
+    grids.sort_unstable();
+    grids.dedup();
+    match grids.as_slice() {
+        [] => "—".into(),
+        g if g.len() <= 4 => g
+            .iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
+        g => format!("{} to {}, {} grids", g[0], g[g.len() - 1], g.len()),
+    }
+}
+
+/// Write `force_vs_ratio.svg` and `pulloff_curves.svg` into `dir`; returns one line per ratio
+/// whose pull-off curve could not be drawn (see [`pulloff_curves_chart_noting`]).
+pub fn write_sweep_charts(dir: &Path, rows: &[SweepRow]) -> Result<Vec<String>, OutputError> {
     force_vs_ratio_chart(rows).write_svg(&dir.join("force_vs_ratio.svg"))?;
-    pulloff_curves_chart(dir, rows)?.write_svg(&dir.join("pulloff_curves.svg"))
+    let (chart, notes) = pulloff_curves_chart_noting(dir, rows)?;
+    chart.write_svg(&dir.join("pulloff_curves.svg"))?;
+    Ok(notes)
 }
 
 #[cfg(test)]

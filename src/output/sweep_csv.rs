@@ -5,13 +5,18 @@
 //! of `--ratios` in order, the grid, the load steps, c̄0 and the margin), its own position K of
 //! N, the ratios it was given, and one row per ratio it ran. A shard given no ratio (more
 //! shards than ratios) writes the same file with no rows, so it is told apart from a truncated
-//! one. [`collect`] refuses shards of different sweeps, a ratio found twice, and files that are
-//! not shards, and names the ratios that are missing or incomplete.
+//! one. [`collect`] refuses shards of different sweeps, a ratio found twice, ratios outside
+//! [1, [`MAX_RATIO`]], shard counts above [`MAX_SHARDS`], and files that are not shards (only
+//! regular files of at most [`MAX_SHARD_BYTES`] are read, so a FIFO or a device named as a shard
+//! neither blocks nor fills memory), and names the ratios that are missing or incomplete.
+//! [`check_row`] holds a merged row against the per-ratio summary its run wrote beside it.
 
 use super::file;
 use super::summary::Summary;
 use super::OutputError;
+use crate::scene::MAX_RATIO;
 use serde::{Deserialize, Serialize};
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 /// One ratio of a sweep (normalised quantities per physics §2).
@@ -214,6 +219,8 @@ pub struct Collected {
     pub sweep: SweepSettings,
     /// All rows found, sorted by ratio.
     pub rows: Vec<SweepRow>,
+    /// The shard file of each row, in the order of `rows`.
+    pub row_files: Vec<PathBuf>,
     /// Shard count N.
     pub shards: usize,
     /// Shards (1-based) whose file is missing.
@@ -248,14 +255,142 @@ pub enum CollectError {
         /// The files (and how often) it appears in.
         where_: String,
     },
+    /// A shard's row disagrees with the summary its ratio's run wrote.
+    #[error(
+        "R1/R2 = {ratio}: the row in {shard} does not match the ratio's own summary {summary}: \
+         {why}; the shard file was edited or is of another run (run the shard again)"
+    )]
+    Mismatch {
+        /// The ratio.
+        ratio: f64,
+        /// The shard file holding the row.
+        shard: String,
+        /// The per-ratio summary.
+        summary: String,
+        /// The fields that differ, with both values.
+        why: String,
+    },
 }
 
-/// (k, n) from "sweep-shard-K-of-N.json".
-fn parse_shard_name(name: &str) -> Option<(usize, usize)> {
+/// The largest shard file [`collect`] reads (bytes). A shard records at most
+/// [`MAX_SWEEP_RATIOS`] ratios and rows, well under a megabyte; a larger file is not a shard.
+pub const MAX_SHARD_BYTES: u64 = 16 << 20;
+
+/// The largest per-ratio summary [`check_row`] reads (bytes); a summary is a few kilobytes.
+pub const MAX_SUMMARY_BYTES: u64 = 16 << 20;
+
+/// The most ratios a sweep holds (`sweep --ratios` takes 1 to this many).
+pub const MAX_SWEEP_RATIOS: usize = 1000;
+
+/// `O_NONBLOCK` of the platform's `open(2)`: a FIFO opened with it does not wait for a writer.
+#[cfg(all(
+    any(target_os = "linux", target_os = "android"),
+    not(any(
+        target_arch = "mips",
+        target_arch = "mips64",
+        target_arch = "sparc",
+        target_arch = "sparc64"
+    ))
+))]
+const O_NONBLOCK: i32 = 0o4000;
+#[cfg(all(
+    any(target_os = "linux", target_os = "android"),
+    any(target_arch = "mips", target_arch = "mips64")
+))]
+const O_NONBLOCK: i32 = 0x80;
+#[cfg(all(
+    any(target_os = "linux", target_os = "android"),
+    any(target_arch = "sparc", target_arch = "sparc64")
+))]
+const O_NONBLOCK: i32 = 0x4000;
+#[cfg(all(unix, not(any(target_os = "linux", target_os = "android"))))]
+const O_NONBLOCK: i32 = 0x0004;
+
+/// Open `path` for reading without blocking on a FIFO.
+#[cfg(unix)]
+fn open_nonblocking(path: &Path) -> std::io::Result<std::fs::File> {
+    use std::os::unix::fs::OpenOptionsExt;
+    std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(O_NONBLOCK)
+        .open(path)
+}
+
+/// Open `path` for reading.
+#[cfg(not(unix))]
+fn open_nonblocking(path: &Path) -> std::io::Result<std::fs::File> {
+    std::fs::File::open(path)
+}
+
+/// Why [`read_regular`] read nothing.
+#[derive(Debug)]
+enum ReadError {
+    /// No file of that name.
+    Absent,
+    /// Not a regular file, too large, or unreadable: the reason in words.
+    Refused(String),
+}
+
+/// The bytes of the regular file `path`, at most `limit` of them. Anything else (a FIFO, a
+/// device such as /dev/zero, a folder) is refused before it is opened and again, by the open
+/// file's own metadata, after (so that one swapped in between cannot block or fill memory);
+/// the file is opened non-blocking and read no further than `limit` + 1 bytes.
+fn read_regular(path: &Path, limit: u64) -> Result<Vec<u8>, ReadError> {
+    let not_regular = || {
+        ReadError::Refused(
+            "not a regular file (a FIFO, a device or a folder); only regular files are read".into(),
+        )
+    };
+    let io = |e: std::io::Error| match e.kind() {
+        std::io::ErrorKind::NotFound => ReadError::Absent,
+        _ => ReadError::Refused(e.to_string()),
+    };
+    if !std::fs::metadata(path).map_err(io)?.is_file() {
+        return Err(not_regular());
+    }
+    let file = open_nonblocking(path).map_err(io)?;
+    if !file.metadata().map_err(io)?.is_file() {
+        return Err(not_regular());
+    }
+    let mut bytes = Vec::new();
+    file.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| ReadError::Refused(e.to_string()))?;
+    if bytes.len() as u64 > limit {
+        return Err(ReadError::Refused(format!(
+            "larger than {} MiB, more than any file of its kind holds",
+            limit >> 20
+        )));
+    }
+    Ok(bytes)
+}
+
+/// (k, n) from "sweep-shard-K-of-N.json": `None` for a name of another form (a partial file,
+/// say), `Some(Err)` for a shard's name with K outside 1..=N or N above [`MAX_SHARDS`] (the
+/// shard counts `sweep --shard` accepts), so that such a file is refused before anything is
+/// allocated for its N.
+fn parse_shard_name(name: &str) -> Option<Result<(usize, usize), String>> {
     let rest = name.strip_prefix("sweep-shard-")?.strip_suffix(".json")?;
     let (k, n) = rest.split_once("-of-")?;
-    let (k, n) = (k.parse().ok()?, n.parse().ok()?);
-    (1..=n).contains(&k).then_some((k, n))
+    let digits = |t: &str| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
+    if !digits(k) || !digits(n) {
+        return None;
+    }
+    let (k, n) = match (k.parse::<usize>(), n.parse::<usize>()) {
+        (Ok(k), Ok(n)) if n <= MAX_SHARDS => (k, n),
+        _ => {
+            return Some(Err(format!(
+                "it names N = {n} shards; a sweep is split into at most {MAX_SHARDS} \
+                 (--shard K/N)"
+            )))
+        }
+    };
+    if !(1..=n).contains(&k) {
+        return Some(Err(format!(
+            "it names shard {k} of {n}; K must be in 1..=N"
+        )));
+    }
+    Some(Ok((k, n)))
 }
 
 /// The settings that differ between two sweeps, in words.
@@ -295,7 +430,12 @@ fn difference(a: &SweepSettings, b: &SweepSettings) -> String {
 fn read_shard(path: &Path, (k, n): (usize, usize)) -> Result<Shard, CollectError> {
     let shown = path.display().to_string();
     let corrupt = |why: String| CollectError::Corrupt(shown.clone(), why);
-    let text = std::fs::read_to_string(path).map_err(|e| corrupt(e.to_string()))?;
+    let bytes = read_regular(path, MAX_SHARD_BYTES).map_err(|e| match e {
+        ReadError::Absent => corrupt("it was removed while being read".into()),
+        ReadError::Refused(why) => corrupt(why),
+    })?;
+    let text =
+        String::from_utf8(bytes).map_err(|_| corrupt("it is not UTF-8 text (JSON)".into()))?;
     if text.trim().is_empty() {
         return Err(corrupt(
             "the file is empty (a shard with no ratios still records its sweep); run the shard again"
@@ -306,6 +446,28 @@ fn read_shard(path: &Path, (k, n): (usize, usize)) -> Result<Shard, CollectError
         .map_err(|e| corrupt(format!("{e} (truncated or edited?); run the shard again")))?;
     if shard.format != SHARD_FORMAT {
         return Err(corrupt(format!("unknown format {:?}", shard.format)));
+    }
+    let ratios = &shard.sweep.ratios;
+    if ratios.is_empty() || ratios.len() > MAX_SWEEP_RATIOS {
+        return Err(corrupt(format!(
+            "its sweep has {} ratios; a sweep has 1 to {MAX_SWEEP_RATIOS} (--ratios)",
+            ratios.len()
+        )));
+    }
+    if let Some(r) = ratios.iter().find(|r| !(1.0..=MAX_RATIO).contains(*r)) {
+        return Err(corrupt(format!(
+            "its sweep has R1/R2 = {r}, outside [1, {MAX_RATIO}] (the range of --ratios)"
+        )));
+    }
+    if let Some(r) = shard
+        .rows
+        .iter()
+        .find(|r| !(1.0..=MAX_RATIO).contains(&r.ratio))
+    {
+        return Err(corrupt(format!(
+            "it has a row for R1/R2 = {}, outside [1, {MAX_RATIO}] (the range of --ratios)",
+            r.ratio
+        )));
     }
     if (shard.shard, shard.of) != (k, n) {
         return Err(corrupt(format!(
@@ -347,8 +509,10 @@ pub fn collect(dir: &Path) -> Result<Collected, CollectError> {
             .map_err(|e| CollectError::Io(shown.clone(), e))?
             .path();
         let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-        if let Some(kn) = name.as_deref().and_then(parse_shard_name) {
-            found.push((kn, path));
+        match name.as_deref().and_then(parse_shard_name) {
+            Some(Ok(kn)) => found.push((kn, path)),
+            Some(Err(why)) => return Err(CollectError::Corrupt(path.display().to_string(), why)),
+            None => {}
         }
     }
     if found.is_empty() {
@@ -391,7 +555,6 @@ pub fn collect(dir: &Path) -> Result<Collected, CollectError> {
             where_: format!("twice in the sweep's --ratios {:?}", sweep.ratios),
         });
     }
-    let mut rows: Vec<SweepRow> = Vec::new();
     for &ratio in &sweep.ratios {
         let holders: Vec<String> = shards
             .iter()
@@ -409,10 +572,12 @@ pub fn collect(dir: &Path) -> Result<Collected, CollectError> {
             });
         }
     }
-    for (s, _) in &shards {
-        rows.extend(s.rows.iter().cloned());
+    let mut sourced: Vec<(SweepRow, PathBuf)> = Vec::new();
+    for (s, path) in &shards {
+        sourced.extend(s.rows.iter().map(|r| (r.clone(), path.to_path_buf())));
     }
-    rows.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
+    sourced.sort_by(|a, b| a.0.ratio.total_cmp(&b.0.ratio));
+    let (rows, row_files): (Vec<SweepRow>, Vec<PathBuf>) = sourced.into_iter().unzip();
     let missing_shards = (1..=n)
         .filter(|k| !shards.iter().any(|(s, _)| s.shard == *k))
         .collect();
@@ -430,11 +595,139 @@ pub fn collect(dir: &Path) -> Result<Collected, CollectError> {
     Ok(Collected {
         sweep,
         rows,
+        row_files,
         shards: n,
         missing_shards,
         missing,
         incomplete,
     })
+}
+
+/// The fields of a per-ratio summary (see [`Summary`]) that a sweep row copies
+/// ([`SweepRow::from_summary`]); the rest of the summary is not read.
+#[derive(Debug, Deserialize)]
+struct SummaryFields {
+    ratio: f64,
+    estimate: Option<String>,
+    f_ad_bar: Option<f64>,
+    f_ad_bar_uncertainty: Option<f64>,
+    c_bar_at_min: Option<f64>,
+    d_bar_at_min: Option<f64>,
+    jg_f_ad_bar: Option<f64>,
+    min_reached: bool,
+    complete: bool,
+    runs: Vec<RunFields>,
+}
+
+/// The fields of one run of a summary that a sweep row copies from its finest run.
+#[derive(Debug, Deserialize)]
+struct RunFields {
+    nx: usize,
+    ny: usize,
+    dx: Option<f64>,
+    n_d: Option<f64>,
+}
+
+/// What [`check_row`] found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RowCheck {
+    /// The row holds what its ratio's summary says.
+    Agrees,
+    /// There is no summary to check it against (the shard's files were not copied beside it).
+    NoSummary,
+}
+
+/// Whether two numbers of a row and its summary are the same (to a relative 1e-9, so that a
+/// tool that re-prints the JSON with fewer digits is not taken for an edit).
+fn same(a: Option<f64>, b: Option<f64>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => a == b || (a - b).abs() <= 1e-9 * a.abs().max(b.abs()),
+        _ => false,
+    }
+}
+
+/// A number for a message: "0.9" or "none".
+fn shown(v: Option<f64>) -> String {
+    v.map_or("none".into(), |v| v.to_string())
+}
+
+/// Check `row`, read from the shard file `shard`, against the summary its ratio's run wrote
+/// (`summary`, the `.json` beside its states): every value the row copies from it (the
+/// estimate of |min F̄| and its uncertainty, c̄ and d̄ at the minimum, JG's value, n_d, the
+/// grid, Δx, and whether the run completed and reached the minimum) must be the summary's.
+/// A summary that is absent is [`RowCheck::NoSummary`]; one that is not a regular file, is
+/// larger than [`MAX_SUMMARY_BYTES`], is not a summary, or disagrees is an error naming the
+/// ratio and both files.
+pub fn check_row(row: &SweepRow, shard: &Path, summary: &Path) -> Result<RowCheck, CollectError> {
+    let summary_shown = summary.display().to_string();
+    let corrupt = |why: String| {
+        CollectError::Corrupt(
+            summary_shown.clone(),
+            format!(
+                "{why} (the summary of R1/R2 = {}, read to check {})",
+                row.ratio,
+                shard.display()
+            ),
+        )
+    };
+    let bytes = match read_regular(summary, MAX_SUMMARY_BYTES) {
+        Ok(bytes) => bytes,
+        Err(ReadError::Absent) => return Ok(RowCheck::NoSummary),
+        Err(ReadError::Refused(why)) => return Err(corrupt(why)),
+    };
+    let s: SummaryFields = serde_json::from_slice(&bytes)
+        .map_err(|e| corrupt(format!("not a jkrbem summary: {e}")))?;
+    let finest = s.runs.last();
+    let mut differ = Vec::new();
+    let mut num = |name: &str, got: Option<f64>, want: Option<f64>| {
+        if !same(got, want) {
+            differ.push(format!("{name} = {} against {}", shown(got), shown(want)));
+        }
+    };
+    num("ratio", Some(row.ratio), Some(s.ratio));
+    num("f_ad_bar", row.f_ad_bar, s.f_ad_bar);
+    num(
+        "f_ad_bar_uncertainty",
+        row.f_ad_bar_uncertainty,
+        s.f_ad_bar_uncertainty,
+    );
+    num("c_bar_at_min", row.c_bar_at_min, s.c_bar_at_min);
+    num("d_bar_at_min", row.d_bar_at_min, s.d_bar_at_min);
+    num("jg_f_ad_bar", row.jg_f_ad_bar, s.jg_f_ad_bar);
+    num("n_d", row.n_d, finest.and_then(|r| r.n_d));
+    num("dx", Some(row.dx), finest.map_or(Some(0.0), |r| r.dx));
+    let grid = finest.map_or((0, 0), |r| (r.nx, r.ny));
+    if (row.grid, row.ny) != grid {
+        differ.push(format!(
+            "grid {}×{} against {}×{}",
+            row.grid, row.ny, grid.0, grid.1
+        ));
+    }
+    if row.estimate != s.estimate {
+        differ.push(format!(
+            "estimate = {:?} against {:?}",
+            row.estimate, s.estimate
+        ));
+    }
+    for (name, got, want) in [
+        ("complete", row.complete, s.complete),
+        ("min_reached", row.min_reached, s.min_reached),
+    ] {
+        if got != want {
+            differ.push(format!("{name} = {got} against {want}"));
+        }
+    }
+    if differ.is_empty() {
+        Ok(RowCheck::Agrees)
+    } else {
+        Err(CollectError::Mismatch {
+            ratio: row.ratio,
+            shard: shard.display().to_string(),
+            summary: summary_shown,
+            why: differ.join(", "),
+        })
+    }
 }
 
 /// Parse a shard "K/N" (1 ≤ K ≤ N ≤ [`MAX_SHARDS`]).

@@ -130,7 +130,7 @@ pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepD
     let results = run_jobs(jobs, req.jobs, req.backend, lines);
     let rows: Vec<SweepRow> = results.iter().map(|r| r.row()).collect();
     let failures = results.iter().filter_map(|r| r.error.clone()).collect();
-    let warnings = results.iter().flat_map(|r| r.warnings()).collect();
+    let mut warnings: Vec<String> = results.iter().flat_map(|r| r.warnings()).collect();
     match req.shard {
         Some(kn) => {
             let (grid, accuracy) = match req.grid {
@@ -154,7 +154,7 @@ pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepD
     let mut sorted = rows;
     sorted.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
     let charts = if req.shard.is_none() {
-        write_sweep_charts(&req.out, &sorted).map_err(write_error("--out"))?;
+        warnings.extend(write_sweep_charts(&req.out, &sorted).map_err(write_error("--out"))?);
         Some(chart_files(&req.out))
     } else {
         None
@@ -183,6 +183,34 @@ pub struct Merged {
     pub charts: [PathBuf; 2],
     /// What is missing or incomplete (merged anyway with `allow_missing`).
     pub problems: Vec<String>,
+    /// What was merged but could not be checked or drawn: usable rows with no per-ratio
+    /// summary to check them against, ratios whose states file is missing from the pull-off
+    /// chart. One line each.
+    pub warnings: Vec<String>,
+}
+
+/// Check every merged row of `c` against the summary its ratio's run wrote beside the shards
+/// ([`sweep_csv::check_row`]): a row that disagrees stops the merge (naming the ratio and both
+/// files). Returns the usable rows that have no summary, with the file looked for. The row of
+/// a pull-off that failed before it had a summary ([`SweepRow::failed`]) is not checked: a
+/// summary of that name is an older run's, and the row is reported as incomplete anyway.
+fn check_rows(dir: &Path, c: &sweep_csv::Collected) -> Result<Vec<(f64, PathBuf)>, RunError> {
+    let mut unchecked = Vec::new();
+    for (row, shard) in c.rows.iter().zip(&c.row_files) {
+        if row.backend.is_empty() && !row.is_usable() {
+            continue;
+        }
+        let summary = states_path(dir, row.ratio, row.grid).with_extension("json");
+        match sweep_csv::check_row(row, shard, &summary).map_err(super::failed)? {
+            sweep_csv::RowCheck::Agrees => {}
+            sweep_csv::RowCheck::NoSummary => {
+                if row.is_usable() {
+                    unchecked.push((row.ratio, summary));
+                }
+            }
+        }
+    }
+    Ok(unchecked)
 }
 
 /// Ratios as text: "2, 25".
@@ -201,10 +229,12 @@ pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunErro
     use crate::output::sweep_csv::CollectError;
     let c = sweep_csv::collect(dir).map_err(|e| match e {
         CollectError::Empty(_) | CollectError::Io(..) => input(e),
-        CollectError::Corrupt(..) | CollectError::Mixed(..) | CollectError::Duplicate { .. } => {
-            super::failed(e)
-        }
+        CollectError::Corrupt(..)
+        | CollectError::Mixed(..)
+        | CollectError::Duplicate { .. }
+        | CollectError::Mismatch { .. } => super::failed(e),
     })?;
+    let unchecked = check_rows(dir, &c)?;
     let mut problems = Vec::new();
     if !c.missing.is_empty() {
         problems.push(format!(
@@ -239,7 +269,21 @@ pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunErro
     targets.extend(charts.iter().cloned());
     let _claimed = Outputs::claim(&named("DIR", &targets))?;
     sweep_csv::write_rows(&path, &c.rows).map_err(write_error("DIR"))?;
-    write_sweep_charts(dir, &c.rows).map_err(write_error("DIR"))?;
+    let mut warnings = Vec::new();
+    if !unchecked.is_empty() {
+        warnings.push(format!(
+            "R1/R2 = {}: no per-ratio summary ({}) beside the shards, so their rows were not \
+             checked against it (copy each shard's r<ratio>-n<grid>.* files into {} to check them)",
+            listed(&unchecked.iter().map(|u| u.0).collect::<Vec<_>>()),
+            unchecked
+                .iter()
+                .map(|u| u.1.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            dir.display()
+        ));
+    }
+    warnings.extend(write_sweep_charts(dir, &c.rows).map_err(write_error("DIR"))?);
     Ok(Merged {
         rows: c.rows.len(),
         shards_found: c.shards - c.missing_shards.len(),
@@ -247,5 +291,6 @@ pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunErro
         path,
         charts,
         problems,
+        warnings,
     })
 }
