@@ -655,6 +655,19 @@ fn a_sweep_whose_runs_cannot_be_written_lists_every_ratio_as_incomplete() {
         );
     }
     assert!(!dir.path().join("sw/r1-n32.csv").exists());
+    // Before: the error was a CSV parse error of the sweep's own cut-off partial file (read
+    // back for the curves chart), hiding the write errors.
+    assert!(
+        !err.contains("CSV error") && !err.contains("found record"),
+        "{err}"
+    );
+    for ratio in ["R1/R2 = 1:", "R1/R2 = 2:"] {
+        assert!(
+            err.lines()
+                .any(|l| l.contains(ratio) && l.contains("File too large")),
+            "{err}"
+        );
+    }
 }
 
 #[test]

@@ -24,7 +24,7 @@ pub struct Args {
 /// Run `jkrbem collect`.
 pub fn run(args: Args) -> Result<(), CliError> {
     let m = collect_shards(&args.dir, args.allow_missing).map_err(run_error)?;
-    println!(
+    outln!(
         "merged {} ratio(s) from {} of {} shard(s) into {}",
         m.rows,
         m.shards_found,
@@ -32,12 +32,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
         m.path.display()
     );
     for p in &m.problems {
-        println!("warning (--allow-missing): {p}");
+        outln!("warning (--allow-missing): {p}");
     }
     for w in &m.warnings {
-        println!("warning: {w}");
+        outln!("warning: {w}");
     }
-    println!(
+    outln!(
         "charts written to {} and {}",
         m.charts[0].display(),
         m.charts[1].display()

@@ -60,7 +60,12 @@ pub struct Args {
 
 /// Run `jkrbem sweep`.
 pub fn run(args: Args) -> Result<(), CliError> {
-    count_in("--ratios", args.ratios.len(), 1, 1000)?;
+    count_in(
+        "--ratios",
+        args.ratios.len(),
+        1,
+        jkrbem::output::sweep_csv::MAX_SWEEP_RATIOS,
+    )?;
     no_repeats("--ratios", &args.ratios)?;
     let shard = args
         .shard
@@ -111,9 +116,14 @@ pub fn run(args: Args) -> Result<(), CliError> {
     if let Some([a, b]) = &done.charts {
         outln!("charts written to {} and {}", a.display(), b.display());
     }
-    super::failures(
+    let pulloffs = super::failures(
         "pull-offs",
         &done.failures,
         " (marked complete = false in the summary)",
-    )
+    );
+    match (&done.charts_error, pulloffs) {
+        (None, result) => result,
+        (Some(e), Ok(())) => Err(super::failed(format!("the charts: {e}"))),
+        (Some(e), Err(runs)) => Err(super::failed(format!("{runs}\n  and the charts: {e}"))),
+    }
 }

@@ -2,7 +2,6 @@
 //! JKR/JG, and the adhesive force |min F̄| against R1/R2 beside JG.
 
 use super::line_chart::{LineChart, Style};
-use super::states_csv::read_states;
 use super::sweep_csv::SweepRow;
 use super::OutputError;
 use crate::theory::{self, TheoryModel};
@@ -12,17 +11,25 @@ use std::path::Path;
 const THEORY_POINTS: usize = 300;
 
 /// (d̄, F̄) of the pull-off and onset states in a states CSV.
+///
+/// The file may be a run's partial states, cut off mid-row by a write error: the rows up to the
+/// first one that is not whole (fewer fields than the header) are read, and the rest ignored.
 pub fn pulloff_points(states_csv: &Path) -> Result<Vec<(f64, f64)>, OutputError> {
-    let records = read_states(states_csv)?;
-    let header = csv::Reader::from_path(states_csv)
-        .and_then(|mut r| r.headers().cloned())
+    let mut reader = csv::ReaderBuilder::new()
+        .flexible(true)
+        .from_path(states_csv)
+        .map_err(|e| OutputError::csv(states_csv, e))?;
+    let header = reader
+        .headers()
+        .cloned()
         .map_err(|e| OutputError::csv(states_csv, e))?;
     let col = |name: &str| header.iter().position(|h| h == name);
     let (Some(phase), Some(d), Some(f)) = (col("phase"), col("d_bar"), col("f_bar")) else {
         return Ok(Vec::new());
     };
-    Ok(records
-        .iter()
+    Ok(reader
+        .records()
+        .map_while(|r| r.ok().filter(|r| r.len() == header.len()))
         .filter(|r| r.get(phase) != Some("approach"))
         .filter_map(|r| Some((r.get(d)?.parse().ok()?, r.get(f)?.parse().ok()?)))
         .collect())
@@ -208,6 +215,27 @@ pub fn write_sweep_charts(dir: &Path, rows: &[SweepRow]) -> Result<Vec<String>, 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_states_file_cut_off_mid_row_gives_its_whole_rows() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("r1-n32.incomplete-7.csv");
+        let header = crate::output::states_csv::HEADER;
+        let row = |d: f64, f: f64| {
+            format!("1,pulloff,0,0,0,0,0,0,0,0,0,{d},{f},0,0,0,0,0,near-minimum\n")
+        };
+        // The third row was cut off by a write error.
+        let text = format!(
+            "{header}\n{}{}1,pulloff,0,0,0,0,0,0,0,0,0,0.5,-0.4",
+            row(1.0, -0.1),
+            row(0.9, -0.2)
+        );
+        std::fs::write(&path, text).unwrap();
+        assert_eq!(
+            pulloff_points(&path).unwrap(),
+            vec![(1.0, -0.1), (0.9, -0.2)]
+        );
+    }
 
     #[test]
     fn the_fitted_law_is_written_with_proper_signs() {

@@ -46,6 +46,8 @@ pub struct SweepDone {
     pub ran: usize,
     /// Why pull-offs failed, one line each.
     pub failures: Vec<String>,
+    /// Why the charts could not be drawn or written (after `sweep.csv` was), if they could not.
+    pub charts_error: Option<String>,
     /// Every ratio's warnings (coarse grid, missed target, CG retries), one line each.
     pub warnings: Vec<String>,
 }
@@ -129,7 +131,7 @@ pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepD
     let ran = jobs.len();
     let results = run_jobs(jobs, req.jobs, req.backend, lines);
     let rows: Vec<SweepRow> = results.iter().map(|r| r.row()).collect();
-    let failures = results.iter().filter_map(|r| r.error.clone()).collect();
+    let failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
     let mut warnings: Vec<String> = results.iter().flat_map(|r| r.warnings()).collect();
     match req.shard {
         Some(kn) => {
@@ -153,9 +155,20 @@ pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepD
     }
     let mut sorted = rows;
     sorted.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
+    // The charts come last: one that cannot be drawn or written is reported beside the runs'
+    // own failures (which it must not hide); sweep.csv is already written.
+    let mut charts_error = None;
     let charts = if req.shard.is_none() {
-        warnings.extend(write_sweep_charts(&req.out, &sorted).map_err(write_error("--out"))?);
-        Some(chart_files(&req.out))
+        match write_sweep_charts(&req.out, &sorted) {
+            Ok(w) => {
+                warnings.extend(w);
+                Some(chart_files(&req.out))
+            }
+            Err(e) => {
+                charts_error = Some(e.with_flag("--out").to_string());
+                None
+            }
+        }
     } else {
         None
     };
@@ -165,6 +178,7 @@ pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepD
         charts,
         ran,
         failures,
+        charts_error,
         warnings,
     })
 }
