@@ -264,6 +264,52 @@ pub fn coarsest_resolving_grid(scene: &Scene, base: &ModelOptions) -> Result<usi
     Ok(plan.grids[0])
 }
 
+/// Grids of an extrapolation that names none: the coarsest that resolves the scene and its
+/// doublings (three: the fit's model term needs three).
+pub const EXTRAPOLATION_LEVELS: usize = 3;
+
+/// The grids Nx of an extrapolation of `scene` with the user's `base` options when none are
+/// given: the coarsest grid (from [`MIN_PLAN_GRID`], doubling) that the model accepts and that
+/// is predicted to resolve the contact at the force minimum (n_d ≥ [`MIN_PLAN_N_D`], as the
+/// planner asks of every grid it takes: re-gridded if `base.regrid`, else on the initial
+/// Δx), and its doublings, [`EXTRAPOLATION_LEVELS`] grids in all. A scene no grid up to
+/// [`MAX_GRID`] resolves so is refused, naming `--extrapolate-grids`.
+pub fn extrapolation_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usize>, ModelError> {
+    let top = MAX_GRID >> (EXTRAPOLATION_LEVELS - 1);
+    let mut nx = MIN_PLAN_GRID;
+    while nx <= top {
+        let options = ModelOptions {
+            nx,
+            ny: None,
+            ..base.clone()
+        };
+        match Model::build(scene, &options) {
+            Err(ModelError::TooCoarse { .. }) => {}
+            Err(e) => return Err(e),
+            Ok(model) => {
+                let n_d = if base.regrid {
+                    predicted_n_d(&model)
+                } else {
+                    closed_form_width(&model)
+                };
+                if n_d >= MIN_PLAN_N_D {
+                    return Ok((0..EXTRAPOLATION_LEVELS).map(|i| nx << i).collect());
+                }
+            }
+        }
+        nx *= 2;
+    }
+    Err(ModelError::Invalid {
+        flag: "--extrapolate-grids",
+        value: "(not given)".into(),
+        expected: format!(
+            "grids that resolve R1/R2 = {}: no {EXTRAPOLATION_LEVELS} doubling grids up to {MAX_GRID} \
+             start fine enough; give --extrapolate-grids, or a smaller --margin or --start-radius",
+            compact(scene.ratio())
+        ),
+    })
+}
+
 /// The memory this machine can give a run (bytes): the smallest of the memory available now
 /// (`MemAvailable` in /proc/meminfo), what the process's control group may still use and what
 /// its own limits leave it ([`limits_room`]); or
@@ -532,6 +578,32 @@ mod tests {
         let s = Scene::from_ratio(50.0, 1.0, 1.0, 1.0).unwrap();
         let p = for_accuracy_within(&s, 0.05, &ModelOptions::default(), None).unwrap();
         assert!(p.grids[0] >= 64, "{p:?}");
+    }
+
+    #[test]
+    fn default_extrapolation_grids_start_where_the_scene_is_resolved() {
+        let base = ModelOptions::default();
+        let mut last = 0;
+        for ratio in [1.0, 5.0, 25.0, 50.0] {
+            let s = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).unwrap();
+            let g = extrapolation_grids(&s, &base).unwrap();
+            println!("R1/R2 = {ratio}: {g:?}");
+            assert_eq!(g.len(), EXTRAPOLATION_LEVELS);
+            assert!(g.windows(2).all(|w| w[1] == 2 * w[0]), "{g:?}");
+            // Every grid is accepted, the first resolves the minimum, the grid below does not.
+            let model = |nx| Model::build(&s, &ModelOptions { nx, ..base.clone() });
+            assert!(g.iter().all(|&nx| model(nx).is_ok()));
+            assert!(closed_form_width(&model(g[0]).unwrap()) >= MIN_PLAN_N_D);
+            if g[0] > MIN_PLAN_GRID {
+                let below = model(g[0] / 2);
+                assert!(below.map_or(true, |m| closed_form_width(&m) < MIN_PLAN_N_D));
+            }
+            assert!(g[0] >= last, "slender scenes start finer");
+            last = g[0];
+        }
+        // The sphere keeps the grids it always had.
+        let sphere = extrapolation_grids(&sphere(), &base).unwrap();
+        assert_eq!(sphere, vec![64, 128, 256]);
     }
 
     #[test]

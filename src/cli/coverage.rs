@@ -16,7 +16,8 @@ pub struct Args {
     /// compiled-in reference table (against its Δx → 0 value) [default: every tabled ratio].
     #[arg(long, value_delimiter = ',')]
     pub ratios: Vec<f64>,
-    /// Case grids Nx for every ratio, comma-separated (powers of two), each at least two
+    /// Case grids Nx for every ratio, comma-separated (powers of two from 32, each fine enough
+    /// for the ratio at every margin: checked before any work), each at least two
     /// levels below the finest grid of the ratio's reference ladder [default: that finest grid
     /// over 8 and over 4, not below the ladder's first grid; the sphere: 32, 64, 128].
     #[arg(long, value_delimiter = ',')]
@@ -45,7 +46,9 @@ pub struct Args {
     pub backend: BackendKind,
     /// Output folder: every run's states and summary, coverage.csv (one row per case) and
     /// coverage-summary.csv (one row per ratio, then all). Runs already there that reached
-    /// their force minimum are reused and estimated again with this program's law.
+    /// their force minimum are reused and estimated again with this program's law, where they
+    /// record the same settings, ran on the backend asked for and their states reproduce their
+    /// summary (as `reference` checks its runs); any other is run again, saying why.
     #[arg(long, default_value = "jkrbem-out/coverage")]
     pub out: PathBuf,
 }

@@ -20,7 +20,10 @@ pub struct Args {
     /// --max-grid or the memory is.
     #[arg(long, default_value = "0.3%", value_parser = super::simulate::parse_percentage)]
     pub target: f64,
-    /// Nx of the finest grid a ratio's ladder may use (a power of two).
+    /// Nx of the finest grid a ratio's ladder may use (a power of two from 32 to 65536). Every
+    /// ratio's ladder is checked before any work: from its first grid, at least three grids
+    /// must fit below this and in the memory available, else the request is refused (exit
+    /// code 2) naming the --max-grid or --first-grid that would.
     #[arg(long, default_value_t = 2048)]
     pub max_grid: usize,
     /// Nx of the first (coarsest) grid of every ladder (a power of two, at least 32) [default:
@@ -38,7 +41,11 @@ pub struct Args {
     /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.
     #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
     pub backend: BackendKind,
-    /// The table (CSV); every run's states and summary go beside it in `<stem>-runs/`.
+    /// The table (CSV); every run's states and summary go beside it in `<stem>-runs/`, the
+    /// summary recording the run's settings. A later job reuses a run found there only where
+    /// it finished with a force minimum, records the same settings (grid, margin, steps, CG
+    /// tolerances, …), ran on the backend asked for (cpu: f64; gpu: f32; auto: either) and its
+    /// states reproduce its summary; any other is run again (and replaced), saying why.
     #[arg(long, default_value = "docs/reference/adhesive-force.csv")]
     pub out: PathBuf,
 }

@@ -146,9 +146,11 @@ pub struct Args {
     #[arg(long)]
     pub extrapolate: bool,
     /// Grids Nx for --extrapolate, coarse to fine (2 to 8 increasing powers of two, each as
-    /// --grid).
-    #[arg(long, value_delimiter = ',', default_value = "64,128,256")]
-    pub extrapolate_grids: Vec<usize>,
+    /// --grid) [default: the grids that fit the scene: the coarsest predicted to resolve the
+    /// contact at the force minimum (about 20 elements across its minor axis, as --accuracy
+    /// asks of its grids) and its two doublings; 64,128,256 for a sphere].
+    #[arg(long, value_delimiter = ',')]
+    pub extrapolate_grids: Option<Vec<usize>>,
     /// Reach this relative accuracy of the adhesive force |min F̄| at Δx → 0 (a percentage in
     /// [0.1 %, 50 %]: `5%`, `1%`; the unit is required) at the least cost: chooses the grid
     /// (or two grids fitted together), the domain, the load steps and what to compute so that

@@ -13,7 +13,7 @@ use super::reference::run_or_reuse;
 use super::{failed, input, RunError, Watch};
 use crate::analysis::convergence::{self, TableValue};
 use crate::analysis::estimate;
-use crate::model::{Measure, ModelOptions, Onsets, MAX_MARGIN};
+use crate::model::{Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID, MAX_MARGIN};
 use crate::scene::Scene;
 use serde::Serialize;
 use std::fmt;
@@ -255,6 +255,107 @@ pub fn case_grids(ladder: Option<&[usize]>) -> Vec<usize> {
         .collect()
 }
 
+/// The coarsest case grid (Nx): coarser grids are not yet in the first-order regime the
+/// convergence law describes ([`crate::plan::MIN_PLAN_GRID`]).
+pub const MIN_CASE_GRID: usize = crate::plan::MIN_PLAN_GRID;
+
+/// The flags of `jkrbem coverage`: advice from a run that names any other (a `simulate` flag,
+/// which coverage sets to its defaults) is followed by what to change here.
+pub const COVERAGE_FLAGS: [&str; 7] = [
+    "--ratios",
+    "--grids",
+    "--margins",
+    "--variants",
+    "--runs-per-case",
+    "--backend",
+    "--out",
+];
+
+/// The options of a case's run on grid `nx` at `margin` run as `variant`.
+fn case_options(nx: usize, margin: f64, variant: CaseVariant) -> ModelOptions {
+    let regrid = variant == CaseVariant::Regrid;
+    ModelOptions {
+        nx,
+        margin,
+        regrid,
+        measure: Measure::AdhesiveForce,
+        onsets: Onsets::NearMinimum,
+        steps: crate::model::default_steps(Measure::AdhesiveForce, Onsets::NearMinimum, regrid),
+        ..ModelOptions::default()
+    }
+}
+
+/// Refuse, before any work, a case grid coverage cannot run: not a power of two from
+/// [`MIN_CASE_GRID`] to [`MAX_GRID`], or too coarse for the scene at one of the margins (the
+/// message names `--grids` and the coarsest grid that resolves it).
+fn check_case_grid(
+    scene: &Scene,
+    nx: usize,
+    margins: &[f64],
+    variants: &[CaseVariant],
+) -> Result<(), RunError> {
+    if !nx.is_power_of_two() || !(MIN_CASE_GRID..=MAX_GRID).contains(&nx) {
+        return Err(input(format!(
+            "--grids {nx}: give powers of two from {MIN_CASE_GRID} to {MAX_GRID} (coarser grids \
+             are not yet in the first-order regime the estimates assume)"
+        )));
+    }
+    let builds = |nx: usize| -> Result<(), ModelError> {
+        for &margin in margins {
+            for &variant in variants {
+                Model::build(scene, &case_options(nx, margin, variant))?;
+            }
+        }
+        Ok(())
+    };
+    match builds(nx) {
+        Ok(()) => Ok(()),
+        Err(ModelError::TooCoarse { .. }) => {
+            let mut fine = nx * 2;
+            while fine < MAX_GRID && builds(fine).is_err() {
+                fine *= 2;
+            }
+            Err(input(format!(
+                "--grids {nx}: too coarse for R1/R2 = {} (the contact would span too few \
+                 elements at the --margins asked); give --grids {fine} or finer",
+                crate::text::compact(scene.ratio())
+            )))
+        }
+        Err(e) => Err(input(format!("--grids {nx} with these --margins: {e}"))),
+    }
+}
+
+/// A run's failure in coverage's words: the advice of a contact at the domain's edge names
+/// `--margins` and `--grids`; advice that names another flag says that coverage runs with
+/// that flag's default.
+fn in_coverage_words(e: RunError) -> RunError {
+    let RunError::Failed(m) = e else {
+        return e;
+    };
+    let m = m.replace(
+        "use a larger --margin or a smaller --start-radius",
+        "use larger --margins or finer --grids",
+    );
+    let foreign: Vec<&str> = m
+        .split(|c: char| !(c.is_ascii_alphanumeric() || c == '-'))
+        .filter(|w| w.starts_with("--") && w.len() > 2 && !COVERAGE_FLAGS.contains(w))
+        .collect();
+    if foreign.is_empty() {
+        return RunError::Failed(m);
+    }
+    let mut named: Vec<&str> = Vec::new();
+    for f in foreign {
+        if !named.contains(&f) {
+            named.push(f);
+        }
+    }
+    RunError::Failed(format!(
+        "{m}\n  (coverage runs every case with the defaults of {}, which it does not set: \
+         change --grids or --margins, or run that case with `jkrbem simulate`)",
+        named.join(", ")
+    ))
+}
+
 /// The summary file of one case's run (its states go beside it as `.csv`).
 fn case_name(ratio: f64, nx: usize, margin: f64, variant: CaseVariant) -> String {
     format!("r{ratio}-n{nx}-m{margin}-{variant}")
@@ -288,7 +389,7 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
     // (ratio, grids, reference) per ratio, every one checked before any work.
     let mut plan = Vec::new();
     for &ratio in &req.ratios {
-        Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
+        let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
         let reference = reference_of(ratio, &table)?;
         let ladder = table
             .iter()
@@ -311,6 +412,9 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
                 )));
             }
         }
+        for &nx in &grids {
+            check_case_grid(&scene, nx, &req.margins, &req.variants)?;
+        }
         plan.push((ratio, grids, reference));
     }
     let csv = req.out.join("coverage.csv");
@@ -325,20 +429,9 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
                 let mut runs = Vec::new();
                 for &margin in &req.margins {
                     let name = case_name(ratio, nx, margin, variant);
-                    let options = ModelOptions {
-                        nx,
-                        margin,
-                        regrid: variant == CaseVariant::Regrid,
-                        measure: Measure::AdhesiveForce,
-                        onsets: Onsets::NearMinimum,
-                        steps: crate::model::default_steps(
-                            Measure::AdhesiveForce,
-                            Onsets::NearMinimum,
-                            variant == CaseVariant::Regrid,
-                        ),
-                        ..ModelOptions::default()
-                    };
-                    let run = run_or_reuse(&scene, options, req.backend, &req.out, &name, watch)?;
+                    let options = case_options(nx, margin, variant);
+                    let run = run_or_reuse(&scene, options, req.backend, &req.out, &name, watch)
+                        .map_err(in_coverage_words)?;
                     runs.push((margin, run));
                 }
                 for window in runs.windows(req.runs_per_case) {
@@ -505,6 +598,29 @@ mod tests {
         );
         assert_eq!(PositionCheck::of(None, Some((0.79, 0.0))).held, None);
         assert_eq!(PositionCheck::of(e(0.8, 0.1), None).reference, None);
+    }
+
+    #[test]
+    fn a_run_s_advice_is_given_in_coverage_s_flags() {
+        let e = in_coverage_words(RunError::Failed(
+            "r1-n16: the contact reached the edge of the domain at d̄ = 2.25 (8 elements on the \
+             outer ring): use a larger --margin or a smaller --start-radius"
+                .into(),
+        ))
+        .to_string();
+        assert!(e.contains("use larger --margins or finer --grids"), "{e}");
+        assert!(
+            !e.contains("--margin ") && !e.contains("--start-radius"),
+            "{e}"
+        );
+        let e = in_coverage_words(RunError::Failed(
+            "CG did not converge: raise --cg-max-iterations or --cg-max-iterations".into(),
+        ))
+        .to_string();
+        assert!(
+            e.contains("the defaults of --cg-max-iterations, which it does not set"),
+            "{e}"
+        );
     }
 
     #[test]

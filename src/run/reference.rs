@@ -4,6 +4,8 @@
 //! a weak prior, [`crate::analysis::estimate::reference`]). The convergence law that
 //! `--accuracy` and single-grid estimates use is fitted to this table.
 
+pub mod reuse;
+
 use super::claim::{named, write_error, Outputs};
 use super::open::BackendRequest;
 use super::simulate::{simulate, Mode, SimulateRequest};
@@ -11,7 +13,7 @@ use super::{failed, input, RunError, Watch};
 use crate::analysis::convergence::{self, TableLaw};
 use crate::analysis::estimate;
 use crate::analysis::report::RunReport;
-use crate::model::{Measure, ModelOptions, Onsets, MAX_GRID};
+use crate::model::{Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID};
 use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -23,6 +25,9 @@ pub const REFERENCE_RATIOS: [f64; 12] = [
 
 /// Grids of a ladder at the least (the fit's model term needs three).
 pub const MIN_LEVELS: usize = 3;
+
+/// The coarsest first grid of a ladder (Nx): coarser grids are not yet first order.
+pub const MIN_FIRST_GRID: usize = crate::plan::MIN_PLAN_GRID;
 
 /// Runs per grid at the most ([`ReferenceRequest::phases`]).
 pub const MAX_PHASES: usize = 8;
@@ -136,30 +141,170 @@ fn first_grid(scene: &Scene, base: &ModelOptions) -> Result<usize, RunError> {
     Ok(p.grids[0])
 }
 
-/// One ratio's ladder: runs on doubling grids until the reference estimate states `target` (with
-/// at least [`MIN_LEVELS`] grids), `max_grid` or the memory is reached.
-fn ladder(
-    req: &ReferenceRequest,
-    ratio: f64,
-    watch: &mut dyn Watch,
-) -> Result<(ReferenceRow, Vec<RunReport>), RunError> {
-    let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
-    let base = ModelOptions {
+/// The options every run of a ladder shares (the grid and margin set per run).
+fn ladder_options() -> ModelOptions {
+    ModelOptions {
         steps: crate::plan::PLAN_STEPS,
         onsets: Onsets::NearMinimum,
         measure: Measure::AdhesiveForce,
         regrid: true,
         ..ModelOptions::default()
+    }
+}
+
+/// The scene of R1/R2 = `ratio` (R2 = E* = Δγ = 1).
+fn ratio_scene(ratio: f64) -> Result<Scene, RunError> {
+    Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)
+}
+
+/// The grids a ratio's ladder may run, checked before any work.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LadderGrids {
+    /// Nx, coarse to fine (at least [`MIN_LEVELS`]).
+    pub grids: Vec<usize>,
+    /// Why the ladder stops below `--max-grid`, where the memory stops it.
+    pub memory_cut: Option<String>,
+}
+
+/// The grids of R1/R2 = `ratio`'s ladder, coarse to fine, checked before any work: from the
+/// first grid (`--first-grid`, or the one a 5 % plan takes), doubling up to `--max-grid`,
+/// each built at every phase's margin and fitting in the memory `available` (bytes; `None`:
+/// unchecked). Fewer than [`MIN_LEVELS`] is refused, naming the flag to change.
+pub fn ladder_grids(
+    req: &ReferenceRequest,
+    ratio: f64,
+    available: Option<u64>,
+) -> Result<LadderGrids, RunError> {
+    let scene = ratio_scene(ratio)?;
+    let base = ladder_options();
+    let (first, whose) = match req.first_grid {
+        Some(nx) => (nx, "--first-grid"),
+        None => (first_grid(&scene, &base)?, "the grid a 5 % plan takes"),
     };
+    let margins = phase_margins(base.margin, req.phases);
+    let build = |nx: usize| -> Result<Vec<Model>, ModelError> {
+        margins
+            .iter()
+            .map(|&margin| {
+                let options = ModelOptions {
+                    nx,
+                    margin,
+                    ..base.clone()
+                };
+                Model::build(&scene, &options)
+            })
+            .collect()
+    };
+    // The coarsest grid that resolves the contact at every margin.
+    let coarsest = || {
+        let mut nx = MIN_FIRST_GRID;
+        while nx < MAX_GRID && build(nx).is_err() {
+            nx *= 2;
+        }
+        nx
+    };
+    let mut grids = Vec::new();
+    let mut too_large = None;
+    let mut nx = first;
+    while nx <= req.max_grid {
+        let models = match build(nx) {
+            Ok(m) => m,
+            Err(ModelError::TooCoarse { .. }) if nx == first => {
+                let fine = coarsest();
+                return Err(input(format!(
+                    "--first-grid {nx}: too coarse for R1/R2 = {ratio} (the contact would span \
+                     too few elements); give --first-grid {fine} or more"
+                )));
+            }
+            Err(e) => {
+                return Err(input(format!(
+                    "--max-grid {}: grid {nx}: {e}",
+                    req.max_grid
+                )))
+            }
+        };
+        let need = models.iter().map(Model::memory_estimate).max().unwrap_or(0);
+        if let Some(a) = available.filter(|&a| need > a) {
+            too_large = Some((nx, need, a));
+            break;
+        }
+        grids.push(nx);
+        nx *= 2;
+    }
+    if grids.len() >= MIN_LEVELS {
+        return Ok(LadderGrids {
+            grids,
+            memory_cut: too_large.map(|(nx, need, a)| {
+                format!(
+                    "grid {nx} needs about {}, more than the {} available",
+                    crate::plan::bytes_text(need),
+                    crate::plan::bytes_text(a)
+                )
+            }),
+        });
+    }
+    let list = if grids.is_empty() {
+        "no grid".to_string()
+    } else {
+        format!(
+            "only grid{} {}",
+            if grids.len() == 1 { "" } else { "s" },
+            grids
+                .iter()
+                .map(|g| g.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    };
+    let max = req.max_grid;
+    let coarsest = coarsest();
+    let coarser = if first > coarsest {
+        format!("a coarser --first-grid (from {coarsest}, the coarsest that resolves the contact)")
+    } else {
+        String::new()
+    };
+    Err(input(match too_large {
+        Some((nx, need, a)) => format!(
+            "--max-grid {max}: R1/R2 = {ratio}: the ladder from grid {first} ({whose}) fits \
+             {list} in memory (grid {nx} needs about {}, more than the {} available), and a \
+             ladder needs at least {MIN_LEVELS} grids: {}",
+            crate::plan::bytes_text(need),
+            crate::plan::bytes_text(a),
+            if coarser.is_empty() {
+                "no ladder fits on this machine".to_string()
+            } else {
+                format!("give {coarser}")
+            }
+        ),
+        None => format!(
+            "--max-grid {max}: R1/R2 = {ratio}: the ladder from grid {first} ({whose}) has \
+             {list} up to --max-grid {max}, and a ladder needs at least {MIN_LEVELS} grids: give \
+             --max-grid {} or more{}",
+            first << (MIN_LEVELS - 1),
+            if coarser.is_empty() {
+                String::new()
+            } else {
+                format!(", or {coarser}")
+            }
+        ),
+    }))
+}
+
+/// One ratio's ladder on `grids` ([`ladder_grids`]): runs on each in turn until the reference
+/// estimate states `target` (with at least [`MIN_LEVELS`] grids), or the memory is reached.
+fn ladder(
+    req: &ReferenceRequest,
+    ratio: f64,
+    grids: &LadderGrids,
+    watch: &mut dyn Watch,
+) -> Result<(ReferenceRow, Vec<RunReport>), RunError> {
+    let scene = ratio_scene(ratio)?;
+    let base = ladder_options();
     let dir = runs_dir(&req.out);
     let mut runs: Vec<RunReport> = Vec::new();
-    let mut nx = match req.first_grid {
-        Some(nx) => nx,
-        None => first_grid(&scene, &base)?,
-    };
     let mut est = None;
     let mut levels = 0;
-    'grids: while nx <= req.max_grid.min(MAX_GRID) {
+    'grids: for &nx in &grids.grids {
         let margins = phase_margins(base.margin, req.phases);
         for (phase, margin) in margins.into_iter().enumerate() {
             let name = run_name(ratio, nx, phase, margin);
@@ -170,7 +315,8 @@ fn ladder(
             };
             match run_or_reuse(&scene, options, req.backend, &dir, &name, watch) {
                 Ok(run) => runs.push(run),
-                // A grid that no longer fits in memory ends the ladder.
+                // A grid that no longer fits in memory (less is free than when the ladder was
+                // checked) ends the ladder.
                 Err(RunError::Input(e)) if levels > 0 && e.contains("available") => {
                     watch.warning(&format!(
                         "R1/R2 = {ratio}: the ladder stops at grid {nx}: {e}"
@@ -195,8 +341,14 @@ fn ladder(
             if met {
                 break;
             }
+            if let (Some(why), Some(&last)) = (&grids.memory_cut, grids.grids.last()) {
+                if nx == last {
+                    watch.warning(&format!(
+                        "R1/R2 = {ratio}: the ladder stops at grid {nx}: {why}"
+                    ));
+                }
+            }
         }
-        nx *= 2;
     }
     let e = est.ok_or_else(|| {
         failed(format!(
@@ -206,11 +358,10 @@ fn ladder(
     })?;
     // The finest grid's run at the default margin (the first of its grid): the planner's
     // re-gridding gain is measured against a model with that margin.
-    let finest_nx = runs.iter().map(|r| r.nx).max().expect("a ladder has runs");
-    let finest = runs
-        .iter()
-        .find(|r| r.nx == finest_nx)
-        .expect("the finest grid has runs");
+    let finest_nx = runs.iter().map(|r| r.nx).max().unwrap_or(0);
+    let Some(finest) = runs.iter().find(|r| r.nx == finest_nx) else {
+        return Err(failed(format!("R1/R2 = {ratio}: the ladder has no runs")));
+    };
     let row = ReferenceRow {
         ratio,
         f_ad_bar: Some(e.f_ad_bar.value),
@@ -245,8 +396,11 @@ fn grids_text(runs: &[RunReport]) -> String {
 }
 
 /// The run of `options` on `scene` whose summary is `<dir>/<name>.json` (its states beside it
-/// as `.csv`): an earlier job's, if it finished with a force minimum (said on `watch`), else
-/// run now. A run that stops early is a failure naming `name`.
+/// as `.csv`): an earlier job's where it finished with a force minimum, records the same
+/// settings, ran on the backend asked for and its states reproduce its summary
+/// ([`reuse::check`]; said on `watch`), else run now (saying on `watch` why an earlier one
+/// was not reused). The summary records the run's settings under [`reuse::SETTINGS_KEY`]. A
+/// run that stops early is a failure naming `name`.
 pub(crate) fn run_or_reuse(
     scene: &Scene,
     options: ModelOptions,
@@ -256,20 +410,31 @@ pub(crate) fn run_or_reuse(
     watch: &mut dyn Watch,
 ) -> Result<RunReport, RunError> {
     let summary = dir.join(format!("{name}.json"));
-    if let Some(run) = finished_run(&summary) {
-        watch.note(&format!("{name}: reusing {}", summary.display()));
-        return Ok(run);
+    let states = dir.join(format!("{name}.csv"));
+    let settings = reuse::RunSettings::of(scene, &options, &backend);
+    match reuse::check(&summary, &states, &settings, &backend) {
+        Ok(Some(run)) => {
+            watch.note(&format!("{name}: reusing {}", summary.display()));
+            return Ok(run);
+        }
+        Ok(None) => {}
+        Err(why) => watch.warning(&format!(
+            "{name}: not reusing {}: {why}; running it again",
+            summary.display()
+        )),
     }
+    let _claimed = Outputs::claim(&named("--out", [&summary]))?;
     let one = SimulateRequest {
         scene: *scene,
         options,
         backend,
         mode: Mode::Single,
-        out: Some(dir.join(format!("{name}.csv"))),
-        summary: Some(summary),
+        out: Some(states),
+        summary: None,
         time_limit: None,
     };
     let done = simulate(&one, watch)?;
+    write_summary(&summary, &done.summary, &settings)?;
     if let Some(f) = done.failure {
         return Err(failed(format!("{name}: {f}")));
     }
@@ -280,13 +445,22 @@ pub(crate) fn run_or_reuse(
         .ok_or_else(|| failed(format!("{name}: the run wrote no summary")))
 }
 
-/// The run of a summary an earlier job wrote, if it finished with a force minimum (so that an
-/// interrupted job resumes where it stopped).
-fn finished_run(summary: &std::path::Path) -> Option<RunReport> {
-    let text = std::fs::read_to_string(summary).ok()?;
-    let v: serde_json::Value = serde_json::from_str(&text).ok()?;
-    let run: RunReport = serde_json::from_value(v.get("runs")?.get(0)?.clone()).ok()?;
-    (run.complete && run.min_reached && run.f_ad_bar.is_some()).then_some(run)
+/// Write `summary` as JSON to `path` (atomically), with the run's `settings` added under
+/// [`reuse::SETTINGS_KEY`].
+fn write_summary(
+    path: &std::path::Path,
+    summary: &crate::output::summary::Summary,
+    settings: &reuse::RunSettings,
+) -> Result<(), RunError> {
+    let mut v = serde_json::to_value(summary).map_err(failed)?;
+    if let Some(object) = v.as_object_mut() {
+        object.insert(
+            reuse::SETTINGS_KEY.into(),
+            serde_json::to_value(settings).map_err(failed)?,
+        );
+    }
+    let text = serde_json::to_string_pretty(&v).map_err(failed)?;
+    crate::output::file::write_bytes(path, (text + "\n").as_bytes()).map_err(write_error("--out"))
 }
 
 /// The folder of the runs beside the table: `<stem>-runs/`.
@@ -319,7 +493,8 @@ fn existing_rows(path: &std::path::Path) -> Result<Vec<ReferenceRow>, RunError> 
         })
 }
 
-/// Compute the table: every ratio's ladder in turn. The rows of an existing table for other
+/// Compute the table: every ratio's ladder in turn, every one checked first
+/// ([`ladder_grids`]) so that a request that cannot hold a ladder is refused before any work. The rows of an existing table for other
 /// ratios are kept, so a table grows over several jobs; it is rewritten (whole, atomically,
 /// sorted by ratio) after each ratio so that a long job keeps what it has finished.
 pub fn reference(req: &ReferenceRequest, watch: &mut dyn Watch) -> Result<ReferenceDone, RunError> {
@@ -329,10 +504,16 @@ pub fn reference(req: &ReferenceRequest, watch: &mut dyn Watch) -> Result<Refere
     if req.ratios.is_empty() || req.ratios.iter().any(|r| !(1.0..=1000.0).contains(r)) {
         return Err(input("--ratios: give ratios R1/R2 in [1, 1000]"));
     }
+    if !req.max_grid.is_power_of_two() || !(MIN_FIRST_GRID..=MAX_GRID).contains(&req.max_grid) {
+        return Err(input(format!(
+            "--max-grid {}: give a power of two from {MIN_FIRST_GRID} to {MAX_GRID}",
+            req.max_grid
+        )));
+    }
     if let Some(nx) = req.first_grid {
-        if !nx.is_power_of_two() || nx < 32 || nx > req.max_grid {
+        if !nx.is_power_of_two() || nx < MIN_FIRST_GRID || nx > req.max_grid {
             return Err(input(format!(
-                "--first-grid {nx}: give a power of two from 32 to --max-grid ({})",
+                "--first-grid {nx}: give a power of two from {MIN_FIRST_GRID} to --max-grid ({})",
                 req.max_grid
             )));
         }
@@ -344,6 +525,13 @@ pub fn reference(req: &ReferenceRequest, watch: &mut dyn Watch) -> Result<Refere
         )));
     }
     req.backend.check()?;
+    // Every ratio's ladder, checked before any work.
+    let available = crate::plan::available_memory();
+    let ladders = req
+        .ratios
+        .iter()
+        .map(|&ratio| ladder_grids(req, ratio, available))
+        .collect::<Result<Vec<_>, _>>()?;
     let kept = existing_rows(&req.out)?;
     let _claimed = Outputs::claim(&named("--out", [&req.out]))?;
     let mut table: Vec<ReferenceRow> = kept
@@ -351,8 +539,8 @@ pub fn reference(req: &ReferenceRequest, watch: &mut dyn Watch) -> Result<Refere
         .filter(|r| !req.ratios.contains(&r.ratio))
         .collect();
     let mut rows = Vec::new();
-    for &ratio in &req.ratios {
-        let (row, _) = ladder(req, ratio, watch)?;
+    for (&ratio, grids) in req.ratios.iter().zip(&ladders) {
+        let (row, _) = ladder(req, ratio, grids, watch)?;
         rows.push(row.clone());
         table.push(row);
         table.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));

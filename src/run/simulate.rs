@@ -19,8 +19,10 @@ use std::time::{Duration, Instant};
 pub enum Mode {
     /// One run on the options' grid, its estimate corrected by the convergence law.
     Single,
-    /// One run per grid Nx (2 to 8, increasing), extrapolated to Δx → 0.
-    Extrapolate(Vec<usize>),
+    /// One run per grid Nx (2 to 8, increasing), extrapolated to Δx → 0; `None`: the grids that
+    /// fit the scene, the coarsest that resolves it and its two doublings
+    /// ([`plan::extrapolation_grids`]).
+    Extrapolate(Option<Vec<usize>>),
     /// The grids, domain, steps and measure the convergence law says this relative accuracy
     /// needs (e.g. 0.02 for 2 %).
     Accuracy(f64),
@@ -289,12 +291,16 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
             fallback: 0,
         }),
         Mode::Extrapolate(grids) => {
+            let grids = match grids {
+                Some(g) => g.clone(),
+                None => plan::extrapolation_grids(&req.scene, &req.options).map_err(input)?,
+            };
             if !(2..=8).contains(&grids.len()) || grids.windows(2).any(|w| w[1] <= w[0]) {
                 return Err(input(
                     "--extrapolate-grids: give 2 to 8 increasing grids, e.g. 64,128,256",
                 ));
             }
-            let models = per_grid(grids, &req.options, "--extrapolate-grids")?;
+            let models = per_grid(&grids, &req.options, "--extrapolate-grids")?;
             Ok(Planned {
                 models,
                 target: None,

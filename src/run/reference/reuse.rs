@@ -1,0 +1,371 @@
+//! Whether a run an earlier job left in a runs folder may stand for the run asked now. A run
+//! records what it was asked to be ([`RunSettings`], beside its report in the summary JSON); it
+//! is reused only where that matches the request, the backend that ran it is the one asked
+//! for, its report agrees with the request, and its states reproduce its report (the force
+//! minimum and where it lies). Anything else is run again, with the reason.
+
+use crate::analysis::report::RunReport;
+use crate::backend::select::BackendKind;
+use crate::model::ModelOptions;
+use crate::run::open::BackendRequest;
+use crate::scene::Scene;
+use clap::ValueEnum;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The key of the settings in a run's summary JSON.
+pub const SETTINGS_KEY: &str = "settings";
+
+/// Relative tolerance of a recorded number against the requested one (JSON round trips of
+/// f64 may move the last digit).
+const SAME: f64 = 1e-12;
+
+/// Relative tolerance of a report's value against the state it comes from in the states CSV
+/// (both written from the same f64; only the text round trip may move it).
+const REPRODUCED: f64 = 1e-9;
+
+/// Everything that decides a run's states, as asked: the scene, the model options and the
+/// backend request. Written into each run's summary under [`SETTINGS_KEY`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunSettings {
+    /// The program that ran it ("jkrbem 0.1.0"); recorded, not compared.
+    pub program: String,
+    /// Radius of curvature along x (length).
+    pub r1: f64,
+    /// Radius of curvature along y (length).
+    pub r2: f64,
+    /// E* (force/length²).
+    pub e_star: f64,
+    /// Δγ (force/length).
+    pub work_of_adhesion: f64,
+    /// Elements along x.
+    pub nx: usize,
+    /// Elements along y, if asked (else fitted to the contact).
+    pub ny: Option<usize>,
+    /// c̄0 (dimensionless).
+    pub start_radius_bar: f64,
+    /// Load steps.
+    pub steps: usize,
+    /// Final approach d̄, if any (dimensionless).
+    pub final_d_bar: Option<f64>,
+    /// Domain margin (relative to the initial contact's half-axes).
+    pub margin: f64,
+    /// CG tolerance (relative).
+    pub cg_tolerance: f64,
+    /// CG iteration limit per solve.
+    pub cg_max_iterations: usize,
+    /// Relative residual accepted after the safer retry.
+    pub cg_accept: f64,
+    /// The model's CG check interval.
+    pub cg_check_every: usize,
+    /// Preconditioner.
+    pub preconditioner: String,
+    /// Detachment/attachment sweeps per step at most.
+    pub max_sweeps: usize,
+    /// Which onsets are located.
+    pub onsets: String,
+    /// Whether cascade rounds are solved loosely.
+    pub loose_rounds: bool,
+    /// What the run is for.
+    pub measure: String,
+    /// Whether it re-grids.
+    pub regrid: bool,
+    /// Mesh angle (degrees).
+    pub mesh_angle_deg: f64,
+    /// Apex offset (elements along x, y).
+    pub apex_offset: [f64; 2],
+    /// The backend asked for ("auto", "cpu", "gpu"); the one that ran is in the report.
+    pub backend: String,
+    /// The convolution ("padded", "periodic").
+    pub convolution: String,
+    /// The requested CG check interval (`None`: the backend's own).
+    pub check_every: Option<usize>,
+}
+
+/// The name a value of a CLI enum goes by ("near-minimum", "cpu").
+fn name_of<T: ValueEnum>(v: T) -> String {
+    v.to_possible_value()
+        .map_or_else(String::new, |p| p.get_name().to_string())
+}
+
+impl RunSettings {
+    /// The settings of a run of `options` on `scene` with `backend`.
+    pub fn of(scene: &Scene, options: &ModelOptions, backend: &BackendRequest) -> Self {
+        RunSettings {
+            program: format!("jkrbem {}", env!("CARGO_PKG_VERSION")),
+            r1: scene.r1,
+            r2: scene.r2,
+            e_star: scene.e_star,
+            work_of_adhesion: scene.work_of_adhesion,
+            nx: options.nx,
+            ny: options.ny,
+            start_radius_bar: options.start_radius_bar,
+            steps: options.steps,
+            final_d_bar: options.final_d_bar,
+            margin: options.margin,
+            cg_tolerance: options.cg_tolerance,
+            cg_max_iterations: options.cg_max_iterations,
+            cg_accept: options.cg_accept,
+            cg_check_every: options.cg_check_every,
+            preconditioner: name_of(options.preconditioner),
+            max_sweeps: options.max_sweeps,
+            onsets: options.onsets.name().to_string(),
+            loose_rounds: options.loose_rounds,
+            measure: name_of(options.measure),
+            regrid: options.regrid,
+            mesh_angle_deg: options.mesh_angle_deg,
+            apex_offset: [options.apex_offset.0, options.apex_offset.1],
+            backend: name_of(backend.kind),
+            convolution: name_of(backend.convolution),
+            check_every: backend.check_every,
+        }
+    }
+}
+
+/// Whether two recorded values are the same: numbers within [`SAME`] (relative), anything
+/// else equal.
+fn same_value(a: &serde_json::Value, b: &serde_json::Value) -> bool {
+    match (a, b) {
+        (serde_json::Value::Number(x), serde_json::Value::Number(y)) => {
+            match (x.as_f64(), y.as_f64()) {
+                (Some(x), Some(y)) => (x - y).abs() <= SAME * x.abs().max(y.abs()),
+                _ => x == y,
+            }
+        }
+        (serde_json::Value::Array(x), serde_json::Value::Array(y)) => {
+            x.len() == y.len() && x.iter().zip(y).all(|(a, b)| same_value(a, b))
+        }
+        _ => a == b,
+    }
+}
+
+/// The settings that differ between `recorded` and `asked` ("steps 20, asked 100"), the
+/// program and the backend asked for left out (the backend that ran is checked on its own).
+fn differences(recorded: &serde_json::Value, asked: &RunSettings) -> Vec<String> {
+    let asked = serde_json::to_value(asked).unwrap_or_default();
+    let Some(asked) = asked.as_object() else {
+        return vec!["the settings cannot be compared".into()];
+    };
+    asked
+        .iter()
+        .filter(|(k, _)| !matches!(k.as_str(), "program" | "backend"))
+        .filter_map(|(k, want)| {
+            let got = recorded.get(k).unwrap_or(&serde_json::Value::Null);
+            (!same_value(got, want)).then(|| format!("{k} {got}, asked {want}"))
+        })
+        .collect()
+}
+
+/// Whether a run on `backend` with `precision` ("cpu", "f64") is one `kind` asks for: `cpu`
+/// the f64 CPU backend, `gpu` the f32 GPU backend, `auto` either.
+fn backend_matches(kind: BackendKind, backend: &str, precision: &str) -> bool {
+    match kind {
+        BackendKind::Cpu => backend == "cpu" && precision == "f64",
+        BackendKind::Gpu => backend == "gpu" && precision == "f32",
+        BackendKind::Auto => {
+            (backend == "cpu" && precision == "f64") || (backend == "gpu" && precision == "f32")
+        }
+    }
+}
+
+/// Whether `a` and `b` agree to `tolerance` (relative), both missing counting as agreeing.
+fn close(a: Option<f64>, b: Option<f64>, tolerance: f64) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => (a - b).abs() <= tolerance * a.abs().max(b.abs()).max(1e-300),
+        (None, None) => true,
+        _ => false,
+    }
+}
+
+/// A text for an optional number.
+fn text(v: Option<f64>) -> String {
+    v.map_or("null".into(), |v| format!("{v}"))
+}
+
+/// Why the report `run` does not agree with the request `asked` (what the report records of
+/// it: the grid, the margin, the ratio, the mesh, the onsets, the backend), if it does not.
+fn report_differences(run: &RunReport, asked: &RunSettings, kind: BackendKind) -> Vec<String> {
+    let mut why = Vec::new();
+    if !backend_matches(kind, &run.backend, &run.precision) {
+        why.push(format!(
+            "it ran on {} ({}), asked --backend {}",
+            run.backend,
+            run.precision,
+            name_of(kind)
+        ));
+    }
+    if run.nx != asked.nx || asked.ny.is_some_and(|ny| ny != run.ny) {
+        why.push(format!("its report's grid is {}", run.grid));
+    }
+    let ratio = asked.r1 / asked.r2;
+    for (what, got, want) in [
+        ("ratio", run.ratio, ratio),
+        ("margin", run.margin, asked.margin),
+        ("mesh angle", run.mesh_angle_deg, asked.mesh_angle_deg),
+        ("apex offset x", run.apex_offset[0], asked.apex_offset[0]),
+        ("apex offset y", run.apex_offset[1], asked.apex_offset[1]),
+    ] {
+        if !close(Some(got), Some(want), SAME) && got != want {
+            why.push(format!("its report's {what} is {got}, asked {want}"));
+        }
+    }
+    if run.onsets.as_deref() != Some(asked.onsets.as_str()) {
+        why.push(format!(
+            "its report's onsets are {}, asked {}",
+            run.onsets.as_deref().unwrap_or("not recorded"),
+            asked.onsets
+        ));
+    }
+    why
+}
+
+/// The columns of a states CSV this check reads.
+const STATE_COLUMNS: [&str; 5] = ["f_bar", "c_bar", "d_bar", "dx", "b_axis"];
+
+/// Why the states CSV at `states` does not reproduce the report `run` (the number of states,
+/// |min F̄| and the lowest F̄, c̄, d̄, Δx and n_d at the minimum), if it does not.
+fn states_differences(run: &RunReport, states: &Path) -> Option<String> {
+    let shown = states.display();
+    let mut reader = match csv::Reader::from_path(states) {
+        Ok(r) => r,
+        Err(e) => return Some(format!("its states {shown} cannot be read: {e}")),
+    };
+    let header = match reader.headers() {
+        Ok(h) => h.clone(),
+        Err(e) => return Some(format!("its states {shown} have no header: {e}")),
+    };
+    let Some(columns) = STATE_COLUMNS
+        .iter()
+        .map(|name| header.iter().position(|h| h == *name))
+        .collect::<Option<Vec<usize>>>()
+    else {
+        return Some(format!(
+            "its states {shown} lack a column ({})",
+            STATE_COLUMNS.join(", ")
+        ));
+    };
+    // Per state: F̄, c̄, d̄, Δx, b.
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    for record in reader.records() {
+        let Ok(record) = record else {
+            return Some(format!("its states {shown} are not valid CSV"));
+        };
+        let Some(values) = columns
+            .iter()
+            .map(|&i| record.get(i).and_then(|v| v.trim().parse::<f64>().ok()))
+            .collect::<Option<Vec<f64>>>()
+        else {
+            return Some(format!(
+                "its states {shown} hold a value that is not a number"
+            ));
+        };
+        rows.push(values);
+    }
+    if rows.len() != run.states {
+        return Some(format!(
+            "its states {shown} hold {} states, its report says {}",
+            rows.len(),
+            run.states
+        ));
+    }
+    let Some(min) = rows.iter().min_by(|a, b| a[0].total_cmp(&b[0])) else {
+        return Some(format!("its states {shown} are empty"));
+    };
+    let n_d = (2e6 * min[4] / min[3]).round() / 1e6;
+    let checks = [
+        ("|min F̄|", run.f_ad_bar, Some(-min[0]), REPRODUCED),
+        ("lowest F̄", run.lowest_f_bar, Some(min[0]), REPRODUCED),
+        (
+            "c̄ at the minimum",
+            run.c_bar_at_min,
+            Some(min[1]),
+            REPRODUCED,
+        ),
+        (
+            "d̄ at the minimum",
+            run.d_bar_at_min,
+            Some(min[2]),
+            REPRODUCED,
+        ),
+        ("Δx at the minimum", run.dx_at_min, Some(min[3]), REPRODUCED),
+        ("n_d", run.n_d, Some(n_d), 1e-6),
+    ];
+    checks
+        .iter()
+        .find(|(_, report, states, tolerance)| !close(*report, *states, *tolerance))
+        .map(|(what, report, from_states, _)| {
+            format!(
+                "its summary's {what} {} is not its states' {} ({shown})",
+                text(*report),
+                text(*from_states),
+            )
+        })
+}
+
+/// The run of the summary at `summary` (its states at `states`), if an earlier job finished it
+/// with a force minimum for the request `asked` on `backend`; else why not (`Ok(None)`: there
+/// is no summary, so nothing to say).
+pub fn check(
+    summary: &Path,
+    states: &Path,
+    asked: &RunSettings,
+    backend: &BackendRequest,
+) -> Result<Option<RunReport>, String> {
+    let Ok(text) = std::fs::read_to_string(summary) else {
+        return Ok(None);
+    };
+    let v: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| format!("it is not JSON ({e})"))?;
+    let run: RunReport = v
+        .get("runs")
+        .and_then(|r| r.get(0))
+        .cloned()
+        .ok_or_else(|| "it holds no run".to_string())
+        .and_then(|r| {
+            serde_json::from_value(r).map_err(|e| format!("its run cannot be read ({e})"))
+        })?;
+    if !(run.complete && run.min_reached && run.f_ad_bar.is_some()) {
+        return Err("the run did not finish with a force minimum".into());
+    }
+    let Some(recorded) = v.get(SETTINGS_KEY) else {
+        return Err("it records no settings (written by an older jkrbem)".into());
+    };
+    let mut why = report_differences(&run, asked, backend.kind);
+    why.extend(differences(recorded, asked));
+    if !why.is_empty() {
+        return Err(format!("its settings differ: {}", why.join("; ")));
+    }
+    if let Some(why) = states_differences(&run, states) {
+        return Err(why);
+    }
+    Ok(Some(run))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settings_differ_only_where_a_value_does() {
+        let scene = Scene::from_ratio(2.0, 1.0, 1.0, 1.0).unwrap();
+        let options = ModelOptions::default();
+        let backend = BackendRequest::default();
+        let asked = RunSettings::of(&scene, &options, &backend);
+        let recorded = serde_json::to_value(&asked).unwrap();
+        assert!(differences(&recorded, &asked).is_empty());
+        let other = RunSettings::of(
+            &scene,
+            &ModelOptions {
+                steps: 20,
+                ..options
+            },
+            &backend,
+        );
+        let why = differences(&serde_json::to_value(&other).unwrap(), &asked);
+        assert_eq!(why, vec!["steps 20, asked 200".to_string()]);
+        assert!(backend_matches(BackendKind::Auto, "gpu", "f32"));
+        assert!(!backend_matches(BackendKind::Cpu, "gpu", "f32"));
+        assert!(!backend_matches(BackendKind::Cpu, "cpu", "f32"));
+        assert!(!backend_matches(BackendKind::Gpu, "cpu", "f64"));
+    }
+}
