@@ -82,12 +82,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
         out: args.out,
     };
     let done = coverage(&req, &mut Progress::new()).map_err(run_error)?;
-    println!(
+    outln!(
         "R1/R2   cases  held          median width/|error|  RMS error/sd  half-widths      \
          c̄ held  d̄ held (of)"
     );
     for s in &done.summary {
-        println!(
+        outln!(
             "{:<7} {:>5}  {:>4} ({:>5.1} %)  {:>20.2}  {:>12.2}  {:>6.2}–{:<6.2} %  {:>6}  {:>6} ({})",
             s.ratio,
             s.cases,
@@ -102,7 +102,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             s.position_cases
         );
     }
-    println!(
+    outln!(
         "written {} and {}",
         done.csv.display(),
         done.summary_csv.display()

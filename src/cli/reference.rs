@@ -75,10 +75,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
         command,
     };
     let done = reference(&req, &mut Progress::new()).map_err(run_error)?;
-    println!("ratio   |min F̄| at Δx → 0      k      grids");
+    outln!("ratio   |min F̄| at Δx → 0      k      grids");
     for r in &done.rows {
         let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.5}"));
-        println!(
+        outln!(
             "{:<7} {} ± {}{}  {}  {}",
             r.ratio,
             f(r.f_ad_bar),
@@ -92,14 +92,17 @@ pub fn run(args: Args) -> Result<(), CliError> {
             r.grids
         );
     }
-    println!("written {}", done.path.display());
+    outln!("written {}", done.path.display());
     if let Some(law) = done.law {
         let (sd_slender, sd_round) = law.sd();
-        println!(
+        outln!(
             "the convergence law fitted to this table: k = {:.3} (± {:.3}) + {:.3} (± {:.3}) / \
              (R1/R2) (one standard deviation; compiled into --accuracy when the table is \
              docs/reference/adhesive-force.csv)",
-            law.k_slender, sd_slender, law.k_round, sd_round
+            law.k_slender,
+            sd_slender,
+            law.k_round,
+            sd_round
         );
     }
     Ok(())

@@ -137,7 +137,14 @@ pub struct ReferenceDone {
 
 /// The first grid of a ratio's ladder: the one a 5 % plan takes (n_d about 20–40).
 fn first_grid(scene: &Scene, base: &ModelOptions) -> Result<usize, RunError> {
-    let p = crate::plan::for_accuracy_one_grid(scene, 0.05, base).map_err(input)?;
+    let p = crate::plan::for_accuracy_one_grid(scene, 0.05, base).map_err(|e| {
+        input(format!(
+            "R1/R2 = {}: no first grid for its ladder (--first-grid): {}",
+            crate::text::compact(scene.ratio()),
+            // The plan's own words name --accuracy, which reference does not have.
+            e.to_string().replace("--accuracy = 5% is invalid: ", "")
+        ))
+    })?;
     Ok(p.grids[0])
 }
 
