@@ -6,6 +6,7 @@ pub mod collect;
 pub mod coverage;
 pub mod crossed;
 pub mod devices;
+pub mod parse;
 pub mod progress;
 pub mod reference;
 pub mod reproduce;

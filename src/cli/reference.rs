@@ -18,7 +18,7 @@ pub struct Args {
     /// The relative uncertainty wanted of each |min F̄| at Δx → 0 (a percentage, the unit
     /// required). Each ratio's grids double (at least three) until it is reached, or
     /// --max-grid or the memory is.
-    #[arg(long, default_value = "0.3%", value_parser = super::simulate::parse_percentage)]
+    #[arg(long, default_value = "0.3%", value_parser = super::parse::percentage)]
     pub target: f64,
     /// Nx of the finest grid a ratio's ladder may use (a power of two from 32 to 65536). Every
     /// ratio's ladder is checked before any work: from its first grid, at least three grids

@@ -28,7 +28,7 @@ pub struct Args {
     /// The relative accuracy of each adhesive force |min F̄| at Δx → 0 (a percentage such as
     /// `2%`, the unit required): each ratio gets the one grid, re-gridded, whose estimate is
     /// predicted to state an uncertainty within it [default: 2% unless --grid is given].
-    #[arg(long, value_parser = super::simulate::parse_percentage, conflicts_with = "grid")]
+    #[arg(long, value_parser = super::parse::percentage, conflicts_with = "grid")]
     pub accuracy: Option<f64>,
 
     /// Load steps from the initial approach to the expected end of contact (1 to 100000).

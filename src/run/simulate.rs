@@ -91,7 +91,7 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
     let Planned {
         models,
         target,
-        note: mut plan_note,
+        note: plan_note,
         fallback,
     } = plan_models(req)?;
     let planned_runs = models.len();
@@ -101,10 +101,32 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
         _ => "--extrapolate-grids",
     };
     plan::check_memory(&refs, 1, flag).map_err(input)?;
-    // One grid (asked for, or the one an accuracy plan chose): --out is the file itself.
-    // Several: --out is the stem of one file per grid.
+    let outs = output_paths(req, &models)?;
+    let mut targets: Vec<(PathBuf, String)> =
+        outs.iter().map(|p| (p.clone(), "--out".into())).collect();
+    if let Some(p) = &req.summary {
+        targets.push((p.clone(), "--summary".into()));
+    }
+    Outputs::check(&targets)?;
+    let _claimed = Outputs::claim(&targets)?;
+    let ran = run_grids(req, models, &outs, watch)?;
+    Ok(conclude(
+        req,
+        ran,
+        Concluding {
+            target,
+            plan_note,
+            fallback,
+            planned_runs,
+        },
+    ))
+}
+
+/// The states files of the request's models: `--out` itself for one grid (asked for, or the
+/// one an accuracy plan chose); for several, one file per grid from `--out` as a stem.
+fn output_paths(req: &SimulateRequest, models: &[Model]) -> Result<Vec<PathBuf>, RunError> {
     let one_grid = models.len() == 1 && !matches!(req.mode, Mode::Extrapolate(_));
-    let outs: Vec<PathBuf> = match (one_grid, &req.out) {
+    Ok(match (one_grid, &req.out) {
         (true, Some(out)) => vec![out.clone()],
         (true, None) => vec![default_out(&models[0])],
         (false, stem) => {
@@ -125,19 +147,29 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
             }
             models.iter().map(|m| grid_out(&stem, m.nx)).collect()
         }
-    };
-    let mut targets: Vec<(PathBuf, String)> =
-        outs.iter().map(|p| (p.clone(), "--out".into())).collect();
-    if let Some(p) = &req.summary {
-        targets.push((p.clone(), "--summary".into()));
-    }
-    Outputs::check(&targets)?;
-    let _claimed = Outputs::claim(&targets)?;
+    })
+}
+
+/// The grids' runs, in order, until one fails, times out or (extrapolating) misses the
+/// minimum.
+struct Ran {
+    runs: Vec<Pulloff>,
+    failure: Option<String>,
+    timed_out: Option<String>,
+}
+
+/// Run every model into its states file, within the request's time limit.
+fn run_grids(
+    req: &SimulateRequest,
+    models: Vec<Model>,
+    outs: &[PathBuf],
+    watch: &mut dyn Watch,
+) -> Result<Ran, RunError> {
     let deadline = req.time_limit.map(|t| Instant::now() + t);
     let mut runs = Vec::new();
     let mut failure = None;
     let mut timed_out = None;
-    for (mut model, out) in models.into_iter().zip(&outs) {
+    for (mut model, out) in models.into_iter().zip(outs) {
         if deadline.is_some_and(|d| Instant::now() >= d) {
             timed_out = Some(format!(
                 "the {}×{} grid was not started",
@@ -184,6 +216,35 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
             break;
         }
     }
+    Ok(Ran {
+        runs,
+        failure,
+        timed_out,
+    })
+}
+
+/// What the plan said that the conclusion needs.
+struct Concluding {
+    target: Option<f64>,
+    plan_note: Option<String>,
+    fallback: usize,
+    planned_runs: usize,
+}
+
+/// The answer from the runs that finished: the estimate, its summary (written where asked)
+/// and why the request fell short, if it did.
+fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
+    let Ran {
+        runs,
+        mut failure,
+        timed_out,
+    } = ran;
+    let Concluding {
+        target,
+        mut plan_note,
+        fallback,
+        planned_runs,
+    } = plan;
     let states: Vec<PathBuf> = runs.iter().map(|r| r.states.clone()).collect();
     let mut reports: Vec<_> = runs.into_iter().map(|r| r.report).collect();
     // Every planned grid finished: the answer is the plan's, the fallback grid is not used
@@ -242,12 +303,12 @@ pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulate
             });
         }
     }
-    Ok(Simulated {
+    Simulated {
         summary,
         plan: plan_note,
         states,
         failure,
-    })
+    }
 }
 
 /// What a request runs: the models (every input checked), the accuracy target (if any) and,

@@ -92,10 +92,76 @@ const FILES: [&str; 14] = [
 /// `lines` receives progress notes.
 pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<StudyDone, RunError> {
     let start = Instant::now();
-    let grids = if args.quick { QUICK_GRIDS } else { FULL_GRIDS };
     let sweep_dir = args.out.join("sweep");
+    let work = study_jobs(args, &sweep_dir)?;
+    check_study_memory(&work, args)?;
+    // The files of this command (crossed/ claims its own when it runs).
+    let mut targets: Vec<PathBuf> = work.iter().flat_map(|j| run_files(&j.out)).collect();
+    targets.push(sweep_csv::sweep_csv_path(&sweep_dir));
+    targets.extend(FILES.iter().map(|file| args.out.join(file)));
+    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    announce(args, lines);
+    let results = run_study_jobs(work, args, lines);
+    let mut failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
+    let mut warnings: Vec<String> = results.iter().flat_map(JobResult::warnings).collect();
+    let rows = write_sweep_rows(&sweep_dir, &results)?;
+    let ratio_runs = read_ratio_runs(&sweep_dir, &results);
+    let fits = fit_branches(&ratio_runs, &mut warnings);
+    // The charts draw each ratio's finest run beside its laws.
+    let runs: Vec<RatioRun> = ratio_runs
+        .into_iter()
+        .filter_map(|(_, mut r)| r.pop())
+        .collect();
+    let laws = coefficient_laws(&fits);
+    write_fit_tables(&args.out, &fits, &laws)?;
+    let what = caption_tail(args, &rows);
+    let backend = rows.first().map_or("?".to_string(), |r| r.backend.clone());
+    let mut figures = Figures::new(&args.out);
+    draw_study_charts(&mut figures, &sweep_dir, &rows, &runs, &fits, &laws, &what)?;
+    draw_contours(&mut figures, &sweep_dir, &rows, &backend)?;
+    crossed_step(
+        args,
+        &backend,
+        &mut figures,
+        &mut failures,
+        &mut warnings,
+        lines,
+    )?;
+    for w in &warnings {
+        lines(&format!("warning: {w}"));
+    }
+    write_index(
+        &args.out,
+        &StudyPage {
+            figures: &figures.figures,
+            rows: &rows,
+            fits: &fits,
+            warnings: &warnings,
+            wall_s: start.elapsed().as_secs_f64(),
+            quick: args.quick,
+        },
+    )?;
+    Ok(StudyDone {
+        index: args.out.join("index.html"),
+        charts: figures.figures.len(),
+        wall_s: start.elapsed().as_secs_f64(),
+        failures,
+    })
+}
+
+/// The study's grids: [`QUICK_GRIDS`] or [`FULL_GRIDS`].
+fn study_grids(args: &StudyRequest) -> [usize; 6] {
+    if args.quick {
+        QUICK_GRIDS
+    } else {
+        FULL_GRIDS
+    }
+}
+
+/// One pull-off per ratio and grid of its ladder, its states under `sweep_dir`.
+fn study_jobs(args: &StudyRequest, sweep_dir: &Path) -> Result<Vec<Job>, RunError> {
     let mut work = Vec::new();
-    for (&ratio, &finest) in RATIOS.iter().zip(&grids) {
+    for (&ratio, &finest) in RATIOS.iter().zip(&study_grids(args)) {
         let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
         for grid in ladder(finest, args.quick) {
             let model = Model::build(
@@ -106,7 +172,7 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
                 },
             )
             .map_err(input)?;
-            let out = states_path(&sweep_dir, ratio, grid);
+            let out = states_path(sweep_dir, ratio, grid);
             work.push(Job {
                 model,
                 out,
@@ -114,6 +180,11 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
             });
         }
     }
+    Ok(work)
+}
+
+/// Refuse a study whose `--jobs` largest pull-offs do not fit in memory.
+fn check_study_memory(work: &[Job], args: &StudyRequest) -> Result<(), RunError> {
     let refs: Vec<&Model> = work.iter().map(|j| &j.model).collect();
     crate::plan::check_memory(&refs, args.jobs, "--quick").map_err(|e| {
         let why = match e {
@@ -128,30 +199,38 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
                 " (use --quick for one grid of 64 to 256 per ratio, or a machine with more memory)"
             }
         ))
-    })?;
-    // The files of this command (crossed/ claims its own when it runs).
-    let mut targets: Vec<PathBuf> = work.iter().flat_map(|j| run_files(&j.out)).collect();
-    targets.push(sweep_csv::sweep_csv_path(&sweep_dir));
-    for file in FILES {
-        targets.push(args.out.join(file));
-    }
-    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    })
+}
+
+/// Say which ratios and grids the study runs.
+fn announce(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) {
     lines(&format!(
         "reproduce: {} ratios on grids {}{}",
         RATIOS.len(),
-        grids
+        study_grids(args)
             .iter()
             .map(|&g| format!("{:?}", ladder(g, args.quick)))
             .collect::<Vec<_>>()
             .join(", "),
         if args.quick { " (quick)" } else { "" }
     ));
-    // The largest pull-offs first, so that parallel jobs end together.
+}
+
+/// Run every pull-off (the largest first, so that parallel jobs end together); the results
+/// sorted by ratio, then grid.
+fn run_study_jobs(
+    mut work: Vec<Job>,
+    args: &StudyRequest,
+    lines: &(dyn Fn(&str) + Sync),
+) -> Vec<JobResult> {
     work.sort_by_key(|j| std::cmp::Reverse(j.model.nx * j.model.ny));
     let mut results = run_jobs(work, args.jobs, args.backend, lines);
     results.sort_by(|a, b| a.ratio.total_cmp(&b.ratio).then(a.grid.0.cmp(&b.grid.0)));
-    let mut failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
-    let mut warnings: Vec<String> = results.iter().flat_map(JobResult::warnings).collect();
+    results
+}
+
+/// One row per ratio (its grids' estimate), written as the study's sweep.csv.
+fn write_sweep_rows(sweep_dir: &Path, results: &[JobResult]) -> Result<Vec<SweepRow>, RunError> {
     let mut rows: Vec<SweepRow> = RATIOS
         .iter()
         .map(|&ratio| {
@@ -160,24 +239,21 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
         })
         .collect();
     rows.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
-    sweep_csv::write_rows(&sweep_csv::sweep_csv_path(&sweep_dir), &rows)
+    sweep_csv::write_rows(&sweep_csv::sweep_csv_path(sweep_dir), &rows)
         .map_err(write_error("--out"))?;
-    let backend = rows.first().map_or("?".to_string(), |r| r.backend.clone());
-    let sweep_wall: f64 = rows.iter().map(|r| r.wall_s).sum();
-    let grid_text = rows
-        .iter()
-        .map(|r| format!("{}: {}×{}", r.ratio, r.grid, r.ny))
-        .collect::<Vec<_>>()
-        .join(", ");
-    // Every grid's run of every ratio, coarse to fine.
-    let ratio_runs: Vec<(f64, Vec<RatioRun>)> = RATIOS
+    Ok(rows)
+}
+
+/// Every grid's run of every ratio, coarse to fine, with its states read back.
+fn read_ratio_runs(sweep_dir: &Path, results: &[JobResult]) -> Vec<(f64, Vec<RatioRun>)> {
+    RATIOS
         .iter()
         .map(|&ratio| {
             let runs = results
                 .iter()
                 .filter(|r| r.ratio == ratio)
                 .filter_map(|r| {
-                    let path = states_path(&sweep_dir, ratio, r.grid.0);
+                    let path = states_path(sweep_dir, ratio, r.grid.0);
                     let states = read_state_rows(&path).ok()?;
                     Some(RatioRun {
                         ratio,
@@ -188,10 +264,17 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
                 .collect();
             (ratio, runs)
         })
-        .collect();
-    // The branch laws: at Δx → 0 from the full study's grids, else the one grid's.
+        .collect()
+}
+
+/// The branch laws of each ratio: at Δx → 0 from the full study's grids, else the one
+/// grid's (with a warning where grids could not be extrapolated together).
+fn fit_branches(
+    ratio_runs: &[(f64, Vec<RatioRun>)],
+    warnings: &mut Vec<String>,
+) -> Vec<BranchFits> {
     let mut fits: Vec<BranchFits> = Vec::new();
-    for (ratio, runs) in &ratio_runs {
+    for (ratio, runs) in ratio_runs {
         let Some(finest) = runs.last() else { continue };
         if runs.len() >= 2 {
             match limit_fits(*ratio, runs) {
@@ -209,61 +292,98 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
             fits.push(branch_fits(finest));
         }
     }
-    // The charts draw each ratio's finest run beside its laws.
-    let runs: Vec<RatioRun> = ratio_runs
-        .into_iter()
-        .filter_map(|(_, mut r)| r.pop())
-        .collect();
-    let laws = coefficient_laws(&fits);
-    write_fit_tables(&args.out, &fits, &laws)?;
-    let what = format!(
+    fits
+}
+
+/// What every caption ends with: the grids, the backend and the pull-offs' time.
+fn caption_tail(args: &StudyRequest, rows: &[SweepRow]) -> String {
+    let backend = rows.first().map_or("?".to_string(), |r| r.backend.clone());
+    let sweep_wall: f64 = rows.iter().map(|r| r.wall_s).sum();
+    let grid_text = rows
+        .iter()
+        .map(|r| format!("{}: {}×{}", r.ratio, r.grid, r.ny))
+        .collect::<Vec<_>>()
+        .join(", ");
+    format!(
         "R1/R2 = {grid_text} (Nx×Ny{}); backend {backend}; pull-offs {sweep_wall:.0} s in all",
         if args.quick {
             ""
         } else {
             ", the finest of three grids; laws and forces extrapolated to Δx → 0"
         }
-    );
-    let pick = |want: &[f64]| -> (Vec<RatioRun>, Vec<BranchFits>) {
-        let runs: Vec<RatioRun> = runs
-            .iter()
-            .filter(|r| want.contains(&r.ratio))
-            .map(|r| RatioRun {
-                ratio: r.ratio,
-                grid: r.grid,
-                states: r.states.clone(),
-            })
-            .collect();
-        let fits = fits
-            .iter()
-            .filter(|f| want.contains(&f.ratio))
-            .cloned()
-            .collect();
-        (runs, fits)
-    };
-    let mut figures = Vec::new();
-    let mut chart = |file: &str, chart: LineChart, caption: String| -> Result<(), RunError> {
+    )
+}
+
+/// The study's figures: each chart written to its file in the output folder, with its
+/// caption for the index.
+struct Figures<'a> {
+    out: &'a Path,
+    figures: Vec<Figure>,
+}
+
+impl<'a> Figures<'a> {
+    fn new(out: &'a Path) -> Self {
+        Figures {
+            out,
+            figures: Vec::new(),
+        }
+    }
+
+    /// Write `chart` as `file` and list it with `caption`.
+    fn add(&mut self, file: &str, chart: LineChart, caption: String) -> Result<(), RunError> {
         chart
-            .write_svg(&args.out.join(file))
+            .write_svg(&self.out.join(file))
             .map_err(write_error("--out"))?;
-        figures.push(Figure {
+        self.figures.push(Figure {
             file: file.into(),
             caption,
         });
         Ok(())
-    };
-    chart(
+    }
+}
+
+/// The finest runs and the fits of the ratios in `want`.
+fn pick(runs: &[RatioRun], fits: &[BranchFits], want: &[f64]) -> (Vec<RatioRun>, Vec<BranchFits>) {
+    let runs: Vec<RatioRun> = runs
+        .iter()
+        .filter(|r| want.contains(&r.ratio))
+        .map(|r| RatioRun {
+            ratio: r.ratio,
+            grid: r.grid,
+            states: r.states.clone(),
+        })
+        .collect();
+    let fits = fits
+        .iter()
+        .filter(|f| want.contains(&f.ratio))
+        .cloned()
+        .collect();
+    (runs, fits)
+}
+
+/// §8.1, §8.2, §8.4, §8.5 and §8.6: the pull-off curves, the axis ratio, the branch laws,
+/// their coefficients and the adhesive force against R1/R2.
+fn draw_study_charts(
+    figures: &mut Figures,
+    sweep_dir: &Path,
+    rows: &[SweepRow],
+    runs: &[RatioRun],
+    fits: &[BranchFits],
+    laws: &[CoefficientLaw],
+    what: &str,
+) -> Result<(), RunError> {
+    figures.add(
         "pulloff_curves.svg",
-        pulloff_curves_chart(&sweep_dir, &rows).map_err(write_error("--out"))?,
+        pulloff_curves_chart(sweep_dir, rows).map_err(write_error("--out"))?,
         format!("§8.1 Pull-off curves F̄(d̄) beside JKR (sphere) and JG. {what}."),
     )?;
-    let (r2, _) = pick(&[2.0, 5.0, 10.0, 25.0]);
-    chart(
+    let (r2, _) = pick(runs, fits, &[2.0, 5.0, 10.0, 25.0]);
+    figures.add(
         "axis_ratio.svg",
         axis_ratio_chart(&r2),
         format!("§8.2 Axis ratio b_simu/a_simu against F̄ beside JG's g(F̄). {what}."),
     )?;
-    let (r3, f3) = pick(&[2.0, 10.0, 25.0]);
+    let (r3, f3) = pick(runs, fits, &[2.0, 10.0, 25.0]);
     for (law, file, name) in [
         (BranchLaw::DOfC, "d_of_c.svg", "d̄(c̄), fit d̄ = A c̄² + B c̄^½"),
         (
@@ -273,14 +393,30 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
         ),
         (BranchLaw::FOfD, "f_of_d.svg", "F̄(d̄) from both fits"),
     ] {
-        chart(
+        figures.add(
             file,
             branch_chart(&r3, &f3, law),
             format!("§8.4 {name}, on the adhesive branch (onset states), beside JG. {what}."),
         )?;
     }
-    let law_text = laws
-        .iter()
+    figures.add(
+        "coefficients.svg",
+        coefficients_chart(laws),
+        format!(
+            "§8.5 The branch-law coefficients against R1/R2 with fitted laws: {}. {what}.",
+            laws_text(laws)
+        ),
+    )?;
+    figures.add(
+        "force_vs_ratio.svg",
+        force_vs_ratio_chart(rows),
+        format!("§8.6 Adhesive force |min F̄| against R1/R2 beside JG's pull-off force, with the fitted law. {what}."),
+    )
+}
+
+/// The fitted coefficient laws in words, with their uncertainties.
+fn laws_text(laws: &[CoefficientLaw]) -> String {
+    laws.iter()
         .map(|c| match (&c.law, &c.uncertainty) {
             (Some(l), Some(u)) => format!(
                 "{} = {} (± {:.3}, {:.3}, {:.3} on k1, k2, k3)",
@@ -294,61 +430,74 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
             (None, _) => format!("{}: no fit", c.name),
         })
         .collect::<Vec<_>>()
-        .join("; ");
-    chart(
-        "coefficients.svg",
-        coefficients_chart(&laws),
-        format!(
-            "§8.5 The branch-law coefficients against R1/R2 with fitted laws: {law_text}. {what}."
-        ),
-    )?;
-    chart(
-        "force_vs_ratio.svg",
-        force_vs_ratio_chart(&rows),
-        format!("§8.6 Adhesive force |min F̄| against R1/R2 beside JG's pull-off force, with the fitted law. {what}."),
-    )?;
-    // §8.1 snapshots and §8.3: quarter contours against ellipses.
+        .join("; ")
+}
+
+/// §8.1 snapshots and §8.3: quarter contours against ellipses, for R1/R2 = 1, 5 and 25.
+fn draw_contours(
+    figures: &mut Figures,
+    sweep_dir: &Path,
+    rows: &[SweepRow],
+    backend: &str,
+) -> Result<(), RunError> {
     for ratio in [1.0, 5.0, 25.0] {
         let Some(row) = rows.iter().find(|r| r.ratio == ratio) else {
             continue;
         };
-        let path = contours_path(&states_path(&sweep_dir, ratio, row.grid));
+        let path = contours_path(&states_path(sweep_dir, ratio, row.grid));
         let contours: Vec<ContourRow> = csv::Reader::from_path(&path)
             .and_then(|mut r| r.deserialize().collect())
             .map_err(|e| failed(format!("{}: {e}", path.display())))?;
-        let mut labels: Vec<String> = Vec::new();
-        for c in &contours {
-            if labels.last() != Some(&c.label) {
-                labels.push(c.label.clone());
-            }
-        }
-        let departures = labels
-            .iter()
-            .filter_map(|l| contours.iter().find(|c| &c.label == l))
-            .map(|c| {
-                format!(
-                    "{} (c̄ = {:.2}): rms {:.1} %, max {:.1} %",
-                    c.label,
-                    c.c_bar,
-                    100.0 * c.departure_rms,
-                    100.0 * c.departure_max
-                )
-            })
-            .collect::<Vec<_>>()
-            .join("; ");
-        chart(
+        figures.add(
             &format!("contours_r{ratio}.svg"),
             contour_chart(ratio, &contours),
             format!(
                 "§8.1/§8.3 Quarter contours of the contact during pull-off, R1/R2 = {ratio} \
                  ({}×{}), beside the ellipses with the same half-axes. Departure r/r_e − 1: \
-                 {departures}. Backend {backend}.",
-                row.grid, row.ny
+                 {}. Backend {backend}.",
+                row.grid,
+                row.ny,
+                departures_text(&contours)
             ),
         )?;
     }
-    // §8.7: crossed cylinders, at the grids of the nearest ratios.
-    // Quick: one coarse grid; full: each angle's grid planned for a 2 % adhesive force.
+    Ok(())
+}
+
+/// Each snapshot's departure from its ellipse in words.
+fn departures_text(contours: &[ContourRow]) -> String {
+    let mut labels: Vec<String> = Vec::new();
+    for c in contours {
+        if labels.last() != Some(&c.label) {
+            labels.push(c.label.clone());
+        }
+    }
+    labels
+        .iter()
+        .filter_map(|l| contours.iter().find(|c| &c.label == l))
+        .map(|c| {
+            format!(
+                "{} (c̄ = {:.2}): rms {:.1} %, max {:.1} %",
+                c.label,
+                c.c_bar,
+                100.0 * c.departure_rms,
+                100.0 * c.departure_max
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// §8.7: crossed cylinders, at the grids of the nearest ratios (quick: one coarse grid; full:
+/// each angle's grid planned for a 2 % adhesive force), its chart copied beside the others.
+fn crossed_step(
+    args: &StudyRequest,
+    backend: &str,
+    figures: &mut Figures,
+    failures: &mut Vec<String>,
+    warnings: &mut Vec<String>,
+    lines: &(dyn Fn(&str) + Sync),
+) -> Result<(), RunError> {
     let crossed_grid = if args.quick {
         super::batch::GridChoice::Fixed(128)
     } else {
@@ -390,7 +539,7 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
             .map_err(|e| failed(format!("cannot read {}: {e}", crossed_svg.display())))?;
         crate::output::file::write_bytes(&args.out.join("crossed.svg"), &svg)
             .map_err(write_error("--out"))?;
-        figures.push(Figure {
+        figures.figures.push(Figure {
             file: "crossed.svg".into(),
             caption: format!(
                 "§8.7 Crossed cylinders (R = 10 mm, E = 1 MPa, ν = 0.5, Δγ = 0.05 J/m²): adhesive \
@@ -401,26 +550,7 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
             ),
         });
     }
-    for w in &warnings {
-        lines(&format!("warning: {w}"));
-    }
-    write_index(
-        &args.out,
-        &StudyPage {
-            figures: &figures,
-            rows: &rows,
-            fits: &fits,
-            warnings: &warnings,
-            wall_s: start.elapsed().as_secs_f64(),
-            quick: args.quick,
-        },
-    )?;
-    Ok(StudyDone {
-        index: args.out.join("index.html"),
-        charts: figures.len(),
-        wall_s: start.elapsed().as_secs_f64(),
-        failures,
-    })
+    Ok(())
 }
 
 /// One ratio's row of the study's sweep: one grid's, or the adhesive force extrapolated to

@@ -1,15 +1,11 @@
-//! `jkrbem simulate`: one scene's pull-off (one grid, several extrapolated, or the grids an
-//! accuracy needs). Parses the flags into a request for [`jkrbem::run::simulate`] and prints
-//! what comes back.
+//! The flags of `jkrbem simulate`, with their units and ranges (`--help` shows these
+//! comments).
 
-use super::progress::Progress;
-use super::{run_error, CliError};
+use super::super::parse;
 use jkrbem::backend::select::BackendKind;
 use jkrbem::backend::Preconditioner;
-use jkrbem::model::{Measure, ModelOptions, Onsets};
-use jkrbem::run::open::{BackendRequest, Convolution};
-use jkrbem::run::simulate::{failure_error, simulate, Mode, SimulateRequest};
-use jkrbem::scene::Scene;
+use jkrbem::model::{Measure, Onsets};
+use jkrbem::run::open::Convolution;
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -158,202 +154,13 @@ pub struct Args {
     /// overrides --grid, --grid-y, --steps, --onsets, --measure, --regrid and --extrapolate.
     /// A target no grid that fits in memory reaches is refused, naming the finest reachable
     /// [default: 2% unless one grid or --extrapolate is asked for].
-    #[arg(long, value_parser = parse_percentage)]
+    #[arg(long, value_parser = parse::percentage)]
     pub accuracy: Option<f64>,
     /// Wall-clock time an --accuracy run may take (`90s`, `20min`, `2h`; the unit is
     /// required; in [1 s, 30 days]). The coarsest grid that resolves the contact then runs
     /// first; a grid still running at the limit is stopped (its states kept under their
     /// partial name), and the answer comes from the grids that finished: printed with its
     /// stated uncertainty, `target_met: false` if that misses the target, exit status 0.
-    #[arg(long, value_parser = parse_duration)]
+    #[arg(long, value_parser = parse::duration)]
     pub time_limit: Option<Duration>,
-}
-
-/// The accuracy of a bare `simulate` (relative): the adhesive force to 2 %.
-pub const DEFAULT_ACCURACY: f64 = 0.02;
-
-/// Nx of a one-grid run that names no --grid.
-pub const DEFAULT_GRID: usize = 256;
-
-/// A percentage such as `5%` as a fraction (0.05). The `%` is required: a bare `0.05` could
-/// mean 5 % or 0.05 %.
-pub fn parse_percentage(text: &str) -> Result<f64, String> {
-    let Some(number) = text.trim().strip_suffix('%') else {
-        return Err(format!(
-            "{text:?} is not a percentage: write the unit, e.g. 5% or 1% (a bare number could \
-             mean a fraction or a per cent)"
-        ));
-    };
-    let v: f64 = number
-        .trim()
-        .parse()
-        .map_err(|_| format!("{text:?} is not a percentage (e.g. 5% or 1%)"))?;
-    if (0.1..=50.0).contains(&v) {
-        Ok(v / 100.0)
-    } else {
-        Err(format!(
-            "{}: give a percentage in [0.1, 50], e.g. 5% or 1%",
-            jkrbem::text::compact(v)
-        ))
-    }
-}
-
-/// A duration such as `90s`, `20min` or `2h`. The unit is required (s, min, h); the value
-/// lies in [1 s, 30 days].
-pub fn parse_duration(text: &str) -> Result<Duration, String> {
-    let t = text.trim();
-    let (number, unit) = [("min", 60.0), ("h", 3600.0), ("s", 1.0)]
-        .iter()
-        .find_map(|&(u, scale)| t.strip_suffix(u).map(|n| (n, scale)))
-        .ok_or_else(|| {
-            format!("{text:?} is not a duration: write the unit, e.g. 90s, 20min or 2h")
-        })?;
-    let v: f64 = number
-        .trim()
-        .parse()
-        .map_err(|_| format!("{text:?} is not a duration (e.g. 90s, 20min or 2h)"))?;
-    let seconds = v * unit;
-    if (1.0..=30.0 * 86400.0).contains(&seconds) {
-        Ok(Duration::from_secs_f64(seconds))
-    } else {
-        Err(format!(
-            "{}: give a duration in [1 s, 30 days], e.g. 90s, 20min or 2h",
-            jkrbem::text::compact(v)
-        ))
-    }
-}
-
-impl Args {
-    /// The scene of these arguments.
-    pub fn scene(&self) -> Result<Scene, CliError> {
-        match self.r1 {
-            Some(r1) => Scene::new(r1, self.r2, self.e_star, self.work_of_adhesion),
-            None => Scene::from_ratio(self.ratio, self.r2, self.e_star, self.work_of_adhesion),
-        }
-        .map_err(super::input)
-    }
-
-    /// The request these arguments make.
-    pub fn request(&self) -> Result<SimulateRequest, CliError> {
-        if self.apex_offset.len() != 2 {
-            return Err(super::input(
-                "--apex-offset takes two fractions of an element, along x and y: e.g. 0.25,0.5",
-            ));
-        }
-        let one_grid = self.grid.is_some()
-            || self.grid_y.is_some()
-            || self.steps.is_some()
-            || self.onsets.is_some()
-            || self.measure.is_some()
-            || self.regrid
-            || self.final_d.is_some();
-        let mode = match (self.accuracy, self.extrapolate, one_grid) {
-            (Some(target), _, _) => Mode::Accuracy(target),
-            (None, true, _) => Mode::Extrapolate(self.extrapolate_grids.clone()),
-            (None, false, true) => Mode::Single,
-            (None, false, false) => Mode::Accuracy(DEFAULT_ACCURACY),
-        };
-        if self.time_limit.is_some() && !matches!(mode, Mode::Accuracy(_)) {
-            return Err(super::input(
-                "--time-limit applies to an --accuracy run (the default without --grid and \
-                 the other one-grid flags, or --accuracy given)",
-            ));
-        }
-        Ok(SimulateRequest {
-            scene: self.scene()?,
-            options: self.options(),
-            backend: BackendRequest {
-                kind: self.backend,
-                convolution: self.convolution,
-                check_every: self.cg_check_every,
-            },
-            mode,
-            out: self.out.clone(),
-            summary: self.summary.clone(),
-            time_limit: self.time_limit,
-        })
-    }
-
-    /// The model options of these arguments.
-    pub fn options(&self) -> ModelOptions {
-        ModelOptions {
-            nx: self.grid.unwrap_or(DEFAULT_GRID),
-            ny: self.grid_y,
-            start_radius_bar: self.start_radius,
-            steps: self.steps.unwrap_or(jkrbem::model::default_steps(
-                self.measure.unwrap_or(Measure::Curve),
-                self.onsets.unwrap_or(Onsets::NearMinimum),
-                self.regrid,
-            )),
-            final_d_bar: self.final_d,
-            margin: self.margin,
-            mesh_angle_deg: self.mesh_angle,
-            // Two values, checked by the model ([0, 1) each); a wrong count gives NaN there.
-            apex_offset: match self.apex_offset[..] {
-                [x, y] => (x, y),
-                _ => (f64::NAN, f64::NAN),
-            },
-            cg_tolerance: self.cg_tolerance,
-            cg_max_iterations: self.cg_max_iterations,
-            cg_accept: self.cg_accept,
-            preconditioner: self.preconditioner,
-            onsets: self.onsets.unwrap_or(Onsets::NearMinimum),
-            loose_rounds: !self.exact_cascade,
-            measure: self.measure.unwrap_or(Measure::Curve),
-            regrid: self.regrid,
-            ..ModelOptions::default()
-        }
-    }
-}
-
-/// Run `jkrbem simulate`.
-pub fn run(args: Args) -> Result<(), CliError> {
-    let request = args.request()?;
-    let mut progress = Progress::new();
-    let done = simulate(&request, &mut progress).map_err(run_error)?;
-    if let Some(plan) = &done.plan {
-        errln!("jkrbem: {plan}");
-    }
-    out!("{}", done.summary.to_text());
-    for path in &done.states {
-        outln!("states written to {}", path.display());
-    }
-    failure_error(done.failure).map_err(run_error)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn durations_need_a_unit_and_are_bounded() {
-        assert_eq!(parse_duration("90s"), Ok(Duration::from_secs(90)));
-        assert_eq!(parse_duration("20min"), Ok(Duration::from_secs(1200)));
-        assert_eq!(parse_duration("1.5h"), Ok(Duration::from_secs(5400)));
-        assert!(parse_duration("90").unwrap_err().contains("write the unit"));
-        for bad in ["0s", "0.5s", "31h0", "-5min", "NaNs", "1e300h", "800h"] {
-            let e = parse_duration(bad).unwrap_err();
-            assert!(
-                e.contains("[1 s, 30 days]") || e.contains("not a duration"),
-                "{bad}: {e}"
-            );
-            assert!(e.len() < 100, "{e}");
-        }
-    }
-
-    #[test]
-    fn percentages_are_bounded() {
-        assert_eq!(parse_percentage("5%"), Ok(0.05));
-        assert!(parse_percentage("0.05")
-            .unwrap_err()
-            .contains("write the unit"));
-        for bad in ["0%", "60%", "-5%", "NaN%", "1e300%"] {
-            let e = parse_percentage(bad).unwrap_err();
-            assert!(
-                e.contains("[0.1, 50]") || e.contains("not a percentage"),
-                "{e}"
-            );
-            assert!(e.len() < 100, "{e}");
-        }
-    }
 }

@@ -1,0 +1,118 @@
+//! `jkrbem simulate`: one scene's pull-off (one grid, several extrapolated, or the grids an
+//! accuracy needs). Parses the flags into a request for [`jkrbem::run::simulate`] and prints
+//! what comes back.
+
+use super::progress::Progress;
+use super::{run_error, CliError};
+use jkrbem::model::{Measure, ModelOptions, Onsets};
+use jkrbem::run::open::BackendRequest;
+use jkrbem::run::simulate::{failure_error, simulate, Mode, SimulateRequest};
+use jkrbem::scene::Scene;
+
+mod args;
+
+pub use args::Args;
+
+/// The accuracy of a bare `simulate` (relative): the adhesive force to 2 %.
+pub const DEFAULT_ACCURACY: f64 = 0.02;
+
+/// Nx of a one-grid run that names no --grid.
+pub const DEFAULT_GRID: usize = 256;
+
+impl Args {
+    /// The scene of these arguments.
+    pub fn scene(&self) -> Result<Scene, CliError> {
+        match self.r1 {
+            Some(r1) => Scene::new(r1, self.r2, self.e_star, self.work_of_adhesion),
+            None => Scene::from_ratio(self.ratio, self.r2, self.e_star, self.work_of_adhesion),
+        }
+        .map_err(super::input)
+    }
+
+    /// The request these arguments make.
+    pub fn request(&self) -> Result<SimulateRequest, CliError> {
+        if self.apex_offset.len() != 2 {
+            return Err(super::input(
+                "--apex-offset takes two fractions of an element, along x and y: e.g. 0.25,0.5",
+            ));
+        }
+        let one_grid = self.grid.is_some()
+            || self.grid_y.is_some()
+            || self.steps.is_some()
+            || self.onsets.is_some()
+            || self.measure.is_some()
+            || self.regrid
+            || self.final_d.is_some();
+        let mode = match (self.accuracy, self.extrapolate, one_grid) {
+            (Some(target), _, _) => Mode::Accuracy(target),
+            (None, true, _) => Mode::Extrapolate(self.extrapolate_grids.clone()),
+            (None, false, true) => Mode::Single,
+            (None, false, false) => Mode::Accuracy(DEFAULT_ACCURACY),
+        };
+        if self.time_limit.is_some() && !matches!(mode, Mode::Accuracy(_)) {
+            return Err(super::input(
+                "--time-limit applies to an --accuracy run (the default without --grid and \
+                 the other one-grid flags, or --accuracy given)",
+            ));
+        }
+        Ok(SimulateRequest {
+            scene: self.scene()?,
+            options: self.options(),
+            backend: BackendRequest {
+                kind: self.backend,
+                convolution: self.convolution,
+                check_every: self.cg_check_every,
+            },
+            mode,
+            out: self.out.clone(),
+            summary: self.summary.clone(),
+            time_limit: self.time_limit,
+        })
+    }
+
+    /// The model options of these arguments.
+    pub fn options(&self) -> ModelOptions {
+        ModelOptions {
+            nx: self.grid.unwrap_or(DEFAULT_GRID),
+            ny: self.grid_y,
+            start_radius_bar: self.start_radius,
+            steps: self.steps.unwrap_or(jkrbem::model::default_steps(
+                self.measure.unwrap_or(Measure::Curve),
+                self.onsets.unwrap_or(Onsets::NearMinimum),
+                self.regrid,
+            )),
+            final_d_bar: self.final_d,
+            margin: self.margin,
+            mesh_angle_deg: self.mesh_angle,
+            // Two values, checked by the model ([0, 1) each); a wrong count gives NaN there.
+            apex_offset: match self.apex_offset[..] {
+                [x, y] => (x, y),
+                _ => (f64::NAN, f64::NAN),
+            },
+            cg_tolerance: self.cg_tolerance,
+            cg_max_iterations: self.cg_max_iterations,
+            cg_accept: self.cg_accept,
+            preconditioner: self.preconditioner,
+            onsets: self.onsets.unwrap_or(Onsets::NearMinimum),
+            loose_rounds: !self.exact_cascade,
+            measure: self.measure.unwrap_or(Measure::Curve),
+            regrid: self.regrid,
+            ..ModelOptions::default()
+        }
+    }
+}
+
+/// Run `jkrbem simulate`.
+pub fn run(args: Args) -> Result<(), CliError> {
+    let request = args.request()?;
+    let mut progress = Progress::new();
+    let done = simulate(&request, &mut progress).map_err(run_error)?;
+    if let Some(plan) = &done.plan {
+        errln!("jkrbem: {plan}");
+    }
+    out!("{}", done.summary.to_text());
+    for path in &done.states {
+        outln!("states written to {}", path.display());
+    }
+    failure_error(done.failure).map_err(run_error)
+}
