@@ -81,10 +81,11 @@ fn force_minimum_does_not_depend_on_step_size() {
     };
     let (coarse, fine) = (f(40), f(160));
     println!("64²: |min F̄| = {coarse:.9} (40 steps), {fine:.9} (160 steps)");
-    // The README's claim: the same minimum to 1e-6.
+    // The claim of docs/commands.md ("The protocol"): the same minimum to 1e-6.
     assert!((coarse / fine - 1.0).abs() < 1e-6, "{coarse} vs {fine}");
-    // A regression pin of this deterministic f64 figure (the README's 0.546318), not an
-    // accuracy claim: its distance to JKR's 1/2 is the first-order grid error.
+    // A regression pin of this deterministic f64 figure (0.546318 in docs/failures.md and
+    // docs/gpu.md), not an accuracy claim: its distance to JKR's 1/2 is the first-order grid
+    // error.
     assert!(
         (fine - 0.546318).abs() < 1e-4,
         "|min F̄| at 64² moved: {fine}"

@@ -4,7 +4,7 @@
 //! run on the same output); a run that did not reach the force minimum says so; and no input
 //! makes the parser panic.
 //!
-//! Every case is listed, with its outcome, in the README's "Errors" section.
+//! Every case is listed, with its outcome, in docs/errors.md.
 
 mod common;
 
@@ -67,7 +67,7 @@ const COVERAGE: &[&str] = &["coverage", "--out", "cov", "--backend", "cpu"];
 const NONE: &[(&str, &str)] = &[];
 const SMALL_MEMORY: &[(&str, &str)] = &[("JKRBEM_MEMORY_LIMIT", "1e9")];
 
-/// The bad invocations (listed in the README's "Errors" section).
+/// The bad invocations (listed in docs/errors.md).
 pub const CASES: &[Case] = &[
     // simulate: the scene
     (SIM, &["--ratio", "-5"], "--ratio", NONE),

@@ -10,7 +10,7 @@ use crate::text::fixed;
 use serde::Serialize;
 use std::path::Path;
 
-/// The summary (see the README's "The summary" for every field).
+/// The summary (see "The summary" in docs/commands.md for every field).
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
     /// R1/R2 (dimensionless).
