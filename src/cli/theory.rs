@@ -51,7 +51,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     })?;
     let out = args
         .out
-        .unwrap_or_else(|| PathBuf::from(format!("jkrbem-out/theory-{name}-r{}.csv", args.ratio)));
+        .unwrap_or_else(|| jkrbem::output::names::theory_default(name, args.ratio));
     let _claimed = Outputs::claim(&[(out.clone(), "--out".into())])?;
     jkrbem::output::file::write_csv(
         &out,

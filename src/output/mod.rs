@@ -6,6 +6,7 @@ pub mod bench;
 pub mod chart;
 pub mod file;
 pub mod line_chart;
+pub mod names;
 #[cfg(feature = "gpu")]
 pub mod profile;
 pub mod states_csv;

@@ -10,42 +10,6 @@ use std::path::Path;
 /// Points of the closed-form curves (per ratio).
 const THEORY_POINTS: usize = 300;
 
-/// (d̄, F̄) of the pull-off and onset states in a states CSV.
-///
-/// The file may be a run's partial states, cut off mid-row by a write error: the rows up to the
-/// first one that is not whole (fewer fields than the header) are read, and the rest ignored.
-pub fn pulloff_points(states_csv: &Path) -> Result<Vec<(f64, f64)>, OutputError> {
-    let mut reader = csv::ReaderBuilder::new()
-        .flexible(true)
-        .from_path(states_csv)
-        .map_err(|e| OutputError::csv(states_csv, e))?;
-    let header = reader
-        .headers()
-        .cloned()
-        .map_err(|e| OutputError::csv(states_csv, e))?;
-    let col = |name: &str| header.iter().position(|h| h == name);
-    let (Some(phase), Some(d), Some(f)) = (col("phase"), col("d_bar"), col("f_bar")) else {
-        return Ok(Vec::new());
-    };
-    Ok(reader
-        .records()
-        .map_while(|r| r.ok().filter(|r| r.len() == header.len()))
-        .filter(|r| r.get(phase) != Some("approach"))
-        .filter_map(|r| Some((r.get(d)?.parse().ok()?, r.get(f)?.parse().ok()?)))
-        .collect())
-}
-
-/// The newest partial states file of `target_name` in `dir` (see
-/// [`super::file::PartialFile`]), if any.
-fn newest_partial(dir: &Path, target_name: &str) -> Option<std::path::PathBuf> {
-    std::fs::read_dir(dir)
-        .ok()?
-        .filter_map(Result::ok)
-        .filter(|e| super::file::is_partial_of(&e.file_name().to_string_lossy(), target_name))
-        .max_by_key(|e| e.metadata().and_then(|m| m.modified()).ok())
-        .map(|e| e.path())
-}
-
 /// The closed form for a ratio: JKR for the sphere, JG otherwise, as (d̄, F̄) on its adhesive
 /// branch up to approach `d_max`; empty if the theory cannot be evaluated.
 fn theory_curve(ratio: f64, d_max: f64) -> Vec<(f64, f64)> {
@@ -60,38 +24,14 @@ fn theory_curve(ratio: f64, d_max: f64) -> Vec<(f64, f64)> {
         .unwrap_or_default()
 }
 
-/// F̄(d̄) of every ratio of a sweep (states read from `dir`), with the closed forms dashed.
-pub fn pulloff_curves_chart(dir: &Path, rows: &[SweepRow]) -> Result<LineChart, OutputError> {
-    pulloff_curves_chart_noting(dir, rows).map(|(chart, _)| chart)
-}
-
-/// The states file of `row` in `dir`: its complete file if that is a regular file, else its
-/// newest partial file; or why there is none, in words.
-fn states_file(dir: &Path, row: &SweepRow) -> Result<std::path::PathBuf, String> {
-    let name = format!("r{}-n{}.csv", row.ratio, row.grid);
-    let complete = dir.join(&name);
-    match std::fs::metadata(&complete) {
-        Ok(m) if m.is_file() => return Ok(complete),
-        Ok(_) => {
-            return Err(format!(
-                "{} is not a regular file (a FIFO, a device or a folder)",
-                complete.display()
-            ))
-        }
-        Err(_) => {}
-    }
-    newest_partial(dir, &name)
-        .filter(|p| p.metadata().is_ok_and(|m| m.is_file()))
-        .ok_or_else(|| format!("its states file {} is missing", complete.display()))
-}
-
-/// [`pulloff_curves_chart`], and one line per ratio whose states it could not draw (its
-/// states file missing or not a regular file): that ratio's legend entry says so and only
-/// its closed form is drawn.
-pub fn pulloff_curves_chart_noting(
-    dir: &Path,
+/// F̄(d̄) of every ratio of a sweep, with the closed forms dashed: `curves[i]` holds the
+/// (d̄, F̄) points of `rows[i]`'s states, or why there are none. Also one line per ratio whose
+/// states it could not draw: that ratio's legend entry says so and only its closed form is
+/// drawn.
+pub fn pulloff_curves_chart(
     rows: &[SweepRow],
-) -> Result<(LineChart, Vec<String>), OutputError> {
+    curves: &[Result<Vec<(f64, f64)>, String>],
+) -> (LineChart, Vec<String>) {
     let mut chart = LineChart::new(
         "Pull-off: force against approach (markers: jkrbem, dashed: JKR / JG)",
         "approach d̄ = d·Re/c_r²",
@@ -101,9 +41,12 @@ pub fn pulloff_curves_chart_noting(
     for (i, r) in rows.iter().enumerate() {
         let mut d_max = 1.0;
         let label = format!("R1/R2 = {} ({}×{})", r.ratio, r.grid, r.ny);
-        match states_file(dir, r) {
-            Ok(path) => {
-                let points = pulloff_points(&path)?;
+        let curve = curves
+            .get(i)
+            .cloned()
+            .unwrap_or_else(|| Err("its states were not given".into()));
+        match curve {
+            Ok(points) => {
                 d_max = points.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
                 chart.push(&label, points, i, Style::Markers);
             }
@@ -131,7 +74,7 @@ pub fn pulloff_curves_chart_noting(
             Style::Dashed,
         );
     }
-    Ok((chart, notes))
+    (chart, notes)
 }
 
 /// |min F̄| against R1/R2 (log axis): the sweep's points beside JG's pull-off force.
@@ -204,38 +147,22 @@ fn grids_text(rows: &[SweepRow]) -> String {
 }
 
 /// Write `force_vs_ratio.svg` and `pulloff_curves.svg` into `dir`; returns one line per ratio
-/// whose pull-off curve could not be drawn (see [`pulloff_curves_chart_noting`]).
-pub fn write_sweep_charts(dir: &Path, rows: &[SweepRow]) -> Result<Vec<String>, OutputError> {
-    force_vs_ratio_chart(rows).write_svg(&dir.join("force_vs_ratio.svg"))?;
-    let (chart, notes) = pulloff_curves_chart_noting(dir, rows)?;
-    chart.write_svg(&dir.join("pulloff_curves.svg"))?;
+/// whose pull-off curve could not be drawn (see [`pulloff_curves_chart`]).
+pub fn write_sweep_charts(
+    dir: &Path,
+    rows: &[SweepRow],
+    curves: &[Result<Vec<(f64, f64)>, String>],
+) -> Result<Vec<String>, OutputError> {
+    let [force_svg, curves_svg] = super::names::sweep_charts(dir);
+    force_vs_ratio_chart(rows).write_svg(&force_svg)?;
+    let (chart, notes) = pulloff_curves_chart(rows, curves);
+    chart.write_svg(&curves_svg)?;
     Ok(notes)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_states_file_cut_off_mid_row_gives_its_whole_rows() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("r1-n32.incomplete-7.csv");
-        let header = crate::output::states_csv::HEADER;
-        let row = |d: f64, f: f64| {
-            format!("1,pulloff,0,0,0,0,0,0,0,0,0,{d},{f},0,0,0,0,0,near-minimum\n")
-        };
-        // The third row was cut off by a write error.
-        let text = format!(
-            "{header}\n{}{}1,pulloff,0,0,0,0,0,0,0,0,0,0.5,-0.4",
-            row(1.0, -0.1),
-            row(0.9, -0.2)
-        );
-        std::fs::write(&path, text).unwrap();
-        assert_eq!(
-            pulloff_points(&path).unwrap(),
-            vec![(1.0, -0.1), (0.9, -0.2)]
-        );
-    }
 
     #[test]
     fn the_fitted_law_is_written_with_proper_signs() {

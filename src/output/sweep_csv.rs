@@ -130,15 +130,7 @@ impl SweepRow {
 pub const HEADER: &str = "ratio,f_ad_bar,f_ad_bar_uncertainty,estimate,c_bar_at_min,\
 d_bar_at_min,jg_f_ad_bar,n_d,grid,dx,wall_s,ny,backend,complete,min_reached,error";
 
-/// The summary file of a whole sweep: `dir/sweep.csv`.
-pub fn sweep_csv_path(dir: &Path) -> PathBuf {
-    dir.join("sweep.csv")
-}
-
-/// The file of shard `k` of `n` (1-based): `dir/sweep-shard-K-of-N.json`.
-pub fn shard_path(dir: &Path, (k, n): (usize, usize)) -> PathBuf {
-    dir.join(format!("sweep-shard-{k}-of-{n}.json"))
-}
+pub use super::names::{shard as shard_path, sweep_csv as sweep_csv_path};
 
 /// Write rows (sorted by ratio) to `path` atomically, header first even without rows.
 pub fn write_rows(path: &Path, rows: &[SweepRow]) -> Result<(), OutputError> {

@@ -12,7 +12,7 @@ use crate::model::{Model, ModelOptions};
 use crate::output::summary::Summary;
 use crate::output::sweep_csv::SweepRow;
 use rayon::prelude::*;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Mean contact radii c̄ at which a pull-off's contact is kept for contours.
 pub const SNAPSHOT_RADII: [f64; 4] = [1.4, 1.1, 0.8, 0.5];
@@ -113,22 +113,7 @@ impl JobResult {
     }
 }
 
-/// The contours file beside a states file: `<stem>.contours.csv`.
-pub fn contours_path(states: &Path) -> PathBuf {
-    let stem = states
-        .file_stem()
-        .map_or_else(|| "states".into(), |s| s.to_string_lossy().into_owned());
-    states.with_file_name(format!("{stem}.contours.csv"))
-}
-
-/// The files one job writes: its states, its summary JSON and its contours.
-pub fn run_files(out: &Path) -> [PathBuf; 3] {
-    [
-        out.to_path_buf(),
-        out.with_extension("json"),
-        contours_path(out),
-    ]
-}
+pub use crate::output::names::run_files;
 
 /// A [`Watch`] that passes notes and warnings to a shared function (jobs run on several
 /// threads at once, so they show no progress line).

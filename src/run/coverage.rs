@@ -356,11 +356,6 @@ fn in_coverage_words(e: RunError) -> RunError {
     ))
 }
 
-/// The summary file of one case's run (its states go beside it as `.csv`).
-fn case_name(ratio: f64, nx: usize, margin: f64, variant: CaseVariant) -> String {
-    format!("r{ratio}-n{nx}-m{margin}-{variant}")
-}
-
 /// Check the request, then run (or reuse) every case, estimate each and sum them up.
 pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<CoverageDone, RunError> {
     if req.ratios.is_empty() || req.margins.is_empty() || req.variants.is_empty() {
@@ -428,7 +423,7 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
                 // This grid's and variant's run at every margin, in order.
                 let mut runs = Vec::new();
                 for &margin in &req.margins {
-                    let name = case_name(ratio, nx, margin, variant);
+                    let name = crate::output::names::coverage_case(ratio, nx, margin, variant);
                     let options = case_options(nx, margin, variant);
                     let run = run_or_reuse(&scene, options, req.backend, &req.out, &name, watch)
                         .map_err(in_coverage_words)?;
@@ -436,7 +431,7 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
                 }
                 for window in runs.windows(req.runs_per_case) {
                     let reports: Vec<_> = window.iter().map(|(_, r)| r.clone()).collect();
-                    let name = case_name(ratio, nx, window[0].0, variant);
+                    let name = crate::output::names::coverage_case(ratio, nx, window[0].0, variant);
                     let e = estimate::from_runs(&reports)
                         .map_err(|why| failed(format!("{name} ({} runs): {why}", reports.len())))?;
                     let mean = |get: fn(&crate::analysis::report::RunReport) -> Option<f64>| {

@@ -127,7 +127,7 @@ pub fn crossed(
             scene.ratio(),
             c.force_scale().map_err(|e| input(e.renamed(flags)))?,
         ));
-        let out = req.out.join(format!("theta{angle}-n{}.csv", model.nx));
+        let out = crate::output::names::crossed_states(&req.out, angle, model.nx);
         jobs.push(Job { model, out, target });
     }
     let refs: Vec<&Model> = jobs.iter().map(|j| &j.model).collect();

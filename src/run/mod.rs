@@ -12,6 +12,7 @@ pub mod bench;
 pub mod claim;
 pub mod coverage;
 pub mod crossed;
+pub mod curves;
 pub mod open;
 pub mod pulloff;
 pub mod reference;

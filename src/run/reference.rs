@@ -113,17 +113,6 @@ fn one_run_per_grid() -> usize {
     1
 }
 
-/// The summary file of the run of R1/R2 = `ratio` on grid `nx` at the `phase`-th margin
-/// `margin` (the first keeps the name of a ladder with one run per grid, so its runs are
-/// reused).
-fn run_name(ratio: f64, nx: usize, phase: usize, margin: f64) -> String {
-    if phase == 0 {
-        format!("r{ratio}-n{nx}")
-    } else {
-        format!("r{ratio}-n{nx}-m{margin}")
-    }
-}
-
 /// What the request produced.
 pub struct ReferenceDone {
     /// One row per ratio, in the order asked.
@@ -314,7 +303,7 @@ fn ladder(
     'grids: for &nx in &grids.grids {
         let margins = phase_margins(base.margin, req.phases);
         for (phase, margin) in margins.into_iter().enumerate() {
-            let name = run_name(ratio, nx, phase, margin);
+            let name = crate::output::names::reference_run(ratio, nx, phase, margin);
             let options = ModelOptions {
                 nx,
                 margin,
@@ -470,13 +459,7 @@ fn write_summary(
     crate::output::file::write_bytes(path, (text + "\n").as_bytes()).map_err(write_error("--out"))
 }
 
-/// The folder of the runs beside the table: `<stem>-runs/`.
-pub fn runs_dir(table: &std::path::Path) -> PathBuf {
-    let stem = table
-        .file_stem()
-        .map_or("reference".into(), |s| s.to_string_lossy().into_owned());
-    table.with_file_name(format!("{stem}-runs"))
-}
+pub use crate::output::names::reference_runs as runs_dir;
 
 /// The rows of an existing table at `path` (none if there is no file). A file that is not a
 /// reference table is refused rather than replaced.

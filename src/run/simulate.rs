@@ -8,10 +8,11 @@ use super::pulloff::{pulloff_to_file, Pulloff};
 use super::{failed, input, RunError, Watch};
 use crate::analysis::estimate::{self, AdhesiveResult};
 use crate::model::{Measure, Model, ModelOptions, Onsets};
+use crate::output::names;
 use crate::output::summary::Summary;
 use crate::plan;
 use crate::scene::Scene;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 /// What to do with the scene.
@@ -63,28 +64,6 @@ pub struct Simulated {
     pub failure: Option<String>,
 }
 
-/// The default states path of a single run.
-fn default_out(model: &Model) -> PathBuf {
-    let angle = if model.mesh.is_aligned() {
-        String::new()
-    } else {
-        format!("-a{}", model.mesh.degrees)
-    };
-    PathBuf::from(format!(
-        "jkrbem-out/simulate-r{}-n{}{angle}.csv",
-        model.scene.ratio(),
-        model.nx
-    ))
-}
-
-/// The states file of grid `nx` of an extrapolation with stem `stem`.
-fn grid_out(stem: &Path, nx: usize) -> PathBuf {
-    let name = stem
-        .file_stem()
-        .map_or("states".into(), |s| s.to_string_lossy().into_owned());
-    stem.with_file_name(format!("{name}-n{nx}.csv"))
-}
-
 /// Run the request: check every input, claim the outputs, run, estimate, write the summary.
 pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulated, RunError> {
     req.backend.check()?;
@@ -128,15 +107,19 @@ fn output_paths(req: &SimulateRequest, models: &[Model]) -> Result<Vec<PathBuf>,
     let one_grid = models.len() == 1 && !matches!(req.mode, Mode::Extrapolate(_));
     Ok(match (one_grid, &req.out) {
         (true, Some(out)) => vec![out.clone()],
-        (true, None) => vec![default_out(&models[0])],
+        (true, None) => vec![names::simulate_default(
+            req.scene.ratio(),
+            models[0].nx,
+            (!models[0].mesh.is_aligned()).then_some(models[0].mesh.degrees),
+        )],
         (false, stem) => {
             let name = match req.mode {
                 Mode::Accuracy(_) => "simulate",
                 _ => "extrapolate",
             };
-            let stem = stem.clone().unwrap_or_else(|| {
-                PathBuf::from(format!("jkrbem-out/{name}-r{}.csv", req.scene.ratio()))
-            });
+            let stem = stem
+                .clone()
+                .unwrap_or_else(|| names::simulate_stem(name, req.scene.ratio()));
             if stem.is_dir() || stem.file_stem().is_none() {
                 return Err(input(format!(
                     "--out {}: with several grids --out is the stem of one states file per \
@@ -145,7 +128,10 @@ fn output_paths(req: &SimulateRequest, models: &[Model]) -> Result<Vec<PathBuf>,
                     stem.display()
                 )));
             }
-            models.iter().map(|m| grid_out(&stem, m.nx)).collect()
+            models
+                .iter()
+                .map(|m| names::grid_states(&stem, m.nx))
+                .collect()
         }
     })
 }

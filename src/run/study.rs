@@ -1,11 +1,11 @@
 //! The whole study of physics §8 from one request: the sweep over R1/R2, the branch fits and
 //! their laws, the crossed cylinders, every chart as SVG and an index.html that shows them.
 
-use super::batch::{contours_path, run_files, run_jobs, Job, JobResult};
+use super::batch::{run_files, run_jobs, Job, JobResult};
 use super::claim::{named, write_error, Outputs};
 use super::crossed::{crossed, CrossedRequest};
+use super::curves::sweep_curves;
 use super::open::BackendRequest;
-use super::sweep::states_path;
 use super::{failed, input, RunError};
 use crate::analysis::capture::ContourRow;
 use crate::analysis::estimate::{self, AdhesiveResult};
@@ -14,6 +14,7 @@ use crate::analysis::study_fits::{
 };
 use crate::model::{Model, ModelOptions};
 use crate::output::line_chart::LineChart;
+use crate::output::names::{contours as contours_path, sweep_states as states_path};
 use crate::output::states_csv::read_state_rows;
 use crate::output::study_charts::{
     axis_ratio_chart, branch_chart, coefficients_chart, contour_chart, BranchLaw,
@@ -372,9 +373,10 @@ fn draw_study_charts(
     laws: &[CoefficientLaw],
     what: &str,
 ) -> Result<(), RunError> {
+    let (curves_chart, _) = pulloff_curves_chart(rows, &sweep_curves(sweep_dir, rows));
     figures.add(
         "pulloff_curves.svg",
-        pulloff_curves_chart(sweep_dir, rows).map_err(write_error("--out"))?,
+        curves_chart,
         format!("§8.1 Pull-off curves F̄(d̄) beside JKR (sphere) and JG. {what}."),
     )?;
     let (r2, _) = pick(runs, fits, &[2.0, 5.0, 10.0, 25.0]);

@@ -3,6 +3,7 @@
 
 use super::batch::{batch_model, run_files, run_jobs, GridChoice, Job};
 use super::claim::{named, write_error, Outputs};
+use super::curves::sweep_curves;
 use super::open::BackendRequest;
 use super::{input, RunError};
 use crate::model::{Model, ModelOptions};
@@ -52,18 +53,9 @@ pub struct SweepDone {
     pub warnings: Vec<String>,
 }
 
-/// States file of one ratio in `dir`.
-pub fn states_path(dir: &Path, ratio: f64, grid: usize) -> PathBuf {
-    dir.join(format!("r{ratio}-n{grid}.csv"))
-}
+pub use crate::output::names::sweep_states as states_path;
 
-/// The sweep charts' files in `dir`.
-pub fn chart_files(dir: &Path) -> [PathBuf; 2] {
-    [
-        dir.join("force_vs_ratio.svg"),
-        dir.join("pulloff_curves.svg"),
-    ]
-}
+pub use crate::output::names::sweep_charts as chart_files;
 
 /// The model of one ratio (R2 = E* = Δγ = 1: the normalised results do not depend on them)
 /// and the accuracy it is held to.
@@ -159,7 +151,7 @@ pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepD
     // own failures (which it must not hide); sweep.csv is already written.
     let mut charts_error = None;
     let charts = if req.shard.is_none() {
-        match write_sweep_charts(&req.out, &sorted) {
+        match write_sweep_charts(&req.out, &sorted, &sweep_curves(&req.out, &sorted)) {
             Ok(w) => {
                 warnings.extend(w);
                 Some(chart_files(&req.out))
@@ -297,7 +289,8 @@ pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunErro
             dir.display()
         ));
     }
-    warnings.extend(write_sweep_charts(dir, &c.rows).map_err(write_error("DIR"))?);
+    let curves = sweep_curves(dir, &c.rows);
+    warnings.extend(write_sweep_charts(dir, &c.rows, &curves).map_err(write_error("DIR"))?);
     Ok(Merged {
         rows: c.rows.len(),
         shards_found: c.shards - c.missing_shards.len(),

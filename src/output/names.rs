@@ -1,0 +1,138 @@
+//! Every file name a run writes, in one place: the commands, the session layer and the
+//! charts all take their names from here.
+
+use std::fmt::Display;
+use std::path::{Path, PathBuf};
+
+/// The states file of R1/R2 = `ratio` on grid Nx `grid` in a sweep (or study) folder:
+/// `dir/r<ratio>-n<grid>.csv`.
+pub fn sweep_states(dir: &Path, ratio: f64, grid: usize) -> PathBuf {
+    dir.join(format!("r{ratio}-n{grid}.csv"))
+}
+
+/// The summary file of a whole sweep: `dir/sweep.csv`.
+pub fn sweep_csv(dir: &Path) -> PathBuf {
+    dir.join("sweep.csv")
+}
+
+/// The file of shard `k` of `n` (1-based): `dir/sweep-shard-K-of-N.json`.
+pub fn shard(dir: &Path, (k, n): (usize, usize)) -> PathBuf {
+    dir.join(format!("sweep-shard-{k}-of-{n}.json"))
+}
+
+/// A sweep's charts in `dir`: `force_vs_ratio.svg` and `pulloff_curves.svg`.
+pub fn sweep_charts(dir: &Path) -> [PathBuf; 2] {
+    [
+        dir.join("force_vs_ratio.svg"),
+        dir.join("pulloff_curves.svg"),
+    ]
+}
+
+/// The contours file beside a states file: `<stem>.contours.csv`.
+pub fn contours(states: &Path) -> PathBuf {
+    let stem = states
+        .file_stem()
+        .map_or_else(|| "states".into(), |s| s.to_string_lossy().into_owned());
+    states.with_file_name(format!("{stem}.contours.csv"))
+}
+
+/// The summary JSON beside a states file: `<stem>.json`.
+pub fn summary_beside(states: &Path) -> PathBuf {
+    states.with_extension("json")
+}
+
+/// The files one batch job writes: its states, its summary JSON and its contours.
+pub fn run_files(states: &Path) -> [PathBuf; 3] {
+    [
+        states.to_path_buf(),
+        summary_beside(states),
+        contours(states),
+    ]
+}
+
+/// The default states file of one `simulate` run: `jkrbem-out/simulate-r<ratio>-n<nx>.csv`,
+/// with `-a<degrees>` added for a turned mesh.
+pub fn simulate_default(ratio: f64, nx: usize, mesh_degrees: Option<f64>) -> PathBuf {
+    let angle = mesh_degrees.map_or(String::new(), |d| format!("-a{d}"));
+    PathBuf::from(format!("jkrbem-out/simulate-r{ratio}-n{nx}{angle}.csv"))
+}
+
+/// The default stem of a several-grid `simulate` (`what`: "simulate" or "extrapolate").
+pub fn simulate_stem(what: &str, ratio: f64) -> PathBuf {
+    PathBuf::from(format!("jkrbem-out/{what}-r{ratio}.csv"))
+}
+
+/// The states file of grid `nx` of a several-grid run with stem `stem`: `<stem>-n<nx>.csv`.
+pub fn grid_states(stem: &Path, nx: usize) -> PathBuf {
+    let name = stem
+        .file_stem()
+        .map_or("states".into(), |s| s.to_string_lossy().into_owned());
+    stem.with_file_name(format!("{name}-n{nx}.csv"))
+}
+
+/// The default file of a `theory` curve (`model`: hertz, jkr or jg).
+pub fn theory_default(model: &str, ratio: f64) -> PathBuf {
+    PathBuf::from(format!("jkrbem-out/theory-{model}-r{ratio}.csv"))
+}
+
+/// The states file of the crossed cylinders at `angle` degrees on grid `nx`.
+pub fn crossed_states(dir: &Path, angle: f64, nx: usize) -> PathBuf {
+    dir.join(format!("theta{angle}-n{nx}.csv"))
+}
+
+/// The folder of a reference table's runs: `<stem>-runs/` beside it.
+pub fn reference_runs(table: &Path) -> PathBuf {
+    let stem = table
+        .file_stem()
+        .map_or("reference".into(), |s| s.to_string_lossy().into_owned());
+    table.with_file_name(format!("{stem}-runs"))
+}
+
+/// The name (no extension) of a reference ladder's run of R1/R2 = `ratio` on grid `nx` at
+/// its `phase`-th margin `margin` (the first keeps the name of a ladder with one run per
+/// grid, so that its runs are reused).
+pub fn reference_run(ratio: f64, nx: usize, phase: usize, margin: f64) -> String {
+    if phase == 0 {
+        format!("r{ratio}-n{nx}")
+    } else {
+        format!("r{ratio}-n{nx}-m{margin}")
+    }
+}
+
+/// The name (no extension) of one coverage case's run.
+pub fn coverage_case(ratio: f64, nx: usize, margin: f64, variant: impl Display) -> String {
+    format!("r{ratio}-n{nx}-m{margin}-{variant}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_the_ones_the_docs_give() {
+        let d = Path::new("sw");
+        assert_eq!(sweep_states(d, 2.5, 64), Path::new("sw/r2.5-n64.csv"));
+        assert_eq!(
+            run_files(&sweep_states(d, 1.0, 32)),
+            [
+                PathBuf::from("sw/r1-n32.csv"),
+                PathBuf::from("sw/r1-n32.json"),
+                PathBuf::from("sw/r1-n32.contours.csv")
+            ]
+        );
+        assert_eq!(shard(d, (2, 8)), Path::new("sw/sweep-shard-2-of-8.json"));
+        assert_eq!(
+            simulate_default(5.0, 128, Some(30.0)),
+            Path::new("jkrbem-out/simulate-r5-n128-a30.csv")
+        );
+        assert_eq!(
+            grid_states(Path::new("runs/r5.csv"), 128),
+            Path::new("runs/r5-n128.csv")
+        );
+        assert_eq!(
+            reference_runs(Path::new("t/adhesive-force.csv")),
+            Path::new("t/adhesive-force-runs")
+        );
+        assert_eq!(reference_run(5.0, 64, 1, 0.1), "r5-n64-m0.1");
+    }
+}
