@@ -35,7 +35,7 @@ done
 python3 - "$out" "$target" "$ratios" <<'EOF'
 import csv, glob, json, sys
 out, target, ratios = sys.argv[1], sys.argv[2], sys.argv[3].split()
-table = {float(r["ratio"]): r for r in csv.DictReader(open("docs/reference/adhesive-force.csv"))}
+table = {float(r["ratio"]): r for r in csv.DictReader(open("data/reference/adhesive-force.csv"))}
 rows = []
 for r in ratios:
     try:

@@ -6,7 +6,7 @@
 use super::line_fit::{fit_free_line, Point};
 
 /// The reference table (`jkrbem reference`), compiled in: the law is fitted to it.
-const REFERENCE_TABLE: &str = include_str!("../../docs/reference/adhesive-force.csv");
+const REFERENCE_TABLE: &str = include_str!("../../data/reference/adhesive-force.csv");
 
 /// The spread of k (relative, one standard deviation) that remains where the limit is known
 /// exactly: the sphere's seven runs with the apex on an element corner (64²–256², fixed and

@@ -41,12 +41,14 @@ pub struct Args {
     /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.
     #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
     pub backend: BackendKind,
-    /// The table (CSV); every run's states and summary go beside it in `<stem>-runs/`, the
-    /// summary recording the run's settings. A later job reuses a run found there only where
-    /// it finished with a force minimum, records the same settings (grid, margin, steps, CG
-    /// tolerances, …), ran on the backend asked for (cpu: f64; gpu: f32; auto: either) and its
-    /// states reproduce its summary; any other is run again (and replaced), saying why.
-    #[arg(long, default_value = "docs/reference/adhesive-force.csv")]
+    /// The table (CSV); the one compiled into `--accuracy` is the repository's
+    /// `data/reference/adhesive-force.csv` (copy a new table there and rebuild). Every run's
+    /// states and summary go beside the table in `<stem>-runs/`, the summary recording the
+    /// run's settings. A later job reuses a run found there only where it finished with a force
+    /// minimum, records the same settings (grid, margin, steps, CG tolerances, …), ran on the
+    /// backend asked for (cpu: f64; gpu: f32; auto: either) and its states reproduce its
+    /// summary; any other is run again (and replaced), saying why.
+    #[arg(long, default_value = "jkrbem-out/reference/adhesive-force.csv")]
     pub out: PathBuf,
 }
 
@@ -97,8 +99,8 @@ pub fn run(args: Args) -> Result<(), CliError> {
         let (sd_slender, sd_round) = law.sd();
         outln!(
             "the convergence law fitted to this table: k = {:.3} (± {:.3}) + {:.3} (± {:.3}) / \
-             (R1/R2) (one standard deviation; compiled into --accuracy when the table is \
-             docs/reference/adhesive-force.csv)",
+             (R1/R2) (one standard deviation; compiled into --accuracy once the table is copied to \
+             data/reference/adhesive-force.csv and jkrbem rebuilt)",
             law.k_slender,
             sd_slender,
             law.k_round,

@@ -1,4 +1,4 @@
-//! Helpers of the CG-failure tests (`failure_cg.rs`, `failure_cg_gpu.rs`).
+//! Helpers of the CG-failure tests (`backend/failure_cg.rs`, `gpu/failure_cg_gpu.rs`).
 
 use super::model_for;
 use jkrbem::model::{Model, ModelOptions};

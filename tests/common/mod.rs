@@ -88,22 +88,19 @@ pub fn stderr(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// The harness of the GPU test files (`harness = false`): runs `tests` (name, function) with
-/// libtest's command line. Where no GPU adapter exists, every test is reported as ignored with
-/// the reason, never as passed; with `JKRBEM_REQUIRE_GPU=1` that is a failure instead. Tests
-/// named in `slow` are marked ignored unless `--include-ignored` (or `--ignored`) is given.
+/// Whether the GPU tests can run: `None` where a GPU adapter is usable, else the reason (the
+/// tests are then reported as ignored with it, never as passed); with `JKRBEM_REQUIRE_GPU=1` a
+/// missing adapter is a failure instead. Asked once, by `tests/gpu/main.rs`.
 #[cfg(feature = "gpu")]
-pub fn run_gpu_tests(tests: &[(&'static str, fn())], slow: &[&str]) -> ! {
-    use libtest_mimic::{Arguments, Trial};
-    let args = Arguments::from_args();
-    let missing = match jkrbem::backend::gpu::GpuContext::new(Default::default()) {
+pub fn gpu_missing() -> Option<String> {
+    match jkrbem::backend::gpu::GpuContext::new(Default::default()) {
         Ok(_) => None,
         Err(e) if gpu_required() => {
             panic!("JKRBEM_REQUIRE_GPU=1 but no GPU adapter is usable: {e}")
         }
         Err(e) => {
             let reason = e.to_string();
-            eprintln!("no GPU adapter, so these tests are ignored: {reason}");
+            eprintln!("no GPU adapter, so the GPU tests and checks are ignored: {reason}");
             Some(
                 reason
                     .lines()
@@ -112,19 +109,51 @@ pub fn run_gpu_tests(tests: &[(&'static str, fn())], slow: &[&str]) -> ! {
                     .to_string(),
             )
         }
-    };
-    let trials = tests
+    }
+}
+
+/// Held for reading by every test of `tests/gpu/` (libtest-mimic runs them on parallel threads
+/// of one process), and for writing by those that measure the process itself (its resident
+/// memory), so that no other test runs beside them.
+pub static PROCESS: std::sync::RwLock<()> = std::sync::RwLock::new(());
+
+/// Runs `f` holding [`PROCESS`]: alone (`true`) or beside the other tests.
+pub fn in_process<T>(alone: bool, f: impl FnOnce() -> T) -> T {
+    if alone {
+        let _guard = PROCESS.write().unwrap_or_else(|e| e.into_inner());
+        f()
+    } else {
+        let _guard = PROCESS.read().unwrap_or_else(|e| e.into_inner());
+        f()
+    }
+}
+
+/// The trials of one former GPU test file (`harness = false`, libtest-mimic), named
+/// `<module>::<test>`. With `missing` (no GPU adapter, see [`gpu_missing`]) every test is
+/// reported as ignored with the reason, never as passed. Tests named in `slow` are marked
+/// ignored unless `--include-ignored` (or `--ignored`) is given; those named in `alone` run with
+/// no other test beside them.
+#[cfg(feature = "gpu")]
+pub fn gpu_trials(
+    module: &str,
+    tests: &[(&'static str, fn())],
+    slow: &[&str],
+    alone: &[&str],
+    missing: Option<&str>,
+) -> Vec<libtest_mimic::Trial> {
+    use libtest_mimic::Trial;
+    tests
         .iter()
         .map(|&(name, f)| {
-            let t = Trial::test(name, move || {
-                f();
+            let by_itself = alone.contains(&name);
+            let t = Trial::test(format!("{module}::{name}"), move || {
+                in_process(by_itself, f);
                 Ok(())
             });
-            match &missing {
+            match missing {
                 Some(_) => t.with_ignored_flag(true).with_kind("no GPU adapter"),
                 None => t.with_ignored_flag(slow.contains(&name)),
             }
         })
-        .collect();
-    libtest_mimic::run(&args, trials).exit()
+        .collect()
 }

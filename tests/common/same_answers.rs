@@ -1,5 +1,5 @@
 //! The checks that a cheaper pull-off gives the exact protocol's answers (issue 22), shared by
-//! `pulloff_cost.rs` (fast) and `pulloff_answers.rs`.
+//! `physics/pulloff_cost.rs` (fast) and `physics/pulloff_answers.rs`.
 
 use super::{run_model, Run};
 use jkrbem::model::{Measure, Model, ModelOptions, Onsets};

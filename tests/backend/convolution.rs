@@ -1,0 +1,77 @@
+//! The padded FFT convolution against the direct O(N⁴) influence sum (physics §4).
+
+use crate::common;
+
+use jkrbem::backend::kernel::direct_convolution;
+use jkrbem::backend::prelude::*;
+use jkrbem::backend::Preconditioner;
+use jkrbem::backend::{cpu::CpuBackend, GridSetup};
+
+fn setup(nx: usize, ny: usize, dx: f64, e_star: f64) -> GridSetup {
+    GridSetup {
+        nx,
+        ny,
+        dx,
+        e_star,
+        profile: vec![0.0; nx * ny],
+        preconditioner: Preconditioner::None,
+    }
+}
+
+/// A deterministic pseudo-random pressure field in [−1, 1).
+fn pressure(n: usize, seed: u64) -> Vec<f64> {
+    common::pseudo_random(n, seed)
+}
+
+/// max |a − b| over `scale`.
+fn max_relative_difference(a: &[f64], b: &[f64], scale: f64) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale
+}
+
+/// The displacement scale of a signed pressure field: max of K ∗ |p| (random signs cancel in
+/// K ∗ p, so its own maximum would understate the magnitudes being summed).
+fn magnitude_scale(p: &[f64], nx: usize, ny: usize, dx: f64, e: f64) -> f64 {
+    let abs: Vec<f64> = p.iter().map(|v| v.abs()).collect();
+    direct_convolution(&abs, nx, ny, dx, e)
+        .iter()
+        .fold(0.0, |m, v| m.max(*v))
+}
+
+#[test]
+fn padded_fft_convolution_equals_direct_sum() {
+    for &(nx, ny) in &[(16, 16), (32, 16), (16, 32), (8, 64)] {
+        let (dx, e) = (0.37, 2.5);
+        let p = pressure(nx * ny, (nx * 31 + ny) as u64);
+        let direct = direct_convolution(&p, nx, ny, dx, e);
+        let mut b = CpuBackend::new(&setup(nx, ny, dx, e)).unwrap();
+        let mut u = b.field().unwrap();
+        b.convolve(&p, &mut u).unwrap();
+        let err = max_relative_difference(&u, &direct, magnitude_scale(&p, nx, ny, dx, e));
+        println!("{nx}×{ny}: padded FFT vs direct sum, max relative difference {err:.2e}");
+        assert!(err < 1e-12, "{nx}×{ny}: {err:e}");
+    }
+}
+
+#[test]
+fn periodic_convolution_differs_from_direct_sum() {
+    // Without zero padding neighbouring periodic images interact: the error is of order one.
+    let (nx, ny, dx, e) = (32, 32, 1.0, 1.0);
+    let p = pressure(nx * ny, 7)
+        .iter()
+        .map(|v| v.abs())
+        .collect::<Vec<_>>();
+    let direct = direct_convolution(&p, nx, ny, dx, e);
+    let mut b = CpuBackend::new_periodic(&setup(nx, ny, dx, e));
+    let mut u = b.field().unwrap();
+    b.convolve(&p, &mut u).unwrap();
+    let scale = direct.iter().fold(0.0f64, |m, v| m.max(*v));
+    let err = max_relative_difference(&u, &direct, scale);
+    println!("periodic vs direct sum: max relative difference {err:.3}");
+    assert!(
+        err > 0.05,
+        "a periodic convolution should be visibly wrong, got {err:e}"
+    );
+}

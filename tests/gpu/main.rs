@@ -1,0 +1,44 @@
+//! The tests on libtest-mimic (`harness = false`): the backend contract on every backend
+//! (`conformance`: cpu, cpu-periodic and gpu) and the tests that need a GPU adapter. Where no
+//! adapter exists, those are reported as ignored with the reason, never as passed; with
+//! `JKRBEM_REQUIRE_GPU=1` that is a failure instead. Without the `gpu` feature only the CPU
+//! backends' conformance runs. One test binary; each former file is a module, its tests named
+//! `<module>::<test>`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+#[cfg(feature = "gpu")]
+mod cli_gpu;
+mod conformance;
+#[cfg(feature = "gpu")]
+mod failure_cg_gpu;
+#[cfg(feature = "gpu")]
+mod gpu_backend;
+#[cfg(feature = "gpu")]
+mod gpu_fft;
+#[cfg(feature = "gpu")]
+mod gpu_pulloff;
+#[cfg(feature = "gpu")]
+mod gpu_traffic;
+
+fn main() {
+    let args = libtest_mimic::Arguments::from_args();
+    #[cfg(feature = "gpu")]
+    let missing = common::gpu_missing();
+    #[cfg(not(feature = "gpu"))]
+    let missing: Option<String> = None;
+    #[cfg_attr(not(feature = "gpu"), allow(unused_mut))]
+    let mut all = conformance::all(missing.as_ref().map(|_| "no GPU adapter"));
+    #[cfg(feature = "gpu")]
+    {
+        let missing = missing.as_deref();
+        all.extend(cli_gpu::trials(missing));
+        all.extend(failure_cg_gpu::trials(missing));
+        all.extend(gpu_backend::trials(missing));
+        all.extend(gpu_fft::trials(missing));
+        all.extend(gpu_pulloff::trials(missing));
+        all.extend(gpu_traffic::trials(missing));
+    }
+    libtest_mimic::run(&args, all).exit()
+}

@@ -1,0 +1,20 @@
+//! The physics tests: the solver's answers against theory (Hertz, JKR, ellipsoids), the mesh,
+//! the convergence analysis and the committed reference table, and the commands that compute
+//! them (`sweep`, `reproduce`, `reference`, `coverage`). One test binary; each former file is a
+//! module. Slow tests are `#[ignore]`d (`cargo test --release -- --ignored`) or named `slow_…`
+//! (skipped by `cargo fast`).
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod analysis;
+mod coverage;
+mod ellipsoid;
+mod hertz;
+mod jkr_sphere;
+mod mesh_angle;
+mod pulloff_answers;
+mod pulloff_cost;
+mod reference;
+mod reproduce;
+mod sweep;
