@@ -97,27 +97,7 @@ fn open(which: BackendKind, model: &Model) -> Result<Opened, RunError> {
 /// rows. `lines` receives progress notes.
 pub fn bench(args: &BenchRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<BenchDone, RunError> {
     let grids = grids(args)?;
-    if args.repeats == 0 {
-        return Err(input("--repeats 0 is invalid: give at least 1"));
-    }
-    if args.cg_iterations == 0 {
-        return Err(input("--cg-iterations 0 is invalid: give at least 1"));
-    }
-    let scene = Scene::from_ratio(args.ratio, 1.0, 1.0, 1.0).map_err(input)?;
-    let models = grids
-        .iter()
-        .map(|&nx| {
-            let opt = ModelOptions {
-                nx,
-                start_radius_bar: args.start_radius,
-                margin: args.margin,
-                ..ModelOptions::default()
-            };
-            Model::build(&scene, &opt).map_err(input)
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let refs: Vec<&Model> = models.iter().collect();
-    crate::plan::check_memory(&refs, 1, "--grids").map_err(input)?;
+    let (scene, models) = bench_models(args, &grids)?;
     let csv = args.out.join("bench.csv");
     let svg = args.out.join("bench.svg");
     let profile_csv = args.out.join("profile.csv");
@@ -134,32 +114,8 @@ pub fn bench(args: &BenchRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Bench
 
     // Open every backend on the first grid before any work, so a missing one is refused
     // up front; the default takes the GPU only if it opens.
-    let mut backends: Vec<(BackendKind, Option<Opened>)> = Vec::new();
-    let requested = if args.backends.is_empty() {
-        vec![BackendKind::Cpu, BackendKind::Gpu]
-    } else {
-        args.backends.clone()
-    };
-    for which in requested {
-        if backends.iter().any(|(b, _)| *b == which) {
-            continue;
-        }
-        match open(which, &models[0]) {
-            Ok(o) => backends.push((which, Some(o))),
-            Err(e) if args.backends.is_empty() => {
-                lines(&format!("bench: {} skipped: {e}", flag(which)));
-            }
-            Err(e) => return Err(e),
-        }
-    }
-
-    let mut rows = Vec::new();
-    #[cfg(feature = "gpu")]
-    let mut profile_rows: Vec<ProfileRow> = Vec::new();
-    #[cfg_attr(not(feature = "gpu"), allow(unused_mut))]
-    let mut profiles: Vec<GridProfile> = Vec::new();
-    let mut measured: Vec<Measurement> = Vec::new();
-    let mut problems = Vec::new();
+    let mut backends = open_backends(args, &models[0], lines)?;
+    let mut got = Collected::default();
     for (which, first) in &mut backends {
         for (k, (model, &grid)) in models.iter().zip(&grids).enumerate() {
             let opened = match if k == 0 { first.take() } else { None } {
@@ -168,59 +124,22 @@ pub fn bench(args: &BenchRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Bench
                     Ok(o) => o,
                     Err(e) => {
                         lines(&format!("bench: skipped grid {grid}: {e}"));
-                        problems.push(format!("grid {grid}: {e}"));
+                        got.problems.push(format!("grid {grid}: {e}"));
                         continue;
                     }
                 },
             };
-            let mut any = opened.backend;
-            let device = any.device_summary();
-            let options = BenchOptions {
-                repeats: args.repeats,
-                cg_iterations: args.cg_iterations,
-                pulloff: grid <= args.pulloff_max_grid,
-            };
-            let label = format!("{} {}×{}", flag(*which), model.nx, model.ny);
-            lines(&format!("bench: {label}: {}", opened.note));
-            let mut progress = |what: &str| lines(&format!("bench: {label}: timing {what}"));
-            let result = crate::with_backend!(&mut any, b =>
-                bench::measure(b, model, &options, &mut progress));
-            #[cfg(feature = "gpu")]
-            if let (true, AnyBackend::Gpu(g), Ok(_)) = (args.profile, &mut any, &result) {
-                lines(&format!("bench: {label}: profiling the kernels"));
-                match bench::profile_cg_iteration(g, model, args.cg_iterations.max(20)) {
-                    Ok(p) => {
-                        profile_rows.extend(profile::rows(grid, model.nx, model.ny, &p));
-                        profiles.push(GridProfile {
-                            label: label.clone(),
-                            kernels: p,
-                            floor_bytes: crate::backend::gpu::traffic::cg_iteration_floor(
-                                model.nx, model.ny, true,
-                            ) as f64,
-                        });
-                    }
-                    Err(e) => {
-                        lines(&format!("bench: {label}: no profile: {e}"));
-                        problems.push(format!("{label}: no profile: {e}"));
-                    }
-                }
-            }
-            match result {
-                Ok(m) => {
-                    if let Some(e) = m.pulloff.as_ref().and_then(|p| p.error.as_ref()) {
-                        lines(&format!("bench: {label}: the pull-off stopped early: {e}"));
-                        problems.push(format!("{label}: the pull-off stopped early: {e}"));
-                    }
-                    rows.push(BenchRow::new(&m, &device, grid));
-                    measured.push(m);
-                }
-                Err(e) => {
-                    lines(&format!("bench: {label}: failed: {e}"));
-                    problems.push(format!("{label}: {e}"));
-                }
-            }
+            measure_one(args, *which, model, grid, opened, lines, &mut got);
         }
     }
+    let Collected {
+        rows,
+        #[cfg(feature = "gpu")]
+        profile_rows,
+        profiles,
+        measured,
+        problems,
+    } = got;
 
     write_csv(&csv, &rows).map_err(write_error("--out"))?;
     #[cfg_attr(not(feature = "gpu"), allow(unused_mut))]
@@ -245,4 +164,131 @@ pub fn bench(args: &BenchRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Bench
         files,
         problems,
     })
+}
+
+/// The scene and one model per grid, every flag checked and the largest grid's memory too.
+fn bench_models(args: &BenchRequest, grids: &[usize]) -> Result<(Scene, Vec<Model>), RunError> {
+    if args.repeats == 0 {
+        return Err(input("--repeats 0 is invalid: give at least 1"));
+    }
+    if args.cg_iterations == 0 {
+        return Err(input("--cg-iterations 0 is invalid: give at least 1"));
+    }
+    let scene = Scene::from_ratio(args.ratio, 1.0, 1.0, 1.0).map_err(input)?;
+    let models = grids
+        .iter()
+        .map(|&nx| {
+            let opt = ModelOptions {
+                nx,
+                start_radius_bar: args.start_radius,
+                margin: args.margin,
+                ..ModelOptions::default()
+            };
+            Model::build(&scene, &opt).map_err(input)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let refs: Vec<&Model> = models.iter().collect();
+    crate::plan::check_memory(&refs, 1, "--grids").map_err(input)?;
+    Ok((scene, models))
+}
+
+/// What the measurements gave so far.
+#[derive(Default)]
+struct Collected {
+    rows: Vec<BenchRow>,
+    #[cfg(feature = "gpu")]
+    profile_rows: Vec<ProfileRow>,
+    profiles: Vec<GridProfile>,
+    measured: Vec<Measurement>,
+    problems: Vec<String>,
+}
+
+/// The backends asked for (both by default), each opened on the first grid; a default one
+/// that does not open is skipped with a note, one asked for that does not is refused.
+fn open_backends(
+    args: &BenchRequest,
+    first: &Model,
+    lines: &(dyn Fn(&str) + Sync),
+) -> Result<Vec<(BackendKind, Option<Opened>)>, RunError> {
+    let mut backends: Vec<(BackendKind, Option<Opened>)> = Vec::new();
+    let requested = if args.backends.is_empty() {
+        vec![BackendKind::Cpu, BackendKind::Gpu]
+    } else {
+        args.backends.clone()
+    };
+    for which in requested {
+        if backends.iter().any(|(b, _)| *b == which) {
+            continue;
+        }
+        match open(which, first) {
+            Ok(o) => backends.push((which, Some(o))),
+            Err(e) if args.backends.is_empty() => {
+                lines(&format!("bench: {} skipped: {e}", flag(which)));
+            }
+            Err(e) => return Err(e),
+        }
+    }
+
+    Ok(backends)
+}
+
+/// Measure one backend on one grid (and profile its kernels with `--profile`), adding the
+/// row, the measurement and any problem to `got`.
+fn measure_one(
+    args: &BenchRequest,
+    which: BackendKind,
+    model: &Model,
+    grid: usize,
+    opened: Opened,
+    lines: &(dyn Fn(&str) + Sync),
+    got: &mut Collected,
+) {
+    let mut any = opened.backend;
+    let device = any.device_summary();
+    let options = BenchOptions {
+        repeats: args.repeats,
+        cg_iterations: args.cg_iterations,
+        pulloff: grid <= args.pulloff_max_grid,
+    };
+    let label = format!("{} {}×{}", flag(which), model.nx, model.ny);
+    lines(&format!("bench: {label}: {}", opened.note));
+    let mut progress = |what: &str| lines(&format!("bench: {label}: timing {what}"));
+    let result = crate::with_backend!(&mut any, b =>
+        bench::measure(b, model, &options, &mut progress));
+    #[cfg(feature = "gpu")]
+    if let (true, AnyBackend::Gpu(g), Ok(_)) = (args.profile, &mut any, &result) {
+        lines(&format!("bench: {label}: profiling the kernels"));
+        match bench::profile_cg_iteration(g, model, args.cg_iterations.max(20)) {
+            Ok(p) => {
+                got.profile_rows
+                    .extend(profile::rows(grid, model.nx, model.ny, &p));
+                got.profiles.push(GridProfile {
+                    label: label.clone(),
+                    kernels: p,
+                    floor_bytes: crate::backend::gpu::traffic::cg_iteration_floor(
+                        model.nx, model.ny, true,
+                    ) as f64,
+                });
+            }
+            Err(e) => {
+                lines(&format!("bench: {label}: no profile: {e}"));
+                got.problems.push(format!("{label}: no profile: {e}"));
+            }
+        }
+    }
+    match result {
+        Ok(m) => {
+            if let Some(e) = m.pulloff.as_ref().and_then(|p| p.error.as_ref()) {
+                lines(&format!("bench: {label}: the pull-off stopped early: {e}"));
+                got.problems
+                    .push(format!("{label}: the pull-off stopped early: {e}"));
+            }
+            got.rows.push(BenchRow::new(&m, &device, grid));
+            got.measured.push(m);
+        }
+        Err(e) => {
+            lines(&format!("bench: {label}: failed: {e}"));
+            got.problems.push(format!("{label}: {e}"));
+        }
+    }
 }

@@ -358,6 +358,54 @@ fn in_coverage_words(e: RunError) -> RunError {
 
 /// Check the request, then run (or reuse) every case, estimate each and sum them up.
 pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<CoverageDone, RunError> {
+    check_request(req)?;
+    req.backend.check()?;
+    let plan = plan_cases(req)?;
+    let csv = req.out.join("coverage.csv");
+    let summary_csv = req.out.join("coverage-summary.csv");
+    let _claimed = Outputs::claim(&named("--out", [&csv, &summary_csv]))?;
+    let mut cases = Vec::new();
+    for (ratio, grids, reference) in plan {
+        let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
+        for &nx in &grids {
+            for &variant in &req.variants {
+                // This grid's and variant's run at every margin, in order.
+                let mut runs = Vec::new();
+                for &margin in &req.margins {
+                    let name = crate::output::names::coverage_case(ratio, nx, margin, variant);
+                    let options = case_options(nx, margin, variant);
+                    let run = run_or_reuse(&scene, options, req.backend, &req.out, &name, watch)
+                        .map_err(in_coverage_words)?;
+                    runs.push((margin, run));
+                }
+                for window in runs.windows(req.runs_per_case) {
+                    cases.push(case_of(ratio, nx, variant, window, &reference)?);
+                }
+            }
+        }
+    }
+    let mut summary: Vec<CoverageSummary> = req
+        .ratios
+        .iter()
+        .filter_map(|&r| {
+            let mine: Vec<&CoverageCase> = cases.iter().filter(|c| c.ratio == r).collect();
+            summarise(&crate::text::compact(r), &mine)
+        })
+        .collect();
+    summary.extend(summarise("all", &cases.iter().collect::<Vec<_>>()));
+    crate::output::file::write_csv(&csv, None, &cases).map_err(write_error("--out"))?;
+    crate::output::file::write_csv(&summary_csv, None, &summary).map_err(write_error("--out"))?;
+    Ok(CoverageDone {
+        cases,
+        summary,
+        csv,
+        summary_csv,
+    })
+}
+
+/// Refuse a request without ratios, margins or variants, or with margins or a window the
+/// runs cannot have.
+fn check_request(req: &CoverageRequest) -> Result<(), RunError> {
     if req.ratios.is_empty() || req.margins.is_empty() || req.variants.is_empty() {
         return Err(input(
             "--ratios, --margins and --variants: give at least one of each",
@@ -379,9 +427,12 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
             "--margins {m}: give margins in [0, {MAX_MARGIN}]"
         )));
     }
-    req.backend.check()?;
+    Ok(())
+}
+
+/// (ratio, its case grids, its reference) per ratio, every one checked before any work.
+fn plan_cases(req: &CoverageRequest) -> Result<Vec<(f64, Vec<usize>, CaseReference)>, RunError> {
     let table = convergence::reference_values();
-    // (ratio, grids, reference) per ratio, every one checked before any work.
     let mut plan = Vec::new();
     for &ratio in &req.ratios {
         let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
@@ -412,87 +463,60 @@ pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<Coverage
         }
         plan.push((ratio, grids, reference));
     }
-    let csv = req.out.join("coverage.csv");
-    let summary_csv = req.out.join("coverage-summary.csv");
-    let _claimed = Outputs::claim(&named("--out", [&csv, &summary_csv]))?;
-    let mut cases = Vec::new();
-    for (ratio, grids, reference) in plan {
-        let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
-        for &nx in &grids {
-            for &variant in &req.variants {
-                // This grid's and variant's run at every margin, in order.
-                let mut runs = Vec::new();
-                for &margin in &req.margins {
-                    let name = crate::output::names::coverage_case(ratio, nx, margin, variant);
-                    let options = case_options(nx, margin, variant);
-                    let run = run_or_reuse(&scene, options, req.backend, &req.out, &name, watch)
-                        .map_err(in_coverage_words)?;
-                    runs.push((margin, run));
-                }
-                for window in runs.windows(req.runs_per_case) {
-                    let reports: Vec<_> = window.iter().map(|(_, r)| r.clone()).collect();
-                    let name = crate::output::names::coverage_case(ratio, nx, window[0].0, variant);
-                    let e = estimate::from_runs(&reports)
-                        .map_err(|why| failed(format!("{name} ({} runs): {why}", reports.len())))?;
-                    let mean = |get: fn(&crate::analysis::report::RunReport) -> Option<f64>| {
-                        let v: Option<Vec<f64>> = reports.iter().map(get).collect();
-                        v.map(|v| v.iter().sum::<f64>() / v.len() as f64)
-                    };
-                    let (f, u) = (e.f_ad_bar.value, e.f_ad_bar.uncertainty);
-                    let (reference_value, reference_uncertainty) = reference.f_ad_bar;
-                    let error = f - reference_value;
-                    let c = PositionCheck::of(e.c_bar_at_min, reference.c_bar_at_min);
-                    let d = PositionCheck::of(e.d_bar_at_min, reference.d_bar_at_min);
-                    cases.push(CoverageCase {
-                        ratio,
-                        grid: reports[0].grid.clone(),
-                        margin: window[0].0,
-                        runs: reports.len(),
-                        variant: variant.name(),
-                        n_d: mean(|r| r.n_d),
-                        f_ad_bar_grid: mean(|r| r.f_ad_bar).unwrap_or(f64::NAN),
-                        f_ad_bar: f,
-                        uncertainty: u,
-                        reference: reference_value,
-                        reference_uncertainty,
-                        error,
-                        held: error.abs() <= u,
-                        width_over_error: if error == 0.0 {
-                            f64::INFINITY
-                        } else {
-                            u / error.abs()
-                        },
-                        c_bar_at_min: c.estimate,
-                        c_bar_uncertainty: c.uncertainty,
-                        c_bar_reference: c.reference,
-                        c_bar_reference_uncertainty: c.reference_uncertainty,
-                        c_bar_held: c.held,
-                        d_bar_at_min: d.estimate,
-                        d_bar_uncertainty: d.uncertainty,
-                        d_bar_reference: d.reference,
-                        d_bar_reference_uncertainty: d.reference_uncertainty,
-                        d_bar_held: d.held,
-                    });
-                }
-            }
-        }
-    }
-    let mut summary: Vec<CoverageSummary> = req
-        .ratios
-        .iter()
-        .filter_map(|&r| {
-            let mine: Vec<&CoverageCase> = cases.iter().filter(|c| c.ratio == r).collect();
-            summarise(&crate::text::compact(r), &mine)
-        })
-        .collect();
-    summary.extend(summarise("all", &cases.iter().collect::<Vec<_>>()));
-    crate::output::file::write_csv(&csv, None, &cases).map_err(write_error("--out"))?;
-    crate::output::file::write_csv(&summary_csv, None, &summary).map_err(write_error("--out"))?;
-    Ok(CoverageDone {
-        cases,
-        summary,
-        csv,
-        summary_csv,
+    Ok(plan)
+}
+
+/// The case of one window of runs (`runs_per_case` margins of one grid and variant): its
+/// estimate against the reference.
+fn case_of(
+    ratio: f64,
+    nx: usize,
+    variant: CaseVariant,
+    window: &[(f64, crate::analysis::report::RunReport)],
+    reference: &CaseReference,
+) -> Result<CoverageCase, RunError> {
+    let reports: Vec<_> = window.iter().map(|(_, r)| r.clone()).collect();
+    let name = crate::output::names::coverage_case(ratio, nx, window[0].0, variant);
+    let e = estimate::from_runs(&reports)
+        .map_err(|why| failed(format!("{name} ({} runs): {why}", reports.len())))?;
+    let mean = |get: fn(&crate::analysis::report::RunReport) -> Option<f64>| {
+        let v: Option<Vec<f64>> = reports.iter().map(get).collect();
+        v.map(|v| v.iter().sum::<f64>() / v.len() as f64)
+    };
+    let (f, u) = (e.f_ad_bar.value, e.f_ad_bar.uncertainty);
+    let (reference_value, reference_uncertainty) = reference.f_ad_bar;
+    let error = f - reference_value;
+    let c = PositionCheck::of(e.c_bar_at_min, reference.c_bar_at_min);
+    let d = PositionCheck::of(e.d_bar_at_min, reference.d_bar_at_min);
+    Ok(CoverageCase {
+        ratio,
+        grid: reports[0].grid.clone(),
+        margin: window[0].0,
+        runs: reports.len(),
+        variant: variant.name(),
+        n_d: mean(|r| r.n_d),
+        f_ad_bar_grid: mean(|r| r.f_ad_bar).unwrap_or(f64::NAN),
+        f_ad_bar: f,
+        uncertainty: u,
+        reference: reference_value,
+        reference_uncertainty,
+        error,
+        held: error.abs() <= u,
+        width_over_error: if error == 0.0 {
+            f64::INFINITY
+        } else {
+            u / error.abs()
+        },
+        c_bar_at_min: c.estimate,
+        c_bar_uncertainty: c.uncertainty,
+        c_bar_reference: c.reference,
+        c_bar_reference_uncertainty: c.reference_uncertainty,
+        c_bar_held: c.held,
+        d_bar_at_min: d.estimate,
+        d_bar_uncertainty: d.uncertainty,
+        d_bar_reference: d.reference,
+        d_bar_reference_uncertainty: d.reference_uncertainty,
+        d_bar_held: d.held,
     })
 }
 

@@ -239,6 +239,27 @@ pub fn ladder_grids(
             }),
         });
     }
+    Err(short_ladder(
+        req,
+        ratio,
+        (first, whose),
+        &grids,
+        too_large,
+        coarsest(),
+    ))
+}
+
+/// Why a ladder of R1/R2 = `ratio` from `first` (named by `whose`) holds too few grids: only
+/// `grids` fit below `--max-grid`, or the memory stopped it at `too_large` (grid, bytes needed,
+/// bytes available). `coarsest` is the coarsest grid that resolves the contact.
+fn short_ladder(
+    req: &ReferenceRequest,
+    ratio: f64,
+    (first, whose): (usize, &str),
+    grids: &[usize],
+    too_large: Option<(usize, u64, u64)>,
+    coarsest: usize,
+) -> RunError {
     let list = if grids.is_empty() {
         "no grid".to_string()
     } else {
@@ -253,13 +274,12 @@ pub fn ladder_grids(
         )
     };
     let max = req.max_grid;
-    let coarsest = coarsest();
     let coarser = if first > coarsest {
         format!("a coarser --first-grid (from {coarsest}, the coarsest that resolves the contact)")
     } else {
         String::new()
     };
-    Err(input(match too_large {
+    input(match too_large {
         Some((nx, need, a)) => format!(
             "--max-grid {max}: R1/R2 = {ratio}: the ladder from grid {first} ({whose}) fits \
              {list} in memory (grid {nx} needs about {}, more than the {} available), and a \
@@ -283,7 +303,7 @@ pub fn ladder_grids(
                 format!(", or {coarser}")
             }
         ),
-    }))
+    })
 }
 
 /// One ratio's ladder on `grids` ([`ladder_grids`]): runs on each in turn until the reference
@@ -352,6 +372,17 @@ fn ladder(
             req.max_grid
         ))
     })?;
+    let row = table_row(req, ratio, &e, &runs)?;
+    Ok((row, runs))
+}
+
+/// The table's row of R1/R2 = `ratio` from its ladder's estimate `e` and `runs`.
+fn table_row(
+    req: &ReferenceRequest,
+    ratio: f64,
+    e: &crate::analysis::estimate::AdhesiveEstimate,
+    runs: &[RunReport],
+) -> Result<ReferenceRow, RunError> {
     // The finest grid's run at the default margin (the first of its grid): the planner's
     // re-gridding gain is measured against a model with that margin.
     let finest_nx = runs.iter().map(|r| r.nx).max().unwrap_or(0);
@@ -369,14 +400,14 @@ fn ladder(
         k: Some(e.k.value),
         k_uncertainty: Some(e.k.uncertainty),
         target_met: e.f_ad_bar.relative() <= req.target,
-        grids: grids_text(&runs),
+        grids: grids_text(runs),
         runs_per_grid: req.phases.max(1),
         n_d: finest.n_d,
         cg_iterations: runs.iter().map(|r| r.cg_iterations).sum(),
         wall_s: runs.iter().map(|r| r.wall_s).sum(),
         command: req.command.clone(),
     };
-    Ok((row, runs))
+    Ok(row)
 }
 
 /// The distinct grids Nx of `runs`, coarse to fine, `;`-separated.

@@ -81,23 +81,7 @@ fn model_for(req: &SweepRequest, ratio: f64) -> Result<(Model, Option<f64>), Run
 /// shard's ratios, write the rows (CSV or shard file) and, for a whole sweep, the charts.
 pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepDone, RunError> {
     req.backend.check()?;
-    let mut models = Vec::new();
-    for &ratio in &sweep_csv::shard_ratios(&req.ratios, req.shard) {
-        models.push(model_for(req, ratio)?);
-    }
-    for &ratio in &req.ratios {
-        // The other shards' ratios are checked too, so that every shard refuses a bad sweep.
-        model_for(req, ratio)?;
-    }
-    let refs: Vec<&Model> = models.iter().map(|(m, _)| m).collect();
-    crate::plan::check_memory(&refs, req.jobs, "--grid").map_err(input)?;
-    let jobs: Vec<Job> = models
-        .into_iter()
-        .map(|(model, target)| {
-            let out = states_path(&req.out, model.scene.ratio(), model.nx);
-            Job { model, out, target }
-        })
-        .collect();
+    let jobs = sweep_jobs(req)?;
     let summary_path = match req.shard {
         Some(kn) => sweep_csv::shard_path(&req.out, kn),
         None => sweep_csv::sweep_csv_path(&req.out),
@@ -125,6 +109,55 @@ pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepD
     let rows: Vec<SweepRow> = results.iter().map(|r| r.row()).collect();
     let failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
     let mut warnings: Vec<String> = results.iter().flat_map(|r| r.warnings()).collect();
+    write_summary(req, &summary_path, &rows)?;
+    let mut sorted = rows;
+    sorted.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
+    // The charts come last: one that cannot be drawn or written is reported beside the runs'
+    // own failures (which it must not hide); sweep.csv is already written.
+    let (charts, charts_error) = match req.shard {
+        Some(_) => (None, None),
+        None => match write_sweep_charts(&req.out, &sorted, &sweep_curves(&req.out, &sorted)) {
+            Ok(w) => {
+                warnings.extend(w);
+                (Some(chart_files(&req.out)), None)
+            }
+            Err(e) => (None, Some(e.with_flag("--out").to_string())),
+        },
+    };
+    Ok(SweepDone {
+        rows: sorted,
+        summary_path,
+        charts,
+        ran,
+        failures,
+        charts_error,
+        warnings,
+    })
+}
+
+/// One job per ratio of this shard (every ratio of the sweep is checked, so that every shard
+/// refuses a bad sweep), within the memory `--jobs` of them need.
+fn sweep_jobs(req: &SweepRequest) -> Result<Vec<Job>, RunError> {
+    let mut models = Vec::new();
+    for &ratio in &sweep_csv::shard_ratios(&req.ratios, req.shard) {
+        models.push(model_for(req, ratio)?);
+    }
+    for &ratio in &req.ratios {
+        model_for(req, ratio)?;
+    }
+    let refs: Vec<&Model> = models.iter().map(|(m, _)| m).collect();
+    crate::plan::check_memory(&refs, req.jobs, "--grid").map_err(input)?;
+    Ok(models
+        .into_iter()
+        .map(|(model, target)| {
+            let out = states_path(&req.out, model.scene.ratio(), model.nx);
+            Job { model, out, target }
+        })
+        .collect())
+}
+
+/// Write the rows: a shard's file (with the sweep's settings, for `collect`) or sweep.csv.
+fn write_summary(req: &SweepRequest, path: &Path, rows: &[SweepRow]) -> Result<(), RunError> {
     match req.shard {
         Some(kn) => {
             let (grid, accuracy) = match req.grid {
@@ -139,40 +172,12 @@ pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepD
                 start_radius: req.start_radius,
                 margin: req.margin,
             };
-            Shard::new(settings, kn, rows.clone())
-                .write(&summary_path)
-                .map_err(write_error("--out"))?;
+            Shard::new(settings, kn, rows.to_vec())
+                .write(path)
+                .map_err(write_error("--out"))
         }
-        None => sweep_csv::write_rows(&summary_path, &rows).map_err(write_error("--out"))?,
+        None => sweep_csv::write_rows(path, rows).map_err(write_error("--out")),
     }
-    let mut sorted = rows;
-    sorted.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
-    // The charts come last: one that cannot be drawn or written is reported beside the runs'
-    // own failures (which it must not hide); sweep.csv is already written.
-    let mut charts_error = None;
-    let charts = if req.shard.is_none() {
-        match write_sweep_charts(&req.out, &sorted, &sweep_curves(&req.out, &sorted)) {
-            Ok(w) => {
-                warnings.extend(w);
-                Some(chart_files(&req.out))
-            }
-            Err(e) => {
-                charts_error = Some(e.with_flag("--out").to_string());
-                None
-            }
-        }
-    } else {
-        None
-    };
-    Ok(SweepDone {
-        rows: sorted,
-        summary_path,
-        charts,
-        ran,
-        failures,
-        charts_error,
-        warnings,
-    })
 }
 
 /// What merging a split sweep's shards produced.
