@@ -1,0 +1,95 @@
+//! The ranges and sizes a model is held to: grid sides, load steps, margins, CG limits,
+//! the elements a contact must span, memory per element, and the scales each precision holds.
+
+use super::{Measure, Onsets};
+
+/// Smallest grid side accepted (elements).
+pub const MIN_GRID: usize = 16;
+
+/// Largest grid side accepted (elements); the machine's memory usually refuses smaller ones
+/// first ([`crate::plan::check_memory`]).
+pub const MAX_GRID: usize = 65_536;
+
+/// Valid mean radii c̄0 of the first contact (dimensionless). The lower end lies above the
+/// contact radius at the force minimum (c̄ = 0.63–0.79 in the closed forms, 0.74–0.84 in our
+/// runs), since the contact cannot grow past its first, pinned size: the branch must start
+/// above the minimum to pass through it.
+pub const START_RADIUS_RANGE: (f64, f64) = (1.0, 20.0);
+
+/// Most load steps.
+pub const MAX_STEPS: usize = 100_000;
+
+/// Load steps of a whole curve unless told otherwise: its resolution in d̄.
+pub const CURVE_STEPS: usize = 200;
+
+/// Load steps of an adhesive-force run ([`Measure::AdhesiveForce`] with
+/// [`Onsets::NearMinimum`], no re-grid) unless told otherwise: its answer does not depend on
+/// them, and fewer, larger steps take fewer cascade rounds in all (measured at 5:1, 512×256:
+/// 13 274 CG iterations with 20 steps, 13 740 with 40, 16 641 with 200).
+pub const MEASURE_STEPS: usize = 20;
+
+/// The load steps a run takes unless told otherwise: [`MEASURE_STEPS`] where the answer does
+/// not depend on them (the adhesive force, onsets near the minimum, no re-grid, whose grid
+/// changes at step ends), else [`CURVE_STEPS`].
+pub fn default_steps(measure: Measure, onsets: Onsets, regrid: bool) -> usize {
+    if measure == Measure::AdhesiveForce && onsets == Onsets::NearMinimum && !regrid {
+        MEASURE_STEPS
+    } else {
+        CURVE_STEPS
+    }
+}
+
+/// Largest relative margin around the first contact.
+pub const MAX_MARGIN: f64 = 10.0;
+
+/// Most CG iterations per solve.
+pub const MAX_CG_ITERATIONS: usize = 10_000_000;
+
+/// Largest |mesh angle| (degrees).
+pub const MAX_MESH_ANGLE: f64 = 360.0;
+
+/// Lowest final approach d̄ accepted (dimensionless; the contact jumps off at d̄ ≈ −0.44
+/// for the sphere, so anything far below only means "run to the end").
+pub const MIN_FINAL_D_BAR: f64 = -1000.0;
+
+/// Fewest elements the first (Hertz) contact may span across its minor axis.
+pub const MIN_ELEMENTS_FIRST_CONTACT: f64 = 8.0;
+
+/// Fewest elements the contact is expected to span across its minor axis at the force
+/// minimum (from the closed form's b̄ there). Below this the detachment front is a couple of
+/// elements: the answer would be noise, not an adhesive force.
+pub const MIN_ELEMENTS_AT_MINIMUM: f64 = 4.0;
+
+/// Memory a model needs per grid element (bytes), measured on the CPU backend: the padded
+/// 2Nx × 2Ny spectra of the convolution and the Nx × Ny ones of the preconditioner, CG's
+/// fields, masks and snapshots; about 200 B at 1024², doubled while a re-grid builds the
+/// finer backend beside the old one.
+pub const BYTES_PER_ELEMENT: u64 = 320;
+
+/// Memory a model needs whatever its grid (bytes): the program, its threads and buffers.
+pub const BYTES_FIXED: u64 = 64 << 20;
+
+/// Memory the search for the force minimum may spend on the states it keeps to go back to
+/// (bytes; [`snapshot_slots`]).
+pub const SNAPSHOT_BYTES: u64 = 512 << 20;
+
+/// Values each kept state holds per element (its pressure, its contact set and its probe's
+/// pressure), at 8 bytes each at most.
+pub(super) const SNAPSHOT_BYTES_PER_ELEMENT: u64 = 24;
+
+/// How many states the search for the force minimum may keep on a grid of `elements`
+/// (`--onsets near-minimum`): as many as [`SNAPSHOT_BYTES`] holds, from 4 to 64.
+pub fn snapshot_slots(elements: usize) -> usize {
+    let each = SNAPSHOT_BYTES_PER_ELEMENT
+        .saturating_mul(elements as u64)
+        .max(1);
+    (SNAPSHOT_BYTES / each).clamp(4, 64) as usize
+}
+
+/// The range within which the numbers a backend holds must lie: σ_c, the element side, the
+/// approach and the Hertz pressure. For f64 any scene within the input ranges fits; the f32
+/// GPU backend needs [`F32_SAFE_RANGE`].
+pub const F64_SAFE_RANGE: (f64, f64) = (1e-150, 1e150);
+
+/// [`F64_SAFE_RANGE`] for f32 fields, whose squares must stay inside f32's 1e-38 … 3e38.
+pub const F32_SAFE_RANGE: (f64, f64) = (1e-15, 1e15);
