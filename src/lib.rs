@@ -18,6 +18,7 @@ pub mod output;
 pub mod plan;
 pub mod run;
 pub mod scene;
+pub mod setup;
 pub mod solver;
 pub mod text;
 pub mod theory;

@@ -4,25 +4,7 @@
 //! The functions here are the host (CPU twin) definitions that the device kernels
 //! (shaders/reduce.wgsl `measure_partials`) are compared with.
 
-/// The directions of the two chords: the ellipsoid's major axis (cos θ, sin θ) and minor axis
-/// (−sin θ, cos θ) in the grid's frame (dimensionless).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ChordAxes {
-    /// cos θ.
-    pub cos: f64,
-    /// sin θ.
-    pub sin: f64,
-}
-
-impl ChordAxes {
-    /// The grid's own axes (θ = 0).
-    pub const ALIGNED: ChordAxes = ChordAxes { cos: 1.0, sin: 0.0 };
-
-    /// Whether these are the grid's own axes.
-    pub fn is_aligned(&self) -> bool {
-        *self == Self::ALIGNED
-    }
-}
+pub use crate::setup::ChordAxes;
 
 /// A state's measurement of C (all in elements or in the pressure's units).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -31,10 +31,9 @@ pub mod gpu;
 pub mod kernel;
 pub mod measure;
 pub mod select;
-pub mod setup;
 
-pub use measure::{ChordAxes, ContactMeasure};
-pub use setup::GridSetup;
+pub use crate::setup::{ChordAxes, GridSetup, Preconditioner};
+pub use measure::ContactMeasure;
 
 /// Every part of the backend contract, for code that calls backends' operations.
 pub mod prelude {
@@ -88,16 +87,6 @@ impl Slot {
     pub fn new(index: usize) -> Slot {
         Slot(index)
     }
-}
-
-/// How the elastic operator's inverse is approximated for preconditioning.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Preconditioner {
-    /// No preconditioning: z = r.
-    None,
-    /// z = P·S·P r with S the half-space stiffness E*|q|/2 applied in Fourier space on the
-    /// periodic Nx × Ny grid (an approximate inverse of the influence operator).
-    Stiffness,
 }
 
 /// When a guarded batch of CG iterations stops on the device (see [`CgKernels::guard_cg`]).

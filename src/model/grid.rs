@@ -4,8 +4,8 @@
 use super::error::ModelError;
 use super::limits::*;
 use super::options::ModelOptions;
-use crate::backend::ChordAxes;
 use crate::scene::Scene;
+use crate::setup::ChordAxes;
 use crate::text::compact;
 use crate::theory::{self, TheoryModel};
 use std::f64::consts::PI;

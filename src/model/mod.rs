@@ -2,8 +2,8 @@
 //! steps and the CG settings, in modules: `limits` (ranges and sizes), `error`, `options` (what
 //! a caller chooses) and `grid` (the grid against the scene); this module builds the model.
 
-use crate::backend::Preconditioner;
 use crate::scene::Scene;
+use crate::setup::Preconditioner;
 use crate::text::compact;
 use crate::theory::{self, hertz::HertzContact, TheoryModel};
 
@@ -346,8 +346,8 @@ impl Model {
 
     /// What a backend for this model is built from: its grid, element size, material,
     /// profile and preconditioner.
-    pub fn grid_setup(&self) -> crate::backend::GridSetup {
-        crate::backend::GridSetup {
+    pub fn grid_setup(&self) -> crate::setup::GridSetup {
+        crate::setup::GridSetup {
             nx: self.nx,
             ny: self.ny,
             dx: self.dx,

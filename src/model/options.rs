@@ -1,7 +1,7 @@
 //! What a caller chooses of a model: the grid, the protocol (steps, onsets, measure,
 //! re-gridding) and the CG settings.
 
-use crate::backend::Preconditioner;
+use crate::setup::Preconditioner;
 
 /// Which detachment onsets (the local minima of the sawtooth F(d)) a pull-off locates. The
 /// contact set at the end of every load step does not depend on this: the detachment rule is
