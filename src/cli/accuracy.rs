@@ -1,6 +1,7 @@
 //! `jkrbem accuracy`: one scene on several grids, backends and ways of running; the error of
 //! the adhesive force against the wall time it cost, as CSV and a log–log chart.
 
+use super::progress::Progress;
 use super::{count_in, failures, no_repeats, run_error, CliError};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::run::accuracy::{accuracy, AccuracyRequest, Variant};
@@ -53,7 +54,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         variants: args.variants,
         out: args.out,
     };
-    let done = accuracy(&req, &|line: &str| errln!("{line}")).map_err(run_error)?;
+    let done = accuracy(&req, &Progress::new()).map_err(run_error)?;
     outln!("reference: {}", done.reference);
     outln!("variant  backend  grid                         |min F̄|   error      wall (s)");
     for r in &done.rows {

@@ -2,6 +2,7 @@
 //! grid; print a table and GPU/CPU ratios, write a CSV and an SVG chart. The work is
 //! [`jkrbem::run::bench`].
 
+use super::progress::Progress;
 use super::{failures, run_error, CliError};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::output::bench as bench_text;
@@ -65,7 +66,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         profile: args.profile,
         out: args.out,
     };
-    let done = bench(&req, &|line: &str| errln!("{line}")).map_err(run_error)?;
+    let done = bench(&req, &Progress::new()).map_err(run_error)?;
     for p in &done.profiles {
         out!("{}", bench_text::profile_text(p));
     }

@@ -81,7 +81,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         },
         out: args.out,
     };
-    let done = coverage(&req, &mut Progress::new()).map_err(run_error)?;
+    let done = coverage(&req, &Progress::new()).map_err(run_error)?;
     outln!(
         "R1/R2   cases  held          median width/|error|  RMS error/sd  half-widths      \
          c̄ held  d̄ held (of)"

@@ -2,6 +2,7 @@
 //! ellipsoid (physics §1), one pull-off per angle; the adhesive force in newtons (in the units
 //! of the inputs) beside Johnson–Greenwood's. The work is [`jkrbem::run::crossed`].
 
+use super::progress::Progress;
 use super::{count_in, no_repeats, run_error, CliError, MAX_JOBS};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::run::crossed::{crossed, CrossedRequest};
@@ -90,7 +91,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         jobs: args.jobs,
         out: args.out.clone(),
     };
-    let done = crossed(&request, &flag, &|line| errln!("jkrbem: {line}")).map_err(run_error)?;
+    let done = crossed(&request, &flag, &Progress::new()).map_err(run_error)?;
     outln!("θ (deg)  R1/R2    F_ad                    JG F_ad    n_d");
     for r in &done.rows {
         let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4e}"));

@@ -6,6 +6,7 @@ use jkrbem::model::Model;
 use jkrbem::run::Watch;
 use jkrbem::solver::{Phase, State};
 use std::io::IsTerminal;
+use std::sync::Mutex;
 
 /// The progress line's layout: elapsed time, a bar of the load steps, the fraction done and
 /// the estimated time left, then [`progress_message`].
@@ -35,7 +36,7 @@ pub fn progress_message(model: &Model, s: &State) -> String {
 /// pull-off's load steps when stderr is a terminal.
 #[derive(Default)]
 pub struct Progress {
-    bar: Option<ProgressBar>,
+    bar: Mutex<Option<ProgressBar>>,
 }
 
 impl Progress {
@@ -46,11 +47,11 @@ impl Progress {
 }
 
 impl Watch for Progress {
-    fn note(&mut self, line: &str) {
+    fn note(&self, line: &str) {
         errln!("jkrbem: {line}");
     }
 
-    fn pulloff_started(&mut self, model: &Model) {
+    fn pulloff_started(&self, model: &Model) {
         if !std::io::stderr().is_terminal() {
             return;
         }
@@ -59,23 +60,25 @@ impl Watch for Progress {
             ProgressStyle::with_template(PROGRESS_TEMPLATE)
                 .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
-        self.bar = Some(pb);
+        if let Ok(mut bar) = self.bar.lock() {
+            *bar = Some(pb);
+        }
     }
 
-    fn state(&mut self, model: &Model, s: &State) {
-        if let Some(pb) = &self.bar {
+    fn state(&self, model: &Model, s: &State) {
+        if let Some(pb) = self.bar.lock().ok().as_ref().and_then(|b| b.as_ref()) {
             pb.set_position(s.step as u64);
             pb.set_message(progress_message(model, s));
         }
     }
 
-    fn pulloff_ended(&mut self) {
-        if let Some(pb) = self.bar.take() {
+    fn pulloff_ended(&self) {
+        if let Some(pb) = self.bar.lock().ok().and_then(|mut b| b.take()) {
             pb.finish_and_clear();
         }
     }
 
-    fn warning(&mut self, line: &str) {
+    fn warning(&self, line: &str) {
         errln!("jkrbem: warning: {line}");
     }
 }

@@ -76,7 +76,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         out: args.out,
         command,
     };
-    let done = reference(&req, &mut Progress::new()).map_err(run_error)?;
+    let done = reference(&req, &Progress::new()).map_err(run_error)?;
     outln!("ratio   |min F̄| at Δx → 0      k      grids");
     for r in &done.rows {
         let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.5}"));

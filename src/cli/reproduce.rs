@@ -2,6 +2,7 @@
 //! the fits, the crossed cylinders — with every chart as SVG and an index.html that shows
 //! them. The work is [`jkrbem::run::study`].
 
+use super::progress::Progress;
 use super::{failures, run_error, CliError, MAX_JOBS};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::run::open::BackendRequest;
@@ -40,7 +41,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         },
         jobs: args.jobs,
     };
-    let done = study(&req, &|line: &str| errln!("jkrbem: {line}")).map_err(run_error)?;
+    let done = study(&req, &Progress::new()).map_err(run_error)?;
     outln!(
         "report: {} ({} charts, {:.0} s)",
         done.index.display(),

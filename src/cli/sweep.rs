@@ -2,6 +2,7 @@
 //! a summary CSV; `--shard K/N` runs every N-th ratio so a cluster can split the sweep, and
 //! `jkrbem collect` merges the shards. The work is [`jkrbem::run::sweep`].
 
+use super::progress::Progress;
 use super::{count_in, input, no_repeats, run_error, CliError, MAX_JOBS};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::output::sweep_csv;
@@ -87,7 +88,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         jobs: args.jobs,
         out: args.out.clone(),
     };
-    let done = sweep(&request, &|line| errln!("jkrbem: {line}")).map_err(run_error)?;
+    let done = sweep(&request, &Progress::new()).map_err(run_error)?;
     outln!("ratio   |min F̄|            JG      n_d    wall (s)");
     for r in &done.rows {
         let f = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4}"));

@@ -7,6 +7,7 @@
 use super::batch::{run_files, run_jobs, Job};
 use super::claim::{named, write_error, Outputs};
 use super::open::BackendRequest;
+use super::Watch;
 use super::{input, RunError};
 use crate::analysis::estimate::{from_runs, Estimate};
 use crate::analysis::extrapolate::extrapolate_first_order;
@@ -146,10 +147,7 @@ fn backend_name(kind: BackendKind) -> &'static str {
 }
 
 /// Check the request, claim its outputs, run every grid and write the chart.
-pub fn accuracy(
-    req: &AccuracyRequest,
-    lines: &(dyn Fn(&str) + Sync),
-) -> Result<AccuracyDone, RunError> {
+pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone, RunError> {
     if !(2..=12).contains(&req.grids.len()) || req.grids.windows(2).any(|w| w[1] <= w[0]) {
         return Err(input(
             "--grids: give 2 to 12 increasing grids, e.g. 32,64,128",
@@ -199,7 +197,7 @@ pub fn accuracy(
             kind,
             ..BackendRequest::default()
         };
-        let results = run_jobs(jobs, 1, request, lines);
+        let results = run_jobs(jobs, 1, request, watch);
         failures.extend(results.iter().filter_map(|r| r.error.clone()));
         let mut runs: Vec<RunReport> = results
             .into_iter()

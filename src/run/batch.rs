@@ -115,27 +115,27 @@ impl JobResult {
 
 pub use crate::output::names::run_files;
 
-/// A [`Watch`] that passes notes and warnings to a shared function (jobs run on several
-/// threads at once, so they show no progress line).
-struct Lines<'a>(&'a (dyn Fn(&str) + Sync));
+/// The notes and warnings of a [`Watch`], without its progress line: jobs run on several
+/// threads at once, so they show none.
+struct NotesOnly<'a>(&'a dyn Watch);
 
-impl Watch for Lines<'_> {
-    fn note(&mut self, line: &str) {
-        (self.0)(line)
+impl Watch for NotesOnly<'_> {
+    fn note(&self, line: &str) {
+        self.0.note(line)
     }
-    fn warning(&mut self, line: &str) {
-        (self.0)(&format!("warning: {line}"))
+    fn warning(&self, line: &str) {
+        self.0.warning(line)
     }
 }
 
 /// Run every job, `threads` at a time (1: one after another, each using every core), each on
 /// its own backend of `backend`, and write its summary and contours beside its states.
-/// `lines` receives the notes and warnings. Returns one result per job, in the order given.
+/// `watch` receives the notes and warnings. Returns one result per job, in the order given.
 pub fn run_jobs(
     jobs: Vec<Job>,
     threads: usize,
     backend: BackendRequest,
-    lines: &(dyn Fn(&str) + Sync),
+    watch: &dyn Watch,
 ) -> Vec<JobResult> {
     let one = |job: Job| {
         let (ratio, grid, dx) = (
@@ -143,7 +143,7 @@ pub fn run_jobs(
             (job.model.nx, job.model.ny),
             job.model.dx,
         );
-        match run_one(&backend, job, lines) {
+        match run_one(&backend, job, watch) {
             Ok((summary, error)) => JobResult {
                 ratio,
                 grid,
@@ -174,20 +174,20 @@ pub fn run_jobs(
 fn run_one(
     backend: &BackendRequest,
     mut job: Job,
-    lines: &(dyn Fn(&str) + Sync),
+    watch: &dyn Watch,
 ) -> Result<(Summary, Option<String>), RunError> {
     let ratio = job.model.scene.ratio();
     let opened = open_for(backend, &mut job.model)?;
-    lines(&format!(
+    watch.note(&format!(
         "R1/R2 = {ratio}: grid {}×{}, {}",
         job.model.nx, job.model.ny, opened.note
     ));
     let mut any = opened.backend;
     let mut capture = ContactCapture::new(&SNAPSHOT_RADII);
-    let mut watch = Lines(lines);
+    let notes = NotesOnly(watch);
     let run = crate::with_backend!(
         &mut any,
-        b => pulloff_to_file(b, &job.model, &job.out, "--out", &mut watch, Some(&mut capture), None)
+        b => pulloff_to_file(b, &job.model, &job.out, "--out", &notes, Some(&mut capture), None)
     )?;
     let [_, json, contours] = run_files(&job.out);
     let summary = Summary::new(&AdhesiveResult::single(run.report, job.target));

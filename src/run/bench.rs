@@ -4,6 +4,7 @@
 
 use super::claim::{named, write_error, Outputs};
 use super::open::backend_error;
+use super::Watch;
 use super::{input, RunError};
 #[cfg(feature = "gpu")]
 use crate::backend::select::AnyBackend;
@@ -94,8 +95,8 @@ fn open(which: BackendKind, model: &Model) -> Result<Opened, RunError> {
 }
 
 /// Check the request, claim its outputs, open every backend, time every grid and write the
-/// rows. `lines` receives progress notes.
-pub fn bench(args: &BenchRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<BenchDone, RunError> {
+/// rows. `watch` receives progress notes.
+pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunError> {
     let grids = grids(args)?;
     let (scene, models) = bench_models(args, &grids)?;
     let csv = args.out.join("bench.csv");
@@ -114,7 +115,7 @@ pub fn bench(args: &BenchRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Bench
 
     // Open every backend on the first grid before any work, so a missing one is refused
     // up front; the default takes the GPU only if it opens.
-    let mut backends = open_backends(args, &models[0], lines)?;
+    let mut backends = open_backends(args, &models[0], watch)?;
     let mut got = Collected::default();
     for (which, first) in &mut backends {
         for (k, (model, &grid)) in models.iter().zip(&grids).enumerate() {
@@ -123,13 +124,13 @@ pub fn bench(args: &BenchRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Bench
                 None => match open(*which, model) {
                     Ok(o) => o,
                     Err(e) => {
-                        lines(&format!("bench: skipped grid {grid}: {e}"));
+                        watch.note(&format!("bench: skipped grid {grid}: {e}"));
                         got.problems.push(format!("grid {grid}: {e}"));
                         continue;
                     }
                 },
             };
-            measure_one(args, *which, model, grid, opened, lines, &mut got);
+            measure_one(args, *which, model, grid, opened, watch, &mut got);
         }
     }
     let Collected {
@@ -208,7 +209,7 @@ struct Collected {
 fn open_backends(
     args: &BenchRequest,
     first: &Model,
-    lines: &(dyn Fn(&str) + Sync),
+    watch: &dyn Watch,
 ) -> Result<Vec<(BackendKind, Option<Opened>)>, RunError> {
     let mut backends: Vec<(BackendKind, Option<Opened>)> = Vec::new();
     let requested = if args.backends.is_empty() {
@@ -223,7 +224,7 @@ fn open_backends(
         match open(which, first) {
             Ok(o) => backends.push((which, Some(o))),
             Err(e) if args.backends.is_empty() => {
-                lines(&format!("bench: {} skipped: {e}", flag(which)));
+                watch.note(&format!("bench: {} skipped: {e}", flag(which)));
             }
             Err(e) => return Err(e),
         }
@@ -240,7 +241,7 @@ fn measure_one(
     model: &Model,
     grid: usize,
     opened: Opened,
-    lines: &(dyn Fn(&str) + Sync),
+    watch: &dyn Watch,
     got: &mut Collected,
 ) {
     let mut any = opened.backend;
@@ -251,13 +252,13 @@ fn measure_one(
         pulloff: grid <= args.pulloff_max_grid,
     };
     let label = format!("{} {}×{}", flag(which), model.nx, model.ny);
-    lines(&format!("bench: {label}: {}", opened.note));
-    let mut progress = |what: &str| lines(&format!("bench: {label}: timing {what}"));
+    watch.note(&format!("bench: {label}: {}", opened.note));
+    let mut progress = |what: &str| watch.note(&format!("bench: {label}: timing {what}"));
     let result = crate::with_backend!(&mut any, b =>
         bench::measure(b, model, &options, &mut progress));
     #[cfg(feature = "gpu")]
     if let (true, AnyBackend::Gpu(g), Ok(_)) = (args.profile, &mut any, &result) {
-        lines(&format!("bench: {label}: profiling the kernels"));
+        watch.note(&format!("bench: {label}: profiling the kernels"));
         match bench::profile_cg_iteration(g, model, args.cg_iterations.max(20)) {
             Ok(p) => {
                 got.profile_rows
@@ -271,7 +272,7 @@ fn measure_one(
                 });
             }
             Err(e) => {
-                lines(&format!("bench: {label}: no profile: {e}"));
+                watch.note(&format!("bench: {label}: no profile: {e}"));
                 got.problems.push(format!("{label}: no profile: {e}"));
             }
         }
@@ -279,7 +280,7 @@ fn measure_one(
     match result {
         Ok(m) => {
             if let Some(e) = m.pulloff.as_ref().and_then(|p| p.error.as_ref()) {
-                lines(&format!("bench: {label}: the pull-off stopped early: {e}"));
+                watch.note(&format!("bench: {label}: the pull-off stopped early: {e}"));
                 got.problems
                     .push(format!("{label}: the pull-off stopped early: {e}"));
             }
@@ -287,7 +288,7 @@ fn measure_one(
             got.measured.push(m);
         }
         Err(e) => {
-            lines(&format!("bench: {label}: failed: {e}"));
+            watch.note(&format!("bench: {label}: failed: {e}"));
             got.problems.push(format!("{label}: {e}"));
         }
     }

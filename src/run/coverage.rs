@@ -357,7 +357,7 @@ fn in_coverage_words(e: RunError) -> RunError {
 }
 
 /// Check the request, then run (or reuse) every case, estimate each and sum them up.
-pub fn coverage(req: &CoverageRequest, watch: &mut dyn Watch) -> Result<CoverageDone, RunError> {
+pub fn coverage(req: &CoverageRequest, watch: &dyn Watch) -> Result<CoverageDone, RunError> {
     check_request(req)?;
     req.backend.check()?;
     let plan = plan_cases(req)?;

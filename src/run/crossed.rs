@@ -5,6 +5,7 @@
 use super::batch::{batch_model, run_files, run_jobs, GridChoice, Job};
 use super::claim::{named, write_error, Outputs};
 use super::open::BackendRequest;
+use super::Watch;
 use super::{input, RunError};
 use crate::analysis::CrossedCylinders;
 use crate::model::{Model, ModelOptions};
@@ -102,7 +103,7 @@ impl CrossedRequest {
 pub fn crossed(
     req: &CrossedRequest,
     flags: &dyn Fn(&'static str) -> &'static str,
-    lines: &(dyn Fn(&str) + Sync),
+    watch: &dyn Watch,
 ) -> Result<CrossedDone, RunError> {
     req.backend.check()?;
     let mut jobs = Vec::new();
@@ -136,7 +137,7 @@ pub fn crossed(
     let mut targets: Vec<PathBuf> = jobs.iter().flat_map(|j| run_files(&j.out)).collect();
     targets.extend(files.iter().cloned());
     let _claimed = Outputs::claim(&named("--out", &targets))?;
-    let results = run_jobs(jobs, req.jobs, req.backend, lines);
+    let results = run_jobs(jobs, req.jobs, req.backend, watch);
     let failures = results.iter().filter_map(|r| r.error.clone()).collect();
     let warnings = results.iter().flat_map(|r| r.warnings()).collect();
     let mut rows: Vec<CrossedRow> = scales

@@ -54,18 +54,19 @@ pub fn failed(e: impl fmt::Display) -> RunError {
 }
 
 /// What watches a run as it goes (a progress line for a person; nothing for a script or a
-/// test). Every method does nothing by default.
-pub trait Watch {
+/// test): the one way every command reports its progress. Shared by the pull-offs a batch runs
+/// at the same time, so it takes `&self` and is `Sync`. Every method does nothing by default.
+pub trait Watch: Sync {
     /// A line about what starts now (the backend opened, the grid).
-    fn note(&mut self, _line: &str) {}
+    fn note(&self, _line: &str) {}
     /// A pull-off of `model` begins.
-    fn pulloff_started(&mut self, _model: &Model) {}
+    fn pulloff_started(&self, _model: &Model) {}
     /// The pull-off of `model` recorded `state`.
-    fn state(&mut self, _model: &Model, _state: &State) {}
+    fn state(&self, _model: &Model, _state: &State) {}
     /// The pull-off ended.
-    fn pulloff_ended(&mut self) {}
+    fn pulloff_ended(&self) {}
     /// A warning about a result.
-    fn warning(&mut self, _line: &str) {}
+    fn warning(&self, _line: &str) {}
 }
 
 /// A [`Watch`] that shows nothing.

@@ -36,7 +36,7 @@ pub fn pulloff_to_file<B: Backend>(
     model: &Model,
     out: &Path,
     flag: &str,
-    watch: &mut dyn Watch,
+    watch: &dyn Watch,
     mut capture: Option<&mut ContactCapture>,
     deadline: Option<Instant>,
 ) -> Result<Pulloff, RunError> {

@@ -312,7 +312,7 @@ fn ladder(
     req: &ReferenceRequest,
     ratio: f64,
     grids: &LadderGrids,
-    watch: &mut dyn Watch,
+    watch: &dyn Watch,
 ) -> Result<(ReferenceRow, Vec<RunReport>), RunError> {
     let scene = ratio_scene(ratio)?;
     let base = ladder_options();
@@ -434,7 +434,7 @@ pub(crate) fn run_or_reuse(
     backend: BackendRequest,
     dir: &std::path::Path,
     name: &str,
-    watch: &mut dyn Watch,
+    watch: &dyn Watch,
 ) -> Result<RunReport, RunError> {
     let summary = dir.join(format!("{name}.json"));
     let states = dir.join(format!("{name}.csv"));
@@ -518,7 +518,7 @@ fn existing_rows(path: &std::path::Path) -> Result<Vec<ReferenceRow>, RunError> 
 /// ([`ladder_grids`]) so that a request that cannot hold a ladder is refused before any work. The rows of an existing table for other
 /// ratios are kept, so a table grows over several jobs; it is rewritten (whole, atomically,
 /// sorted by ratio) after each ratio so that a long job keeps what it has finished.
-pub fn reference(req: &ReferenceRequest, watch: &mut dyn Watch) -> Result<ReferenceDone, RunError> {
+pub fn reference(req: &ReferenceRequest, watch: &dyn Watch) -> Result<ReferenceDone, RunError> {
     if !(req.target > 0.0 && req.target < 1.0) {
         return Err(input("--target: give a percentage in (0, 100), e.g. 0.3%"));
     }

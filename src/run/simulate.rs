@@ -65,7 +65,7 @@ pub struct Simulated {
 }
 
 /// Run the request: check every input, claim the outputs, run, estimate, write the summary.
-pub fn simulate(req: &SimulateRequest, watch: &mut dyn Watch) -> Result<Simulated, RunError> {
+pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, RunError> {
     req.backend.check()?;
     let Planned {
         models,
@@ -149,7 +149,7 @@ fn run_grids(
     req: &SimulateRequest,
     models: Vec<Model>,
     outs: &[PathBuf],
-    watch: &mut dyn Watch,
+    watch: &dyn Watch,
 ) -> Result<Ran, RunError> {
     let deadline = req.time_limit.map(|t| Instant::now() + t);
     let mut runs = Vec::new();

@@ -6,6 +6,7 @@ use super::claim::{named, write_error, Outputs};
 use super::crossed::{crossed, CrossedRequest};
 use super::curves::sweep_curves;
 use super::open::BackendRequest;
+use super::Watch;
 use super::{failed, input, RunError};
 use crate::analysis::capture::ContourRow;
 use crate::analysis::estimate::{self, AdhesiveResult};
@@ -90,8 +91,8 @@ const FILES: [&str; 14] = [
 ];
 
 /// Run the study: the sweep, the fits, the crossed cylinders, the charts and the index.
-/// `lines` receives progress notes.
-pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<StudyDone, RunError> {
+/// `watch` receives progress notes.
+pub fn study(args: &StudyRequest, watch: &dyn Watch) -> Result<StudyDone, RunError> {
     let start = Instant::now();
     let sweep_dir = args.out.join("sweep");
     let work = study_jobs(args, &sweep_dir)?;
@@ -101,8 +102,8 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
     targets.push(sweep_csv::sweep_csv_path(&sweep_dir));
     targets.extend(FILES.iter().map(|file| args.out.join(file)));
     let _claimed = Outputs::claim(&named("--out", &targets))?;
-    announce(args, lines);
-    let results = run_study_jobs(work, args, lines);
+    announce(args, watch);
+    let results = run_study_jobs(work, args, watch);
     let mut failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
     let mut warnings: Vec<String> = results.iter().flat_map(JobResult::warnings).collect();
     let rows = write_sweep_rows(&sweep_dir, &results)?;
@@ -126,10 +127,10 @@ pub fn study(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<Study
         &mut figures,
         &mut failures,
         &mut warnings,
-        lines,
+        watch,
     )?;
     for w in &warnings {
-        lines(&format!("warning: {w}"));
+        watch.note(&format!("warning: {w}"));
     }
     write_index(
         &args.out,
@@ -204,8 +205,8 @@ fn check_study_memory(work: &[Job], args: &StudyRequest) -> Result<(), RunError>
 }
 
 /// Say which ratios and grids the study runs.
-fn announce(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) {
-    lines(&format!(
+fn announce(args: &StudyRequest, watch: &dyn Watch) {
+    watch.note(&format!(
         "reproduce: {} ratios on grids {}{}",
         RATIOS.len(),
         study_grids(args)
@@ -219,13 +220,9 @@ fn announce(args: &StudyRequest, lines: &(dyn Fn(&str) + Sync)) {
 
 /// Run every pull-off (the largest first, so that parallel jobs end together); the results
 /// sorted by ratio, then grid.
-fn run_study_jobs(
-    mut work: Vec<Job>,
-    args: &StudyRequest,
-    lines: &(dyn Fn(&str) + Sync),
-) -> Vec<JobResult> {
+fn run_study_jobs(mut work: Vec<Job>, args: &StudyRequest, watch: &dyn Watch) -> Vec<JobResult> {
     work.sort_by_key(|j| std::cmp::Reverse(j.model.nx * j.model.ny));
-    let mut results = run_jobs(work, args.jobs, args.backend, lines);
+    let mut results = run_jobs(work, args.jobs, args.backend, watch);
     results.sort_by(|a, b| a.ratio.total_cmp(&b.ratio).then(a.grid.0.cmp(&b.grid.0)));
     results
 }
@@ -498,7 +495,7 @@ fn crossed_step(
     figures: &mut Figures,
     failures: &mut Vec<String>,
     warnings: &mut Vec<String>,
-    lines: &(dyn Fn(&str) + Sync),
+    watch: &dyn Watch,
 ) -> Result<(), RunError> {
     let crossed_grid = if args.quick {
         super::batch::GridChoice::Fixed(128)
@@ -520,7 +517,7 @@ fn crossed_step(
         out: crossed_dir.clone(),
     };
     let t = Instant::now();
-    match crossed(&crossed_req, &crossed_flag, lines) {
+    match crossed(&crossed_req, &crossed_flag, watch) {
         Ok(done) => {
             failures.extend(
                 done.failures

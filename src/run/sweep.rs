@@ -5,6 +5,7 @@ use super::batch::{batch_model, run_files, run_jobs, GridChoice, Job};
 use super::claim::{named, write_error, Outputs};
 use super::curves::sweep_curves;
 use super::open::BackendRequest;
+use super::Watch;
 use super::{input, RunError};
 use crate::model::{Model, ModelOptions};
 use crate::output::sweep_charts::write_sweep_charts;
@@ -79,7 +80,7 @@ fn model_for(req: &SweepRequest, ratio: f64) -> Result<(Model, Option<f64>), Run
 
 /// Run the sweep: check every ratio (the other shards' too), claim the outputs, run this
 /// shard's ratios, write the rows (CSV or shard file) and, for a whole sweep, the charts.
-pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepDone, RunError> {
+pub fn sweep(req: &SweepRequest, watch: &dyn Watch) -> Result<SweepDone, RunError> {
     req.backend.check()?;
     let jobs = sweep_jobs(req)?;
     let summary_path = match req.shard {
@@ -92,7 +93,7 @@ pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepD
         targets.extend(chart_files(&req.out));
     }
     let _claimed = Outputs::claim(&named("--out", &targets))?;
-    lines(&format!(
+    watch.note(&format!(
         "sweep: {} ratio(s) {:?} ({}: grids {:?}){}, {} at a time",
         jobs.len(),
         jobs.iter()
@@ -105,7 +106,7 @@ pub fn sweep(req: &SweepRequest, lines: &(dyn Fn(&str) + Sync)) -> Result<SweepD
         req.jobs
     ));
     let ran = jobs.len();
-    let results = run_jobs(jobs, req.jobs, req.backend, lines);
+    let results = run_jobs(jobs, req.jobs, req.backend, watch);
     let rows: Vec<SweepRow> = results.iter().map(|r| r.row()).collect();
     let failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
     let mut warnings: Vec<String> = results.iter().flat_map(|r| r.warnings()).collect();

@@ -110,7 +110,7 @@ fn study(
         },
         out: out.to_path_buf(),
     };
-    let done = coverage(&req, &mut Quiet).unwrap();
+    let done = coverage(&req, &Quiet).unwrap();
     println!(
         "R1/R2  grid      margin  variant  stated            reference  error %  width/|error|"
     );

@@ -105,8 +105,8 @@ impl Args {
 /// Run `jkrbem simulate`.
 pub fn run(args: Args) -> Result<(), CliError> {
     let request = args.request()?;
-    let mut progress = Progress::new();
-    let done = simulate(&request, &mut progress).map_err(run_error)?;
+    let progress = Progress::new();
+    let done = simulate(&request, &progress).map_err(run_error)?;
     if let Some(plan) = &done.plan {
         errln!("jkrbem: {plan}");
     }
