@@ -49,24 +49,20 @@ struct Cli {
     force: bool,
 }
 
-// Every subcommand lets negative numbers through to its range checks (`--ratio -5` is
-// refused as "--ratio = -5 is invalid: …", not as an unknown argument "-5").
+// Every flag's value may start with '-' (see `values_may_start_with_a_hyphen`): `--ratio -5` is
+// refused as "--ratio = -5 is invalid: …", not as an unknown argument "-5".
 #[derive(Subcommand)]
 enum Command {
     /// Simulate the adhesive pull-off of one scene and write its states as CSV.
-    #[command(allow_negative_numbers = true)]
     Simulate(cli::simulate::Args),
     /// Run one pull-off per axis ratio R1/R2 (optionally one shard of them) and write a
     /// summary CSV beside each ratio's states.
-    #[command(allow_negative_numbers = true)]
     Sweep(cli::sweep::Args),
     /// Crossed identical elastic cylinders at several angles: adhesive force in newtons
     /// beside Johnson–Greenwood.
-    #[command(allow_negative_numbers = true)]
     Crossed(cli::crossed::Args),
     /// Run the whole study (sweep, fits, crossed cylinders) and write every chart and an
     /// index.html.
-    #[command(allow_negative_numbers = true)]
     Reproduce(cli::reproduce::Args),
     /// The reference table of converged adhesive forces per R1/R2 (|min F̄|, c̄ and d̄ at the
     /// minimum at Δx → 0, with uncertainties), from ladders of grids.
@@ -76,19 +72,16 @@ enum Command {
     Coverage(cli::coverage::Args),
     /// One scene on several grids and backends: the error of the adhesive force against its
     /// wall time, as CSV and a log–log chart.
-    #[command(allow_negative_numbers = true)]
     Accuracy(cli::accuracy::Args),
     /// Merge the shard files of a split sweep into DIR/sweep.csv, checking that they are of
     /// one sweep and naming missing or incomplete ratios.
     Collect(cli::collect::Args),
     /// Write a closed-form curve (Hertz, JKR or Johnson–Greenwood) as CSV.
-    #[command(allow_negative_numbers = true)]
     Theory(cli::theory::Args),
     /// List the GPU adapters wgpu sees, with their limits and the largest grid each holds.
     Devices(cli::devices::Args),
     /// Time the convolution, one CG iteration and whole pull-offs per backend and grid; write
     /// a CSV and an SVG chart.
-    #[command(allow_negative_numbers = true)]
     Bench(cli::bench::Args),
 }
 

@@ -18,12 +18,7 @@ pub struct Args {
     /// Crossing angles θ in degrees, comma-separated: 1 to 100 values, none repeated, each in
     /// [3.63, 90] (90 is sphere-like; 16.1 gives R1/R2 ≈ 50; below 3.63° R1/R2 would exceed
     /// 1000).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "90,70,50,30,16.1",
-        allow_hyphen_values = true
-    )]
+    #[arg(long, value_delimiter = ',', default_value = "90,70,50,30,16.1")]
     pub angles: Vec<f64>,
     /// Young's modulus E of both cylinders (force/length², e.g. Pa; in [1e-30, 1e30]).
     #[arg(long = "e", default_value_t = 1.0e6)]

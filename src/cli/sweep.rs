@@ -14,12 +14,7 @@ use std::path::PathBuf;
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Axis ratios R1/R2, comma-separated: 1 to 1000 values, each in [1, 1000], none repeated.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "1,2,5,10,25,50",
-        allow_hyphen_values = true
-    )]
+    #[arg(long, value_delimiter = ',', default_value = "1,2,5,10,25,50")]
     pub ratios: Vec<f64>,
     /// Elements along x, Nx, for every ratio (a power of two from 16 to 65536); Ny is fitted
     /// per ratio. Each ratio's contact must be resolved (see `simulate --grid`). Each

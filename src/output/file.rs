@@ -13,6 +13,8 @@
 //!   dies; a lock file left by a killed run is taken over.
 //! - [`check_target`]: a target that exists and is not a regular file (a device, a FIFO, a
 //!   folder) is refused.
+//! - [`read_regular`]: the one way jkrbem reads a file a user may have put in its way (a shard,
+//!   a summary): regular files only, opened without blocking, read to a bound.
 //!
 //! Temporary files and lock files are registered while they exist, so that a signal handler
 //! can remove them ([`remove_registered`]) before the process exits.
@@ -182,10 +184,9 @@ pub fn check_target(path: &Path) -> Result<(), OutputError> {
     check_link_owner(path, effective_uid())?;
     match fs::metadata(path) {
         Ok(m) if m.is_file() => check_writable(path, &m),
-        Ok(m) => Err(OutputError::Refused {
-            path: path.display().to_string(),
-            flag: None,
-            reason: format!(
+        Ok(m) => Err(refused(
+            path,
+            format!(
                 "it exists and is {}, not a regular file",
                 if m.is_dir() {
                     "a folder"
@@ -193,15 +194,11 @@ pub fn check_target(path: &Path) -> Result<(), OutputError> {
                     "a device, FIFO or socket"
                 }
             ),
-        }),
+        )),
         Err(e) if e.kind() == io::ErrorKind::NotFound => {
             // A dangling symbolic link: refuse rather than replace the link.
             match fs::symlink_metadata(path) {
-                Ok(_) => Err(OutputError::Refused {
-                    path: path.display().to_string(),
-                    flag: None,
-                    reason: "it is a symbolic link to nothing".into(),
-                }),
+                Ok(_) => Err(refused(path, "it is a symbolic link to nothing")),
                 Err(_) => Ok(()),
             }
         }
@@ -307,6 +304,65 @@ pub fn write_csv<T: serde::Serialize>(
         }
         c.flush()
     })
+}
+
+/// Open `path` for reading without blocking on a FIFO.
+#[cfg(unix)]
+fn open_nonblocking(path: &Path) -> io::Result<File> {
+    use std::os::unix::fs::OpenOptionsExt;
+    OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)
+}
+
+/// Open `path` for reading.
+#[cfg(not(unix))]
+fn open_nonblocking(path: &Path) -> io::Result<File> {
+    File::open(path)
+}
+
+/// Why [`read_regular`] read nothing.
+#[derive(Debug)]
+pub enum ReadError {
+    /// No file of that name.
+    Absent,
+    /// Not a regular file, too large, or unreadable: the reason in words.
+    Refused(String),
+}
+
+/// The bytes of the regular file `path`, at most `limit` of them. Anything else (a FIFO, a
+/// device such as /dev/zero, a folder) is refused before it is opened and again, by the open
+/// file's own metadata, after (so that one swapped in between cannot block or fill memory);
+/// the file is opened non-blocking and read no further than `limit` + 1 bytes.
+pub fn read_regular(path: &Path, limit: u64) -> Result<Vec<u8>, ReadError> {
+    let not_regular = || {
+        ReadError::Refused(
+            "not a regular file (a FIFO, a device or a folder); only regular files are read".into(),
+        )
+    };
+    let io = |e: std::io::Error| match e.kind() {
+        std::io::ErrorKind::NotFound => ReadError::Absent,
+        _ => ReadError::Refused(e.to_string()),
+    };
+    if !std::fs::metadata(path).map_err(io)?.is_file() {
+        return Err(not_regular());
+    }
+    let file = open_nonblocking(path).map_err(io)?;
+    if !file.metadata().map_err(io)?.is_file() {
+        return Err(not_regular());
+    }
+    let mut bytes = Vec::new();
+    file.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| ReadError::Refused(e.to_string()))?;
+    if bytes.len() as u64 > limit {
+        return Err(ReadError::Refused(format!(
+            "larger than {} MiB, more than any file of its kind holds",
+            limit >> 20
+        )));
+    }
+    Ok(bytes)
 }
 
 /// The name of a run's partial file for `target`: `<stem>.incomplete-<pid>.<ext>` beside it,

@@ -16,7 +16,6 @@ use super::summary::Summary;
 use super::OutputError;
 use crate::scene::MAX_RATIO;
 use serde::{Deserialize, Serialize};
-use std::io::Read;
 use std::path::{Path, PathBuf};
 
 /// One ratio of a sweep (normalised quantities per physics §2).
@@ -130,6 +129,7 @@ impl SweepRow {
 pub const HEADER: &str = "ratio,f_ad_bar,f_ad_bar_uncertainty,estimate,c_bar_at_min,\
 d_bar_at_min,jg_f_ad_bar,n_d,grid,dx,wall_s,ny,backend,complete,min_reached,error";
 
+use super::file::{read_regular, ReadError};
 pub use super::names::{shard as shard_path, sweep_csv as sweep_csv_path};
 
 /// Write rows (sorted by ratio) to `path` atomically, header first even without rows.
@@ -273,65 +273,6 @@ pub const MAX_SUMMARY_BYTES: u64 = 16 << 20;
 
 /// The most ratios a sweep holds (`sweep --ratios` takes 1 to this many).
 pub const MAX_SWEEP_RATIOS: usize = 1000;
-
-/// Open `path` for reading without blocking on a FIFO.
-#[cfg(unix)]
-fn open_nonblocking(path: &Path) -> std::io::Result<std::fs::File> {
-    use std::os::unix::fs::OpenOptionsExt;
-    std::fs::OpenOptions::new()
-        .read(true)
-        .custom_flags(libc::O_NONBLOCK)
-        .open(path)
-}
-
-/// Open `path` for reading.
-#[cfg(not(unix))]
-fn open_nonblocking(path: &Path) -> std::io::Result<std::fs::File> {
-    std::fs::File::open(path)
-}
-
-/// Why [`read_regular`] read nothing.
-#[derive(Debug)]
-enum ReadError {
-    /// No file of that name.
-    Absent,
-    /// Not a regular file, too large, or unreadable: the reason in words.
-    Refused(String),
-}
-
-/// The bytes of the regular file `path`, at most `limit` of them. Anything else (a FIFO, a
-/// device such as /dev/zero, a folder) is refused before it is opened and again, by the open
-/// file's own metadata, after (so that one swapped in between cannot block or fill memory);
-/// the file is opened non-blocking and read no further than `limit` + 1 bytes.
-fn read_regular(path: &Path, limit: u64) -> Result<Vec<u8>, ReadError> {
-    let not_regular = || {
-        ReadError::Refused(
-            "not a regular file (a FIFO, a device or a folder); only regular files are read".into(),
-        )
-    };
-    let io = |e: std::io::Error| match e.kind() {
-        std::io::ErrorKind::NotFound => ReadError::Absent,
-        _ => ReadError::Refused(e.to_string()),
-    };
-    if !std::fs::metadata(path).map_err(io)?.is_file() {
-        return Err(not_regular());
-    }
-    let file = open_nonblocking(path).map_err(io)?;
-    if !file.metadata().map_err(io)?.is_file() {
-        return Err(not_regular());
-    }
-    let mut bytes = Vec::new();
-    file.take(limit + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| ReadError::Refused(e.to_string()))?;
-    if bytes.len() as u64 > limit {
-        return Err(ReadError::Refused(format!(
-            "larger than {} MiB, more than any file of its kind holds",
-            limit >> 20
-        )));
-    }
-    Ok(bytes)
-}
 
 /// (k, n) from "sweep-shard-K-of-N.json": `None` for a name of another form (a partial file,
 /// say), `Some(Err)` for a shard's name with K outside 1..=N or N above [`MAX_SHARDS`] (the

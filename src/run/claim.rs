@@ -94,15 +94,17 @@ impl Outputs {
             seen.push((id, path, flag));
         }
         // An output named as another's lock file would be removed with the lock at the end.
+        let locks: std::collections::HashMap<PathBuf, (&Path, &str)> = seen
+            .iter()
+            .map(|(_, other, other_flag)| (identity(&lock_path(other)), (*other, *other_flag)))
+            .collect();
         for (id, path, flag) in &seen {
-            for (_, other, other_flag) in &seen {
-                if *id == identity(&lock_path(other)) {
-                    return Err(input(format!(
-                        "{flag} {} is the lock file of {other_flag} {}: give it another name",
-                        path.display(),
-                        other.display()
-                    )));
-                }
+            if let Some((other, other_flag)) = locks.get(id) {
+                return Err(input(format!(
+                    "{flag} {} is the lock file of {other_flag} {}: give it another name",
+                    path.display(),
+                    other.display()
+                )));
             }
         }
         Ok(())

@@ -6,6 +6,7 @@
 //! refused without blocking or filling memory; and the legend of a 30-ratio sweep's chart stays
 //! inside its picture.
 
+use crate::common;
 use jkrbem::output::sweep_csv::{shard_path, shard_ratios, Shard, SweepRow, SweepSettings};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -111,35 +112,11 @@ fn real_shards(dir: &Path) {
 }
 
 fn row(ratio: f64) -> SweepRow {
-    SweepRow {
-        ratio,
-        f_ad_bar: Some(0.5 / ratio.powf(0.3)),
-        f_ad_bar_uncertainty: Some(0.01),
-        estimate: Some("single-grid".into()),
-        c_bar_at_min: Some(0.8),
-        d_bar_at_min: Some(-0.2),
-        jg_f_ad_bar: Some(0.5),
-        n_d: Some(30.0),
-        grid: 32,
-        dx: 0.2,
-        wall_s: 0.1,
-        ny: 32,
-        backend: "cpu-f64".into(),
-        complete: true,
-        min_reached: true,
-        error: None,
-    }
+    common::sweep_rows::row(ratio, 0.5 / ratio.powf(0.3))
 }
 
 fn settings(ratios: &[f64]) -> SweepSettings {
-    SweepSettings {
-        ratios: ratios.to_vec(),
-        grid: Some(32),
-        accuracy: None,
-        steps: 20,
-        start_radius: 1.5,
-        margin: 0.2,
-    }
+    common::sweep_rows::settings(ratios, 32)
 }
 
 /// Shards 1..=n of a sweep of `ratios` in `dir/sw`, every row written (no per-ratio files).

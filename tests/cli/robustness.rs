@@ -740,35 +740,11 @@ mod collect {
     use jkrbem::output::sweep_csv::{shard_path, shard_ratios, Shard, SweepRow, SweepSettings};
 
     fn row(ratio: f64) -> SweepRow {
-        SweepRow {
-            ratio,
-            f_ad_bar: Some(0.55),
-            f_ad_bar_uncertainty: Some(0.01),
-            estimate: Some("single-grid".into()),
-            c_bar_at_min: Some(0.8),
-            d_bar_at_min: Some(-0.2),
-            jg_f_ad_bar: Some(0.5),
-            n_d: Some(30.0),
-            grid: 32,
-            dx: 0.2,
-            wall_s: 0.1,
-            ny: 32,
-            backend: "cpu-f64".into(),
-            complete: true,
-            min_reached: true,
-            error: None,
-        }
+        common::sweep_rows::row(ratio, 0.55)
     }
 
     fn sweep(grid: usize) -> SweepSettings {
-        SweepSettings {
-            ratios: vec![1.0, 2.0, 5.0],
-            grid: Some(grid),
-            accuracy: None,
-            steps: 20,
-            start_radius: 1.5,
-            margin: 0.2,
-        }
+        common::sweep_rows::settings(&[1.0, 2.0, 5.0], grid)
     }
 
     /// Shards 1..=n of the 3-ratio sweep in `dir`, each with its rows (changed by `edit`).

@@ -3,6 +3,7 @@
 
 pub mod cg_failures;
 pub mod same_answers;
+pub mod sweep_rows;
 
 use jkrbem::backend::cpu::CpuBackend;
 use jkrbem::backend::prelude::*;

@@ -72,7 +72,7 @@ pub struct Args {
     /// Stop at this approach d̄ if the contact has not vanished by then (dimensionless, in
     /// [−1000, d̄0)). A run stopped before the force minimum says so and reports no adhesive
     /// force (`min_reached: false`).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long)]
     pub final_d: Option<f64>,
     /// Free margin around the initial contact, relative to its half-axes (in [0, 10]).
     #[arg(long, default_value_t = 0.08)]
@@ -81,14 +81,14 @@ pub struct Args {
     /// is the box around the turned initial contact (square at 45°), and ā, b̄ are measured
     /// along the turned axes. Use it to check results where crack fronts run along grid
     /// lines, at the ends of a slender ellipse's axes (e.g. 45). In [−360, 360].
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 0.0)]
     pub mesh_angle: f64,
     /// Where the apex lies within the element grid, as two fractions of an element along x
     /// and y, each in [−0.5, 0.5] (default 0,0: on the corner between the four middle
     /// elements; 0.5,0.5 puts it on the centre of one).
     /// It moves where the contact's edge falls between element centres (the "grid phase"),
     /// which shifts |min F̄| by a few tenths of a per cent on any grid.
-    #[arg(long, value_delimiter = ',', default_values_t = [0.0, 0.0], allow_hyphen_values = true)]
+    #[arg(long, value_delimiter = ',', default_values_t = [0.0, 0.0])]
     pub apex_offset: Vec<f64>,
     /// CG stops when its relative residual ‖(d − h − K p)_C‖/‖(d − h)_C‖ reaches this
     /// (dimensionless). A solve that stagnates, diverges, reaches --cg-max-iterations, or

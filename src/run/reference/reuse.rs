@@ -7,6 +7,7 @@
 use crate::analysis::report::RunReport;
 use crate::backend::select::BackendKind;
 use crate::model::ModelOptions;
+use crate::output::states_csv::read_state_rows;
 use crate::run::open::BackendRequest;
 use crate::scene::Scene;
 use clap::ValueEnum;
@@ -219,48 +220,14 @@ fn report_differences(run: &RunReport, asked: &RunSettings, kind: BackendKind) -
     why
 }
 
-/// The columns of a states CSV this check reads.
-const STATE_COLUMNS: [&str; 5] = ["f_bar", "c_bar", "d_bar", "dx", "b_axis"];
-
 /// Why the states CSV at `states` does not reproduce the report `run` (the number of states,
 /// |min F̄| and the lowest F̄, c̄, d̄, Δx and n_d at the minimum), if it does not.
 fn states_differences(run: &RunReport, states: &Path) -> Option<String> {
     let shown = states.display();
-    let mut reader = match csv::Reader::from_path(states) {
-        Ok(r) => r,
+    let rows = match read_state_rows(states) {
+        Ok(rows) => rows,
         Err(e) => return Some(format!("its states {shown} cannot be read: {e}")),
     };
-    let header = match reader.headers() {
-        Ok(h) => h.clone(),
-        Err(e) => return Some(format!("its states {shown} have no header: {e}")),
-    };
-    let Some(columns) = STATE_COLUMNS
-        .iter()
-        .map(|name| header.iter().position(|h| h == *name))
-        .collect::<Option<Vec<usize>>>()
-    else {
-        return Some(format!(
-            "its states {shown} lack a column ({})",
-            STATE_COLUMNS.join(", ")
-        ));
-    };
-    // Per state: F̄, c̄, d̄, Δx, b.
-    let mut rows: Vec<Vec<f64>> = Vec::new();
-    for record in reader.records() {
-        let Ok(record) = record else {
-            return Some(format!("its states {shown} are not valid CSV"));
-        };
-        let Some(values) = columns
-            .iter()
-            .map(|&i| record.get(i).and_then(|v| v.trim().parse::<f64>().ok()))
-            .collect::<Option<Vec<f64>>>()
-        else {
-            return Some(format!(
-                "its states {shown} hold a value that is not a number"
-            ));
-        };
-        rows.push(values);
-    }
     if rows.len() != run.states {
         return Some(format!(
             "its states {shown} hold {} states, its report says {}",
@@ -268,26 +235,26 @@ fn states_differences(run: &RunReport, states: &Path) -> Option<String> {
             run.states
         ));
     }
-    let Some(min) = rows.iter().min_by(|a, b| a[0].total_cmp(&b[0])) else {
+    let Some(min) = rows.iter().min_by(|a, b| a.f_bar.total_cmp(&b.f_bar)) else {
         return Some(format!("its states {shown} are empty"));
     };
-    let n_d = (2e6 * min[4] / min[3]).round() / 1e6;
+    let n_d = (2e6 * min.b_axis / min.dx).round() / 1e6;
     let checks = [
-        ("|min F̄|", run.f_ad_bar, Some(-min[0]), REPRODUCED),
-        ("lowest F̄", run.lowest_f_bar, Some(min[0]), REPRODUCED),
+        ("|min F̄|", run.f_ad_bar, Some(-min.f_bar), REPRODUCED),
+        ("lowest F̄", run.lowest_f_bar, Some(min.f_bar), REPRODUCED),
         (
             "c̄ at the minimum",
             run.c_bar_at_min,
-            Some(min[1]),
+            Some(min.c_bar),
             REPRODUCED,
         ),
         (
             "d̄ at the minimum",
             run.d_bar_at_min,
-            Some(min[2]),
+            Some(min.d_bar),
             REPRODUCED,
         ),
-        ("Δx at the minimum", run.dx_at_min, Some(min[3]), REPRODUCED),
+        ("Δx at the minimum", run.dx_at_min, Some(min.dx), REPRODUCED),
         ("n_d", run.n_d, Some(n_d), 1e-6),
     ];
     checks
