@@ -54,7 +54,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Simulate the adhesive pull-off of one scene and write its states as CSV.
-    Simulate(cli::simulate::Args),
+    Simulate(Box<cli::simulate::Args>),
     /// Run one pull-off per axis ratio R1/R2 (optionally one shard of them) and write a
     /// summary CSV beside each ratio's states.
     Sweep(cli::sweep::Args),
@@ -202,7 +202,7 @@ fn main() -> ExitCode {
     let cli = Cli::from_arg_matches(&command.get_matches()).unwrap_or_else(|e| e.exit());
     jkrbem::output::file::set_force(cli.force);
     let result = match cli.command {
-        Command::Simulate(a) => cli::simulate::run(a),
+        Command::Simulate(a) => cli::simulate::run(*a),
         Command::Theory(a) => cli::theory::run(a),
         Command::Sweep(a) => cli::sweep::run(a),
         Command::Collect(a) => cli::collect::run(a),

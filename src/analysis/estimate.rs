@@ -76,6 +76,9 @@ pub struct AdhesiveEstimate {
 /// corrected by the convergence law's expected over-prediction). `None` if the run has no
 /// force minimum.
 pub fn single_grid(run: &RunReport) -> Option<AdhesiveEstimate> {
+    if !super::report::is_ellipsoid(run) {
+        return None;
+    }
     from_runs(std::slice::from_ref(run)).ok()
 }
 
@@ -89,6 +92,11 @@ pub struct Comparison {
     pub jg_deviation: Option<f64>,
     /// For the sphere only: the estimate against JKR's exact 1/2, f/(1/2) − 1.
     pub jkr_error: Option<f64>,
+    /// For an indenter other than the ellipsoid: the closed form of its Δx → 0 limit
+    /// (Kendall's 1 for the flat punch, the power law's JKR value) and its name.
+    pub exact: Option<(&'static str, f64)>,
+    /// The grid's own |min F̄| against that limit, f/limit − 1 (its discretisation error).
+    pub grid_error: Option<f64>,
 }
 
 /// Compare `f_ad_bar` (an adhesive force of R1/R2 = `ratio`) with JG and, for the sphere, JKR.
@@ -101,6 +109,8 @@ pub fn compare(ratio: f64, f_ad_bar: Option<f64>) -> Comparison {
         jg_f_ad_bar: jg,
         jg_deviation: f_ad_bar.zip(jg).map(|(f, j)| f / j - 1.0),
         jkr_error: f_ad_bar.zip(jkr).map(|(f, j)| f / j - 1.0),
+        exact: None,
+        grid_error: None,
     }
 }
 
@@ -159,6 +169,26 @@ impl AdhesiveResult {
     pub fn single(run: RunReport, target: Option<f64>) -> Self {
         let estimate = single_grid(&run);
         Self::assemble(run.ratio, estimate, target, vec![run])
+    }
+
+    /// The result of one run of an indenter other than the ellipsoid, which has no
+    /// convergence law: no estimate with an uncertainty, only the grid's own |min F̄| beside
+    /// the closed form of its Δx → 0 limit `exact` (name, |min F̄|), where one exists.
+    pub fn beside_limit(run: RunReport, exact: Option<(&'static str, f64)>) -> Self {
+        let comparison = Comparison {
+            jg_f_ad_bar: None,
+            jg_deviation: None,
+            jkr_error: None,
+            exact,
+            grid_error: run.f_ad_bar.zip(exact).map(|(f, e)| f / e.1 - 1.0),
+        };
+        AdhesiveResult {
+            ratio: run.ratio,
+            estimate: None,
+            comparison,
+            target: None,
+            runs: vec![run],
+        }
     }
 
     /// Assemble a result from an estimate and its runs.
@@ -448,6 +478,7 @@ mod tests {
     /// A run of R1/R2 = `ratio` on grid `nx` with |min F̄| = `f` and `n_d` elements across.
     fn run(ratio: f64, nx: usize, f: f64, n_d: f64) -> RunReport {
         RunReport {
+            indenter: "ellipsoid".into(),
             ratio,
             grid: format!("{nx}×{nx}"),
             nx,

@@ -12,7 +12,11 @@ use std::path::Path;
 /// One run's report (normalised quantities per physics §2).
 #[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
 pub struct RunReport {
-    /// R1/R2 (dimensionless).
+    /// The indenter's shape ("ellipsoid", "power-law", "flat-punch"); "ellipsoid" in reports
+    /// written before it was recorded.
+    #[serde(default = "ellipsoid")]
+    pub indenter: String,
+    /// R1/R2 (dimensionless; 1 for the axisymmetric indenters).
     pub ratio: f64,
     /// The grid, "Nx×Ny".
     pub grid: String,
@@ -102,6 +106,16 @@ pub struct RunReport {
     pub refinement: Option<Refinement>,
 }
 
+/// The indenter of a report written before [`RunReport::indenter`] existed.
+fn ellipsoid() -> String {
+    "ellipsoid".to_string()
+}
+
+/// Whether a report's indenter is the ellipsoid (the shape the convergence law is for).
+pub fn is_ellipsoid(run: &RunReport) -> bool {
+    run.indenter == "ellipsoid"
+}
+
 /// A report written before [`RunReport::min_resolved`] existed had its minimum resolved.
 fn resolved() -> bool {
     true
@@ -132,12 +146,14 @@ impl RunReport {
         let unresolved = step_warning(model, outcome);
         let min_resolved = unresolved.is_none();
         let warnings = n_d
+            .filter(|_| model.scene.is_ellipsoid())
             .and_then(|n| convergence::coarse_grid_warning(ratio, n))
             .into_iter()
             .chain(unresolved)
             .chain(outcome.warnings.iter().cloned())
             .collect();
         RunReport {
+            indenter: model.scene.indenter.name().to_string(),
             ratio,
             grid: format!("{}×{}", model.nx, model.ny),
             nx: model.nx,

@@ -22,14 +22,23 @@ pub fn progress_message(model: &Model, s: &State) -> String {
         Phase::Regrid => "re-grid",
     };
     format!(
-        "R1/R2 = {}, step {}/{} ({phase}): d̄ = {}, F̄ = {}, c̄ = {}",
-        jkrbem::text::compact(model.scene.ratio()),
+        "{}, step {}/{} ({phase}): d̄ = {}, F̄ = {}, c̄ = {}",
+        progress_scene(&model.scene),
         s.step,
         model.expected_steps(),
         jkrbem::text::fixed(s.d_bar, 4),
         jkrbem::text::fixed(s.f_bar, 4),
         jkrbem::text::fixed(s.c_bar, 4)
     )
+}
+
+/// "R1/R2 = 5" for an ellipsoid, else the indenter's name.
+fn progress_scene(scene: &jkrbem::scene::Scene) -> String {
+    if scene.is_ellipsoid() {
+        format!("R1/R2 = {}", jkrbem::text::compact(scene.ratio()))
+    } else {
+        scene.indenter.name().to_string()
+    }
 }
 
 /// A [`Watch`] for a person: notes and warnings on stderr, and a progress bar of each

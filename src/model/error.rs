@@ -27,14 +27,14 @@ pub enum ModelError {
     },
     /// The grid resolves the scene's contact by too few elements.
     #[error(
-        "--grid {nx} is too coarse for this scene (R1/R2 = {ratio}): the first contact spans \
+        "--grid {nx} is too coarse for this scene ({scene}): the first contact spans \
          {} elements across its minor axis (at least {MIN_ELEMENTS_FIRST_CONTACT} needed) and \
          the contact at the force minimum about {} (at least {MIN_ELEMENTS_AT_MINIMUM}); {advice}",
         compact_count(*first), compact_count(*at_minimum)
     )]
     TooCoarse {
-        /// R1/R2.
-        ratio: String,
+        /// The scene in a few words ("R1/R2 = 5", or the indenter's description).
+        scene: String,
         /// Elements along x.
         nx: usize,
         /// Elements across the first contact's minor axis.

@@ -6,8 +6,6 @@ use super::limits::*;
 use super::options::ModelOptions;
 use crate::scene::Scene;
 use crate::setup::ChordAxes;
-use crate::text::compact;
-use crate::theory::{self, TheoryModel};
 use std::f64::consts::PI;
 
 /// κ = (2/π)·(ln(1+√2) − (√2−1)/3) (dimensionless): the mean displacement of a uniformly
@@ -127,9 +125,10 @@ pub(super) fn check_resolution(
     b0: f64,
     dx: f64,
 ) -> Result<(), ModelError> {
-    let ratio = scene.ratio();
-    let b_min_bar = theory::pull_off(TheoryModel::adhesive_reference(ratio), ratio)
-        .map(|p| p.force_min.b_bar)
+    let b_min_bar = scene
+        .indenter
+        .pull_off_hint(scene.e_star, scene.work_of_adhesion)
+        .map(|h| h.b_bar_at_min)
         .unwrap_or(0.5);
     let first = 2.0 * b0 / dx;
     let at_minimum = 2.0 * b_min_bar * scene.scales().length / dx;
@@ -166,7 +165,7 @@ pub(super) fn check_resolution(
         format!("no grid up to --grid {MAX_GRID} resolves it: use a smaller --ratio{others}")
     };
     Err(ModelError::TooCoarse {
-        ratio: compact(ratio),
+        scene: scene.headline(),
         nx: opt.nx,
         first,
         at_minimum,

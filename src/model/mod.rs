@@ -5,7 +5,7 @@
 use crate::scene::Scene;
 use crate::setup::Preconditioner;
 use crate::text::compact;
-use crate::theory::{self, hertz::HertzContact, TheoryModel};
+use crate::theory::hertz::HertzContact;
 
 mod error;
 mod grid;
@@ -138,9 +138,10 @@ impl Model {
         }
         let scales = scene.scales();
         let c0_len = c0 * scales.length;
-        let initial =
-            theory::hertz::hertz_for_mean_radius(scene.r1, scene.r2, scene.e_star, c0_len)
-                .map_err(|e| invalid("--ratio", scene.ratio(), e.to_string()))?;
+        let initial = scene
+            .indenter
+            .first_contact(c0_len, scene.e_star, scene.work_of_adhesion)
+            .map_err(|e| invalid("--indenter", scene.indenter.describe(), e))?;
         // The box around the (rotated) initial contact, plus the margin.
         let (box_x, box_y) = mesh.bounding_half_widths(initial.a, initial.b);
         let half_x = box_x * (1.0 + opt.margin);
@@ -163,12 +164,7 @@ impl Model {
             Some(ny) => ny,
             None => need_y.next_power_of_two().max(MIN_GRID),
         };
-        let end = theory::pull_off(
-            TheoryModel::adhesive_reference(scene.ratio()),
-            scene.ratio(),
-        )
-        .map(|p| p.end_of_contact.d_bar)
-        .unwrap_or(-0.5);
+        let end = end_of_contact_d_bar(scene);
         let d0 = initial.d;
         let d0_bar = d0 / scales.approach;
         if let Some(f) = opt.final_d_bar {
@@ -181,10 +177,11 @@ impl Model {
             }
         }
         check_resolution(scene, opt, initial.b, dx)?;
+        check_covered(scene, &mesh, opt, (opt.nx, ny), dx)?;
         let d_step = (d0_bar - end) / opt.steps as f64 * scales.approach;
         let d_final = opt.final_d_bar.unwrap_or(end - 2.0 * (d0_bar - end)) * scales.approach;
         let model = Model {
-            scene: *scene,
+            scene: scene.clone(),
             nx: opt.nx,
             ny,
             dx,
@@ -244,13 +241,12 @@ impl Model {
                     precision,
                     range,
                     advice: format!(
-                        "it follows from E* = {}, Δγ = {}, R1 = {}, R2 = {} and the grid; \
-                         rescale --e-star, --work-of-adhesion and the radii to units nearer 1 \
-                         (the normalised results do not depend on the units){}",
+                        "it follows from E* = {}, Δγ = {}, the {} and the grid; \
+                         rescale --e-star, --work-of-adhesion and the indenter's lengths to \
+                         units nearer 1 (the normalised results do not depend on the units){}",
                         compact(self.scene.e_star),
                         compact(self.scene.work_of_adhesion),
-                        compact(self.scene.r1),
-                        compact(self.scene.r2),
+                        self.scene.indenter.describe(),
                         if precision == "f32" {
                             ", or use --backend cpu (f64)"
                         } else {
@@ -274,11 +270,7 @@ impl Model {
 
     /// Steps from d0 to the closed form's end of contact.
     fn steps_to_end(&self) -> usize {
-        let ratio = self.scene.ratio();
-        let end = theory::pull_off(TheoryModel::adhesive_reference(ratio), ratio)
-            .map(|p| p.end_of_contact.d_bar)
-            .unwrap_or(-0.5)
-            * self.scene.scales().approach;
+        let end = end_of_contact_d_bar(&self.scene) * self.scene.scales().approach;
         ((self.d0 - end) / self.d_step).round().max(1.0) as usize
     }
 
@@ -385,6 +377,50 @@ impl Model {
     }
 }
 
+/// Refuse a domain that reaches beyond the indenter's known heights (a height map's edge),
+/// naming `--height-map` and what would fit.
+fn check_covered(
+    scene: &Scene,
+    mesh: &MeshAngle,
+    opt: &ModelOptions,
+    (nx, ny): (usize, usize),
+    dx: f64,
+) -> Result<(), ModelError> {
+    let (ox, oy) = opt.apex_offset;
+    let hx = (0.5 * nx as f64 + ox.abs()) * dx;
+    let hy = (0.5 * ny as f64 + oy.abs()) * dx;
+    let (mut ex, mut ey) = (0.0f64, 0.0f64);
+    for (x, y) in [(hx, hy), (hx, -hy), (-hx, hy), (-hx, -hy)] {
+        let (xi, eta) = mesh.to_ellipsoid(x, y);
+        ex = ex.max(xi.abs());
+        ey = ey.max(eta.abs());
+    }
+    if scene.indenter.covers(ex, ey) {
+        return Ok(());
+    }
+    Err(invalid(
+        "--height-map",
+        scene.indenter.describe(),
+        format!(
+            "the domain (±{} × ±{} about the apex, the first contact of c̄0 = {} and its margin) \
+             reaches beyond the map: use a larger map, or a smaller --start-radius or --margin",
+            compact(ex),
+            compact(ey),
+            compact(opt.start_radius_bar)
+        ),
+    ))
+}
+
+/// d̄ where the scene's closed form ends the contact (−0.5 where it has none): the load
+/// path runs to it.
+fn end_of_contact_d_bar(scene: &Scene) -> f64 {
+    scene
+        .indenter
+        .pull_off_hint(scene.e_star, scene.work_of_adhesion)
+        .map(|h| h.end_d_bar)
+        .unwrap_or(-0.5)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -447,7 +483,8 @@ mod tests {
         // h = ½ xᵀ M x with M = Rᵀ diag(1/R1, 1/R2) R, written out element by element.
         let m = rotated(5.0, 64, 30.0);
         let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
-        let (k1, k2) = (1.0 / m.scene.r1, 1.0 / m.scene.r2);
+        let (r1, r2) = m.scene.indenter.radii().unwrap();
+        let (k1, k2) = (1.0 / r1, 1.0 / r2);
         let (mxx, mxy, myy) = (
             c * c * k1 + s * s * k2,
             c * s * (k1 - k2),
@@ -560,8 +597,7 @@ mod tests {
         // domain", and E* = 1e-300 as "CG produced a non-finite value". The CLI's input ranges
         // refuse those values; a scene built past them is refused here, naming σ_c.
         let s = Scene {
-            r1: 1.0,
-            r2: 1.0,
+            indenter: crate::scene::Indenter::Ellipsoid { r1: 1.0, r2: 1.0 },
             e_star: 1e300,
             work_of_adhesion: 1.0,
         };

@@ -52,14 +52,14 @@ pub fn run_files(states: &Path) -> [PathBuf; 3] {
 
 /// The default states file of one `simulate` run: `jkrbem-out/simulate-r<ratio>-n<nx>.csv`,
 /// with `-a<degrees>` added for a turned mesh.
-pub fn simulate_default(ratio: f64, nx: usize, mesh_degrees: Option<f64>) -> PathBuf {
+pub fn simulate_default(tag: &str, nx: usize, mesh_degrees: Option<f64>) -> PathBuf {
     let angle = mesh_degrees.map_or(String::new(), |d| format!("-a{d}"));
-    PathBuf::from(format!("jkrbem-out/simulate-r{ratio}-n{nx}{angle}.csv"))
+    PathBuf::from(format!("jkrbem-out/simulate-{tag}-n{nx}{angle}.csv"))
 }
 
 /// The default stem of a several-grid `simulate` (`what`: "simulate" or "extrapolate").
-pub fn simulate_stem(what: &str, ratio: f64) -> PathBuf {
-    PathBuf::from(format!("jkrbem-out/{what}-r{ratio}.csv"))
+pub fn simulate_stem(what: &str, tag: &str) -> PathBuf {
+    PathBuf::from(format!("jkrbem-out/{what}-{tag}.csv"))
 }
 
 /// The states file of grid `nx` of a several-grid run with stem `stem`: `<stem>-n<nx>.csv`.
@@ -122,7 +122,7 @@ mod tests {
         );
         assert_eq!(shard(d, (2, 8)), Path::new("sw/sweep-shard-2-of-8.json"));
         assert_eq!(
-            simulate_default(5.0, 128, Some(30.0)),
+            simulate_default("r5", 128, Some(30.0)),
             Path::new("jkrbem-out/simulate-r5-n128-a30.csv")
         );
         assert_eq!(

@@ -43,6 +43,14 @@ pub struct Summary {
     pub jg_deviation: Option<f64>,
     /// For the sphere: f_ad_bar / 0.5 − 1, the error against JKR's exact value.
     pub jkr_error: Option<f64>,
+    /// For an indenter other than the ellipsoid ("power-law", "flat-punch"): its name
+    /// (absent for an ellipsoid).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub indenter: Option<String>,
+    /// For such an indenter: the closed form of the Δx → 0 limit of |min F̄| ("Kendall",
+    /// "JKR (power law)") and its value (absent where none exists).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exact_limit: Option<ExactLimit>,
     /// Whether every run reached the force minimum.
     pub min_reached: bool,
     /// Whether every run ran to its end.
@@ -55,6 +63,19 @@ pub struct Summary {
     pub warnings: Vec<String>,
     /// Every run, coarse to fine.
     pub runs: Vec<RunReport>,
+}
+
+/// The closed form of the Δx → 0 limit of |min F̄| for an indenter other than the ellipsoid,
+/// and the grid's distance to it.
+#[derive(Debug, Clone, Serialize)]
+pub struct ExactLimit {
+    /// Whose closed form it is.
+    pub name: &'static str,
+    /// Its |min F̄| (dimensionless, in the indenter's normalisation).
+    pub f_ad_bar: f64,
+    /// The grid's own |min F̄| against it, f/limit − 1 (its discretisation error; null if
+    /// the run did not reach the minimum).
+    pub grid_error: Option<f64>,
 }
 
 impl Summary {
@@ -78,6 +99,16 @@ impl Summary {
             jg_f_ad_bar: c.jg_f_ad_bar,
             jg_deviation: c.jg_deviation,
             jkr_error: c.jkr_error,
+            indenter: result
+                .runs
+                .first()
+                .filter(|r| !crate::analysis::report::is_ellipsoid(r))
+                .map(|r| r.indenter.clone()),
+            exact_limit: c.exact.map(|(name, f_ad_bar)| ExactLimit {
+                name,
+                f_ad_bar,
+                grid_error: c.grid_error,
+            }),
             min_reached: result.runs.iter().all(|r| r.min_reached),
             complete: result.runs.iter().all(|r| r.complete),
             cg_iterations: result.runs.iter().map(|r| r.cg_iterations).sum(),
@@ -145,6 +176,9 @@ impl Summary {
                 }
                 s += "\n";
             }
+            _ if self.indenter.is_some() && self.min_reached => {
+                s += &self.indenter_text();
+            }
             _ if self.min_reached && self.runs.iter().any(|r| !r.min_resolved) => {
                 let grids: Vec<&str> = self
                     .runs
@@ -192,6 +226,33 @@ impl Summary {
             if let Some(e) = &r.error {
                 s += &format!("INCOMPLETE ({}): {e}\n", r.grid);
             }
+        }
+        s
+    }
+}
+
+impl Summary {
+    /// The answer for an indenter other than the ellipsoid: the grid's own |min F̄| (no
+    /// convergence law, so no estimate with an uncertainty) and its distance to the closed
+    /// form of the limit, where one exists.
+    fn indenter_text(&self) -> String {
+        let own = self.runs.first().and_then(|r| r.f_ad_bar);
+        let mut s = format!(
+            "the grid's |min F̄| = {} ({}; F̄ in its own normalisation, see docs/indenters.md)\n\
+             \x20 no convergence law for this indenter yet, so no estimate with an uncertainty: \
+             its discretisation error is of first order in Δx (refine the grid to see it \
+             converge)\n",
+            own.map_or("—".into(), |f| fixed(f, 4)),
+            self.indenter.as_deref().unwrap_or("—"),
+        );
+        if let Some(l) = &self.exact_limit {
+            s += &format!(
+                "  beside {}'s exact limit {}: the grid is off by {}\n",
+                l.name,
+                fixed(l.f_ad_bar, 4),
+                l.grid_error
+                    .map_or("—".into(), |e| format!("{} %", signed(100.0 * e, 2)))
+            );
         }
         s
     }

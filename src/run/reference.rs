@@ -452,7 +452,7 @@ pub(crate) fn run_or_reuse(
     }
     let _claimed = Outputs::claim(&named("--out", [&summary]))?;
     let one = SimulateRequest {
-        scene: *scene,
+        scene: scene.clone(),
         options,
         backend,
         mode: Mode::Single,

@@ -108,7 +108,7 @@ fn output_paths(req: &SimulateRequest, models: &[Model]) -> Result<Vec<PathBuf>,
     Ok(match (one_grid, &req.out) {
         (true, Some(out)) => vec![out.clone()],
         (true, None) => vec![names::simulate_default(
-            req.scene.ratio(),
+            &req.scene.tag(),
             models[0].nx,
             (!models[0].mesh.is_aligned()).then_some(models[0].mesh.degrees),
         )],
@@ -119,7 +119,7 @@ fn output_paths(req: &SimulateRequest, models: &[Model]) -> Result<Vec<PathBuf>,
             };
             let stem = stem
                 .clone()
-                .unwrap_or_else(|| names::simulate_stem(name, req.scene.ratio()));
+                .unwrap_or_else(|| names::simulate_stem(name, &req.scene.tag()));
             if stem.is_dir() || stem.file_stem().is_none() {
                 return Err(input(format!(
                     "--out {}: with several grids --out is the stem of one states file per \
@@ -165,8 +165,8 @@ fn run_grids(
         }
         let opened = open_for(&req.backend, &mut model)?;
         watch.note(&format!(
-            "R1/R2 = {}, grid {}×{}, Δx = {:.4e}{}, backend {}",
-            req.scene.ratio(),
+            "{}, grid {}×{}, Δx = {:.4e}{}, backend {}",
+            req.scene.headline(),
             model.nx,
             model.ny,
             model.dx,
@@ -255,7 +255,13 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
     }
     // One run (one grid, or the one grid an accuracy plan chose): its single-grid estimate.
     let one_grid = !matches!(req.mode, Mode::Extrapolate(_));
-    let result = if reports.len() == 1 && one_grid {
+    let result = if !req.scene.is_ellipsoid() && reports.len() == 1 {
+        let exact = req
+            .scene
+            .indenter
+            .exact_adhesive_force(req.scene.e_star, req.scene.work_of_adhesion);
+        AdhesiveResult::beside_limit(reports.into_iter().next().expect("one run"), exact)
+    } else if reports.len() == 1 && one_grid {
         AdhesiveResult::single(reports.into_iter().next().expect("one run"), target)
     } else {
         let est = estimate::from_runs(&reports);
@@ -330,6 +336,13 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
             })
             .collect::<Result<Vec<_>, _>>()
     };
+    if !req.scene.is_ellipsoid() && req.mode != Mode::Single {
+        return Err(input(format!(
+            "--accuracy and --extrapolate need a convergence law, and the {} has none yet \
+             (they are for the ellipsoid): run one grid with --grid N and refine it",
+            req.scene.indenter.name()
+        )));
+    }
     match &req.mode {
         Mode::Single => Ok(Planned {
             models: vec![build(&req.options, "")?],

@@ -5,6 +5,7 @@ pub mod elliptic;
 pub mod hertz;
 pub mod jg;
 pub mod jkr;
+pub mod power_law;
 mod solve;
 
 pub use elliptic::{d_and_c, ellip_e, ellip_k};

@@ -414,3 +414,196 @@ fn an_accuracy_plan_keeps_its_target_with_one_run_not_several_that_may_disagree(
     );
     assert!((f - 0.5).abs() <= u && u / f <= 0.01, "{f} ± {u}");
 }
+
+/// `simulate --indenter` runs the flat punch and the power law on one grid, sets them beside
+/// their closed forms, and refuses what needs a convergence law they do not have.
+#[test]
+fn other_indenters_run_one_grid_beside_their_closed_form() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("punch.csv");
+    let summary = dir.path().join("punch.json");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"))
+        .args([
+            "simulate",
+            "--indenter",
+            "flat-punch",
+            "--radius",
+            "2",
+            "--grid",
+            "32",
+        ])
+        .args(["--measure", "adhesive-force", "--backend", "cpu", "--out"])
+        .arg(&out)
+        .arg("--summary")
+        .arg(&summary)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(text.contains("Kendall's exact limit 1.0000"), "{text}");
+    assert!(!text.contains("Johnson–Greenwood"), "{text}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
+    assert_eq!(json["indenter"], "flat-punch");
+    assert_eq!(json["exact_limit"]["name"], "Kendall");
+    assert!(
+        json["f_ad_bar"].is_null(),
+        "no estimate without a convergence law"
+    );
+    let own = json["runs"][0]["f_ad_bar"].as_f64().unwrap();
+    let err = json["exact_limit"]["grid_error"].as_f64().unwrap();
+    assert!(
+        (own - 1.0 - err).abs() < 1e-12 && err.abs() < 0.05,
+        "{own} {err}"
+    );
+
+    for (args, flag) in [
+        (
+            &["--indenter", "flat-punch", "--accuracy", "2%"][..],
+            "convergence law",
+        ),
+        (
+            &["--indenter", "power-law", "--extrapolate"][..],
+            "convergence law",
+        ),
+        (
+            &["--indenter", "power-law", "--exponent", "0.5"][..],
+            "--exponent",
+        ),
+        (&["--indenter", "power-law", "--scale", "-1"][..], "--scale"),
+        (
+            &["--indenter", "flat-punch", "--radius", "nan"][..],
+            "--radius",
+        ),
+        (&["--indenter", "flat-punch", "--r1", "3"][..], "--r1"),
+    ] {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"))
+            .arg("simulate")
+            .args(args)
+            .args(["--backend", "cpu", "--out"])
+            .arg(dir.path().join("refused.csv"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(flag), "{args:?}: {err}");
+        assert!(!dir.path().join("refused.csv").exists());
+    }
+}
+
+/// `--indenter height-map` reads a text grid, runs it, and refuses bad maps before any work.
+#[test]
+fn a_height_map_file_runs_and_bad_maps_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = |f: &dyn Fn(f64, f64) -> f64| {
+        let (n, s) = (161, 0.05);
+        let mut text = String::from("# a sphere of radius 1, spacing 0.05\n");
+        for j in 0..n {
+            let row: Vec<String> = (0..n)
+                .map(|i| {
+                    let (x, y) = ((i as f64 - 80.0) * s, (j as f64 - 80.0) * s);
+                    format!("{}", f(x, y))
+                })
+                .collect();
+            text += &row.join(" ");
+            text += "\n";
+        }
+        text
+    };
+    let write = |name: &str, text: String| {
+        let p = dir.path().join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    };
+    let sphere = write("sphere.txt", grid(&|x, y| 0.5 * (x * x + y * y) + 2.0));
+    let run = |map: &std::path::Path, extra: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"))
+            .args(["simulate", "--indenter", "height-map", "--height-map"])
+            .arg(map)
+            .args(extra)
+            .args([
+                "--grid",
+                "32",
+                "--measure",
+                "adhesive-force",
+                "--backend",
+                "cpu",
+            ])
+            .arg("--out")
+            .arg(dir.path().join("map.csv"))
+            .output()
+            .unwrap()
+    };
+    let o = run(&sphere, &["--spacing", "0.05"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(text.contains("height-map"), "{text}");
+    // The sampled sphere on 32² is the sphere on 32² up to the map's bilinear interpolation
+    // (element centres fall between its nodes): s²/8·h'' ≈ 3e-4 in height against an approach
+    // scale of 3.7, about 1e-4 relative.
+    let sphere_run = std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"))
+        .args([
+            "simulate",
+            "--ratio",
+            "1",
+            "--grid",
+            "32",
+            "--measure",
+            "adhesive-force",
+        ])
+        .args(["--backend", "cpu", "--out"])
+        .arg(dir.path().join("sphere.csv"))
+        .output()
+        .unwrap();
+    let own = |t: &str| {
+        t.lines()
+            .filter(|l| l.starts_with("grid "))
+            .find_map(|l| l.split("|min F̄| = ").nth(1))
+            .and_then(|v| v.split(',').next())
+            .and_then(|v| v.parse::<f64>().ok())
+    };
+    let sphere_text = String::from_utf8_lossy(&sphere_run.stdout);
+    let (m, s) = (own(&text).unwrap(), own(&sphere_text).unwrap());
+    assert!((m / s - 1.0).abs() < 1e-3, "{text}\n{sphere_text}");
+
+    let nan = write(
+        "nan.txt",
+        grid(&|x, y| {
+            if (x - 0.05).abs() < 1e-9 && (y + 4.0).abs() < 1e-9 {
+                f64::NAN
+            } else {
+                x * x + y * y
+            }
+        }),
+    );
+    let saddle = write("saddle.txt", grid(&|x, y| x * x - y * y));
+    for (map, extra, says) in [
+        (&sphere, &[][..], "--spacing"),
+        (&sphere, &["--spacing", "-1"][..], "spacing"),
+        (&nan, &["--spacing", "0.05"][..], "row 1"),
+        (&saddle, &["--spacing", "0.05"][..], "not convex"),
+        (
+            &dir.path().join("absent.txt"),
+            &["--spacing", "0.05"][..],
+            "--height-map",
+        ),
+        (
+            &dir.path().to_path_buf(),
+            &["--spacing", "0.05"][..],
+            "not a regular file",
+        ),
+    ] {
+        let o = run(map, extra);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{map:?} {extra:?}: {err}");
+        assert!(err.contains(says), "{map:?} {extra:?}: {err}");
+    }
+}

@@ -2,6 +2,7 @@
 //! comments).
 
 use super::super::parse;
+use super::indenter::IndenterArgs;
 use jkrbem::backend::select::BackendKind;
 use jkrbem::backend::Preconditioner;
 use jkrbem::model::{Measure, Onsets};
@@ -12,6 +13,9 @@ use std::time::Duration;
 /// Arguments of `jkrbem simulate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
+    /// The indenter (--indenter and its shape's parameters).
+    #[command(flatten)]
+    pub shape: IndenterArgs,
     /// Axis ratio R1/R2 of the ellipsoid, in [1, 1000] (1 is a sphere). Ignored if --r1 is
     /// given.
     #[arg(long, default_value_t = 5.0)]

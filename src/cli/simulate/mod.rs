@@ -10,8 +10,10 @@ use jkrbem::run::simulate::{failure_error, simulate, Mode, SimulateRequest};
 use jkrbem::scene::Scene;
 
 mod args;
+mod indenter;
 
 pub use args::Args;
+pub use indenter::IndenterKind;
 
 /// The accuracy of a bare `simulate` (relative): the adhesive force to 2 %.
 pub const DEFAULT_ACCURACY: f64 = 0.02;
@@ -22,9 +24,17 @@ pub const DEFAULT_GRID: usize = 256;
 impl Args {
     /// The scene of these arguments.
     pub fn scene(&self) -> Result<Scene, CliError> {
-        match self.r1 {
-            Some(r1) => Scene::new(r1, self.r2, self.e_star, self.work_of_adhesion),
-            None => Scene::from_ratio(self.ratio, self.r2, self.e_star, self.work_of_adhesion),
+        let (e, w) = (self.e_star, self.work_of_adhesion);
+        match (self.shape.other_shape()?, self.r1) {
+            (None, Some(r1)) => Scene::new(r1, self.r2, e, w),
+            (None, None) => Scene::from_ratio(self.ratio, self.r2, e, w),
+            (Some(shape), Some(_)) => {
+                return Err(super::input(format!(
+                    "--r1 is for --indenter ellipsoid, not {}",
+                    shape.name()
+                )))
+            }
+            (Some(shape), None) => Scene::with_indenter(shape, e, w),
         }
         .map_err(super::input)
     }
@@ -36,7 +46,9 @@ impl Args {
                 "--apex-offset takes two fractions of an element, along x and y: e.g. 0.25,0.5",
             ));
         }
-        let one_grid = self.grid.is_some()
+        // Only the ellipsoid has a convergence law: the other shapes run one grid.
+        let one_grid = self.shape.indenter != IndenterKind::Ellipsoid
+            || self.grid.is_some()
             || self.grid_y.is_some()
             || self.steps.is_some()
             || self.onsets.is_some()

@@ -31,10 +31,13 @@ const REPRODUCED: f64 = 1e-9;
 pub struct RunSettings {
     /// The program that ran it ("jkrbem 0.1.0"); recorded, not compared.
     pub program: String,
-    /// Radius of curvature along x (length).
-    pub r1: f64,
-    /// Radius of curvature along y (length).
-    pub r2: f64,
+    /// The ellipsoid's radius of curvature along x (length); null for another indenter.
+    pub r1: Option<f64>,
+    /// The ellipsoid's radius of curvature along y (length); null for another indenter.
+    pub r2: Option<f64>,
+    /// Any other indenter, in words (absent for an ellipsoid).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub indenter: Option<String>,
     /// E* (force/length²).
     pub e_star: f64,
     /// Δγ (force/length).
@@ -94,8 +97,9 @@ impl RunSettings {
     pub fn of(scene: &Scene, options: &ModelOptions, backend: &BackendRequest) -> Self {
         RunSettings {
             program: format!("jkrbem {}", env!("CARGO_PKG_VERSION")),
-            r1: scene.r1,
-            r2: scene.r2,
+            r1: scene.indenter.radii().map(|r| r.0),
+            r2: scene.indenter.radii().map(|r| r.1),
+            indenter: (!scene.is_ellipsoid()).then(|| scene.indenter.describe()),
             e_star: scene.e_star,
             work_of_adhesion: scene.work_of_adhesion,
             nx: options.nx,
@@ -198,7 +202,10 @@ fn report_differences(run: &RunReport, asked: &RunSettings, kind: BackendKind) -
     if run.nx != asked.nx || asked.ny.is_some_and(|ny| ny != run.ny) {
         why.push(format!("its report's grid is {}", run.grid));
     }
-    let ratio = asked.r1 / asked.r2;
+    let ratio = match (asked.r1, asked.r2) {
+        (Some(r1), Some(r2)) => r1 / r2,
+        _ => f64::NAN,
+    };
     for (what, got, want) in [
         ("ratio", run.ratio, ratio),
         ("margin", run.margin, asked.margin),

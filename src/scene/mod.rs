@@ -1,8 +1,14 @@
-//! What the user described: the indenter's radii, the material and the adhesion, and the
-//! normalisation (physics §2) that every output uses. Knows nothing of grids or FFTs.
+//! What the user described: the indenter ([`Indenter`]), the material and the adhesion, and
+//! the normalisation (physics §2) that every output uses. Knows nothing of grids or FFTs.
+
+pub mod height_map;
+mod indenter;
+mod measured;
+
+pub use indenter::{Indenter, PullOffHint, MAX_EXPONENT, MIN_EXPONENT};
+pub use measured::MeasuredSurface;
 
 use crate::text::compact;
-use std::f64::consts::PI;
 use thiserror::Error;
 
 /// Largest axis ratio R1/R2 accepted (dimensionless). The study goes to 50; beyond about
@@ -31,6 +37,14 @@ pub enum SceneError {
         /// The valid range, in words.
         expected: String,
     },
+    /// An input that is not a number (a file) cannot be used, for the reason given.
+    #[error("{flag} {why}")]
+    Refused {
+        /// The flag that gives the input.
+        flag: &'static str,
+        /// What is wrong, starting with the input's name.
+        why: String,
+    },
 }
 
 impl SceneError {
@@ -47,27 +61,35 @@ impl SceneError {
                 value,
                 expected,
             },
+            SceneError::Refused { flag, why } => SceneError::Refused {
+                flag: rename(flag),
+                why,
+            },
         }
     }
 }
 
-/// A rigid ellipsoid h = x²/(2 R1) + y²/(2 R2) on an elastic half-space, with JKR adhesion.
+/// A rigid indenter ([`Indenter`]: an ellipsoid h = x²/(2 R1) + y²/(2 R2), a power law or a
+/// flat punch) on an elastic half-space, with JKR adhesion.
 ///
 /// Lengths are in the user's length unit L, E* and Δγ in consistent units (E* in F/L²,
 /// Δγ in F/L), so that forces come out in F.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
-    /// Radius of curvature along x, the contact's major axis (length). R1 ≥ R2.
-    pub r1: f64,
-    /// Radius of curvature along y, the minor axis (length).
-    pub r2: f64,
+    /// The indenter's shape.
+    pub indenter: Indenter,
     /// Effective modulus E* = E/(1 − ν²) (force / length²).
     pub e_star: f64,
     /// Work of adhesion Δγ (energy / area = force / length).
     pub work_of_adhesion: f64,
 }
 
-fn check(flag: &'static str, value: f64, ok: bool, expected: &str) -> Result<(), SceneError> {
+pub(crate) fn check(
+    flag: &'static str,
+    value: f64,
+    ok: bool,
+    expected: &str,
+) -> Result<(), SceneError> {
     if ok && value.is_finite() {
         Ok(())
     } else {
@@ -85,7 +107,7 @@ pub fn input_in_range(v: f64) -> bool {
 }
 
 /// The valid range of a dimensional input, in words.
-fn input_range(what: &str) -> String {
+pub(crate) fn input_range(what: &str) -> String {
     format!(
         "{what} in [{}, {}] (any consistent units; the normalised results do not depend on them)",
         compact(MIN_INPUT),
@@ -110,6 +132,16 @@ impl Scene {
             r1 / r2 <= MAX_RATIO,
             &format!("R1/R2 = {} must be ≤ {MAX_RATIO}", compact(r1 / r2)),
         )?;
+        Scene::with_indenter(Indenter::Ellipsoid { r1, r2 }, e_star, work_of_adhesion)
+    }
+
+    /// A scene of any indenter, E* (force/length²) and Δγ (force/length); the shape's
+    /// parameters are checked (errors name their flags).
+    pub fn with_indenter(
+        indenter: Indenter,
+        e_star: f64,
+        work_of_adhesion: f64,
+    ) -> Result<Self, SceneError> {
         check(
             "--e-star",
             e_star,
@@ -123,8 +155,7 @@ impl Scene {
             &input_range("an energy per area"),
         )?;
         Ok(Scene {
-            r1,
-            r2,
+            indenter: indenter.checked()?,
             e_star,
             work_of_adhesion,
         })
@@ -146,30 +177,45 @@ impl Scene {
         Scene::new(ratio * r2, r2, e_star, work_of_adhesion)
     }
 
-    /// R1/R2 (dimensionless).
+    /// R1/R2 of an ellipsoid; 1 for the axisymmetric indenters (dimensionless).
     pub fn ratio(&self) -> f64 {
-        self.r1 / self.r2
+        self.indenter.ratio()
     }
 
-    /// Equivalent radius Re = √(R1 R2) (length).
-    pub fn re(&self) -> f64 {
-        (self.r1 * self.r2).sqrt()
-    }
-
-    /// Indenter height h(x, y) = x²/(2R1) + y²/(2R2) (length) at (x, y) (length).
-    pub fn profile(&self, x: f64, y: f64) -> f64 {
-        x * x / (2.0 * self.r1) + y * y / (2.0 * self.r2)
-    }
-
-    /// The normalisation scales of physics §2.
-    pub fn scales(&self) -> Scales {
-        let re = self.re();
-        let c_r = (9.0 * PI * re * re * self.work_of_adhesion / (4.0 * self.e_star)).cbrt();
-        Scales {
-            length: c_r,
-            force: 3.0 * PI * re * self.work_of_adhesion,
-            approach: c_r * c_r / re,
+    /// A short tag for file names: "r5" for an ellipsoid of R1/R2 = 5, "flat-punch",
+    /// "power-law-n3".
+    pub fn tag(&self) -> String {
+        match self.indenter {
+            Indenter::Ellipsoid { .. } => format!("r{}", self.ratio()),
+            Indenter::PowerLaw { n, .. } => format!("power-law-n{n}"),
+            Indenter::FlatPunch { .. } => "flat-punch".to_string(),
+            Indenter::HeightMap(_) => "height-map".to_string(),
         }
+    }
+
+    /// The scene in a few words for progress lines: "R1/R2 = 5" for an ellipsoid, else the
+    /// indenter's description.
+    pub fn headline(&self) -> String {
+        match self.indenter {
+            Indenter::Ellipsoid { .. } => format!("R1/R2 = {}", self.ratio()),
+            _ => self.indenter.describe(),
+        }
+    }
+
+    /// Whether the indenter is an ellipsoid (the shape the study, its convergence law, the
+    /// reference table and Johnson–Greenwood's theory are for).
+    pub fn is_ellipsoid(&self) -> bool {
+        matches!(self.indenter, Indenter::Ellipsoid { .. })
+    }
+
+    /// Indenter height h(x, y) (length) at (x, y) (length) from the apex, in its own axes.
+    pub fn profile(&self, x: f64, y: f64) -> f64 {
+        self.indenter.height(x, y)
+    }
+
+    /// The normalisation scales of physics §2 (see [`Indenter::scales`]).
+    pub fn scales(&self) -> Scales {
+        self.indenter.scales(self.e_star, self.work_of_adhesion)
     }
 }
 
@@ -187,13 +233,14 @@ pub struct Scales {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     #[test]
     fn approach_scale_matches_spec_formula() {
         // d̄ = d · (4E*/(9π Δγ √Re))^(2/3) must equal d · Re / c_r².
         let s = Scene::new(7.0, 2.0, 3.0, 0.5).unwrap();
-        let direct =
-            (4.0 * s.e_star / (9.0 * PI * s.work_of_adhesion * s.re().sqrt())).powf(2.0 / 3.0);
+        let re: f64 = (7.0f64 * 2.0).sqrt();
+        let direct = (4.0 * s.e_star / (9.0 * PI * s.work_of_adhesion * re.sqrt())).powf(2.0 / 3.0);
         assert!((1.0 / s.scales().approach / direct - 1.0).abs() < 1e-12);
     }
 

@@ -1,0 +1,432 @@
+//! The rigid indenter's shape: its height h(x, y), the first (non-adhesive) contact the
+//! approach aims at, the scales that normalise its results and, where a closed form exists,
+//! where its pull-off lies (the hints the model sizes its domain and load path from).
+
+use super::measured::MeasuredSurface;
+use super::{check, input_range, Scales, SceneError};
+use crate::text::compact;
+use crate::theory::hertz::HertzContact;
+use crate::theory::power_law::{kendall_approach, kendall_force, PowerLawContact};
+use crate::theory::{self, TheoryModel};
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+/// Largest power-law exponent n accepted (dimensionless): beyond it h = s·rⁿ is a flat punch
+/// for every grid (use [`Indenter::FlatPunch`]).
+pub const MAX_EXPONENT: f64 = 64.0;
+
+/// Smallest power-law exponent n accepted (dimensionless): n ≤ 1 (a cone or sharper) has an
+/// infinite pressure at its tip and no finite peak pressure to check scales with.
+pub const MIN_EXPONENT: f64 = 1.25;
+
+/// Height of the flat punch's walls above its face, in punch radii (dimensionless): far
+/// beyond any gap the half-space can close, so that nothing outside the face ever touches.
+const PUNCH_WALL: f64 = 1e3;
+
+/// A rigid indenter; lengths in the user's unit L.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Indenter {
+    /// h = x²/(2 R1) + y²/(2 R2), R1 ≥ R2 (length): x is the contact's major axis.
+    Ellipsoid {
+        /// Radius of curvature along x (length).
+        r1: f64,
+        /// Radius of curvature along y (length).
+        r2: f64,
+    },
+    /// Axisymmetric h = scale·rⁿ, r = √(x² + y²) (length); n = 2 is the sphere of radius
+    /// 1/(2·scale).
+    PowerLaw {
+        /// The exponent n (dimensionless), in [[`MIN_EXPONENT`], [`MAX_EXPONENT`]].
+        n: f64,
+        /// The factor s (length^(1−n)).
+        scale: f64,
+    },
+    /// A flat cylindrical punch: h = 0 on the face r < radius, walls outside (length).
+    FlatPunch {
+        /// The face's radius a (length).
+        radius: f64,
+    },
+    /// A measured topography ([`MeasuredSurface`]): its apex at the origin, sized and
+    /// normalised as the ellipsoid of its apex's principal radii.
+    HeightMap(Arc<MeasuredSurface>),
+}
+
+/// Where a closed form puts the pull-off, normalised by the indenter's scales: what the model
+/// sizes the load path and checks the grid's resolution with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PullOffHint {
+    /// d̄ where the contact ends (jumps off) under displacement control.
+    pub end_d_bar: f64,
+    /// The contact's minor half-axis at the force minimum, b̄ (for a circle its radius).
+    pub b_bar_at_min: f64,
+}
+
+impl Indenter {
+    /// Check the shape's parameters; errors name the flag that sets each.
+    pub fn checked(self) -> Result<Self, SceneError> {
+        match self {
+            Indenter::Ellipsoid { .. } | Indenter::HeightMap(_) => Ok(self),
+            Indenter::PowerLaw { n, scale } => {
+                check(
+                    "--exponent",
+                    n,
+                    (MIN_EXPONENT..=MAX_EXPONENT).contains(&n),
+                    &format!("an exponent n in [{MIN_EXPONENT}, {MAX_EXPONENT}] (2 is the sphere)"),
+                )?;
+                check(
+                    "--scale",
+                    scale,
+                    super::input_in_range(scale),
+                    &input_range("the factor s of h = s·rⁿ (length^(1−n))"),
+                )?;
+                // Every scale of the problem must stay finite: the length scale c_n.
+                let probe =
+                    PowerLawContact::new(n, scale, 1.0, 1.0).map_err(|e| SceneError::Invalid {
+                        flag: "--scale",
+                        value: scale,
+                        expected: e,
+                    })?;
+                let (length, _, _) = probe.scales();
+                check(
+                    "--scale",
+                    scale,
+                    length.is_finite() && length > 0.0,
+                    "a factor whose contact length scale is finite; rescale the units",
+                )?;
+                Ok(self)
+            }
+            Indenter::FlatPunch { radius } => {
+                check(
+                    "--radius",
+                    radius,
+                    super::input_in_range(radius),
+                    &input_range("a punch radius"),
+                )?;
+                Ok(self)
+            }
+        }
+    }
+
+    /// The shape's name as `--indenter` takes it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Indenter::Ellipsoid { .. } => "ellipsoid",
+            Indenter::PowerLaw { .. } => "power-law",
+            Indenter::FlatPunch { .. } => "flat-punch",
+            Indenter::HeightMap(_) => "height-map",
+        }
+    }
+
+    /// The shape and its parameters, in words (for reports).
+    pub fn describe(&self) -> String {
+        match *self {
+            Indenter::Ellipsoid { r1, r2 } => {
+                format!(
+                    "ellipsoid R1 = {}, R2 = {} (R1/R2 = {})",
+                    compact(r1),
+                    compact(r2),
+                    compact(r1 / r2)
+                )
+            }
+            Indenter::PowerLaw { n, scale } => {
+                format!(
+                    "power law h = s·rⁿ, n = {}, s = {}",
+                    compact(n),
+                    compact(scale)
+                )
+            }
+            Indenter::FlatPunch { radius } => {
+                format!("flat punch of radius {}", compact(radius))
+            }
+            Indenter::HeightMap(ref m) => m.describe(),
+        }
+    }
+
+    /// The radii (R1, R2) of an ellipsoid (length); `None` for the other shapes.
+    pub fn radii(&self) -> Option<(f64, f64)> {
+        match *self {
+            Indenter::Ellipsoid { r1, r2 } => Some((r1, r2)),
+            _ => None,
+        }
+    }
+
+    /// The axis ratio R1/R2 of an ellipsoid; 1 for the axisymmetric shapes (dimensionless).
+    pub fn ratio(&self) -> f64 {
+        match self.ellipsoid_like() {
+            Some((r1, r2)) => r1 / r2,
+            None => 1.0,
+        }
+    }
+
+    /// The radii that size and normalise the shape like an ellipsoid: an ellipsoid's own, a
+    /// height map's apex radii (length); `None` for the other shapes.
+    fn ellipsoid_like(&self) -> Option<(f64, f64)> {
+        match *self {
+            Indenter::Ellipsoid { r1, r2 } => Some((r1, r2)),
+            Indenter::HeightMap(ref m) => Some(m.radii),
+            _ => None,
+        }
+    }
+
+    /// Whether the shape's height is known over the rectangle |x| ≤ `half_x`, |y| ≤ `half_y`
+    /// (length) about the apex, in its own axes: everywhere but for a height map.
+    pub fn covers(&self, half_x: f64, half_y: f64) -> bool {
+        match *self {
+            Indenter::HeightMap(ref m) => m.covers(half_x, half_y),
+            _ => true,
+        }
+    }
+
+    /// Height h (length) at (x, y) (length) from the apex, in the shape's own axes (+∞
+    /// outside a height map: [`Indenter::covers`] keeps a model inside it).
+    pub fn height(&self, x: f64, y: f64) -> f64 {
+        match *self {
+            Indenter::HeightMap(ref m) => m.height(x, y).unwrap_or(f64::INFINITY),
+            Indenter::Ellipsoid { r1, r2 } => x * x / (2.0 * r1) + y * y / (2.0 * r2),
+            Indenter::PowerLaw { n, scale } => scale * (x * x + y * y).sqrt().powf(n),
+            Indenter::FlatPunch { radius } => {
+                if x * x + y * y < radius * radius {
+                    0.0
+                } else {
+                    PUNCH_WALL * radius
+                }
+            }
+        }
+    }
+
+    /// The normalisation scales (physics §2 for the ellipsoid; for a power law the same
+    /// forms with its length c_n and radius R_n, equal to the sphere's at n = 2; for a flat
+    /// punch its radius a, Kendall's pull-off force √(8π E* Δγ a³) and the approach at
+    /// pull-off F/(2E* a)), for E* (stress) and Δγ (force/length).
+    pub fn scales(&self, e_star: f64, work_of_adhesion: f64) -> Scales {
+        match *self {
+            Indenter::Ellipsoid { r1, r2 } => ellipsoid_scales(r1, r2, e_star, work_of_adhesion),
+            Indenter::HeightMap(ref m) => {
+                ellipsoid_scales(m.radii.0, m.radii.1, e_star, work_of_adhesion)
+            }
+            Indenter::PowerLaw { .. } => {
+                let (length, force, approach) = self.power_law(e_star, work_of_adhesion).scales();
+                Scales {
+                    length,
+                    force,
+                    approach,
+                }
+            }
+            Indenter::FlatPunch { radius } => Scales {
+                length: radius,
+                force: kendall_force(radius, e_star, work_of_adhesion),
+                approach: kendall_approach(radius, e_star, work_of_adhesion),
+            },
+        }
+    }
+
+    fn power_law(&self, e_star: f64, work_of_adhesion: f64) -> PowerLawContact {
+        match *self {
+            Indenter::PowerLaw { n, scale } => PowerLawContact {
+                n,
+                scale,
+                e_star,
+                work_of_adhesion,
+            },
+            _ => unreachable!("only called for a power law"),
+        }
+    }
+
+    /// The first, non-adhesive contact the approach aims at, of mean radius `c` (length):
+    /// Hertz's ellipse for the ellipsoid, the power law's circle, the whole face of a flat
+    /// punch pressed to half Kendall's pull-off approach (its first contact does not depend
+    /// on `c`).
+    pub fn first_contact(
+        &self,
+        c: f64,
+        e_star: f64,
+        work_of_adhesion: f64,
+    ) -> Result<HertzContact, String> {
+        match *self {
+            Indenter::Ellipsoid { r1, r2 } => {
+                theory::hertz::hertz_for_mean_radius(r1, r2, e_star, c).map_err(|e| e.to_string())
+            }
+            Indenter::HeightMap(ref m) => {
+                // The apex ellipsoid's Hertz contact, as a circle of its major half-axis: the
+                // map's principal axes need not lie along the grid's.
+                let (r1, r2) = m.radii;
+                let h = theory::hertz::hertz_for_mean_radius(r1, r2, e_star, c)
+                    .map_err(|e| e.to_string())?;
+                Ok(HertzContact { b: h.a, ..h })
+            }
+            Indenter::PowerLaw { .. } => {
+                let p = self.power_law(e_star, work_of_adhesion);
+                Ok(HertzContact {
+                    a: c,
+                    b: c,
+                    d: p.hertz_approach(c),
+                    force: p.hertz_force(c),
+                    p0: p.hertz_peak_pressure(c),
+                })
+            }
+            Indenter::FlatPunch { radius } => {
+                let d = 0.5 * kendall_approach(radius, e_star, work_of_adhesion);
+                Ok(HertzContact {
+                    a: radius,
+                    b: radius,
+                    d,
+                    force: 2.0 * e_star * radius * d,
+                    // The pressure at the face's centre (it is singular at the edge).
+                    p0: e_star * d / (PI * radius),
+                })
+            }
+        }
+    }
+
+    /// Where the closed form of this shape puts the pull-off (JKR or JG for the ellipsoid,
+    /// JKR by the method of dimensionality reduction for a power law, Kendall for the flat
+    /// punch); `None` where none is computed.
+    pub fn pull_off_hint(&self, e_star: f64, work_of_adhesion: f64) -> Option<PullOffHint> {
+        match *self {
+            Indenter::Ellipsoid { .. } | Indenter::HeightMap(_) => {
+                let ratio = self.ratio();
+                let p = theory::pull_off(TheoryModel::adhesive_reference(ratio), ratio).ok()?;
+                Some(PullOffHint {
+                    end_d_bar: p.end_of_contact.d_bar,
+                    b_bar_at_min: p.force_min.b_bar,
+                })
+            }
+            Indenter::PowerLaw { .. } => {
+                let p = self.power_law(e_star, work_of_adhesion);
+                let s = self.scales(e_star, work_of_adhesion);
+                Some(PullOffHint {
+                    end_d_bar: p.end_of_contact().d / s.approach,
+                    b_bar_at_min: p.force_minimum().a / s.length,
+                })
+            }
+            Indenter::FlatPunch { .. } => Some(PullOffHint {
+                end_d_bar: -1.0,
+                b_bar_at_min: 1.0,
+            }),
+        }
+    }
+
+    /// The exact Δx → 0 limit of the adhesive force |min F̄| that this shape's closed form
+    /// gives, with its name: JKR's 1/2 for the sphere (and the power law n = 2), the power
+    /// law's JKR solution, Kendall's 1 for the flat punch; `None` for an ellipsoid with
+    /// R1 ≠ R2 (where only approximations exist).
+    pub fn exact_adhesive_force(
+        &self,
+        e_star: f64,
+        work_of_adhesion: f64,
+    ) -> Option<(&'static str, f64)> {
+        match *self {
+            Indenter::Ellipsoid { r1, r2 } => (r1 == r2).then_some(("JKR", 0.5)),
+            Indenter::HeightMap(_) => None,
+            Indenter::PowerLaw { .. } => {
+                let p = self.power_law(e_star, work_of_adhesion);
+                let s = self.scales(e_star, work_of_adhesion);
+                Some(("JKR (power law)", -p.force_minimum().force / s.force))
+            }
+            Indenter::FlatPunch { .. } => Some(("Kendall", 1.0)),
+        }
+    }
+}
+
+/// Physics §2's scales of an ellipsoid of radii R1, R2 (length).
+fn ellipsoid_scales(r1: f64, r2: f64, e_star: f64, work_of_adhesion: f64) -> Scales {
+    let re = (r1 * r2).sqrt();
+    let c_r = (9.0 * PI * re * re * work_of_adhesion / (4.0 * e_star)).cbrt();
+    Scales {
+        length: c_r,
+        force: 3.0 * PI * re * work_of_adhesion,
+        approach: c_r * c_r / re,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_power_law_of_exponent_two_is_the_sphere() {
+        let r = 3.0;
+        let sphere = Indenter::Ellipsoid { r1: r, r2: r };
+        let law = Indenter::PowerLaw {
+            n: 2.0,
+            scale: 1.0 / (2.0 * r),
+        };
+        for (x, y) in [(0.3, -0.2), (1.0, 2.0), (0.0, 0.0)] {
+            let (a, b) = (sphere.height(x, y), law.height(x, y));
+            assert!((a - b).abs() <= 1e-14 * (1.0 + a), "{a} vs {b}");
+        }
+        let (s, l) = (sphere.scales(2.0, 0.1), law.scales(2.0, 0.1));
+        for (a, b) in [
+            (s.length, l.length),
+            (s.force, l.force),
+            (s.approach, l.approach),
+        ] {
+            assert!((a / b - 1.0).abs() < 1e-12, "{a} vs {b}");
+        }
+        let (hs, hl) = (
+            sphere.pull_off_hint(2.0, 0.1).unwrap(),
+            law.pull_off_hint(2.0, 0.1).unwrap(),
+        );
+        assert!((hs.end_d_bar - hl.end_d_bar).abs() < 1e-9, "{hs:?} {hl:?}");
+        assert!((hs.b_bar_at_min - hl.b_bar_at_min).abs() < 1e-9);
+        let (fs, fl) = (
+            sphere.first_contact(1.2, 2.0, 0.1).unwrap(),
+            law.first_contact(1.2, 2.0, 0.1).unwrap(),
+        );
+        for (a, b) in [
+            (fs.a, fl.a),
+            (fs.d, fl.d),
+            (fs.force, fl.force),
+            (fs.p0, fl.p0),
+        ] {
+            assert!((a / b - 1.0).abs() < 1e-9, "{fs:?} vs {fl:?}");
+        }
+        assert_eq!(
+            law.exact_adhesive_force(2.0, 0.1).map(|e| e.0),
+            Some("JKR (power law)")
+        );
+        assert!((law.exact_adhesive_force(2.0, 0.1).unwrap().1 - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_flat_punch_is_normalised_by_kendall() {
+        let p = Indenter::FlatPunch { radius: 2.0 };
+        let s = p.scales(3.0, 0.5);
+        assert_eq!(s.length, 2.0);
+        assert!((s.force - (8.0 * PI * 3.0 * 0.5 * 8.0f64).sqrt()).abs() < 1e-12);
+        assert!((s.approach - s.force / (2.0 * 3.0 * 2.0)).abs() < 1e-12);
+        assert_eq!(p.height(1.9, 0.0), 0.0);
+        assert!(p.height(2.1, 0.0) > 100.0);
+    }
+
+    #[test]
+    fn bad_shapes_name_their_flag() {
+        for (shape, flag) in [
+            (Indenter::PowerLaw { n: 0.5, scale: 1.0 }, "--exponent"),
+            (
+                Indenter::PowerLaw {
+                    n: f64::NAN,
+                    scale: 1.0,
+                },
+                "--exponent",
+            ),
+            (
+                Indenter::PowerLaw {
+                    n: 3.0,
+                    scale: -1.0,
+                },
+                "--scale",
+            ),
+            (Indenter::FlatPunch { radius: 0.0 }, "--radius"),
+            (
+                Indenter::FlatPunch {
+                    radius: f64::INFINITY,
+                },
+                "--radius",
+            ),
+        ] {
+            let e = shape.checked().unwrap_err().to_string();
+            assert!(e.contains(flag), "{e}");
+        }
+    }
+}
