@@ -31,8 +31,9 @@ fn convolution<B: Backend>(c: &mut Criterion, backend: &mut B, model: &Model) {
     backend
         .upload(&mut p, &jkrbem::bench::hertz_like_pressure(model))
         .expect("upload");
+    let mut contact = backend.mask().expect("mask");
     backend
-        .set_contact(&model.initial_contact())
+        .upload_mask(&mut contact, &model.initial_contact())
         .expect("contact");
     let name = format!("convolution/{}-{}", backend.name(), backend.precision());
     let mut out = [0.0];
@@ -40,7 +41,7 @@ fn convolution<B: Backend>(c: &mut Criterion, backend: &mut B, model: &Model) {
     c.bench_with_input(BenchmarkId::new(name, model.nx), &model.nx, |b, _| {
         b.iter(|| {
             backend.convolve(&p, &mut u).expect("convolve");
-            backend.dot(&u, &u, sync).expect("dot");
+            backend.dot(&contact, &u, &u, sync).expect("dot");
             backend.read_slots(&[sync], &mut out).expect("read");
         })
     });

@@ -142,10 +142,15 @@ pub fn hertz_like_pressure(model: &Model) -> Vec<f64> {
     p
 }
 
-/// Wait until the backend has finished the work queued so far, by reading back Σ_C f·f into
-/// the register `sync` (one of the bench's own, not CG's).
-fn sync<B: Backend>(backend: &mut B, f: &B::Field, sync: Slot) -> Result<(), BackendError> {
-    backend.dot(f, f, sync)?;
+/// Wait until the backend has finished the work queued so far, by reading back Σ_C f·f over
+/// the contact set `c` into the register `sync` (one of the bench's own, not CG's).
+fn sync<B: Backend>(
+    backend: &mut B,
+    c: &B::Mask,
+    f: &B::Field,
+    sync: Slot,
+) -> Result<(), BackendError> {
+    backend.dot(c, f, f, sync)?;
     let mut v = [0.0];
     backend.read_slots(&[sync], &mut v)?;
     std::hint::black_box(v);
@@ -214,16 +219,24 @@ pub fn time_convolution<B: Backend>(
     backend.upload(&mut p, &hertz_like_pressure(model))?;
     let mut u = backend.field()?;
     let slot = backend.slot()?;
+    let c = first_contact(backend, model)?;
     let mut t = repeat_ms(repeats, || {
         let t0 = Instant::now();
         backend.convolve(&p, &mut u)?;
-        sync(backend, &u, slot)?;
+        sync(backend, &c, &u, slot)?;
         Ok(t0.elapsed())
     })?;
     Ok(median(&mut t))
 }
 
-/// Time CG iterations on the backend's current contact set at the model's first approach
+/// The model's first contact set (its initial Hertz ellipse) on the device.
+fn first_contact<B: Backend>(backend: &mut B, model: &Model) -> Result<B::Mask, BackendError> {
+    let mut c = backend.mask()?;
+    backend.upload_mask(&mut c, &model.initial_contact())?;
+    Ok(c)
+}
+
+/// Time CG iterations on the model's first contact set at its first approach
 /// d0: the difference of the median times (ms, `repeats` samples each) and of the counter
 /// deltas of a solve of `iterations` iterations and of CG's start alone (0 iterations), each
 /// from p = 0 and ended by a scalar readback, divided by the iterations made.
@@ -237,6 +250,7 @@ pub fn time_cg_iteration<B: Backend>(
     let mut work = CgWork::new(backend)?;
     let mut p = backend.field()?;
     let slot = backend.slot()?;
+    let c = first_contact(backend, model)?;
     let zeros = vec![0.0; model.nx * model.ny];
     // Tolerance 0: never converged, so CG makes `max_iterations` iterations and reads its
     // residual back once, at the end.
@@ -253,8 +267,8 @@ pub fn time_cg_iteration<B: Backend>(
             backend.upload(&mut p, &zeros)?;
             let before = backend.counters();
             let t0 = Instant::now();
-            let report = cg::solve(backend, &mut work, &mut p, model.d0, &settings(n))?;
-            sync(backend, &p, slot)?;
+            let report = cg::solve(backend, &c, &mut work, &mut p, model.d0, &settings(n))?;
+            sync(backend, &c, &p, slot)?;
             let elapsed = t0.elapsed();
             let after = backend.counters();
             *made = report.iterations;
@@ -293,7 +307,7 @@ impl KernelProfile {
 }
 
 /// Profile CG iterations on the GPU with timestamp queries: every kernel of a solve of
-/// `iterations` iterations (from p = 0 at the model's first approach, on the backend's
+/// `iterations` iterations (from p = 0 at the model's first approach, on its first
 /// contact set, tolerance 0) less those of CG's start alone, per iteration, slowest first.
 /// Fails where the adapter cannot write timestamps.
 #[cfg(feature = "gpu")]
@@ -304,6 +318,7 @@ pub fn profile_cg_iteration(
 ) -> Result<Vec<KernelProfile>, BackendError> {
     let mut work = CgWork::new(gpu)?;
     let mut p = gpu.field()?;
+    let c = first_contact(gpu, model)?;
     let zeros = vec![0.0; model.nx * model.ny];
     let mut solve = |gpu: &mut GpuBackend, n: usize| {
         gpu.upload(&mut p, &zeros)?;
@@ -314,7 +329,7 @@ pub fn profile_cg_iteration(
             check_every: usize::MAX,
             accept: model.cg.accept,
         };
-        let made = cg::solve(gpu, &mut work, &mut p, model.d0, &settings)?.iterations;
+        let made = cg::solve(gpu, &c, &mut work, &mut p, model.d0, &settings)?.iterations;
         let profile = gpu.profile()?.unwrap_or_default();
         gpu.set_profiling(false)?;
         Ok::<_, BackendError>((made, profile))
@@ -366,7 +381,6 @@ pub fn measure<B: Backend>(
     progress: &mut dyn FnMut(&str),
 ) -> Result<Measurement, BackendError> {
     let repeats = options.repeats.max(1);
-    backend.set_contact(&model.initial_contact())?;
     progress("convolution");
     let convolution_ms = time_convolution(backend, model, repeats)?;
     progress("CG iteration");

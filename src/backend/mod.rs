@@ -133,6 +133,9 @@ pub struct Counters {
 pub trait Device {
     /// A real field of nx × ny values resident on the backend's device.
     type Field;
+    /// A contact set C on the device: one flag per element (in contact or not). Every
+    /// operation "on C" takes the set it works on explicitly; a backend holds none.
+    type Mask;
 
     /// Short name for reports ("cpu", "gpu"; "cpu-periodic" for the unpadded CPU one).
     fn name(&self) -> &'static str;
@@ -148,6 +151,14 @@ pub trait Device {
     fn download(&mut self, src: &Self::Field, host: &mut [f64]) -> Result<(), BackendError>;
     /// dst = src on the whole grid.
     fn copy(&mut self, src: &Self::Field, dst: &mut Self::Field) -> Result<(), BackendError>;
+    /// A new contact set, empty.
+    fn mask(&mut self) -> Result<Self::Mask, BackendError>;
+    /// Copy host flags (row-major, length nx·ny, true = in contact) into a contact set.
+    fn upload_mask(&mut self, dst: &mut Self::Mask, host: &[bool]) -> Result<(), BackendError>;
+    /// Copy a contact set back to the host (row-major, length nx·ny).
+    fn download_mask(&mut self, src: &Self::Mask, host: &mut [bool]) -> Result<(), BackendError>;
+    /// dst = src (on the device).
+    fn copy_mask(&mut self, src: &Self::Mask, dst: &mut Self::Mask) -> Result<(), BackendError>;
     /// Work done since creation (zeros where a backend does not count).
     fn counters(&self) -> Counters {
         Counters::default()
@@ -177,12 +188,13 @@ pub trait ElasticOperator: Device {
     /// dst = M r, the preconditioner applied to a residual (zero off C), zero off C.
     fn precondition(
         &mut self,
+        c: &Self::Mask,
         src: &Self::Field,
         dst: &mut Self::Field,
     ) -> Result<(), BackendError>;
 }
 
-/// The vector operations of conjugate gradients on the contact set C.
+/// The vector operations of conjugate gradients on a contact set C (each takes it as `c`).
 pub trait CgKernels: ElasticOperator + Scalars {
     /// The relative residual below which this backend's arithmetic cannot bring CG's true
     /// residual (dimensionless): the solver stops there even if the tolerance asked is lower
@@ -200,15 +212,23 @@ pub trait CgKernels: ElasticOperator + Scalars {
     /// the profile the backend was built with).
     fn residual(
         &mut self,
+        c: &Self::Mask,
         u: &Self::Field,
         d: f64,
         r: &mut Self::Field,
     ) -> Result<(), BackendError>;
     /// slots\[out\] = Σ_C a·b.
-    fn dot(&mut self, a: &Self::Field, b: &Self::Field, out: Slot) -> Result<(), BackendError>;
+    fn dot(
+        &mut self,
+        c: &Self::Mask,
+        a: &Self::Field,
+        b: &Self::Field,
+        out: Slot,
+    ) -> Result<(), BackendError>;
     /// y += sign · (slots\[num\] / slots\[den\]) · x on C (a zero denominator gives a zero step).
     fn axpy_ratio(
         &mut self,
+        c: &Self::Mask,
         y: &mut Self::Field,
         x: &Self::Field,
         num: Slot,
@@ -218,6 +238,7 @@ pub trait CgKernels: ElasticOperator + Scalars {
     /// y = x + (slots\[num\] / slots\[den\]) · y on C, 0 off C.
     fn xpay_ratio(
         &mut self,
+        c: &Self::Mask,
         y: &mut Self::Field,
         x: &Self::Field,
         num: Slot,
@@ -227,23 +248,25 @@ pub trait CgKernels: ElasticOperator + Scalars {
     /// fuses the dot product into the convolution's last pass.
     fn convolve_dot(
         &mut self,
+        c: &Self::Mask,
         src: &Self::Field,
         dst: &mut Self::Field,
         out: Slot,
     ) -> Result<(), BackendError> {
         self.convolve(src, dst)?;
-        self.dot(src, dst, out)
+        self.dot(c, src, dst, out)
     }
     /// dst = M src and slots\[out\] = Σ_C src·dst (CG's r·z). A device backend fuses the dot
     /// product into the preconditioner's last pass.
     fn precondition_dot(
         &mut self,
+        c: &Self::Mask,
         src: &Self::Field,
         dst: &mut Self::Field,
         out: Slot,
     ) -> Result<(), BackendError> {
-        self.precondition(src, dst)?;
-        self.dot(src, dst, out)
+        self.precondition(c, src, dst)?;
+        self.dot(c, src, dst, out)
     }
     /// One CG step's updates with α = slots\[num\] / slots\[den\] (0 for a zero
     /// denominator): x += α·s and r −= α·q on C; then slots\[rr\] = Σ_C r·r. A device backend
@@ -251,6 +274,7 @@ pub trait CgKernels: ElasticOperator + Scalars {
     #[allow(clippy::too_many_arguments)]
     fn cg_update(
         &mut self,
+        c: &Self::Mask,
         x: &mut Self::Field,
         r: &mut Self::Field,
         s: &Self::Field,
@@ -259,9 +283,9 @@ pub trait CgKernels: ElasticOperator + Scalars {
         den: Slot,
         rr: Slot,
     ) -> Result<(), BackendError> {
-        self.axpy_ratio(x, s, num, den, 1.0)?;
-        self.axpy_ratio(r, q, num, den, -1.0)?;
-        self.dot(r, r, rr)
+        self.axpy_ratio(c, x, s, num, den, 1.0)?;
+        self.axpy_ratio(c, r, q, num, den, -1.0)?;
+        self.dot(c, r, r, rr)
     }
 
     /// Guard the CG iterations recorded from now on (`Some`) or end the guard (`None`). A
@@ -284,12 +308,8 @@ pub trait CgKernels: ElasticOperator + Scalars {
     }
 }
 
-/// The contact set and the operations of the pull-off protocol on it.
+/// The operations of the pull-off protocol on a contact set C (each takes it as `c`).
 pub trait ContactKernels: Device {
-    /// Replace the contact mask (row-major, true = in contact).
-    fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError>;
-    /// Read the contact mask back.
-    fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError>;
     /// One sweep of the Pohrt–Popov rule: detach elements of C with p < −σ_c and, with
     /// `attach_at` = Some(d), attach elements off C whose gap g = h − d + u at approach d
     /// (length) is negative; then p = 0 off C. With `attach_at` = None the sweep only
@@ -297,6 +317,7 @@ pub trait ContactKernels: Device {
     /// σ_c is a stress; σ_c = 0 gives the non-adhesive (Signorini) rule.
     fn update_contact(
         &mut self,
+        c: &mut Self::Mask,
         p: &mut Self::Field,
         u: &Self::Field,
         attach_at: Option<f64>,
@@ -308,15 +329,17 @@ pub trait ContactKernels: Device {
     /// where p_new < −σ_c; 1 if no element crosses.
     fn first_crossing(
         &mut self,
+        c: &Self::Mask,
         p_old: &Self::Field,
         p_new: &Self::Field,
         sigma_c: f64,
     ) -> Result<f64, BackendError>;
     /// max over C of |f| (0 if C is empty), reduced on the device.
-    fn max_abs(&mut self, f: &Self::Field) -> Result<f64, BackendError>;
+    fn max_abs(&mut self, c: &Self::Mask, f: &Self::Field) -> Result<f64, BackendError>;
     /// dst = a + t·(b − a) on C, 0 off C.
     fn lerp(
         &mut self,
+        c: &Self::Mask,
         a: &Self::Field,
         b: &Self::Field,
         t: f64,
@@ -326,13 +349,12 @@ pub trait ContactKernels: Device {
     /// few numbers come back, never the mask): Σ_C p (stress; multiply by Δx² for force),
     /// |C|, the chords along `axes` through the grid centre and the index box of C
     /// ([`measure::measure_mask`] defines them).
-    fn measure(&mut self, p: &Self::Field, axes: ChordAxes)
-        -> Result<ContactMeasure, BackendError>;
-    /// Keep the contact set in `dst` (a field used as storage, in the backend's own encoding:
-    /// only [`ContactKernels::restore_contact`] reads it), on the device.
-    fn save_contact(&mut self, dst: &mut Self::Field) -> Result<(), BackendError>;
-    /// Make the contact set the one [`ContactKernels::save_contact`] kept in `src`.
-    fn restore_contact(&mut self, src: &Self::Field) -> Result<(), BackendError>;
+    fn measure(
+        &mut self,
+        c: &Self::Mask,
+        p: &Self::Field,
+        axes: ChordAxes,
+    ) -> Result<ContactMeasure, BackendError>;
 }
 
 /// Everything the pull-off protocol needs of a backend.

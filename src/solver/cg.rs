@@ -246,26 +246,27 @@ impl Scale {
 /// the convolutions made (0 or 1).
 fn start<B: CgKernels>(
     backend: &mut B,
+    c: &B::Mask,
     work: &mut CgWork<B::Field>,
     p: &B::Field,
     d: f64,
     known: Option<&B::Field>,
 ) -> Result<(Scale, f64, usize), BackendError> {
     let CgSlots { rr, bb, .. } = work.slots;
-    backend.residual(&work.zero, d, &mut work.r)?;
-    backend.dot(&work.r, &work.r, bb)?;
+    backend.residual(c, &work.zero, d, &mut work.r)?;
+    backend.dot(c, &work.r, &work.r, bb)?;
     let convolutions = match known {
         Some(u) => {
-            backend.residual(u, d, &mut work.r)?;
+            backend.residual(c, u, d, &mut work.r)?;
             0
         }
         None => {
             backend.convolve(p, &mut work.q)?;
-            backend.residual(&work.q, d, &mut work.r)?;
+            backend.residual(c, &work.q, d, &mut work.r)?;
             1
         }
     };
-    backend.dot(&work.r, &work.r, rr)?;
+    backend.dot(c, &work.r, &work.r, rr)?;
     let mut v = [0.0; 2];
     backend.read_slots(&[rr, bb], &mut v)?;
     let scale = Scale(v[1].sqrt());
@@ -282,25 +283,27 @@ fn read_rr<B: CgKernels>(backend: &mut B, rr: Slot, scale: Scale) -> Result<f64,
 /// The relative residual of r, read back from the device.
 fn read_residual<B: CgKernels>(
     backend: &mut B,
+    c: &B::Mask,
     r: &B::Field,
     rr: Slot,
     scale: Scale,
 ) -> Result<f64, BackendError> {
-    backend.dot(r, r, rr)?;
+    backend.dot(c, r, r, rr)?;
     read_rr(backend, rr, scale)
 }
 
 /// q = K p and r = (d − h − q)_C, the true residual; returns its relative norm.
 fn true_residual<B: CgKernels>(
     backend: &mut B,
+    c: &B::Mask,
     p: &B::Field,
     work: &mut CgWork<B::Field>,
     d: f64,
     scale: Scale,
 ) -> Result<f64, BackendError> {
     backend.convolve(p, &mut work.q)?;
-    backend.residual(&work.q, d, &mut work.r)?;
-    read_residual(backend, &work.r, work.slots.rr, scale)
+    backend.residual(c, &work.q, d, &mut work.r)?;
+    read_residual(backend, c, &work.r, work.slots.rr, scale)
 }
 
 /// Start CG's directions from the residual in `work.r`: z = M r with r·z in the first r·z
@@ -308,12 +311,13 @@ fn true_residual<B: CgKernels>(
 /// Returns the index of the r·z slot in use.
 fn start_directions<B: CgKernels>(
     backend: &mut B,
+    c: &B::Mask,
     work: &mut CgWork<B::Field>,
 ) -> Result<usize, BackendError> {
     let CgSlots { rz, zero, .. } = work.slots;
-    backend.precondition_dot(&work.r, &mut work.z, rz[0])?;
+    backend.precondition_dot(c, &work.r, &mut work.z, rz[0])?;
     // s = z (the ratio 0/0 counts as 0, so the old direction vanishes).
-    backend.xpay_ratio(&mut work.s, &work.z, zero, zero)?;
+    backend.xpay_ratio(c, &mut work.s, &work.z, zero, zero)?;
     Ok(0)
 }
 
@@ -321,27 +325,29 @@ fn start_directions<B: CgKernels>(
 /// into its slot. `rz` is the index of the r·z slot in use.
 fn step<B: CgKernels>(
     backend: &mut B,
+    c: &B::Mask,
     work: &mut CgWork<B::Field>,
     p: &mut B::Field,
     rz: usize,
 ) -> Result<(), BackendError> {
     let slots = work.slots;
-    backend.convolve_dot(&work.s, &mut work.q, slots.sq)?;
+    backend.convolve_dot(c, &work.s, &mut work.q, slots.sq)?;
     let CgWork { r, s, q, .. } = work;
-    backend.cg_update(p, r, s, q, slots.rz[rz], slots.sq, slots.rr)
+    backend.cg_update(c, p, r, s, q, slots.rz[rz], slots.sq, slots.rr)
 }
 
 /// The next direction: z = M r, s = z + β s with β = r·z / (r·z)_old; the new r·z goes to the
 /// other slot of the pair. Returns the index of the r·z slot now in use.
 fn next_direction<B: CgKernels>(
     backend: &mut B,
+    c: &B::Mask,
     work: &mut CgWork<B::Field>,
     rz: usize,
 ) -> Result<usize, BackendError> {
     let new = 1 - rz;
     let slots = work.slots.rz;
-    backend.precondition_dot(&work.r, &mut work.z, slots[new])?;
-    backend.xpay_ratio(&mut work.s, &work.z, slots[new], slots[rz])?;
+    backend.precondition_dot(c, &work.r, &mut work.z, slots[new])?;
+    backend.xpay_ratio(c, &mut work.s, &work.z, slots[new], slots[rz])?;
     Ok(new)
 }
 
@@ -374,20 +380,23 @@ pub enum Goal {
 /// residual gap; after [`CgEnd::Converged`], `work.q` holds K p.
 pub fn solve<B: CgKernels>(
     backend: &mut B,
+    c: &B::Mask,
     work: &mut CgWork<B::Field>,
     p: &mut B::Field,
     d: f64,
     settings: &CgSettings,
 ) -> Result<CgReport, BackendError> {
-    solve_with(backend, work, p, d, settings, None, Goal::Exact)
+    solve_with(backend, c, work, p, d, settings, None, Goal::Exact)
 }
 
 /// [`solve`] with K p of the warm start `known` where the caller has it (its convolution is
 /// then saved), for the `goal` given. After [`CgEnd::Converged`] with [`Goal::Exact`],
 /// `work.q` holds K p, except when the warm start already met the tolerance with K p
 /// `known` (no iteration made: K p is that field, and `work.q` is untouched).
+#[allow(clippy::too_many_arguments)]
 pub fn solve_with<B: CgKernels>(
     backend: &mut B,
+    c: &B::Mask,
     work: &mut CgWork<B::Field>,
     p: &mut B::Field,
     d: f64,
@@ -395,7 +404,7 @@ pub fn solve_with<B: CgKernels>(
     known: Option<&B::Field>,
     goal: Goal,
 ) -> Result<CgReport, BackendError> {
-    let (scale, initial, convolutions) = start(backend, work, p, d, known)?;
+    let (scale, initial, convolutions) = start(backend, c, work, p, d, known)?;
     let mut report = CgReport {
         iterations: 0,
         residual: initial,
@@ -411,7 +420,7 @@ pub fn solve_with<B: CgKernels>(
         report.end = end;
         return Ok(report);
     }
-    let mut rz = start_directions(backend, work)?;
+    let mut rz = start_directions(backend, c, work)?;
     // A device backend stops the iterations it has queued once the tolerance is reached, so
     // it can be read rarely without doing more iterations than the solve needs.
     backend.guard_cg(Some(CgStop {
@@ -425,7 +434,7 @@ pub fn solve_with<B: CgKernels>(
             break None;
         }
         k += 1;
-        step(backend, work, p, rz)?;
+        step(backend, c, work, p, rz)?;
         if k % settings.check_every == 0 || k == settings.max_iterations {
             let (rr, made) = backend.read_cg_progress(work.slots.rr)?;
             // Under a guard the device stops before the k-th step once its test of the
@@ -443,11 +452,13 @@ pub fn solve_with<B: CgKernels>(
                 break Some(Some(end));
             }
         }
-        rz = next_direction(backend, work, rz)?;
+        rz = next_direction(backend, c, work, rz)?;
     };
     backend.guard_cg(None)?;
     match end {
-        Some(None) if goal == Goal::Exact => verify(backend, work, p, d, scale, settings, report),
+        Some(None) if goal == Goal::Exact => {
+            verify(backend, c, work, p, d, scale, settings, report)
+        }
         Some(None) => Ok(report),
         Some(Some(end)) => {
             report.end = end;
@@ -464,8 +475,10 @@ pub fn solve_with<B: CgKernels>(
 /// The recurrence reached the tolerance: recompute the true residual from p and end
 /// converged if it is within [`TRUE_RESIDUAL_SLACK`] of the tolerance, with a residual gap
 /// otherwise.
+#[allow(clippy::too_many_arguments)]
 fn verify<B: CgKernels>(
     backend: &mut B,
+    c: &B::Mask,
     work: &mut CgWork<B::Field>,
     p: &B::Field,
     d: f64,
@@ -473,7 +486,7 @@ fn verify<B: CgKernels>(
     settings: &CgSettings,
     mut report: CgReport,
 ) -> Result<CgReport, BackendError> {
-    let t = true_residual(backend, p, work, d, scale)?;
+    let t = true_residual(backend, c, p, work, d, scale)?;
     report.convolutions += 1;
     report.residual = t;
     if t <= TRUE_RESIDUAL_SLACK * settings.tolerance {
@@ -492,12 +505,13 @@ fn verify<B: CgKernels>(
 /// seen, which the report gives; after [`CgEnd::Converged`], `work.q` holds K p.
 pub fn solve_safe<B: CgKernels>(
     backend: &mut B,
+    c: &B::Mask,
     work: &mut CgWork<B::Field>,
     p: &mut B::Field,
     d: f64,
     settings: &CgSettings,
 ) -> Result<CgReport, BackendError> {
-    let (scale, mut t, convolutions) = start(backend, work, p, d, None)?;
+    let (scale, mut t, convolutions) = start(backend, c, work, p, d, None)?;
     let mut history = ResidualHistory::new(1);
     let mut report = CgReport {
         iterations: 0,
@@ -530,8 +544,8 @@ pub fn solve_safe<B: CgKernels>(
             return Ok(report);
         }
         let n = REPLACE_EVERY.min(settings.max_iterations - report.iterations);
-        report.iterations += segment(backend, work, p, scale, settings.tolerance, n)?;
-        t = true_residual(backend, p, work, d, scale)?;
+        report.iterations += segment(backend, c, work, p, scale, settings.tolerance, n)?;
+        t = true_residual(backend, c, p, work, d, scale)?;
         report.convolutions += 1;
     }
 }
@@ -541,20 +555,21 @@ pub fn solve_safe<B: CgKernels>(
 /// Returns the iterations made.
 fn segment<B: CgKernels>(
     backend: &mut B,
+    c: &B::Mask,
     work: &mut CgWork<B::Field>,
     p: &mut B::Field,
     scale: Scale,
     tolerance: f64,
     n: usize,
 ) -> Result<usize, BackendError> {
-    let mut rz = start_directions(backend, work)?;
+    let mut rz = start_directions(backend, c, work)?;
     for k in 1..=n {
-        step(backend, work, p, rz)?;
+        step(backend, c, work, p, rz)?;
         let rel = read_rr(backend, work.slots.rr, scale)?;
         if rel <= tolerance || !rel.is_finite() {
             return Ok(k);
         }
-        rz = next_direction(backend, work, rz)?;
+        rz = next_direction(backend, c, work, rz)?;
     }
     Ok(n)
 }

@@ -33,11 +33,11 @@ pub const LOOSE_SAFETY: f64 = 2.0;
 /// r the residual CG left in its work fields.
 fn error_estimate<B: Backend>(
     backend: &mut B,
-    fields: &mut Fields<B::Field>,
+    fields: &mut Fields<B::Field, B::Mask>,
 ) -> Result<f64, BackendError> {
     let cg = &mut fields.cg;
-    backend.precondition(&cg.r, &mut cg.z)?;
-    backend.max_abs(&cg.z)
+    backend.precondition(&fields.c, &cg.r, &mut cg.z)?;
+    backend.max_abs(&fields.c, &cg.z)
 }
 
 /// The result of equilibrating one approach.
@@ -93,8 +93,11 @@ pub struct Solve {
 }
 
 /// Fields the loop works on: the pressure p (force/length²) and the displacement u = K p
-/// (length), plus the protocol's and CG's work fields.
-pub struct Fields<F> {
+/// (length), the contact set C they live on (`M`, the backend's mask), plus the
+/// protocol's and CG's work fields.
+pub struct Fields<F, M> {
+    /// The contact set C.
+    pub c: M,
     /// Pressure, zero off C.
     pub p: F,
     /// Displacement K p, where `u_valid` says it is that of the p held.
@@ -115,10 +118,14 @@ pub struct Fields<F> {
     pub cg: CgWork<F>,
 }
 
-impl<F> Fields<F> {
-    /// Allocate the fields on `backend`.
-    pub fn new<B: Backend<Field = F>>(backend: &mut B) -> Result<Self, BackendError> {
+impl<F, M> Fields<F, M> {
+    /// Allocate the fields on `backend`, with the contact set `c`.
+    pub fn new<B: Backend<Field = F, Mask = M>>(
+        backend: &mut B,
+        c: M,
+    ) -> Result<Self, BackendError> {
         Ok(Fields {
+            c,
             p: backend.field()?,
             u: backend.field()?,
             u_valid: false,
@@ -132,7 +139,7 @@ impl<F> Fields<F> {
     }
 
     /// Make `u` = K p if it is not (a convolution, counted in `work`).
-    pub fn ensure_u<B: Backend<Field = F>>(
+    pub fn ensure_u<B: Backend<Field = F, Mask = M>>(
         &mut self,
         backend: &mut B,
         work: &mut Work,
@@ -155,7 +162,7 @@ impl<F> Fields<F> {
 pub fn solve_fixed<B: Backend>(
     backend: &mut B,
     model: &Model,
-    fields: &mut Fields<B::Field>,
+    fields: &mut Fields<B::Field, B::Mask>,
     d: f64,
 ) -> Result<Solve, SolverError> {
     solve_for(backend, model, fields, d, Goal::Exact)
@@ -167,7 +174,7 @@ pub fn solve_fixed<B: Backend>(
 pub fn solve_for<B: Backend>(
     backend: &mut B,
     model: &Model,
-    fields: &mut Fields<B::Field>,
+    fields: &mut Fields<B::Field, B::Mask>,
     d: f64,
     goal: Goal,
 ) -> Result<Solve, SolverError> {
@@ -182,6 +189,7 @@ pub fn solve_for<B: Backend>(
         };
         let r = cg::solve_with(
             backend,
+            &fields.c,
             &mut fields.cg,
             &mut fields.p,
             d,
@@ -209,6 +217,7 @@ pub fn solve_for<B: Backend>(
     let known = fields.u_valid.then_some(&fields.u);
     let first = cg::solve_with(
         backend,
+        &fields.c,
         &mut fields.cg,
         &mut fields.p,
         d,
@@ -240,7 +249,14 @@ pub fn solve_for<B: Backend>(
         };
         backend.copy(start, &mut fields.p)?;
     }
-    let second = cg::solve_safe(backend, &mut fields.cg, &mut fields.p, d, &settings)?;
+    let second = cg::solve_safe(
+        backend,
+        &fields.c,
+        &mut fields.cg,
+        &mut fields.p,
+        d,
+        &settings,
+    )?;
     let d_bar = d / model.scene.scales().approach;
     let retry = CgRetry::new(d_bar, first, second, &settings);
     if retry.verdict == RetryVerdict::Failed {
@@ -280,7 +296,7 @@ pub enum Held {
 pub fn equilibrate<B: Backend>(
     backend: &mut B,
     model: &Model,
-    fields: &mut Fields<B::Field>,
+    fields: &mut Fields<B::Field, B::Mask>,
     d: f64,
     sigma_c: f64,
 ) -> Result<Equilibrium, SolverError> {
@@ -293,7 +309,7 @@ pub fn equilibrate<B: Backend>(
 pub fn settle<B: Backend>(
     backend: &mut B,
     model: &Model,
-    fields: &mut Fields<B::Field>,
+    fields: &mut Fields<B::Field, B::Mask>,
     d: f64,
     sigma_c: f64,
     held: Held,
@@ -315,7 +331,13 @@ pub fn settle<B: Backend>(
         } else {
             (None, sigma_c + margin)
         };
-        let change = backend.update_contact(&mut fields.p, &fields.u, attach_at, threshold)?;
+        let change = backend.update_contact(
+            &mut fields.c,
+            &mut fields.p,
+            &fields.u,
+            attach_at,
+            threshold,
+        )?;
         eq.n_contact = change.n_contact;
         if change.at_edge > 0 {
             return Err(SolverError::ContactAtEdge {

@@ -51,7 +51,7 @@ impl Probe {
 /// cascade that led to it ended with an exact solve.
 pub(super) fn probe<B: Backend>(
     backend: &mut B,
-    run: &mut Progress<B::Field>,
+    run: &mut Progress<B::Field, B::Mask>,
     d_from: f64,
     d_to: f64,
     last_d: Option<f64>,
@@ -62,15 +62,15 @@ pub(super) fn probe<B: Backend>(
     backend.copy(&f.p, &mut f.p_base)?;
     if let Some(d_last) = last_d.filter(|&dl| dl != d_from) {
         let t = 1.0 + (d_to - d_from) / (d_from - d_last);
-        backend.lerp(&f.p_last, &f.p_base, t, &mut f.p)?;
+        backend.lerp(&f.c, &f.p_last, &f.p_base, t, &mut f.p)?;
         f.u_valid = false;
     }
     let solve = solve_for(backend, &run.model, f, d_to, Goal::Exact)?;
     let residual = solve.residual;
     eq.add_solve(solve);
-    let lower = force_of(backend, &run.model, &run.fields.p)?;
+    let lower = force_of(backend, &run.model, &run.fields.c, &run.fields.p)?;
     let f = &run.fields;
-    let t = backend.first_crossing(&f.p_base, &f.p, run.model.sigma_c)?;
+    let t = backend.first_crossing(&f.c, &f.p_base, &f.p, run.model.sigma_c)?;
     Ok(Probe {
         base,
         lower,
@@ -104,7 +104,7 @@ pub(super) struct Through {
 /// contact vanished.
 pub(super) fn through<B: Backend>(
     backend: &mut B,
-    run: &mut Progress<B::Field>,
+    run: &mut Progress<B::Field, B::Mask>,
     out: &mut Emitter,
     walk: &Through,
     probe: Probe,
@@ -131,7 +131,7 @@ pub(super) fn through<B: Backend>(
         let t_push = (probe.t + ONSET_PUSH).min(1.0);
         let f = &mut run.fields;
         std::mem::swap(&mut f.p, &mut f.p_probe);
-        backend.lerp(&f.p_base, &f.p_probe, t_push, &mut f.p)?;
+        backend.lerp(&f.c, &f.p_base, &f.p_probe, t_push, &mut f.p)?;
         f.u_valid = false;
         d_c += t_push * (d_to - d_c);
         if t_push >= 1.0 {
@@ -150,9 +150,9 @@ pub(super) fn through<B: Backend>(
         let solve = solve_for(backend, &m, f, d_to, Goal::Exact)?;
         let residual = solve.residual;
         eq.add_solve(solve);
-        let lower = force_of(backend, &m, &run.fields.p)?;
+        let lower = force_of(backend, &m, &run.fields.c, &run.fields.p)?;
         let f = &run.fields;
-        let t = backend.first_crossing(&f.p_base, &f.p, m.sigma_c)?;
+        let t = backend.first_crossing(&f.c, &f.p_base, &f.p, m.sigma_c)?;
         probe = Probe {
             base: f64::NAN,
             lower,
@@ -172,8 +172,8 @@ pub(super) fn through<B: Backend>(
 /// The first onset of a step from `d_from` to `d_to` (lengths) whose `probe` found one: the
 /// stable state held at the step's start (its contact set, chords and c̄ are the onset's)
 /// at the interpolated approach and force. Made without any work on the device.
-pub(super) fn first_onset_state<F>(
-    run: &Progress<F>,
+pub(super) fn first_onset_state<F, M>(
+    run: &Progress<F, M>,
     probe: &Probe,
     step: usize,
     d_from: f64,
@@ -200,14 +200,14 @@ pub(super) fn first_onset_state<F>(
 /// interpolation: no work of its own, the probe's residual), at approach `d_on` (length).
 pub(super) fn record_onset<B: Backend>(
     backend: &mut B,
-    run: &mut Progress<B::Field>,
+    run: &mut Progress<B::Field, B::Mask>,
     out: &mut Emitter,
     walk: &Through,
     probe: &Probe,
     d_on: f64,
 ) -> Result<(), SolverError> {
     let f = &mut run.fields;
-    backend.lerp(&f.p_base, &f.p, probe.t, &mut f.p_onset)?;
+    backend.lerp(&f.c, &f.p_base, &f.p, probe.t, &mut f.p_onset)?;
     let mut onset = Equilibrium {
         cg_residual: probe.residual,
         ..Equilibrium::default()
@@ -215,6 +215,7 @@ pub(super) fn record_onset<B: Backend>(
     let (state, _) = record(
         backend,
         &run.model,
+        &f.c,
         &f.p_onset,
         walk.step,
         Phase::Onset,
@@ -223,6 +224,6 @@ pub(super) fn record_onset<B: Backend>(
     )?;
     run.best = run.best.min(state.force);
     run.window.onset_found(walk.step, state.force, probe.lower);
-    out.emit(backend, state, &mut onset, walk.hold)?;
+    out.emit(backend, &run.fields.c, state, &mut onset, walk.hold)?;
     Ok(())
 }

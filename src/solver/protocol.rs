@@ -121,13 +121,14 @@ impl Outcome {
 pub(super) fn record<B: Backend>(
     backend: &mut B,
     model: &Model,
+    c: &B::Mask,
     p: &B::Field,
     step: usize,
     phase: Phase,
     d: f64,
     eq: &Equilibrium,
 ) -> Result<(State, Option<[usize; 4]>), SolverError> {
-    let m = backend.measure(p, model.mesh.chord_axes())?;
+    let m = backend.measure(c, p, model.mesh.chord_axes())?;
     let (a_el, b_el) = m.half_lengths;
     let n = m.count;
     let dx = model.dx;
@@ -162,9 +163,10 @@ pub(super) fn record<B: Backend>(
 pub(super) fn force_of<B: Backend>(
     backend: &mut B,
     model: &Model,
+    c: &B::Mask,
     p: &B::Field,
 ) -> Result<f64, SolverError> {
-    let m = backend.measure(p, model.mesh.chord_axes())?;
+    let m = backend.measure(c, p, model.mesh.chord_axes())?;
     Ok(m.sum * model.dx * model.dx)
 }
 
@@ -284,6 +286,7 @@ impl Emitter<'_> {
     pub(super) fn emit<B: ContactKernels>(
         &mut self,
         backend: &mut B,
+        c: &B::Mask,
         state: State,
         eq: &mut Equilibrium,
         hold: bool,
@@ -299,7 +302,7 @@ impl Emitter<'_> {
         let mask = if self.with_contact {
             let (nx, ny) = backend.shape();
             let mut mask = vec![false; nx * ny];
-            backend.contact(&mut mask)?;
+            backend.download_mask(c, &mut mask)?;
             Some(mask)
         } else {
             None
@@ -384,11 +387,11 @@ pub const REGRID_BELOW: f64 = 0.8;
 pub const REGRID_ABOVE_C_BAR: f64 = 0.9;
 
 /// The pull-off's progress: the current grid and fields, and what the onset policy keeps.
-pub(super) struct Progress<F> {
+pub(super) struct Progress<F, M> {
     /// The model of the current grid.
     pub model: Model,
     /// The solver's fields.
-    pub fields: Fields<F>,
+    pub fields: Fields<F, M>,
     /// The approach (length) of the state whose p `fields.p_last` holds, if it is the step
     /// end before the current one on this grid (for the probe's predicted start).
     pub last_d: Option<f64>,
@@ -397,7 +400,7 @@ pub(super) struct Progress<F> {
     /// The least force (force) of an onset located exactly on this grid (+∞ before any).
     pub best: f64,
     /// The steps' bounds and the snapshots to go back to ([`Onsets::NearMinimum`]).
-    pub window: Window<F>,
+    pub window: Window<F, M>,
     /// Whether re-gridding is still allowed (not once the minimum is confirmed).
     pub may_regrid: bool,
 }
@@ -416,13 +419,23 @@ fn run_inner<B: Backend>(
     model: &Model,
     out: &mut Emitter,
 ) -> Result<(), SolverError> {
-    backend.set_contact(&model.initial_contact())?;
-    let mut fields = Fields::new(backend)?;
+    let mut c = backend.mask()?;
+    backend.upload_mask(&mut c, &model.initial_contact())?;
+    let mut fields = Fields::new(backend, c)?;
     // 1. Non-adhesive press to d0.
     let mut eq = equilibrate(backend, model, &mut fields, model.d0, 0.0)?;
-    let (state, _) = record(backend, model, &fields.p, 0, Phase::Approach, model.d0, &eq)?;
+    let (state, _) = record(
+        backend,
+        model,
+        &fields.c,
+        &fields.p,
+        0,
+        Phase::Approach,
+        model.d0,
+        &eq,
+    )?;
     let held = state.clone();
-    out.emit(backend, state, &mut eq, false)?;
+    out.emit(backend, &fields.c, state, &mut eq, false)?;
     let mut run = Progress {
         model: model.clone(),
         fields,
@@ -440,7 +453,7 @@ fn run_inner<B: Backend>(
 /// 2. The adhesive pull-off, step by step.
 fn pull_off<B: Backend>(
     backend: &mut B,
-    run: &mut Progress<B::Field>,
+    run: &mut Progress<B::Field, B::Mask>,
     out: &mut Emitter,
     model: &Model,
 ) -> Result<(), SolverError> {
@@ -482,7 +495,7 @@ fn pull_off<B: Backend>(
 /// through its onsets, as the onset policy says; the step-end state is recorded.
 fn load_step<B: Backend>(
     backend: &mut B,
-    run: &mut Progress<B::Field>,
+    run: &mut Progress<B::Field, B::Mask>,
     out: &mut Emitter,
     step: usize,
     d_prev: f64,
@@ -506,7 +519,13 @@ fn load_step<B: Backend>(
     if m.onsets != Onsets::None {
         if let Some(state) = onsets::first_onset_state(run, &probe, step, d_prev, d) {
             run.best = run.best.min(state.force);
-            out.emit(backend, state, &mut Equilibrium::default(), hold)?;
+            out.emit(
+                backend,
+                &run.fields.c,
+                state,
+                &mut Equilibrium::default(),
+                hold,
+            )?;
         }
     }
     let through = Through {
@@ -534,7 +553,16 @@ fn load_step<B: Backend>(
         run.last_d = Some(d_prev);
         backend.copy(&run.fields.p_base, &mut run.fields.p_last)?;
     }
-    let (state, bounds) = record(backend, &m, &run.fields.p, step, Phase::Pulloff, d, &eq)?;
+    let (state, bounds) = record(
+        backend,
+        &m,
+        &run.fields.c,
+        &run.fields.p,
+        step,
+        Phase::Pulloff,
+        d,
+        &eq,
+    )?;
     run.held = state.clone();
     let end = StepEnd {
         force: state.force,
@@ -544,7 +572,7 @@ fn load_step<B: Backend>(
         vanished,
     };
     run.window.step_ended(step, state.c_bar);
-    out.emit(backend, state, &mut eq, hold)?;
+    out.emit(backend, &run.fields.c, state, &mut eq, hold)?;
     out.release(run.window.hold_from());
     Ok(end)
 }
@@ -555,7 +583,7 @@ fn load_step<B: Backend>(
 /// re-equilibrated at the same approach `d` (length).
 fn regrid_if_shrunk<B: Backend>(
     backend: &mut B,
-    run: &mut Progress<B::Field>,
+    run: &mut Progress<B::Field, B::Mask>,
     step: usize,
     d: f64,
     bounds: [usize; 4],
@@ -574,13 +602,14 @@ fn regrid_if_shrunk<B: Backend>(
     backend.download(&run.fields.p, &mut p)?;
     let p = m.resample(&fine, &p, 0.0);
     let mut coarse_mask = vec![false; m.nx * m.ny];
-    backend.contact(&mut coarse_mask)?;
+    backend.download_mask(&run.fields.c, &mut coarse_mask)?;
     let mask = m.resample(&fine, &coarse_mask, false);
     // The kept states of the coarse grid go first, so that both grids are not held at once.
     run.window.reset();
     *backend = backend.sibling(&fine.grid_setup())?;
-    backend.set_contact(&mask)?;
-    let mut fields = Fields::new(backend)?;
+    let mut c = backend.mask()?;
+    backend.upload_mask(&mut c, &mask)?;
+    let mut fields = Fields::new(backend, c)?;
     backend.upload(&mut fields.p, &p)?;
     out.release(usize::MAX);
     out.least = None;
@@ -597,6 +626,7 @@ fn regrid_if_shrunk<B: Backend>(
     let (state, _) = record(
         backend,
         &run.model,
+        &run.fields.c,
         &run.fields.p,
         step,
         Phase::Regrid,
@@ -604,6 +634,6 @@ fn regrid_if_shrunk<B: Backend>(
         &eq,
     )?;
     run.held = state.clone();
-    out.emit(backend, state, &mut eq, false)?;
+    out.emit(backend, &run.fields.c, state, &mut eq, false)?;
     Ok(())
 }

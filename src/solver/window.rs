@@ -128,9 +128,9 @@ impl Part {
 
 /// A state kept on the device: its pressure, its contact set and, once probed, the pressure
 /// of its contact set at `d_end` of the parts that use it.
-struct Snap<F> {
+struct Snap<F, M> {
     p: F,
-    contact: F,
+    contact: M,
     probe: F,
     /// Parts and bounds that use it.
     refs: usize,
@@ -143,14 +143,14 @@ struct Snap<F> {
 /// The device states kept, handed out as slots: at most `capacity`
 /// ([`crate::model::snapshot_slots`]). Where none is free, a step's start is reached again
 /// by whole steps from an earlier one, and a part of the load is walked instead of split.
-struct Pool<F> {
-    snaps: Vec<Snap<F>>,
+struct Pool<F, M> {
+    snaps: Vec<Snap<F, M>>,
     capacity: usize,
 }
 
-impl<F> Pool<F> {
+impl<F, M> Pool<F, M> {
     /// A slot with one user, if one is free or can still be made.
-    fn take<B: Backend<Field = F>>(
+    fn take<B: Backend<Field = F, Mask = M>>(
         &mut self,
         backend: &mut B,
     ) -> Result<Option<usize>, SolverError> {
@@ -164,7 +164,7 @@ impl<F> Pool<F> {
         }
         self.snaps.push(Snap {
             p: backend.field()?,
-            contact: backend.field()?,
+            contact: backend.mask()?,
             probe: backend.field()?,
             refs: 1,
             probed: false,
@@ -186,13 +186,13 @@ impl<F> Pool<F> {
 }
 
 /// The bounds of the steps and the snapshots to go back to.
-pub(super) struct Window<F> {
+pub(super) struct Window<F, M> {
     enabled: bool,
     done: bool,
     bounds: Vec<Bound>,
     /// The least force (force) of an onset known exactly (first onsets of whole steps).
     upper: f64,
-    pool: Pool<F>,
+    pool: Pool<F, M>,
     /// The start of the first step noted (never evicted).
     origin: Option<usize>,
     /// The largest shortfall of an onset below its bound (force).
@@ -203,7 +203,7 @@ pub(super) struct Window<F> {
     report: Refinement,
 }
 
-impl<F> Window<F> {
+impl<F, M> Window<F, M> {
     /// A window for a grid of `elements`, used only if `enabled`.
     pub fn new(enabled: bool, elements: usize) -> Self {
         Window {
@@ -255,10 +255,10 @@ impl<F> Window<F> {
 
     /// Note the bound of `step` (from `d_from` to `d_to`, lengths) from its `probe`, keeping
     /// its start (the `p_base` and contact set held now) if it may be gone back to.
-    pub fn note<B: Backend<Field = F>>(
+    pub fn note<B: Backend<Field = F, Mask = M>>(
         &mut self,
         backend: &mut B,
-        fields: &Fields<F>,
+        fields: &Fields<F, M>,
         step: usize,
         d_from: f64,
         d_to: f64,
@@ -285,7 +285,7 @@ impl<F> Window<F> {
                 if let Some(slot) = snapshot {
                     let s = &mut self.pool.snaps[slot];
                     backend.copy(&fields.p_base, &mut s.p)?;
-                    backend.save_contact(&mut s.contact)?;
+                    backend.copy_mask(&fields.c, &mut s.contact)?;
                     if self.origin.is_none() {
                         self.origin = Some(slot);
                     }
@@ -307,7 +307,7 @@ impl<F> Window<F> {
 
     /// A pool slot for a step of bound `lower`: a free one, a new one, or that of the kept
     /// step with the highest bound if it lies above `lower` (`None`: not worth keeping).
-    fn take_slot<B: Backend<Field = F>>(
+    fn take_slot<B: Backend<Field = F, Mask = M>>(
         &mut self,
         backend: &mut B,
         lower: f64,
@@ -407,11 +407,11 @@ impl<F> Window<F> {
 /// Make the state of `slot` the one held (u is then unknown).
 fn restore<B: Backend>(
     backend: &mut B,
-    fields: &mut Fields<B::Field>,
-    s: &Snap<B::Field>,
+    fields: &mut Fields<B::Field, B::Mask>,
+    s: &Snap<B::Field, B::Mask>,
 ) -> Result<(), SolverError> {
     backend.copy(&s.p, &mut fields.p)?;
-    backend.restore_contact(&s.contact)?;
+    backend.copy_mask(&s.contact, &mut fields.c)?;
     fields.u_valid = false;
     Ok(())
 }
@@ -421,7 +421,7 @@ fn restore<B: Backend>(
 /// is enabled and not yet gone back to.
 pub(super) fn refine<B: Backend>(
     backend: &mut B,
-    run: &mut Progress<B::Field>,
+    run: &mut Progress<B::Field, B::Mask>,
     out: &mut Emitter,
 ) -> Result<(), SolverError> {
     if run.window.is_done() {
@@ -489,19 +489,19 @@ impl Resume {
     /// Keep the state held now.
     fn keep<B: Backend>(
         backend: &mut B,
-        run: &mut Progress<B::Field>,
+        run: &mut Progress<B::Field, B::Mask>,
     ) -> Result<Self, SolverError> {
         if let Some(slot) = run.window.pool.take(backend)? {
             let s = &mut run.window.pool.snaps[slot];
             backend.copy(&run.fields.p, &mut s.p)?;
-            backend.save_contact(&mut s.contact)?;
+            backend.copy_mask(&run.fields.c, &mut s.contact)?;
             return Ok(Resume::Slot(slot));
         }
         let (nx, ny) = backend.shape();
         let mut p = vec![0.0; nx * ny];
         let mut mask = vec![false; nx * ny];
         backend.download(&run.fields.p, &mut p)?;
-        backend.contact(&mut mask)?;
+        backend.download_mask(&run.fields.c, &mut mask)?;
         Ok(Resume::Host { p, mask })
     }
 
@@ -509,7 +509,7 @@ impl Resume {
     fn restore<B: Backend>(
         self,
         backend: &mut B,
-        run: &mut Progress<B::Field>,
+        run: &mut Progress<B::Field, B::Mask>,
     ) -> Result<(), SolverError> {
         match self {
             Resume::Slot(slot) => {
@@ -518,7 +518,7 @@ impl Resume {
             }
             Resume::Host { p, mask } => {
                 backend.upload(&mut run.fields.p, &p)?;
-                backend.set_contact(&mask)?;
+                backend.upload_mask(&mut run.fields.c, &mask)?;
                 run.fields.u_valid = false;
             }
         }
@@ -531,7 +531,7 @@ impl Resume {
 /// step's start is always kept). Its probe is solved when the part is searched.
 fn root_part<B: Backend>(
     backend: &mut B,
-    run: &mut Progress<B::Field>,
+    run: &mut Progress<B::Field, B::Mask>,
     i: usize,
     eq: &mut Equilibrium,
 ) -> Result<Part, SolverError> {
@@ -563,7 +563,7 @@ fn root_part<B: Backend>(
                 Some(slot) => {
                     let s = &mut run.window.pool.snaps[slot];
                     backend.copy(&run.fields.p, &mut s.p)?;
-                    backend.save_contact(&mut s.contact)?;
+                    backend.copy_mask(&run.fields.c, &mut s.contact)?;
                     slot
                 }
                 None => {
@@ -589,7 +589,7 @@ fn root_part<B: Backend>(
                     s.refs = 1;
                     s.probed = false;
                     backend.copy(&run.fields.p, &mut s.p)?;
-                    backend.save_contact(&mut s.contact)?;
+                    backend.copy_mask(&run.fields.c, &mut s.contact)?;
                     slot
                 }
             }
@@ -614,7 +614,7 @@ fn root_part<B: Backend>(
 /// with the bounds compared to the lowest onset plus `slack` (force).
 fn search<B: Backend>(
     backend: &mut B,
-    run: &mut Progress<B::Field>,
+    run: &mut Progress<B::Field, B::Mask>,
     out: &mut Emitter,
     root: Part,
     slack: f64,
@@ -653,7 +653,7 @@ fn search<B: Backend>(
         let s = &run.window.pool.snaps[part.slot];
         let f = &mut run.fields;
         backend.copy(&s.p, &mut f.p_base)?;
-        backend.lerp(&s.p, &s.probe, part.frac, &mut f.p)?;
+        backend.lerp(&f.c, &s.p, &s.probe, part.frac, &mut f.p)?;
         let residual = s.residual;
         if part.t >= 1.0 {
             run.window.pool.release(part.slot);
@@ -704,7 +704,7 @@ fn search<B: Backend>(
         {
             let s = &run.window.pool.snaps[part.slot];
             let f = &mut run.fields;
-            backend.lerp(&s.p, &s.probe, part.frac / 2.0, &mut f.p)?;
+            backend.lerp(&f.c, &s.p, &s.probe, part.frac / 2.0, &mut f.p)?;
             f.u_valid = false;
         }
         run.window.pool.release(part.slot);
@@ -714,7 +714,7 @@ fn search<B: Backend>(
         if vanished {
             continue;
         }
-        let base = force_of(backend, &m, &run.fields.p)?;
+        let base = force_of(backend, &m, &run.fields.c, &run.fields.p)?;
         let Some(slot) = run.window.pool.take(backend)? else {
             // No room to keep it: walk the second half from here.
             let probe = onsets::probe(backend, run, d_mid, part.d_to(), None, base, eq)?;
@@ -730,7 +730,7 @@ fn search<B: Backend>(
         {
             let s = &mut run.window.pool.snaps[slot];
             backend.copy(&run.fields.p, &mut s.p)?;
-            backend.save_contact(&mut s.contact)?;
+            backend.copy_mask(&run.fields.c, &mut s.contact)?;
         }
         let probe = onsets::probe(backend, run, d_mid, part.d_to(), None, base, eq)?;
         let s = &mut run.window.pool.snaps[slot];

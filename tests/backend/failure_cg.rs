@@ -48,7 +48,11 @@ fn a_healthy_sphere_run_is_not_flagged() {
 /// backend with that set, and the solver's fields at p = 0.
 fn ragged_unpreconditioned(
     max_iterations: usize,
-) -> (Model, jkrbem::backend::cpu::CpuBackend, Fields<Vec<f64>>) {
+) -> (
+    Model,
+    jkrbem::backend::cpu::CpuBackend,
+    Fields<Vec<f64>, Vec<bool>>,
+) {
     let mut model = model_for(
         1.0,
         ModelOptions {
@@ -66,8 +70,7 @@ fn ragged_unpreconditioned(
         .zip(pseudo_random(n, 3))
         .map(|(&m, r)| m && r > 0.0)
         .collect();
-    backend.set_contact(&mask).unwrap();
-    let fields = Fields::new(&mut backend).unwrap();
+    let fields = Fields::new(&mut backend, mask).unwrap();
     (model, backend, fields)
 }
 

@@ -6,12 +6,11 @@ pub mod same_answers;
 pub mod sweep_rows;
 
 use jkrbem::backend::cpu::CpuBackend;
-use jkrbem::backend::prelude::*;
 use jkrbem::model::{Model, ModelOptions};
 use jkrbem::scene::Scene;
 use jkrbem::solver::{self, Outcome};
 
-/// A finished run: the model, its outcome and the contact mask at the end.
+/// A finished run: the model, its outcome and the contact mask of its last state.
 pub struct Run {
     pub model: Model,
     pub outcome: Outcome,
@@ -37,9 +36,10 @@ pub fn run_ratio(ratio: f64, options: ModelOptions) -> Run {
 /// Run a model's protocol on the CPU.
 pub fn run_model(model: Model) -> Run {
     let mut backend = cpu_backend(&model);
-    let outcome = solver::run(&mut backend, &model, &mut |_| {});
     let mut final_mask = vec![false; model.nx * model.ny];
-    backend.contact(&mut final_mask).unwrap();
+    let outcome = solver::run_with_contact(&mut backend, &model, &mut |_, mask| {
+        final_mask.copy_from_slice(mask);
+    });
     Run {
         model,
         outcome,

@@ -60,23 +60,22 @@ fn on_c(values: &[f64], mask: &[bool]) -> Vec<f64> {
 
 /// What a check needs: the backend under test and its tolerance (relative to the values'
 /// scale: its arithmetic's rounding times a margin for sums of a few hundred terms).
-struct Subject<B> {
+struct Subject<B: Backend> {
     b: B,
     tol: f64,
+    /// The contact set on the host, and on the backend's device.
     mask: Vec<bool>,
+    c: B::Mask,
 }
 
 impl<B: Backend> Subject<B> {
     fn new(b: B) -> Self {
         let tol = if b.precision() == "f64" { 1e-12 } else { 2e-5 };
-        let mut s = Subject {
-            b,
-            tol,
-            mask: mask(),
-        };
-        let m = s.mask.clone();
-        s.b.set_contact(&m).unwrap();
-        s
+        let mut b = b;
+        let mask = mask();
+        let mut c = b.mask().unwrap();
+        b.upload_mask(&mut c, &mask).unwrap();
+        Subject { b, tol, mask, c }
     }
 
     fn put(&mut self, host: &[f64]) -> B::Field {
@@ -143,7 +142,7 @@ fn slots<B: Backend>(mut s: Subject<B>) {
     assert_eq!(s.read(r[2]), 0.0, "a new slot holds 0");
     let a = pseudo_random(NX * NY, 3);
     let fa = s.put(&a);
-    s.b.dot(&fa, &fa, r[0]).unwrap();
+    s.b.dot(&s.c, &fa, &fa, r[0]).unwrap();
     s.b.copy_slot(r[0], r[1]).unwrap();
     let want: f64 = on_c(&a, &s.mask).iter().map(|v| v * v).sum();
     let (got0, got1) = (s.read(r[0]), s.read(r[1]));
@@ -159,7 +158,7 @@ fn residual<B: Backend>(mut s: Subject<B>) {
     let fu = s.put(&poisoned(&u, &s.mask));
     let mut r = s.put(&vec![f64::NAN; NX * NY]);
     let d = 0.7;
-    s.b.residual(&fu, d, &mut r).unwrap();
+    s.b.residual(&s.c, &fu, d, &mut r).unwrap();
     let want: Vec<f64> = (0..NX * NY)
         .map(|i| if s.mask[i] { d - h[i] - u[i] } else { 0.0 })
         .collect();
@@ -173,7 +172,7 @@ fn reductions<B: Backend>(mut s: Subject<B>) {
     let fa = s.put(&poisoned(&a, &s.mask));
     let fb = s.put(&poisoned(&b, &s.mask));
     let out = s.slots(1)[0];
-    s.b.dot(&fa, &fb, out).unwrap();
+    s.b.dot(&s.c, &fa, &fb, out).unwrap();
     let (ca, cb) = (on_c(&a, &s.mask), on_c(&b, &s.mask));
     let want: f64 = ca.iter().zip(&cb).map(|(x, y)| x * y).sum();
     let scale: f64 = ca.iter().zip(&cb).map(|(x, y)| (x * y).abs()).sum();
@@ -196,7 +195,7 @@ fn measure<B: Backend>(mut s: Subject<B>) {
         } else {
             ChordAxes { cos, sin }
         };
-        let got = s.b.measure(&fa, axes).unwrap();
+        let got = s.b.measure(&s.c, &fa, axes).unwrap();
         let want = measure_mask(&ca, &s.mask, NX, NY, axes);
         s.assert_scalar("measure sum", got.sum, want.sum, scale);
         assert_eq!(got.count, want.count, "count");
@@ -217,22 +216,26 @@ fn measure<B: Backend>(mut s: Subject<B>) {
     // One element in contact at (5, 3): its box, and no box without contact.
     let mut one = vec![false; NX * NY];
     one[3 * NX + 5] = true;
-    s.b.set_contact(&one).unwrap();
-    let got = s.b.measure(&fa, ChordAxes::ALIGNED).unwrap();
+    s.b.upload_mask(&mut s.c, &one).unwrap();
+    let got = s.b.measure(&s.c, &fa, ChordAxes::ALIGNED).unwrap();
     assert_eq!((got.count, got.bounds), (1, Some([5, 5, 3, 3])));
-    s.b.set_contact(&vec![false; NX * NY]).unwrap();
-    let got = s.b.measure(&fa, ChordAxes::ALIGNED).unwrap();
+    s.b.upload_mask(&mut s.c, &vec![false; NX * NY]).unwrap();
+    let got = s.b.measure(&s.c, &fa, ChordAxes::ALIGNED).unwrap();
     assert_eq!((got.sum, got.count, got.bounds), (0.0, 0, None));
 }
 
-/// save_contact keeps C in a field; restore_contact brings it back after C has changed.
+/// copy_mask keeps C in another set, which brings it back after C has changed; a new set is
+/// empty.
 fn save_and_restore_contact<B: Backend>(mut s: Subject<B>) {
-    let mut kept = s.put(&vec![f64::NAN; NX * NY]);
-    s.b.save_contact(&mut kept).unwrap();
-    s.b.set_contact(&vec![true; NX * NY]).unwrap();
-    s.b.restore_contact(&kept).unwrap();
+    let mut kept = s.b.mask().unwrap();
+    let mut empty = vec![true; NX * NY];
+    s.b.download_mask(&kept, &mut empty).unwrap();
+    assert!(empty.iter().all(|&m| !m), "a new contact set is empty");
+    s.b.copy_mask(&s.c, &mut kept).unwrap();
+    s.b.upload_mask(&mut s.c, &vec![true; NX * NY]).unwrap();
+    s.b.copy_mask(&kept, &mut s.c).unwrap();
     let mut got = vec![false; NX * NY];
-    s.b.contact(&mut got).unwrap();
+    s.b.download_mask(&s.c, &mut got).unwrap();
     assert!(
         got == s.mask,
         "the restored contact set differs from the saved one"
@@ -249,17 +252,18 @@ fn axpy_ratio<B: Backend>(mut s: Subject<B>) {
     let r = s.slots(3);
     let ones = s.put(&vec![1.0; NX * NY]);
     // num = Σ_C 1 = |C|, den = 2|C|: the ratio is exactly 1/2.
-    s.b.dot(&ones, &ones, r[0]).unwrap();
-    s.b.dot(&ones, &ones, r[1]).unwrap();
+    s.b.dot(&s.c, &ones, &ones, r[0]).unwrap();
+    s.b.dot(&s.c, &ones, &ones, r[1]).unwrap();
     let half = s.put(&vec![2.0f64.sqrt(); NX * NY]);
-    s.b.dot(&half, &half, r[1]).unwrap();
-    s.b.axpy_ratio(&mut fy, &fx, r[0], r[1], -1.0).unwrap();
+    s.b.dot(&s.c, &half, &half, r[1]).unwrap();
+    s.b.axpy_ratio(&s.c, &mut fy, &fx, r[0], r[1], -1.0)
+        .unwrap();
     let want: Vec<f64> = (0..NX * NY)
         .map(|i| if s.mask[i] { y[i] - 0.5 * x[i] } else { 0.0 })
         .collect();
     let got = s.get(&fy);
     s.assert_close("axpy_ratio", &got, &want);
-    s.b.axpy_ratio(&mut fy, &fx, r[0], r[2], 1.0).unwrap();
+    s.b.axpy_ratio(&s.c, &mut fy, &fx, r[0], r[2], 1.0).unwrap();
     let got = s.get(&fy);
     s.assert_close("axpy_ratio with 0 denominator", &got, &want);
 }
@@ -272,15 +276,15 @@ fn xpay_ratio<B: Backend>(mut s: Subject<B>) {
     let r = s.slots(3);
     let ones = s.put(&vec![1.0; NX * NY]);
     let two = s.put(&vec![2.0; NX * NY]);
-    s.b.dot(&ones, &ones, r[0]).unwrap();
-    s.b.dot(&two, &two, r[1]).unwrap();
-    s.b.xpay_ratio(&mut fy, &fx, r[0], r[1]).unwrap();
+    s.b.dot(&s.c, &ones, &ones, r[0]).unwrap();
+    s.b.dot(&s.c, &two, &two, r[1]).unwrap();
+    s.b.xpay_ratio(&s.c, &mut fy, &fx, r[0], r[1]).unwrap();
     let want: Vec<f64> = (0..NX * NY)
         .map(|i| if s.mask[i] { x[i] + 0.25 * y[i] } else { 0.0 })
         .collect();
     let got = s.get(&fy);
     s.assert_close("xpay_ratio", &got, &want);
-    s.b.xpay_ratio(&mut fy, &fx, r[0], r[2]).unwrap();
+    s.b.xpay_ratio(&s.c, &mut fy, &fx, r[0], r[2]).unwrap();
     let got = s.get(&fy);
     s.assert_close("xpay_ratio with 0 denominator", &got, &on_c(&x, &s.mask));
 }
@@ -291,7 +295,7 @@ fn lerp<B: Backend>(mut s: Subject<B>) {
     let fa = s.put(&poisoned(&a, &s.mask));
     let fb = s.put(&poisoned(&b, &s.mask));
     let mut dst = s.put(&vec![f64::NAN; NX * NY]);
-    s.b.lerp(&fa, &fb, 0.3, &mut dst).unwrap();
+    s.b.lerp(&s.c, &fa, &fb, 0.3, &mut dst).unwrap();
     let want: Vec<f64> = (0..NX * NY)
         .map(|i| {
             if s.mask[i] {
@@ -315,7 +319,7 @@ fn first_crossing<B: Backend>(mut s: Subject<B>) {
         .collect();
     let fo = s.put(&poisoned(&old, &s.mask));
     let fn_ = s.put(&poisoned(&new, &s.mask));
-    let got = s.b.first_crossing(&fo, &fn_, sigma_c).unwrap();
+    let got = s.b.first_crossing(&s.c, &fo, &fn_, sigma_c).unwrap();
     let want = (0..NX * NY)
         .filter(|&i| s.mask[i] && new[i] < -sigma_c)
         .map(|i| (-sigma_c - old[i]) / (new[i] - old[i]))
@@ -331,7 +335,7 @@ fn max_abs<B: Backend>(mut s: Subject<B>) {
         .map(|x| 3.0 * x - 1.0)
         .collect();
     let f = s.put(&poisoned(&v, &s.mask));
-    let got = s.b.max_abs(&f).unwrap();
+    let got = s.b.max_abs(&s.c, &f).unwrap();
     let want = (0..NX * NY)
         .filter(|&i| s.mask[i])
         .map(|i| v[i].abs())
@@ -360,7 +364,7 @@ fn sweep<B: Backend>(mut s: Subject<B>, attach_at: Option<f64>) {
     let mut fp = s.put(&p);
     let fu = s.put(&u);
     let change =
-        s.b.update_contact(&mut fp, &fu, attach_at, sigma_c)
+        s.b.update_contact(&mut s.c, &mut fp, &fu, attach_at, sigma_c)
             .unwrap();
     let mut want_mask = s.mask.clone();
     let (mut detached, mut attached) = (0, 0);
@@ -380,7 +384,7 @@ fn sweep<B: Backend>(mut s: Subject<B>, attach_at: Option<f64>) {
     assert_eq!((change.detached, change.attached), (detached, attached));
     assert_eq!(change.n_contact, want_mask.iter().filter(|m| **m).count());
     let mut got_mask = vec![false; NX * NY];
-    s.b.contact(&mut got_mask).unwrap();
+    s.b.download_mask(&s.c, &mut got_mask).unwrap();
     assert_eq!(got_mask, want_mask, "the contact set after the sweep");
     let want_p: Vec<f64> = (0..NX * NY)
         .map(|i| if want_mask[i] && s.mask[i] { p[i] } else { 0.0 })
@@ -419,11 +423,10 @@ fn preconditioner<B: Backend>(mut s: Subject<B>) {
     let r = on_c(&pseudo_random(NX * NY, 19), &s.mask);
     let fr = s.put(&r);
     let mut z = s.put(&vec![f64::NAN; NX * NY]);
-    s.b.precondition(&fr, &mut z).unwrap();
+    s.b.precondition(&s.c, &fr, &mut z).unwrap();
     let mut reference = CpuBackend::new(&setup()).unwrap();
-    reference.set_contact(&s.mask).unwrap();
     let mut want = vec![0.0; NX * NY];
-    reference.precondition(&r, &mut want).unwrap();
+    reference.precondition(&s.mask, &r, &mut want).unwrap();
     assert!(want.iter().zip(&s.mask).all(|(v, m)| *m || *v == 0.0));
     let got = s.get(&z);
     s.assert_close("precondition", &got, &want);
@@ -437,7 +440,7 @@ fn fused<B: Backend>(mut s: Subject<B>) {
     let r = s.slots(6);
     // convolve_dot: dst = K s, out = Σ_C s·Ks.
     let mut q = s.put(&vec![f64::NAN; NX * NY]);
-    s.b.convolve_dot(&fs, &mut q, r[0]).unwrap();
+    s.b.convolve_dot(&s.c, &fs, &mut q, r[0]).unwrap();
     let kq = s.get(&q);
     let mut reference = CpuBackend::new(&setup()).unwrap();
     let mut want = vec![0.0; NX * NY];
@@ -455,7 +458,7 @@ fn fused<B: Backend>(mut s: Subject<B>) {
     s.assert_scalar("convolve_dot's s·Ks", got, want_sq, scale);
     // precondition_dot: z = M s, out = Σ_C s·z.
     let mut z = s.put(&vec![f64::NAN; NX * NY]);
-    s.b.precondition_dot(&fs, &mut z, r[1]).unwrap();
+    s.b.precondition_dot(&s.c, &fs, &mut z, r[1]).unwrap();
     let zs = s.get(&z);
     let (want_rz, scale) = dot(&src, &zs);
     let got = s.read(r[1]);
@@ -468,7 +471,7 @@ fn fused<B: Backend>(mut s: Subject<B>) {
     let mut fx = s.put(&x0);
     let mut fr = s.put(&r0);
     let fq = s.put(&poisoned(&kq, &m));
-    s.b.cg_update(&mut fx, &mut fr, &fs, &fq, r[1], r[0], r[2])
+    s.b.cg_update(&s.c, &mut fx, &mut fr, &fs, &fq, r[1], r[0], r[2])
         .unwrap();
     let alpha = want_rz / want_sq;
     let want_x: Vec<f64> = (0..NX * NY)
@@ -499,9 +502,9 @@ fn guard<B: Backend>(mut s: Subject<B>) {
     let mut fs = s.put(&vec![0.0; NX * NY]);
     let mut z = s.put(&vec![0.0; NX * NY]);
     let mut q = s.put(&vec![0.0; NX * NY]);
-    s.b.dot(&fr, &fr, bb).unwrap();
+    s.b.dot(&s.c, &fr, &fr, bb).unwrap();
     // CG's start: z = M r, s = z.
-    s.b.precondition_dot(&fr, &mut z, rz).unwrap();
+    s.b.precondition_dot(&s.c, &fr, &mut z, rz).unwrap();
     s.b.copy(&z, &mut fs).unwrap();
     s.b.guard_cg(Some(CgStop {
         rr,
@@ -511,11 +514,11 @@ fn guard<B: Backend>(mut s: Subject<B>) {
     .unwrap();
     let mut after_first = Vec::new();
     for step in 0..2 {
-        s.b.convolve_dot(&fs, &mut q, sq).unwrap();
-        s.b.cg_update(&mut fx, &mut fr, &fs, &q, rz, sq, rr)
+        s.b.convolve_dot(&s.c, &fs, &mut q, sq).unwrap();
+        s.b.cg_update(&s.c, &mut fx, &mut fr, &fs, &q, rz, sq, rr)
             .unwrap();
-        s.b.precondition_dot(&fr, &mut z, rz_new).unwrap();
-        s.b.xpay_ratio(&mut fs, &z, rz_new, rz).unwrap();
+        s.b.precondition_dot(&s.c, &fr, &mut z, rz_new).unwrap();
+        s.b.xpay_ratio(&s.c, &mut fs, &z, rz_new, rz).unwrap();
         s.b.copy_slot(rz_new, rz).unwrap();
         if step == 0 {
             after_first = s.get(&fx);

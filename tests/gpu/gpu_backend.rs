@@ -97,13 +97,15 @@ fn preconditioner_matches_cpu_with_a_mask() {
             return;
         };
         let m = mask(nx * ny, 5, 0.6);
-        cpu.set_contact(&m).unwrap();
-        gpu.set_contact(&m).unwrap();
+        let mut cpu_c = cpu.mask().unwrap();
+        cpu.upload_mask(&mut cpu_c, &m).unwrap();
+        let mut gpu_c = gpu.mask().unwrap();
+        gpu.upload_mask(&mut gpu_c, &m).unwrap();
         let r = pseudo_random(nx * ny, 11);
         let (cr, gr) = fields(&mut cpu, &mut gpu, &r);
         let (mut cz, mut gz) = (cpu.field().unwrap(), gpu.field().unwrap());
-        cpu.precondition(&cr, &mut cz).unwrap();
-        gpu.precondition(&gr, &mut gz).unwrap();
+        cpu.precondition(&cpu_c, &cr, &mut cz).unwrap();
+        gpu.precondition(&gpu_c, &gr, &mut gz).unwrap();
         let gz = download(&mut gpu, &gz);
         let err = relative(&gz, &cz);
         println!("preconditioner {nx}×{ny}: max relative difference {err:.2e}");
@@ -122,8 +124,10 @@ fn cg_vector_operations_match_cpu() {
     let gs: Vec<Slot> = (0..8).map(|_| gpu.slot().unwrap()).collect();
     let n = nx * ny;
     let m = mask(n, 7, 0.5);
-    cpu.set_contact(&m).unwrap();
-    gpu.set_contact(&m).unwrap();
+    let mut cpu_c = cpu.mask().unwrap();
+    cpu.upload_mask(&mut cpu_c, &m).unwrap();
+    let mut gpu_c = gpu.mask().unwrap();
+    gpu.upload_mask(&mut gpu_c, &m).unwrap();
     let (ca, ga) = fields(&mut cpu, &mut gpu, &pseudo_random(n, 1));
     let (cb, gb) = fields(&mut cpu, &mut gpu, &pseudo_random(n, 2));
     let (mut cy, mut gy) = fields(&mut cpu, &mut gpu, &pseudo_random(n, 3));
@@ -133,24 +137,26 @@ fn cg_vector_operations_match_cpu() {
         assert!(err < 1e-6, "{what}: {err:e}");
     };
 
-    cpu.residual(&ca, 0.7, &mut cy).unwrap();
-    gpu.residual(&ga, 0.7, &mut gy).unwrap();
+    cpu.residual(&cpu_c, &ca, 0.7, &mut cy).unwrap();
+    gpu.residual(&gpu_c, &ga, 0.7, &mut gy).unwrap();
     check("residual", download(&mut gpu, &gy), &cy);
 
     // Slots 0 = a·b, 1 = a·a: ratios computed on the device.
-    cpu.dot(&ca, &cb, cs[0]).unwrap();
-    cpu.dot(&ca, &ca, cs[1]).unwrap();
-    gpu.dot(&ga, &gb, gs[0]).unwrap();
-    gpu.dot(&ga, &ga, gs[1]).unwrap();
-    cpu.axpy_ratio(&mut cy, &cb, cs[0], cs[1], -1.0).unwrap();
-    gpu.axpy_ratio(&mut gy, &gb, gs[0], gs[1], -1.0).unwrap();
+    cpu.dot(&cpu_c, &ca, &cb, cs[0]).unwrap();
+    cpu.dot(&cpu_c, &ca, &ca, cs[1]).unwrap();
+    gpu.dot(&gpu_c, &ga, &gb, gs[0]).unwrap();
+    gpu.dot(&gpu_c, &ga, &ga, gs[1]).unwrap();
+    cpu.axpy_ratio(&cpu_c, &mut cy, &cb, cs[0], cs[1], -1.0)
+        .unwrap();
+    gpu.axpy_ratio(&gpu_c, &mut gy, &gb, gs[0], gs[1], -1.0)
+        .unwrap();
     check("axpy_ratio", download(&mut gpu, &gy), &cy);
-    cpu.xpay_ratio(&mut cy, &ca, cs[1], cs[0]).unwrap();
-    gpu.xpay_ratio(&mut gy, &ga, gs[1], gs[0]).unwrap();
+    cpu.xpay_ratio(&cpu_c, &mut cy, &ca, cs[1], cs[0]).unwrap();
+    gpu.xpay_ratio(&gpu_c, &mut gy, &ga, gs[1], gs[0]).unwrap();
     check("xpay_ratio", download(&mut gpu, &gy), &cy);
     // A zero denominator gives a zero step: y = x.
-    cpu.xpay_ratio(&mut cy, &cb, cs[0], cs[7]).unwrap();
-    gpu.xpay_ratio(&mut gy, &gb, gs[0], gs[7]).unwrap();
+    cpu.xpay_ratio(&cpu_c, &mut cy, &cb, cs[0], cs[7]).unwrap();
+    gpu.xpay_ratio(&gpu_c, &mut gy, &gb, gs[0], gs[7]).unwrap();
     check("xpay_ratio 0/0", download(&mut gpu, &gy), &cy);
     cpu.copy_slot(cs[0], cs[5]).unwrap();
     gpu.copy_slot(gs[0], gs[5]).unwrap();
@@ -160,14 +166,14 @@ fn cg_vector_operations_match_cpu() {
     for (g, c) in g5.iter().zip(c5) {
         assert!((g - c).abs() <= 1e-6 * c.abs(), "slots {g5:?} vs {c5:?}");
     }
-    cpu.lerp(&ca, &cb, 0.3, &mut cy).unwrap();
-    gpu.lerp(&ga, &gb, 0.3, &mut gy).unwrap();
+    cpu.lerp(&cpu_c, &ca, &cb, 0.3, &mut cy).unwrap();
+    gpu.lerp(&gpu_c, &ga, &gb, 0.3, &mut gy).unwrap();
     check("lerp", download(&mut gpu, &gy), &cy);
     cpu.copy(&cb, &mut cy).unwrap();
     gpu.copy(&gb, &mut gy).unwrap();
     check("copy", download(&mut gpu, &gy), &cy);
-    let cm = cpu.measure(&ca, ChordAxes::ALIGNED).unwrap();
-    let gm = gpu.measure(&ga, ChordAxes::ALIGNED).unwrap();
+    let cm = cpu.measure(&cpu_c, &ca, ChordAxes::ALIGNED).unwrap();
+    let gm = gpu.measure(&gpu_c, &ga, ChordAxes::ALIGNED).unwrap();
     assert_eq!(
         (gm.count, gm.half_lengths, gm.bounds),
         (cm.count, cm.half_lengths, cm.bounds)
@@ -185,8 +191,10 @@ fn reductions_match_f64_sums_on_a_large_grid() {
     let gs: Vec<Slot> = (0..8).map(|_| gpu.slot().unwrap()).collect();
     let n = nx * ny;
     let m = mask(n, 13, 0.8);
-    cpu.set_contact(&m).unwrap();
-    gpu.set_contact(&m).unwrap();
+    let mut cpu_c = cpu.mask().unwrap();
+    cpu.upload_mask(&mut cpu_c, &m).unwrap();
+    let mut gpu_c = gpu.mask().unwrap();
+    gpu.upload_mask(&mut gpu_c, &m).unwrap();
     // Positive values: the worst case for a running f32 sum (it keeps growing).
     let a: Vec<f64> = pseudo_random(n, 17).iter().map(|v| 1.0 + 0.5 * v).collect();
     let b: Vec<f64> = pseudo_random(n, 19).iter().map(|v| 2.0 + v).collect();
@@ -200,8 +208,8 @@ fn reductions_match_f64_sums_on_a_large_grid() {
         .filter(|(_, &on)| on)
         .map(|((x, y), _)| (*x as f32 as f64) * (*y as f32 as f64))
         .sum();
-    gpu.dot(&ga, &gb, gs[2]).unwrap();
-    cpu.dot(&ca, &cb, cs[2]).unwrap();
+    gpu.dot(&gpu_c, &ga, &gb, gs[2]).unwrap();
+    cpu.dot(&cpu_c, &ca, &cb, cs[2]).unwrap();
     let mut g = [0.0];
     gpu.read_slots(&[gs[2]], &mut g).unwrap();
     let naive = a
@@ -228,31 +236,33 @@ fn contact_sweep_and_first_crossing_match_cpu() {
     // A ring of contact away from the edge plus some elements on it.
     let mut m = mask(n, 23, 0.5);
     m[5] = true;
-    cpu.set_contact(&m).unwrap();
-    gpu.set_contact(&m).unwrap();
+    let mut cpu_c = cpu.mask().unwrap();
+    cpu.upload_mask(&mut cpu_c, &m).unwrap();
+    let mut gpu_c = gpu.mask().unwrap();
+    gpu.upload_mask(&mut gpu_c, &m).unwrap();
     let p_old: Vec<f64> = pseudo_random(n, 29).iter().map(|v| 0.5 * v).collect();
     let p_new: Vec<f64> = pseudo_random(n, 31).iter().map(|v| 2.0 * v).collect();
     let (c_old, g_old) = fields(&mut cpu, &mut gpu, &p_old);
     let (mut c_new, mut g_new) = fields(&mut cpu, &mut gpu, &p_new);
     let sigma = 0.6;
-    let tc = cpu.first_crossing(&c_old, &c_new, sigma).unwrap();
-    let tg = gpu.first_crossing(&g_old, &g_new, sigma).unwrap();
+    let tc = cpu.first_crossing(&cpu_c, &c_old, &c_new, sigma).unwrap();
+    let tg = gpu.first_crossing(&gpu_c, &g_old, &g_new, sigma).unwrap();
     println!("first crossing: CPU {tc:.7}, GPU {tg:.7}");
     assert!((tc - tg).abs() < 1e-6);
     let u: Vec<f64> = pseudo_random(n, 37).iter().map(|v| 0.2 * v).collect();
     let (cu, gu) = fields(&mut cpu, &mut gpu, &u);
     let cc = cpu
-        .update_contact(&mut c_new, &cu, Some(0.35), sigma)
+        .update_contact(&mut cpu_c, &mut c_new, &cu, Some(0.35), sigma)
         .unwrap();
     let gc = gpu
-        .update_contact(&mut g_new, &gu, Some(0.35), sigma)
+        .update_contact(&mut gpu_c, &mut g_new, &gu, Some(0.35), sigma)
         .unwrap();
     println!("contact sweep: CPU {cc:?}, GPU {gc:?}");
     assert_eq!(gc, cc);
     assert!(cc.detached > 0 && cc.attached > 0 && cc.at_edge > 0);
     let (mut cm, mut gm) = (vec![false; n], vec![false; n]);
-    cpu.contact(&mut cm).unwrap();
-    gpu.contact(&mut gm).unwrap();
+    cpu.download_mask(&cpu_c, &mut cm).unwrap();
+    gpu.download_mask(&gpu_c, &mut gm).unwrap();
     assert_eq!(gm, cm);
     assert_eq!(
         download(&mut gpu, &g_new),
@@ -279,18 +289,20 @@ fn slow_repeated_convolutions_do_not_grow_memory() {
     };
     let a = gpu.field().unwrap();
     let mut b = gpu.field().unwrap();
+    let mut gpu_c = gpu.mask().unwrap();
+    gpu.upload_mask(&mut gpu_c, &vec![true; 64 * 64]).unwrap();
     let slot = gpu.slot().unwrap();
     let mut v = [0.0];
     // Warm-up: pipelines, caches and the allocator settle.
     for _ in 0..100 {
         gpu.convolve(&a, &mut b).unwrap();
-        gpu.precondition(&a, &mut b).unwrap();
+        gpu.precondition(&gpu_c, &a, &mut b).unwrap();
         gpu.read_slots(&[slot], &mut v).unwrap();
     }
     let settled = resident_kib().unwrap();
     for _ in 0..1000 {
         gpu.convolve(&a, &mut b).unwrap();
-        gpu.precondition(&a, &mut b).unwrap();
+        gpu.precondition(&gpu_c, &a, &mut b).unwrap();
         gpu.read_slots(&[slot], &mut v).unwrap();
     }
     let after = resident_kib().unwrap();

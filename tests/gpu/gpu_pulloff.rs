@@ -149,7 +149,8 @@ fn losing_the_device_mid_run_keeps_the_states_and_says_so() {
     }
     // The backend stays usable as a value and keeps saying the device is gone.
     let mut mask = vec![false; model.nx * model.ny];
-    match gpu.contact(&mut mask) {
+    let unread = gpu.mask();
+    match unread.and_then(|c| gpu.download_mask(&c, &mut mask)) {
         Err(BackendError::DeviceLost { .. }) => {}
         other => panic!("a read after the loss should say the device is lost, got {other:?}"),
     }
@@ -171,11 +172,13 @@ fn large_grid_cg(nx: usize) {
     let Some(mut gpu) = gpu_backend(&model.grid_setup()) else {
         return;
     };
-    gpu.set_contact(&model.initial_contact()).unwrap();
+    let mut gpu_c = gpu.mask().unwrap();
+    gpu.upload_mask(&mut gpu_c, &model.initial_contact())
+        .unwrap();
     let mut work = CgWork::new(&mut gpu).unwrap();
     let mut p = gpu.field().unwrap();
     let start = std::time::Instant::now();
-    let report = cg::solve(&mut gpu, &mut work, &mut p, model.d0, &model.cg).unwrap();
+    let report = cg::solve(&mut gpu, &gpu_c, &mut work, &mut p, model.d0, &model.cg).unwrap();
     let wall = start.elapsed().as_secs_f64();
     let (mut u, mut r, zero) = (
         gpu.field().unwrap(),
@@ -183,13 +186,13 @@ fn large_grid_cg(nx: usize) {
         gpu.field().unwrap(),
     );
     let slot = gpu.slot().unwrap();
-    gpu.residual(&zero, model.d0, &mut r).unwrap();
-    gpu.dot(&r, &r, slot).unwrap();
+    gpu.residual(&gpu_c, &zero, model.d0, &mut r).unwrap();
+    gpu.dot(&gpu_c, &r, &r, slot).unwrap();
     let mut bb = [0.0];
     gpu.read_slots(&[slot], &mut bb).unwrap();
     gpu.convolve(&p, &mut u).unwrap();
-    gpu.residual(&u, model.d0, &mut r).unwrap();
-    gpu.dot(&r, &r, slot).unwrap();
+    gpu.residual(&gpu_c, &u, model.d0, &mut r).unwrap();
+    gpu.dot(&gpu_c, &r, &r, slot).unwrap();
     let mut rr = [0.0];
     gpu.read_slots(&[slot], &mut rr).unwrap();
     println!(

@@ -25,7 +25,9 @@ fn per_iteration(model: &Model, pre: Preconditioner, n: usize) -> Option<(f64, f
     let mut setup = model.grid_setup();
     setup.preconditioner = pre;
     let mut gpu = gpu_backend(&setup)?;
-    gpu.set_contact(&model.initial_contact()).unwrap();
+    let mut gpu_c = gpu.mask().unwrap();
+    gpu.upload_mask(&mut gpu_c, &model.initial_contact())
+        .unwrap();
     let mut work = CgWork::new(&mut gpu).unwrap();
     let mut p = gpu.field().unwrap();
     let mut solve = |iterations: usize| -> (Counters, usize) {
@@ -37,7 +39,7 @@ fn per_iteration(model: &Model, pre: Preconditioner, n: usize) -> Option<(f64, f
             accept: 1e-5,
         };
         let before = gpu.counters();
-        let made = cg::solve(&mut gpu, &mut work, &mut p, model.d0, &settings)
+        let made = cg::solve(&mut gpu, &gpu_c, &mut work, &mut p, model.d0, &settings)
             .unwrap()
             .iterations;
         let after = gpu.counters();

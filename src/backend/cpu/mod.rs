@@ -22,7 +22,6 @@ pub struct CpuBackend {
     convolution: SpectralFilter,
     preconditioner: Option<SpectralFilter>,
     profile: Vec<f64>,
-    mask: Vec<bool>,
     /// Whether the convolution is the unpadded, periodic one.
     periodic: bool,
     /// Scratch for the masked preconditioner input.
@@ -76,7 +75,6 @@ impl CpuBackend {
             convolution,
             preconditioner,
             profile: setup.profile.clone(),
-            mask: vec![false; nx * ny],
             periodic,
             scratch: vec![0.0; nx * ny],
             slots: Vec::new(),
@@ -114,6 +112,7 @@ fn periodic_kernel(nx: usize, ny: usize, dx: f64, e: f64) -> Vec<f64> {
 
 impl Device for CpuBackend {
     type Field = Vec<f64>;
+    type Mask = Vec<bool>;
     fn name(&self) -> &'static str {
         if self.periodic {
             "cpu-periodic"
@@ -149,6 +148,21 @@ impl Device for CpuBackend {
         dst.copy_from_slice(src);
         Ok(())
     }
+    fn mask(&mut self) -> Result<Vec<bool>, BackendError> {
+        Ok(vec![false; self.nx * self.ny])
+    }
+    fn upload_mask(&mut self, dst: &mut Vec<bool>, host: &[bool]) -> Result<(), BackendError> {
+        dst.copy_from_slice(host);
+        Ok(())
+    }
+    fn download_mask(&mut self, src: &Vec<bool>, host: &mut [bool]) -> Result<(), BackendError> {
+        host.copy_from_slice(src);
+        Ok(())
+    }
+    fn copy_mask(&mut self, src: &Vec<bool>, dst: &mut Vec<bool>) -> Result<(), BackendError> {
+        dst.copy_from_slice(src);
+        Ok(())
+    }
 }
 
 impl Scalars for CpuBackend {
@@ -173,11 +187,15 @@ impl ElasticOperator for CpuBackend {
         self.convolution.apply(src, dst);
         Ok(())
     }
-    fn precondition(&mut self, src: &Vec<f64>, dst: &mut Vec<f64>) -> Result<(), BackendError> {
+    fn precondition(
+        &mut self,
+        mask: &Vec<bool>,
+        src: &Vec<f64>,
+        dst: &mut Vec<f64>,
+    ) -> Result<(), BackendError> {
         match &mut self.preconditioner {
             None => dst.copy_from_slice(src),
             Some(f) => {
-                let mask = &self.mask;
                 self.scratch
                     .par_iter_mut()
                     .with_min_len(PAR_MIN)
@@ -199,16 +217,27 @@ impl ElasticOperator for CpuBackend {
 }
 
 impl CgKernels for CpuBackend {
-    fn residual(&mut self, u: &Vec<f64>, d: f64, r: &mut Vec<f64>) -> Result<(), BackendError> {
-        let (h, mask) = (&self.profile, &self.mask);
+    fn residual(
+        &mut self,
+        mask: &Vec<bool>,
+        u: &Vec<f64>,
+        d: f64,
+        r: &mut Vec<f64>,
+    ) -> Result<(), BackendError> {
+        let h = &self.profile;
         r.par_iter_mut()
             .with_min_len(PAR_MIN)
             .enumerate()
             .for_each(|(i, ri)| *ri = if mask[i] { d - h[i] - u[i] } else { 0.0 });
         Ok(())
     }
-    fn dot(&mut self, a: &Vec<f64>, b: &Vec<f64>, out: Slot) -> Result<(), BackendError> {
-        let mask = &self.mask;
+    fn dot(
+        &mut self,
+        mask: &Vec<bool>,
+        a: &Vec<f64>,
+        b: &Vec<f64>,
+        out: Slot,
+    ) -> Result<(), BackendError> {
         self.slots[out.index()] = a
             .par_iter()
             .with_min_len(PAR_MIN)
@@ -220,6 +249,7 @@ impl CgKernels for CpuBackend {
     }
     fn axpy_ratio(
         &mut self,
+        mask: &Vec<bool>,
         y: &mut Vec<f64>,
         x: &Vec<f64>,
         num: Slot,
@@ -227,7 +257,6 @@ impl CgKernels for CpuBackend {
         sign: f64,
     ) -> Result<(), BackendError> {
         let a = sign * self.ratio(num, den);
-        let mask = &self.mask;
         y.par_iter_mut()
             .with_min_len(PAR_MIN)
             .zip(x.par_iter().zip(mask.par_iter()))
@@ -240,13 +269,13 @@ impl CgKernels for CpuBackend {
     }
     fn xpay_ratio(
         &mut self,
+        mask: &Vec<bool>,
         y: &mut Vec<f64>,
         x: &Vec<f64>,
         num: Slot,
         den: Slot,
     ) -> Result<(), BackendError> {
         let b = self.ratio(num, den);
-        let mask = &self.mask;
         y.par_iter_mut()
             .with_min_len(PAR_MIN)
             .zip(x.par_iter().zip(mask.par_iter()))
@@ -256,16 +285,9 @@ impl CgKernels for CpuBackend {
 }
 
 impl ContactKernels for CpuBackend {
-    fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError> {
-        self.mask.copy_from_slice(mask);
-        Ok(())
-    }
-    fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError> {
-        mask.copy_from_slice(&self.mask);
-        Ok(())
-    }
     fn update_contact(
         &mut self,
+        mask: &mut Vec<bool>,
         p: &mut Vec<f64>,
         u: &Vec<f64>,
         attach_at: Option<f64>,
@@ -274,8 +296,7 @@ impl ContactKernels for CpuBackend {
         let (nx, ny) = (self.nx, self.ny);
         let h = &self.profile;
         let (attach, d) = (attach_at.is_some(), attach_at.unwrap_or(0.0));
-        let (detached, attached) = self
-            .mask
+        let (detached, attached) = mask
             .par_iter_mut()
             .with_min_len(PAR_MIN)
             .zip(p.par_iter_mut())
@@ -300,8 +321,7 @@ impl ContactKernels for CpuBackend {
                 out
             })
             .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
-        let n_contact = self.mask.par_iter().filter(|&&m| m).count();
-        let mask = &self.mask;
+        let n_contact = mask.par_iter().filter(|&&m| m).count();
         let on = |x: usize, y: usize| mask[y * nx + x] as usize;
         let rows_edge: usize = (0..nx).map(|x| on(x, 0) + on(x, ny - 1)).sum();
         let cols_edge: usize = (1..ny - 1).map(|y| on(0, y) + on(nx - 1, y)).sum();
@@ -315,11 +335,11 @@ impl ContactKernels for CpuBackend {
     }
     fn first_crossing(
         &mut self,
+        mask: &Vec<bool>,
         p_old: &Vec<f64>,
         p_new: &Vec<f64>,
         sigma_c: f64,
     ) -> Result<f64, BackendError> {
-        let mask = &self.mask;
         Ok(p_old
             .par_iter()
             .with_min_len(PAR_MIN)
@@ -333,8 +353,7 @@ impl ContactKernels for CpuBackend {
             })
             .reduce(|| 1.0, f64::min))
     }
-    fn max_abs(&mut self, f: &Vec<f64>) -> Result<f64, BackendError> {
-        let mask = &self.mask;
+    fn max_abs(&mut self, mask: &Vec<bool>, f: &Vec<f64>) -> Result<f64, BackendError> {
         Ok(f.par_iter()
             .with_min_len(PAR_MIN)
             .zip(mask.par_iter())
@@ -343,12 +362,12 @@ impl ContactKernels for CpuBackend {
     }
     fn lerp(
         &mut self,
+        mask: &Vec<bool>,
         a: &Vec<f64>,
         b: &Vec<f64>,
         t: f64,
         dst: &mut Vec<f64>,
     ) -> Result<(), BackendError> {
-        let mask = &self.mask;
         dst.par_iter_mut()
             .with_min_len(PAR_MIN)
             .enumerate()
@@ -361,8 +380,12 @@ impl ContactKernels for CpuBackend {
             });
         Ok(())
     }
-    fn measure(&mut self, p: &Vec<f64>, axes: ChordAxes) -> Result<ContactMeasure, BackendError> {
-        let mask = &self.mask;
+    fn measure(
+        &mut self,
+        mask: &Vec<bool>,
+        p: &Vec<f64>,
+        axes: ChordAxes,
+    ) -> Result<ContactMeasure, BackendError> {
         let (sum, count) = p
             .par_iter()
             .with_min_len(PAR_MIN)
@@ -372,17 +395,5 @@ impl ContactKernels for CpuBackend {
         Ok(measure::with_shape(
             sum, count, mask, self.nx, self.ny, axes,
         ))
-    }
-    fn save_contact(&mut self, dst: &mut Vec<f64>) -> Result<(), BackendError> {
-        for (d, &m) in dst.iter_mut().zip(&self.mask) {
-            *d = if m { 1.0 } else { 0.0 };
-        }
-        Ok(())
-    }
-    fn restore_contact(&mut self, src: &Vec<f64>) -> Result<(), BackendError> {
-        for (m, &v) in self.mask.iter_mut().zip(src) {
-            *m = v != 0.0;
-        }
-        Ok(())
     }
 }

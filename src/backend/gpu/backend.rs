@@ -35,6 +35,12 @@ pub struct GpuField {
     buffer: wgpu::Buffer,
 }
 
+/// A contact set on the device: one u32 per element (1 = in contact), read by every kernel
+/// that works on C.
+pub struct GpuMask {
+    buffer: wgpu::Buffer,
+}
+
 /// Uniform parameters of shaders/vector.wgsl (`struct Params`).
 #[repr(C)]
 #[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -161,7 +167,9 @@ pub struct GpuBackend {
     convolution: GpuSpectralFilter,
     preconditioner: Option<GpuSpectralFilter>,
     profile: wgpu::Buffer,
-    mask: wgpu::Buffer,
+    /// Bound to the mask binding of a kernel that does not read it (the unmasked
+    /// convolution): the kernels' layouts share that binding.
+    no_mask: wgpu::Buffer,
     /// CG's scalar slots with their pending partials (shaders/shared/slots.wgsl).
     scalars: wgpu::Buffer,
     /// Partials of each slot as last produced (for the byte counts of their consumers).
@@ -291,7 +299,7 @@ impl GpuBackend {
             convolution,
             preconditioner,
             profile,
-            mask: storage(&ctx, "contact mask", n as u64 * 4),
+            no_mask: storage(&ctx, "unread mask", n as u64 * 4),
             scalars: storage(&ctx, "scalars", scalars_bytes()),
             pending: [0; SLOTS],
             guard: None,
@@ -366,6 +374,7 @@ impl GpuBackend {
     fn filter(
         &mut self,
         which: Filter,
+        mask: &wgpu::Buffer,
         src: &GpuField,
         dst: &GpuField,
         dot: Option<Slot>,
@@ -377,7 +386,7 @@ impl GpuBackend {
                 None => {
                     self.copy_grid(&src.buffer, &dst.buffer);
                     return match dot {
-                        Some(out) => self.dot(src, dst, out),
+                        Some(out) => self.dot_on(mask, src, dst, out),
                         None => Ok(()),
                     };
                 }
@@ -391,7 +400,7 @@ impl GpuBackend {
             &self.scalars,
             &src.buffer,
             &dst.buffer,
-            &self.mask,
+            mask,
             which == Filter::Preconditioner,
             dot.map(|out| (out, &src.buffer)),
         );
@@ -400,6 +409,29 @@ impl GpuBackend {
         if let Some(out) = dot {
             self.pending[out.index()] = filter.row_groups();
         }
+        Ok(())
+    }
+
+    /// slots\[out\] = Σ over the mask `mask` of a·b.
+    fn dot_on(
+        &mut self,
+        mask: &wgpu::Buffer,
+        a: &GpuField,
+        b: &GpuField,
+        out: Slot,
+    ) -> Result<(), BackendError> {
+        let params = VectorParams {
+            out: out.index() as u32,
+            ..self.vector_params()
+        };
+        let mask = mask.clone();
+        let bytes = traffic::dot(self.n());
+        self.pending[out.index()] = self.strided(
+            |k| &k.dot,
+            params,
+            &[(1, &a.buffer), (2, &b.buffer), (4, &mask)],
+            bytes,
+        )?;
         Ok(())
     }
 
@@ -457,6 +489,7 @@ impl GpuBackend {
     fn reduce(
         &mut self,
         kind: Reduction,
+        mask: &wgpu::Buffer,
         a: &wgpu::Buffer,
         b: &wgpu::Buffer,
         out: u32,
@@ -506,7 +539,7 @@ impl GpuBackend {
                     &[
                         (0, &p),
                         (1, a),
-                        (3, &self.mask),
+                        (3, mask),
                         (4, &self.partials),
                         (5, &self.counts),
                     ],
@@ -528,15 +561,9 @@ impl GpuBackend {
             }
             Reduction::Crossing | Reduction::MaxAbs => {
                 let fields: &[(u32, &wgpu::Buffer)] = if matches!(kind, Reduction::Crossing) {
-                    &[
-                        (0, &p),
-                        (1, a),
-                        (2, b),
-                        (3, &self.mask),
-                        (4, &self.partials),
-                    ]
+                    &[(0, &p), (1, a), (2, b), (3, mask), (4, &self.partials)]
                 } else {
-                    &[(0, &p), (1, a), (3, &self.mask), (4, &self.partials)]
+                    &[(0, &p), (1, a), (3, mask), (4, &self.partials)]
                 };
                 self.rec.dispatch(
                     &self.ctx,
@@ -592,6 +619,7 @@ impl GpuBackend {
 
 impl Device for GpuBackend {
     type Field = GpuField;
+    type Mask = GpuMask;
     fn name(&self) -> &'static str {
         "gpu"
     }
@@ -629,6 +657,34 @@ impl Device for GpuBackend {
         Ok(())
     }
     fn copy(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
+        self.copy_grid(&src.buffer, &dst.buffer);
+        Ok(())
+    }
+    fn mask(&mut self) -> Result<GpuMask, BackendError> {
+        let buffer = storage(&self.ctx, "contact mask", self.n() as u64 * 4);
+        self.ctx.check()?;
+        Ok(GpuMask { buffer })
+    }
+    fn upload_mask(&mut self, dst: &mut GpuMask, host: &[bool]) -> Result<(), BackendError> {
+        self.check_len(host.len())?;
+        self.rec.flush(&self.ctx)?;
+        let v: Vec<u32> = host.iter().map(|&m| m as u32).collect();
+        self.ctx
+            .queue()
+            .write_buffer(&dst.buffer, 0, bytemuck::cast_slice(&v));
+        Ok(())
+    }
+    fn download_mask(&mut self, src: &GpuMask, host: &mut [bool]) -> Result<(), BackendError> {
+        self.check_len(host.len())?;
+        let v: Vec<u32> = self
+            .rec
+            .read(&self.ctx, &src.buffer, 0, self.n() as u64 * 4)?;
+        for (m, x) in host.iter_mut().zip(v) {
+            *m = x != 0;
+        }
+        Ok(())
+    }
+    fn copy_mask(&mut self, src: &GpuMask, dst: &mut GpuMask) -> Result<(), BackendError> {
         self.copy_grid(&src.buffer, &dst.buffer);
         Ok(())
     }
@@ -677,10 +733,16 @@ impl Scalars for GpuBackend {
 
 impl ElasticOperator for GpuBackend {
     fn convolve(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
-        self.filter(Filter::Convolution, src, dst, None)
+        let unread = self.no_mask.clone();
+        self.filter(Filter::Convolution, &unread, src, dst, None)
     }
-    fn precondition(&mut self, src: &GpuField, dst: &mut GpuField) -> Result<(), BackendError> {
-        self.filter(Filter::Preconditioner, src, dst, None)
+    fn precondition(
+        &mut self,
+        c: &GpuMask,
+        src: &GpuField,
+        dst: &mut GpuField,
+    ) -> Result<(), BackendError> {
+        self.filter(Filter::Preconditioner, &c.buffer, src, dst, None)
     }
 }
 
@@ -695,26 +757,34 @@ impl CgKernels for GpuBackend {
     }
     fn convolve_dot(
         &mut self,
+        c: &GpuMask,
         src: &GpuField,
         dst: &mut GpuField,
         out: Slot,
     ) -> Result<(), BackendError> {
-        self.filter(Filter::Convolution, src, dst, Some(out))
+        self.filter(Filter::Convolution, &c.buffer, src, dst, Some(out))
     }
     fn precondition_dot(
         &mut self,
+        c: &GpuMask,
         src: &GpuField,
         dst: &mut GpuField,
         out: Slot,
     ) -> Result<(), BackendError> {
-        self.filter(Filter::Preconditioner, src, dst, Some(out))
+        self.filter(Filter::Preconditioner, &c.buffer, src, dst, Some(out))
     }
-    fn residual(&mut self, u: &GpuField, d: f64, r: &mut GpuField) -> Result<(), BackendError> {
+    fn residual(
+        &mut self,
+        c: &GpuMask,
+        u: &GpuField,
+        d: f64,
+        r: &mut GpuField,
+    ) -> Result<(), BackendError> {
         let params = VectorParams {
             scalar: d as f32,
             ..self.vector_params()
         };
-        let (mask, profile) = (self.mask.clone(), self.profile.clone());
+        let (mask, profile) = (c.buffer.clone(), self.profile.clone());
         self.elementwise(
             |k| &k.residual,
             params,
@@ -722,23 +792,18 @@ impl CgKernels for GpuBackend {
             4,
         )
     }
-    fn dot(&mut self, a: &GpuField, b: &GpuField, out: Slot) -> Result<(), BackendError> {
-        let params = VectorParams {
-            out: out.index() as u32,
-            ..self.vector_params()
-        };
-        let mask = self.mask.clone();
-        let bytes = traffic::dot(self.n());
-        self.pending[out.index()] = self.strided(
-            |k| &k.dot,
-            params,
-            &[(1, &a.buffer), (2, &b.buffer), (4, &mask)],
-            bytes,
-        )?;
-        Ok(())
+    fn dot(
+        &mut self,
+        c: &GpuMask,
+        a: &GpuField,
+        b: &GpuField,
+        out: Slot,
+    ) -> Result<(), BackendError> {
+        self.dot_on(&c.buffer, a, b, out)
     }
     fn axpy_ratio(
         &mut self,
+        c: &GpuMask,
         y: &mut GpuField,
         x: &GpuField,
         num: Slot,
@@ -751,7 +816,7 @@ impl CgKernels for GpuBackend {
             sign: sign as f32,
             ..self.vector_params()
         };
-        let mask = self.mask.clone();
+        let mask = c.buffer.clone();
         let bytes = traffic::axpy_ratio(self.n(), self.partials_of(num, den));
         self.strided(
             |k| &k.axpy_ratio,
@@ -763,6 +828,7 @@ impl CgKernels for GpuBackend {
     }
     fn xpay_ratio(
         &mut self,
+        c: &GpuMask,
         y: &mut GpuField,
         x: &GpuField,
         num: Slot,
@@ -784,7 +850,7 @@ impl CgKernels for GpuBackend {
                 ..self.vector_params()
             },
         };
-        let mask = self.mask.clone();
+        let mask = c.buffer.clone();
         let bytes = traffic::xpay_ratio(self.n(), self.partials_of(num, den));
         self.strided(
             |k| &k.xpay_ratio,
@@ -796,6 +862,7 @@ impl CgKernels for GpuBackend {
     }
     fn cg_update(
         &mut self,
+        c: &GpuMask,
         x: &mut GpuField,
         r: &mut GpuField,
         s: &GpuField,
@@ -811,7 +878,7 @@ impl CgKernels for GpuBackend {
             guarded: self.guard.is_some() as u32,
             ..self.vector_params()
         };
-        let mask = self.mask.clone();
+        let mask = c.buffer.clone();
         let bytes = traffic::cg_update(self.n(), self.partials_of(num, den));
         self.pending[rr.index()] = self.strided(
             |k| &k.cg_update,
@@ -849,27 +916,9 @@ impl CgKernels for GpuBackend {
 }
 
 impl ContactKernels for GpuBackend {
-    fn set_contact(&mut self, mask: &[bool]) -> Result<(), BackendError> {
-        self.check_len(mask.len())?;
-        self.rec.flush(&self.ctx)?;
-        let v: Vec<u32> = mask.iter().map(|&m| m as u32).collect();
-        self.ctx
-            .queue()
-            .write_buffer(&self.mask, 0, bytemuck::cast_slice(&v));
-        Ok(())
-    }
-    fn contact(&mut self, mask: &mut [bool]) -> Result<(), BackendError> {
-        self.check_len(mask.len())?;
-        let v: Vec<u32> = self
-            .rec
-            .read(&self.ctx, &self.mask, 0, self.n() as u64 * 4)?;
-        for (m, x) in mask.iter_mut().zip(v) {
-            *m = x != 0;
-        }
-        Ok(())
-    }
     fn update_contact(
         &mut self,
+        c: &mut GpuMask,
         p: &mut GpuField,
         u: &GpuField,
         attach_at: Option<f64>,
@@ -896,23 +945,24 @@ impl ContactKernels for GpuBackend {
                 (0, &prm),
                 (1, &p.buffer),
                 (2, &u.buffer),
-                (3, &self.mask),
+                (3, &c.buffer),
                 (4, &self.profile),
                 (5, &self.contact_counters),
             ],
             grid,
             bytes,
         )?;
-        let c: Vec<u32> = self.rec.read(&self.ctx, &self.contact_counters, 0, 16)?;
+        let n: Vec<u32> = self.rec.read(&self.ctx, &self.contact_counters, 0, 16)?;
         Ok(ContactChange {
-            detached: c[0] as usize,
-            attached: c[1] as usize,
-            n_contact: c[2] as usize,
-            at_edge: c[3] as usize,
+            detached: n[0] as usize,
+            attached: n[1] as usize,
+            n_contact: n[2] as usize,
+            at_edge: n[3] as usize,
         })
     }
     fn first_crossing(
         &mut self,
+        c: &GpuMask,
         p_old: &GpuField,
         p_new: &GpuField,
         sigma_c: f64,
@@ -920,6 +970,7 @@ impl ContactKernels for GpuBackend {
         let min_slot = self.min_slot.index() as u32;
         self.reduce(
             Reduction::Crossing,
+            &c.buffer,
             &p_old.buffer,
             &p_new.buffer,
             min_slot,
@@ -927,13 +978,21 @@ impl ContactKernels for GpuBackend {
         )?;
         Ok(self.read_values(min_slot as usize, 1)?[0] as f64)
     }
-    fn max_abs(&mut self, f: &GpuField) -> Result<f64, BackendError> {
+    fn max_abs(&mut self, c: &GpuMask, f: &GpuField) -> Result<f64, BackendError> {
         let min_slot = self.min_slot.index() as u32;
-        self.reduce(Reduction::MaxAbs, &f.buffer, &f.buffer, min_slot, 0.0)?;
+        self.reduce(
+            Reduction::MaxAbs,
+            &c.buffer,
+            &f.buffer,
+            &f.buffer,
+            min_slot,
+            0.0,
+        )?;
         Ok(-(self.read_values(min_slot as usize, 1)?[0] as f64))
     }
     fn lerp(
         &mut self,
+        c: &GpuMask,
         a: &GpuField,
         b: &GpuField,
         t: f64,
@@ -943,7 +1002,7 @@ impl ContactKernels for GpuBackend {
             scalar: t as f32,
             ..self.vector_params()
         };
-        let mask = self.mask.clone();
+        let mask = c.buffer.clone();
         self.elementwise(
             |k| &k.lerp,
             params,
@@ -951,10 +1010,16 @@ impl ContactKernels for GpuBackend {
             4,
         )
     }
-    fn measure(&mut self, p: &GpuField, axes: ChordAxes) -> Result<ContactMeasure, BackendError> {
+    fn measure(
+        &mut self,
+        c: &GpuMask,
+        p: &GpuField,
+        axes: ChordAxes,
+    ) -> Result<ContactMeasure, BackendError> {
         let sum_slot = self.sum_slot.index() as u32;
         self.reduce(
             Reduction::Measure(axes),
+            &c.buffer,
             &p.buffer,
             &p.buffer,
             sum_slot,
@@ -970,17 +1035,6 @@ impl ContactKernels for GpuBackend {
             half_lengths: (value(6) / 2.0, value(7) / 2.0),
             bounds: (count > 0).then(|| [1, 2, 3, 4].map(|k| v[k] as usize)),
         })
-    }
-    fn save_contact(&mut self, dst: &mut GpuField) -> Result<(), BackendError> {
-        // The mask's u32 words, bit for bit: the field is only storage here.
-        let mask = self.mask.clone();
-        self.copy_grid(&mask, &dst.buffer);
-        Ok(())
-    }
-    fn restore_contact(&mut self, src: &GpuField) -> Result<(), BackendError> {
-        let mask = self.mask.clone();
-        self.copy_grid(&src.buffer, &mask);
-        Ok(())
     }
 }
 
