@@ -2,7 +2,7 @@
 // detach elements of C with p < −σ_c, attach elements off C whose gap g = h − d + u < 0
 // (unless the sweep only detaches), then p = 0 off C; count detached, attached, |C| and the elements of C on the domain's
 // outer ring (workgroup atomics, then one global atomic per workgroup and counter).
-// CPU twin: `CpuBackend::update_contact`.
+// The rule for one element is `backend::rules::sweep_element`; CPU twin: `CpuBackend::update_contact`.
 
 // Must stay in sync with `ContactParams` in src/backend/gpu/backend.rs.
 struct Params {

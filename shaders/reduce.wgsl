@@ -6,8 +6,9 @@
 // keeps a compensated (Kahan) running sum, then the workgroup adds its 256 sums as a
 // pairwise tree) into partials[g]; one workgroup then combines the G partials into a slot
 // (shared/slots.wgsl). The rounding error grows like log2(n) instead of n.
-// CPU twins: `jkrbem::backend::measure::measure_mask` and the f64 `first_crossing` and
-// `max_abs` of `jkrbem::backend::cpu::CpuBackend`.
+// CPU twins: `jkrbem::backend::measure::measure_mask`, `jkrbem::backend::rules::
+// crossing_fraction` (the rule per element) and the f64 `max_abs` of
+// `jkrbem::backend::cpu::CpuBackend`.
 
 // Must stay in sync with `ReduceParams` in src/backend/gpu/backend.rs.
 struct Params {

@@ -30,6 +30,7 @@ pub mod cpu;
 pub mod gpu;
 pub mod kernel;
 pub mod measure;
+pub mod rules;
 pub mod select;
 
 pub use crate::setup::{ChordAxes, GridSetup, Preconditioner};

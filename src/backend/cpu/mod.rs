@@ -5,6 +5,7 @@ pub mod spectral;
 
 use super::kernel::{padded_kernel, stiffness_spectrum};
 use super::measure::{self, ChordAxes, ContactMeasure};
+use super::rules::{self, Flip};
 use super::{
     BackendError, CgKernels, ContactChange, ContactKernels, Device, ElasticOperator, GridSetup,
     Preconditioner, Scalars, Slot,
@@ -302,17 +303,13 @@ impl ContactKernels for CpuBackend {
             .zip(p.par_iter_mut())
             .enumerate()
             .map(|(i, (m, pi))| {
-                let flip = if *m {
-                    *pi < -sigma_c
-                } else {
-                    attach && h[i] - d + u[i] < 0.0
+                let gap = attach.then(|| h[i] - d + u[i]);
+                let out = match rules::sweep_element(*m, *pi, gap, sigma_c) {
+                    Flip::Detach => (1, 0),
+                    Flip::Attach => (0, 1),
+                    Flip::Keep => (0, 0),
                 };
-                let out = match (flip, *m) {
-                    (true, true) => (1, 0),
-                    (true, false) => (0, 1),
-                    _ => (0, 0),
-                };
-                if flip {
+                if out != (0, 0) {
                     *m = !*m;
                 }
                 if !*m {
@@ -345,8 +342,8 @@ impl ContactKernels for CpuBackend {
             .with_min_len(PAR_MIN)
             .zip(p_new.par_iter().zip(mask.par_iter()))
             .map(|(&a, (&b, &m))| {
-                if m && b < -sigma_c && b < a {
-                    ((-sigma_c - a) / (b - a)).clamp(0.0, 1.0)
+                if m {
+                    rules::crossing_fraction(a, b, sigma_c)
                 } else {
                     1.0
                 }
