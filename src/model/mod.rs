@@ -2,10 +2,9 @@
 //! steps and the CG settings, in modules: `limits` (ranges and sizes), `error`, `options` (what
 //! a caller chooses) and `grid` (the grid against the scene); this module builds the model.
 
-use crate::scene::Scene;
+use crate::scene::{FirstContact, Scene};
 use crate::setup::Preconditioner;
 use crate::text::compact;
-use crate::theory::hertz::HertzContact;
 
 mod error;
 mod grid;
@@ -32,7 +31,7 @@ pub struct Model {
     /// Detachment stress σ_c (force/length²).
     pub sigma_c: f64,
     /// The initial non-adhesive (Hertz) contact the approach aims at.
-    pub initial: HertzContact,
+    pub initial: FirstContact,
     /// Approach of the first, non-adhesive press, d0 (length).
     pub d0: f64,
     /// Decrement of d per load step (length).

@@ -6,11 +6,12 @@ use super::claim::write_error;
 use super::open::{open_for, BackendRequest};
 use super::pulloff::pulloff_to_file;
 use super::{RunError, Watch};
-use crate::analysis::capture::{contour_rows, ContactCapture};
+use crate::analysis::capture::{contour_rows, ContactCapture, ContourRow};
 use crate::analysis::estimate::AdhesiveResult;
 use crate::model::{Model, ModelOptions};
 use crate::output::summary::Summary;
 use crate::output::sweep_csv::SweepRow;
+use crate::solver::State;
 use rayon::prelude::*;
 use std::path::PathBuf;
 
@@ -86,6 +87,12 @@ pub struct JobResult {
     pub summary: Option<Summary>,
     /// Why it failed, in words, if it did.
     pub error: Option<String>,
+    /// The states it recorded (those before its error, if it stopped early), as written.
+    pub states: Vec<State>,
+    /// Whether its states file is complete (at its own name, not a partial one).
+    pub complete: bool,
+    /// The quarter contours of the states it kept, as written beside its states.
+    pub contours: Vec<ContourRow>,
 }
 
 impl JobResult {
@@ -144,12 +151,15 @@ pub fn run_jobs(
             job.model.dx,
         );
         match run_one(&backend, job, watch) {
-            Ok((summary, error)) => JobResult {
+            Ok(ran) => JobResult {
                 ratio,
                 grid,
                 dx,
-                summary: Some(summary),
-                error,
+                summary: Some(ran.summary),
+                error: ran.error,
+                states: ran.states,
+                complete: ran.complete,
+                contours: ran.contours,
             },
             Err(e) => JobResult {
                 ratio,
@@ -157,6 +167,9 @@ pub fn run_jobs(
                 dx,
                 summary: None,
                 error: Some(format!("R1/R2 = {ratio}: {e}")),
+                states: Vec::new(),
+                complete: false,
+                contours: Vec::new(),
             },
         }
     };
@@ -169,13 +182,18 @@ pub fn run_jobs(
     }
 }
 
-/// One job: open the backend, run, write states, summary and contours. Returns the summary
-/// and the run's error, if it stopped early.
-fn run_one(
-    backend: &BackendRequest,
-    mut job: Job,
-    watch: &dyn Watch,
-) -> Result<(Summary, Option<String>), RunError> {
+/// What one job produced besides its files.
+struct Ran {
+    summary: Summary,
+    error: Option<String>,
+    states: Vec<State>,
+    complete: bool,
+    contours: Vec<ContourRow>,
+}
+
+/// One job: open the backend, run, write states, summary and contours. Returns them, with
+/// the run's error, if it stopped early.
+fn run_one(backend: &BackendRequest, mut job: Job, watch: &dyn Watch) -> Result<Ran, RunError> {
     let ratio = job.model.scene.ratio();
     let opened = open_for(backend, &mut job.model)?;
     watch.note(&format!(
@@ -192,17 +210,19 @@ fn run_one(
     let [_, json, contours] = run_files(&job.out);
     let summary = Summary::new(&AdhesiveResult::single(run.report, job.target));
     summary.write_json(&json).map_err(write_error("--out"))?;
-    crate::output::file::write_csv(
-        &contours,
-        None,
-        contour_rows(&job.model, &capture.into_snapshots()),
-    )
-    .map_err(write_error("--out"))?;
+    let rows = contour_rows(&job.model, &capture.into_snapshots());
+    crate::output::file::write_csv(&contours, None, rows.clone()).map_err(write_error("--out"))?;
     let error = run.outcome.error.map(|e| {
         format!(
             "R1/R2 = {ratio}: {e} (states so far in {})",
             run.states.display()
         )
     });
-    Ok((summary, error))
+    Ok(Ran {
+        summary,
+        error,
+        complete: run.states == job.out,
+        states: run.outcome.states,
+        contours: rows,
+    })
 }

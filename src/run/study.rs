@@ -4,7 +4,6 @@
 use super::batch::{run_files, run_jobs, Job, JobResult};
 use super::claim::{named, write_error, Outputs};
 use super::crossed::{crossed, CrossedRequest};
-use super::curves::sweep_curves;
 use super::open::BackendRequest;
 use super::Watch;
 use super::{failed, input, RunError};
@@ -15,8 +14,7 @@ use crate::analysis::study_fits::{
 };
 use crate::model::{Model, ModelOptions};
 use crate::output::line_chart::LineChart;
-use crate::output::names::{contours as contours_path, sweep_states as states_path};
-use crate::output::states_csv::read_state_rows;
+use crate::output::names::sweep_states as states_path;
 use crate::output::study_charts::{
     axis_ratio_chart, branch_chart, coefficients_chart, contour_chart, BranchLaw,
 };
@@ -107,7 +105,7 @@ pub fn study(args: &StudyRequest, watch: &dyn Watch) -> Result<StudyDone, RunErr
     let mut failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
     let mut warnings: Vec<String> = results.iter().flat_map(JobResult::warnings).collect();
     let rows = write_sweep_rows(&sweep_dir, &results)?;
-    let ratio_runs = read_ratio_runs(&sweep_dir, &results);
+    let ratio_runs = ratio_runs(&results);
     let fits = fit_branches(&ratio_runs, &mut warnings);
     // The charts draw each ratio's finest run beside its laws.
     let runs: Vec<RatioRun> = ratio_runs
@@ -119,8 +117,8 @@ pub fn study(args: &StudyRequest, watch: &dyn Watch) -> Result<StudyDone, RunErr
     let what = caption_tail(args, &rows);
     let backend = rows.first().map_or("?".to_string(), |r| r.backend.clone());
     let mut figures = Figures::new(&args.out);
-    draw_study_charts(&mut figures, &sweep_dir, &rows, &runs, &fits, &laws, &what)?;
-    draw_contours(&mut figures, &sweep_dir, &rows, &backend)?;
+    draw_study_charts(&mut figures, &results, &rows, &runs, &fits, &laws, &what)?;
+    draw_contours(&mut figures, &results, &rows, &backend)?;
     crossed_step(
         args,
         &backend,
@@ -242,25 +240,43 @@ fn write_sweep_rows(sweep_dir: &Path, results: &[JobResult]) -> Result<Vec<Sweep
     Ok(rows)
 }
 
-/// Every grid's run of every ratio, coarse to fine, with its states read back.
-fn read_ratio_runs(sweep_dir: &Path, results: &[JobResult]) -> Vec<(f64, Vec<RatioRun>)> {
+/// Every grid's complete run of every ratio, coarse to fine, with the states it recorded.
+fn ratio_runs(results: &[JobResult]) -> Vec<(f64, Vec<RatioRun>)> {
     RATIOS
         .iter()
         .map(|&ratio| {
             let runs = results
                 .iter()
-                .filter(|r| r.ratio == ratio)
-                .filter_map(|r| {
-                    let path = states_path(sweep_dir, ratio, r.grid.0);
-                    let states = read_state_rows(&path).ok()?;
-                    Some(RatioRun {
-                        ratio,
-                        grid: r.grid,
-                        states,
-                    })
+                .filter(|r| r.ratio == ratio && r.complete)
+                .map(|r| RatioRun {
+                    ratio,
+                    grid: r.grid,
+                    states: r.states.clone(),
                 })
                 .collect();
             (ratio, runs)
+        })
+        .collect()
+}
+
+/// The run of `results` behind a sweep row (its ratio and finest grid).
+fn run_of<'a>(results: &'a [JobResult], row: &SweepRow) -> Option<&'a JobResult> {
+    results
+        .iter()
+        .find(|r| r.ratio == row.ratio && r.grid.0 == row.grid)
+}
+
+/// The (d̄, F̄) points of the pull-off and onset states behind each row, or why there are none.
+fn row_curves(results: &[JobResult], rows: &[SweepRow]) -> Vec<Result<Vec<(f64, f64)>, String>> {
+    rows.iter()
+        .map(|row| match run_of(results, row) {
+            Some(r) if !r.states.is_empty() => Ok(r
+                .states
+                .iter()
+                .filter(|s| s.phase != crate::solver::Phase::Approach)
+                .map(|s| (s.d_bar, s.f_bar))
+                .collect()),
+            _ => Err("it recorded no states".to_string()),
         })
         .collect()
 }
@@ -363,14 +379,14 @@ fn pick(runs: &[RatioRun], fits: &[BranchFits], want: &[f64]) -> (Vec<RatioRun>,
 /// their coefficients and the adhesive force against R1/R2.
 fn draw_study_charts(
     figures: &mut Figures,
-    sweep_dir: &Path,
+    results: &[JobResult],
     rows: &[SweepRow],
     runs: &[RatioRun],
     fits: &[BranchFits],
     laws: &[CoefficientLaw],
     what: &str,
 ) -> Result<(), RunError> {
-    let (curves_chart, _) = pulloff_curves_chart(rows, &sweep_curves(sweep_dir, rows));
+    let (curves_chart, _) = pulloff_curves_chart(rows, &row_curves(results, rows));
     figures.add(
         "pulloff_curves.svg",
         curves_chart,
@@ -435,7 +451,7 @@ fn laws_text(laws: &[CoefficientLaw]) -> String {
 /// §8.1 snapshots and §8.3: quarter contours against ellipses, for R1/R2 = 1, 5 and 25.
 fn draw_contours(
     figures: &mut Figures,
-    sweep_dir: &Path,
+    results: &[JobResult],
     rows: &[SweepRow],
     backend: &str,
 ) -> Result<(), RunError> {
@@ -443,20 +459,17 @@ fn draw_contours(
         let Some(row) = rows.iter().find(|r| r.ratio == ratio) else {
             continue;
         };
-        let path = contours_path(&states_path(sweep_dir, ratio, row.grid));
-        let contours: Vec<ContourRow> = csv::Reader::from_path(&path)
-            .and_then(|mut r| r.deserialize().collect())
-            .map_err(|e| failed(format!("{}: {e}", path.display())))?;
+        let contours: &[ContourRow] = run_of(results, row).map_or(&[], |r| &r.contours);
         figures.add(
             &format!("contours_r{ratio}.svg"),
-            contour_chart(ratio, &contours),
+            contour_chart(ratio, contours),
             format!(
                 "§8.1/§8.3 Quarter contours of the contact during pull-off, R1/R2 = {ratio} \
                  ({}×{}), beside the ellipses with the same half-axes. Departure r/r_e − 1: \
                  {}. Backend {backend}.",
                 row.grid,
                 row.ny,
-                departures_text(&contours)
+                departures_text(contours)
             ),
         )?;
     }

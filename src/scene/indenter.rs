@@ -51,6 +51,34 @@ pub enum Indenter {
     HeightMap(Arc<MeasuredSurface>),
 }
 
+/// The first, non-adhesive contact the approach aims at (Hertz's for the ellipsoid): what the
+/// model sizes the domain and first press from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FirstContact {
+    /// Half-axis along x (length).
+    pub a: f64,
+    /// Half-axis along y (length).
+    pub b: f64,
+    /// Approach, pressing in positive (length).
+    pub d: f64,
+    /// Normal force, compressive positive (force).
+    pub force: f64,
+    /// Peak pressure (force per length²; at the centre).
+    pub p0: f64,
+}
+
+impl From<HertzContact> for FirstContact {
+    fn from(h: HertzContact) -> Self {
+        FirstContact {
+            a: h.a,
+            b: h.b,
+            d: h.d,
+            force: h.force,
+            p0: h.p0,
+        }
+    }
+}
+
 /// Where a closed form puts the pull-off, normalised by the indenter's scales: what the model
 /// sizes the load path and checks the grid's resolution with.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -241,10 +269,12 @@ impl Indenter {
         c: f64,
         e_star: f64,
         work_of_adhesion: f64,
-    ) -> Result<HertzContact, String> {
+    ) -> Result<FirstContact, String> {
         match *self {
             Indenter::Ellipsoid { r1, r2 } => {
-                theory::hertz::hertz_for_mean_radius(r1, r2, e_star, c).map_err(|e| e.to_string())
+                theory::hertz::hertz_for_mean_radius(r1, r2, e_star, c)
+                    .map(FirstContact::from)
+                    .map_err(|e| e.to_string())
             }
             Indenter::HeightMap(ref m) => {
                 // The apex ellipsoid's Hertz contact, as a circle of its major half-axis: the
@@ -252,11 +282,11 @@ impl Indenter {
                 let (r1, r2) = m.radii;
                 let h = theory::hertz::hertz_for_mean_radius(r1, r2, e_star, c)
                     .map_err(|e| e.to_string())?;
-                Ok(HertzContact { b: h.a, ..h })
+                Ok(FirstContact { b: h.a, ..h.into() })
             }
             Indenter::PowerLaw { .. } => {
                 let p = self.power_law(e_star, work_of_adhesion);
-                Ok(HertzContact {
+                Ok(FirstContact {
                     a: c,
                     b: c,
                     d: p.hertz_approach(c),
@@ -266,7 +296,7 @@ impl Indenter {
             }
             Indenter::FlatPunch { radius } => {
                 let d = 0.5 * kendall_approach(radius, e_star, work_of_adhesion);
-                Ok(HertzContact {
+                Ok(FirstContact {
                     a: radius,
                     b: radius,
                     d,

@@ -5,7 +5,7 @@ pub mod height_map;
 mod indenter;
 mod measured;
 
-pub use indenter::{Indenter, PullOffHint, MAX_EXPONENT, MIN_EXPONENT};
+pub use indenter::{FirstContact, Indenter, PullOffHint, MAX_EXPONENT, MIN_EXPONENT};
 pub use measured::MeasuredSurface;
 
 use crate::text::compact;
