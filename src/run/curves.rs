@@ -18,6 +18,16 @@ pub fn sweep_curves(dir: &Path, rows: &[SweepRow]) -> Vec<Result<Vec<(f64, f64)>
         .collect()
 }
 
+/// (d̄, F̄) of the pull-off and onset states among `states` (the same points as
+/// [`pulloff_points`] reads from their CSV).
+pub fn state_points(states: &[crate::solver::State]) -> Vec<(f64, f64)> {
+    states
+        .iter()
+        .filter(|s| s.phase != crate::solver::Phase::Approach)
+        .map(|s| (s.d_bar, s.f_bar))
+        .collect()
+}
+
 /// (d̄, F̄) of the pull-off and onset states in a states CSV.
 ///
 /// The file may be a run's partial states, cut off mid-row by a write error: the rows up to the

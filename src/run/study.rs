@@ -270,12 +270,7 @@ fn run_of<'a>(results: &'a [JobResult], row: &SweepRow) -> Option<&'a JobResult>
 fn row_curves(results: &[JobResult], rows: &[SweepRow]) -> Vec<Result<Vec<(f64, f64)>, String>> {
     rows.iter()
         .map(|row| match run_of(results, row) {
-            Some(r) if !r.states.is_empty() => Ok(r
-                .states
-                .iter()
-                .filter(|s| s.phase != crate::solver::Phase::Approach)
-                .map(|s| (s.d_bar, s.f_bar))
-                .collect()),
+            Some(r) if !r.states.is_empty() => Ok(super::curves::state_points(&r.states)),
             _ => Err("it recorded no states".to_string()),
         })
         .collect()

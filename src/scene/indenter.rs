@@ -232,8 +232,9 @@ impl Indenter {
             Indenter::HeightMap(ref m) => {
                 ellipsoid_scales(m.radii.0, m.radii.1, e_star, work_of_adhesion)
             }
-            Indenter::PowerLaw { .. } => {
-                let (length, force, approach) = self.power_law(e_star, work_of_adhesion).scales();
+            Indenter::PowerLaw { n, scale } => {
+                let (length, force, approach) =
+                    power_law(n, scale, e_star, work_of_adhesion).scales();
                 Scales {
                     length,
                     force,
@@ -245,18 +246,6 @@ impl Indenter {
                 force: kendall_force(radius, e_star, work_of_adhesion),
                 approach: kendall_approach(radius, e_star, work_of_adhesion),
             },
-        }
-    }
-
-    fn power_law(&self, e_star: f64, work_of_adhesion: f64) -> PowerLawContact {
-        match *self {
-            Indenter::PowerLaw { n, scale } => PowerLawContact {
-                n,
-                scale,
-                e_star,
-                work_of_adhesion,
-            },
-            _ => unreachable!("only called for a power law"),
         }
     }
 
@@ -284,8 +273,8 @@ impl Indenter {
                     .map_err(|e| e.to_string())?;
                 Ok(FirstContact { b: h.a, ..h.into() })
             }
-            Indenter::PowerLaw { .. } => {
-                let p = self.power_law(e_star, work_of_adhesion);
+            Indenter::PowerLaw { n, scale } => {
+                let p = power_law(n, scale, e_star, work_of_adhesion);
                 Ok(FirstContact {
                     a: c,
                     b: c,
@@ -321,8 +310,8 @@ impl Indenter {
                     b_bar_at_min: p.force_min.b_bar,
                 })
             }
-            Indenter::PowerLaw { .. } => {
-                let p = self.power_law(e_star, work_of_adhesion);
+            Indenter::PowerLaw { n, scale } => {
+                let p = power_law(n, scale, e_star, work_of_adhesion);
                 let s = self.scales(e_star, work_of_adhesion);
                 Some(PullOffHint {
                     end_d_bar: p.end_of_contact().d / s.approach,
@@ -348,13 +337,23 @@ impl Indenter {
         match *self {
             Indenter::Ellipsoid { r1, r2 } => (r1 == r2).then_some(("JKR", 0.5)),
             Indenter::HeightMap(_) => None,
-            Indenter::PowerLaw { .. } => {
-                let p = self.power_law(e_star, work_of_adhesion);
+            Indenter::PowerLaw { n, scale } => {
+                let p = power_law(n, scale, e_star, work_of_adhesion);
                 let s = self.scales(e_star, work_of_adhesion);
                 Some(("JKR (power law)", -p.force_minimum().force / s.force))
             }
             Indenter::FlatPunch { .. } => Some(("Kendall", 1.0)),
         }
+    }
+}
+
+/// The power law h = `scale`·rⁿ's closed forms for E* (stress) and Δγ (force/length).
+fn power_law(n: f64, scale: f64, e_star: f64, work_of_adhesion: f64) -> PowerLawContact {
+    PowerLawContact {
+        n,
+        scale,
+        e_star,
+        work_of_adhesion,
     }
 }
 

@@ -2,10 +2,15 @@
 //! the shape they describe, a height map read from its file.
 
 use super::super::{input, CliError};
+use jkrbem::output::file::{read_regular, ReadError};
 use jkrbem::scene::height_map::HeightMap;
 use jkrbem::scene::{Indenter, MeasuredSurface};
 use std::path::PathBuf;
 use std::sync::Arc;
+
+/// The largest height-map file read (bytes): the largest map, 16384², as text of up to 32
+/// characters a value.
+const MAX_MAP_BYTES: u64 = 16384 * 16384 * 32;
 
 /// The indenter shapes `--indenter` takes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -79,13 +84,12 @@ impl IndenterArgs {
             ));
         };
         let name = path.display().to_string();
-        match std::fs::metadata(path) {
-            Ok(m) if m.is_file() => {}
-            Ok(_) => return Err(input(format!("--height-map {name}: not a regular file"))),
-            Err(e) => return Err(input(format!("--height-map {name}: {e}"))),
-        }
-        let map =
-            HeightMap::read(path, spacing).map_err(|e| input(format!("--height-map: {e}")))?;
+        let bytes = read_regular(path, MAX_MAP_BYTES).map_err(|e| match e {
+            ReadError::Absent => input(format!("--height-map {name}: no such file")),
+            ReadError::Refused(why) => input(format!("--height-map {name}: {why}")),
+        })?;
+        let map = HeightMap::from_file_bytes(path, &bytes, spacing)
+            .map_err(|e| input(format!("--height-map: {e}")))?;
         let surface = MeasuredSurface::new(map, &name).map_err(input)?;
         Ok(Indenter::HeightMap(Arc::new(surface)))
     }

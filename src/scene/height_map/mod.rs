@@ -221,17 +221,28 @@ impl HeightMap {
     pub fn read(path: &Path, spacing: f64) -> Result<Self, HeightMapError> {
         let name = path.display().to_string();
         check_spacing(&name, spacing)?;
-        let is_npy = path
-            .extension()
-            .is_some_and(|ext| ext.eq_ignore_ascii_case("npy"));
         let bytes = std::fs::read(path).map_err(|err| HeightMapError::Io {
             file: name.clone(),
             message: err.to_string(),
         })?;
+        Self::from_file_bytes(path, &bytes, spacing)
+    }
+
+    /// Parses the bytes read from the file `path` as [`HeightMap::read`] does: NumPy when its
+    /// name ends in `.npy` or the bytes start with the NumPy magic, text otherwise.
+    pub fn from_file_bytes(
+        path: &Path,
+        bytes: &[u8],
+        spacing: f64,
+    ) -> Result<Self, HeightMapError> {
+        let name = path.display().to_string();
+        let is_npy = path
+            .extension()
+            .is_some_and(|ext| ext.eq_ignore_ascii_case("npy"));
         if is_npy || bytes.starts_with(npy::NPY_MAGIC) {
-            Self::from_npy_bytes(&bytes, spacing, &name)
+            Self::from_npy_bytes(bytes, spacing, &name)
         } else {
-            Self::from_text(&String::from_utf8_lossy(&bytes), spacing, &name)
+            Self::from_text(&String::from_utf8_lossy(bytes), spacing, &name)
         }
     }
 
