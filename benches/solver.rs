@@ -88,7 +88,7 @@ impl CgState {
             slots,
             backend,
             c,
-            d: model.d0,
+            d: model.load.d0,
             p: zero.clone(),
             r: zero.clone(),
             z: zero.clone(),

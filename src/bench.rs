@@ -267,7 +267,7 @@ pub fn time_cg_iteration<B: Backend>(
             backend.upload(&mut p, &zeros)?;
             let before = backend.counters();
             let t0 = Instant::now();
-            let report = cg::solve(backend, &c, &mut work, &mut p, model.d0, &settings(n))?;
+            let report = cg::solve(backend, &c, &mut work, &mut p, model.load.d0, &settings(n))?;
             sync(backend, &c, &p, slot)?;
             let elapsed = t0.elapsed();
             let after = backend.counters();
@@ -329,7 +329,7 @@ pub fn profile_cg_iteration(
             check_every: usize::MAX,
             accept: model.cg.accept,
         };
-        let made = cg::solve(gpu, &c, &mut work, &mut p, model.d0, &settings)?.iterations;
+        let made = cg::solve(gpu, &c, &mut work, &mut p, model.load.d0, &settings)?.iterations;
         let profile = gpu.profile()?.unwrap_or_default();
         gpu.set_profiling(false)?;
         Ok::<_, BackendError>((made, profile))

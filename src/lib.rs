@@ -15,6 +15,7 @@ pub mod backend;
 pub mod bench;
 pub mod model;
 pub mod output;
+pub mod parameters;
 pub mod plan;
 pub mod run;
 pub mod scene;

@@ -232,3 +232,24 @@ fn main() -> ExitCode {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every parameter the library's messages name is a flag of some subcommand (`crossed`
+    /// renames its cylinders' parameters to its own flags).
+    #[test]
+    fn every_parameter_the_library_names_is_a_flag() {
+        let command = Cli::command();
+        let flags: Vec<String> = command
+            .get_subcommands()
+            .flat_map(|s| s.get_arguments())
+            .filter_map(|a| a.get_long().map(|l| format!("--{l}")))
+            .collect();
+        for p in jkrbem::parameters::PARAMETERS {
+            let flag = cli::crossed::flag(p.flag);
+            assert!(flags.iter().any(|f| f == flag), "{} is no flag", p.flag);
+        }
+    }
+}

@@ -229,7 +229,7 @@ fn step_warning(model: &Model, outcome: &Outcome) -> Option<String> {
              (Δd̄ = {:.4}) around it detached {lost} elements and changed F̄ by {:.1} % of |min F̄|, \
              so the minimum lies at an onset inside a step; use --onsets near-minimum (the \
              default), which locates the onsets of every step that can hold the minimum",
-            model.d_step / model.scene.scales().approach,
+            model.load.d_step / model.scene.scales().approach,
             100.0 * jump / f_min
         )
     })

@@ -57,7 +57,7 @@ pub struct Args {
 }
 
 /// The flag of this command that sets each of the analysis layer's parameters.
-fn flag(parameter: &'static str) -> &'static str {
+pub(crate) fn flag(parameter: &'static str) -> &'static str {
     match parameter {
         "--angle" => "--angles",
         "--young" => "--e",

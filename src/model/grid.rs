@@ -4,7 +4,7 @@
 use super::error::ModelError;
 use super::limits::*;
 use super::options::ModelOptions;
-use crate::scene::Scene;
+use crate::scene::{PullOffHint, Scene};
 use crate::setup::ChordAxes;
 use std::f64::consts::PI;
 
@@ -122,14 +122,11 @@ pub fn memory_estimate(nx: usize, ny: usize) -> u64 {
 pub(super) fn check_resolution(
     scene: &Scene,
     opt: &ModelOptions,
+    hint: PullOffHint,
     b0: f64,
     dx: f64,
 ) -> Result<(), ModelError> {
-    let b_min_bar = scene
-        .indenter
-        .pull_off_hint(scene.e_star, scene.work_of_adhesion)
-        .map(|h| h.b_bar_at_min)
-        .unwrap_or(0.5);
+    let b_min_bar = hint.b_bar_at_min;
     let first = 2.0 * b0 / dx;
     let at_minimum = 2.0 * b_min_bar * scene.scales().length / dx;
     if first >= MIN_ELEMENTS_FIRST_CONTACT && at_minimum >= MIN_ELEMENTS_AT_MINIMUM {

@@ -1,6 +1,7 @@
 //! What a scene needs numerically: the domain and grid, the detachment stress, the load
 //! steps and the CG settings, in modules: `limits` (ranges and sizes), `error`, `options` (what
-//! a caller chooses) and `grid` (the grid against the scene); this module builds the model.
+//! a caller chooses), `grid` (the grid against the scene) and `steps` (the load path); this
+//! module builds the model.
 
 use crate::scene::{FirstContact, Scene};
 use crate::setup::Preconditioner;
@@ -10,12 +11,14 @@ mod error;
 mod grid;
 mod limits;
 mod options;
+pub mod steps;
 
 pub use error::ModelError;
 use grid::{check_grid, check_resolution, invalid};
 pub use grid::{critical_stress, kappa, memory_estimate, MeshAngle};
 pub use limits::*;
 pub use options::{CgSettings, Measure, ModelOptions, Onsets};
+pub use steps::LoadPath;
 
 /// The numerical model of a scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -32,12 +35,8 @@ pub struct Model {
     pub sigma_c: f64,
     /// The initial non-adhesive (Hertz) contact the approach aims at.
     pub initial: FirstContact,
-    /// Approach of the first, non-adhesive press, d0 (length).
-    pub d0: f64,
-    /// Decrement of d per load step (length).
-    pub d_step: f64,
-    /// Stop once d falls below this (length).
-    pub d_final: f64,
+    /// The load path: the first approach d0, the load step and where to stop (lengths).
+    pub load: LoadPath,
     /// CG settings.
     pub cg: CgSettings,
     /// Preconditioner.
@@ -163,22 +162,10 @@ impl Model {
             Some(ny) => ny,
             None => need_y.next_power_of_two().max(MIN_GRID),
         };
-        let end = end_of_contact_d_bar(scene);
-        let d0 = initial.d;
-        let d0_bar = d0 / scales.approach;
-        if let Some(f) = opt.final_d_bar {
-            if !(f >= MIN_FINAL_D_BAR && f < d0_bar) {
-                return Err(invalid(
-                    "--final-d",
-                    compact(f),
-                    format!("a d̄ in [{MIN_FINAL_D_BAR}, d̄0) below the initial approach d̄0 = {d0_bar:.4}"),
-                ));
-            }
-        }
-        check_resolution(scene, opt, initial.b, dx)?;
+        let hint = steps::hint_for(scene, opt.hint);
+        let load = LoadPath::new(initial.d, scales.approach, opt.steps, opt.final_d_bar, hint)?;
+        check_resolution(scene, opt, hint, initial.b, dx)?;
         check_covered(scene, &mesh, opt, (opt.nx, ny), dx)?;
-        let d_step = (d0_bar - end) / opt.steps as f64 * scales.approach;
-        let d_final = opt.final_d_bar.unwrap_or(end - 2.0 * (d0_bar - end)) * scales.approach;
         let model = Model {
             scene: scene.clone(),
             nx: opt.nx,
@@ -186,9 +173,7 @@ impl Model {
             dx,
             sigma_c: critical_stress(scene, dx),
             initial,
-            d0,
-            d_step,
-            d_final,
+            load,
             cg: CgSettings {
                 tolerance: opt.cg_tolerance,
                 max_iterations: opt.cg_max_iterations,
@@ -216,8 +201,8 @@ impl Model {
         [
             ("σ_c, the detachment stress (force/length²)", self.sigma_c),
             ("Δx, the element side (length)", self.dx),
-            ("d0, the first approach (length)", self.d0),
-            ("the load step (length)", self.d_step),
+            ("d0, the first approach (length)", self.load.d0),
+            ("the load step (length)", self.load.d_step),
             ("the first contact's peak pressure (force/length²)", p0),
         ]
     }
@@ -258,19 +243,9 @@ impl Model {
         Ok(())
     }
 
-    /// Load steps the pull-off is expected to take: [`ModelOptions::steps`] reach the closed
-    /// form's end of contact, fewer if the final approach comes first (for a progress line;
-    /// a run can take a few more, or stop earlier with `--measure adhesive-force`).
+    /// Load steps the pull-off is expected to take (see [`LoadPath::expected_steps`]).
     pub fn expected_steps(&self) -> usize {
-        let planned = (self.d0 - self.d_final) / self.d_step;
-        let to_end = self.steps_to_end();
-        (planned.floor() as usize).clamp(1, to_end.max(1))
-    }
-
-    /// Steps from d0 to the closed form's end of contact.
-    fn steps_to_end(&self) -> usize {
-        let end = end_of_contact_d_bar(&self.scene) * self.scene.scales().approach;
-        ((self.d0 - end) / self.d_step).round().max(1.0) as usize
+        self.load.expected_steps()
     }
 
     /// The memory this model's run needs (bytes): [`BYTES_FIXED`] plus
@@ -408,16 +383,6 @@ fn check_covered(
             compact(opt.start_radius_bar)
         ),
     ))
-}
-
-/// d̄ where the scene's closed form ends the contact (−0.5 where it has none): the load
-/// path runs to it.
-fn end_of_contact_d_bar(scene: &Scene) -> f64 {
-    scene
-        .indenter
-        .pull_off_hint(scene.e_star, scene.work_of_adhesion)
-        .map(|h| h.end_d_bar)
-        .unwrap_or(-0.5)
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! What a caller chooses of a model: the grid, the protocol (steps, onsets, measure,
 //! re-gridding) and the CG settings.
 
+use crate::scene::PullOffHint;
 use crate::setup::Preconditioner;
 
 /// Which detachment onsets (the local minima of the sawtooth F(d)) a pull-off locates. The
@@ -89,6 +90,10 @@ pub struct ModelOptions {
     /// where the contact's edge falls between element centres (the grid phase) and nothing
     /// else; the extrapolation in Δx averages over it.
     pub apex_offset: (f64, f64),
+    /// Where a planner expects the pull-off to end and how small the contact gets at the
+    /// force minimum: the load path and the resolution check are sized from it. `None`: the
+    /// scene's own closed form (the sphere's values where the indenter has none).
+    pub hint: Option<PullOffHint>,
 }
 
 impl Default for ModelOptions {
@@ -112,6 +117,7 @@ impl Default for ModelOptions {
             regrid: false,
             mesh_angle_deg: 0.0,
             apex_offset: (0.0, 0.0),
+            hint: None,
         }
     }
 }

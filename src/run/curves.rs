@@ -1,6 +1,8 @@
-//! A sweep's pull-off curves read back from its states files (complete, or a failed run's
-//! partial file), for its chart: the session layer reads, the chart only draws points.
+//! A sweep's pull-off curves for its chart: from the states its runs recorded, or (for shards
+//! merged later) read back from their states files (complete, or a failed run's partial
+//! file). The session layer gathers the points; the chart only draws them.
 
+use super::batch::JobResult;
 use crate::output::file::is_partial_of;
 use crate::output::names;
 use crate::output::sweep_csv::SweepRow;
@@ -14,6 +16,27 @@ pub fn sweep_curves(dir: &Path, rows: &[SweepRow]) -> Vec<Result<Vec<(f64, f64)>
         .map(|row| {
             let path = states_file(dir, row)?;
             pulloff_points(&path).map_err(|e| format!("its states cannot be read: {e}"))
+        })
+        .collect()
+}
+
+/// The run of `results` behind a sweep row (its ratio and finest grid).
+pub fn run_of<'a>(results: &'a [JobResult], row: &SweepRow) -> Option<&'a JobResult> {
+    results
+        .iter()
+        .find(|r| r.ratio == row.ratio && r.grid.0 == row.grid)
+}
+
+/// The (d̄, F̄) points of the pull-off and onset states that the runs behind each row
+/// recorded, or why there are none, in the rows' order.
+pub fn row_curves(
+    results: &[JobResult],
+    rows: &[SweepRow],
+) -> Vec<Result<Vec<(f64, f64)>, String>> {
+    rows.iter()
+        .map(|row| match run_of(results, row) {
+            Some(r) if !r.states.is_empty() => Ok(state_points(&r.states)),
+            _ => Err("it recorded no states".to_string()),
         })
         .collect()
 }

@@ -4,6 +4,7 @@
 use super::batch::{run_files, run_jobs, Job, JobResult};
 use super::claim::{named, write_error, Outputs};
 use super::crossed::{crossed, CrossedRequest};
+use super::curves::{row_curves, run_of};
 use super::open::BackendRequest;
 use super::Watch;
 use super::{failed, input, RunError};
@@ -255,23 +256,6 @@ fn ratio_runs(results: &[JobResult]) -> Vec<(f64, Vec<RatioRun>)> {
                 })
                 .collect();
             (ratio, runs)
-        })
-        .collect()
-}
-
-/// The run of `results` behind a sweep row (its ratio and finest grid).
-fn run_of<'a>(results: &'a [JobResult], row: &SweepRow) -> Option<&'a JobResult> {
-    results
-        .iter()
-        .find(|r| r.ratio == row.ratio && r.grid.0 == row.grid)
-}
-
-/// The (d̄, F̄) points of the pull-off and onset states behind each row, or why there are none.
-fn row_curves(results: &[JobResult], rows: &[SweepRow]) -> Vec<Result<Vec<(f64, f64)>, String>> {
-    rows.iter()
-        .map(|row| match run_of(results, row) {
-            Some(r) if !r.states.is_empty() => Ok(super::curves::state_points(&r.states)),
-            _ => Err("it recorded no states".to_string()),
         })
         .collect()
 }

@@ -3,7 +3,7 @@
 
 use super::batch::{batch_model, run_files, run_jobs, GridChoice, Job};
 use super::claim::{named, write_error, Outputs};
-use super::curves::sweep_curves;
+use super::curves::{row_curves, sweep_curves};
 use super::open::BackendRequest;
 use super::Watch;
 use super::{input, RunError};
@@ -117,7 +117,7 @@ pub fn sweep(req: &SweepRequest, watch: &dyn Watch) -> Result<SweepDone, RunErro
     // own failures (which it must not hide); sweep.csv is already written.
     let (charts, charts_error) = match req.shard {
         Some(_) => (None, None),
-        None => match write_sweep_charts(&req.out, &sorted, &sweep_curves(&req.out, &sorted)) {
+        None => match write_sweep_charts(&req.out, &sorted, &row_curves(&results, &sorted)) {
             Ok(w) => {
                 warnings.extend(w);
                 (Some(chart_files(&req.out)), None)

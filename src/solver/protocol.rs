@@ -423,7 +423,7 @@ fn run_inner<B: Backend>(
     backend.upload_mask(&mut c, &model.initial_contact())?;
     let mut fields = Fields::new(backend, c)?;
     // 1. Non-adhesive press to d0.
-    let mut eq = equilibrate(backend, model, &mut fields, model.d0, 0.0)?;
+    let mut eq = equilibrate(backend, model, &mut fields, model.load.d0, 0.0)?;
     let (state, _) = record(
         backend,
         model,
@@ -431,7 +431,7 @@ fn run_inner<B: Backend>(
         &fields.p,
         0,
         Phase::Approach,
-        model.d0,
+        model.load.d0,
         &eq,
     )?;
     let held = state.clone();
@@ -457,15 +457,15 @@ fn pull_off<B: Backend>(
     out: &mut Emitter,
     model: &Model,
 ) -> Result<(), SolverError> {
-    let mut d_prev = model.d0;
+    let mut d_prev = model.load.d0;
     let mut step = 0;
     loop {
         if !out.go_on() {
             return Err(SolverError::Interrupted);
         }
         step += 1;
-        let d = model.d0 - step as f64 * model.d_step;
-        if d < model.d_final {
+        let d = model.load.approach(step);
+        if d < model.load.d_final {
             break;
         }
         let end = load_step(backend, run, out, step, d_prev, d)?;

@@ -79,7 +79,7 @@ fn an_iteration_starved_solve_on_a_ragged_set_fails_naming_its_residual() {
     // Unpreconditioned CG needs 46 iterations on this set; it is given 10 (and 10 more for
     // the retry).
     let (model, mut backend, mut fields) = ragged_unpreconditioned(10);
-    let err = solve_fixed(&mut backend, &model, &mut fields, model.d0).unwrap_err();
+    let err = solve_fixed(&mut backend, &model, &mut fields, model.load.d0).unwrap_err();
     let message = err.to_string();
     println!("{message}");
     let SolverError::CgNotConverged {
@@ -111,7 +111,7 @@ fn a_retry_that_converges_lets_the_run_go_on_and_is_counted() {
     // Given 30 of the 46 iterations it needs, the normal mode stops at its limit; the safer
     // retry goes on from there and reaches the tolerance.
     let (model, mut backend, mut fields) = ragged_unpreconditioned(30);
-    let solve = solve_fixed(&mut backend, &model, &mut fields, model.d0).unwrap();
+    let solve = solve_fixed(&mut backend, &model, &mut fields, model.load.d0).unwrap();
     println!("{solve:?}");
     let retry = solve.retry.expect("a retry");
     assert_eq!(retry.first.end, CgEnd::IterationLimit);
@@ -128,7 +128,7 @@ fn a_non_finite_warm_start_is_caught_and_the_retry_starts_from_zero() {
     let mut p = vec![0.0; n];
     p[n / 2 + model.nx / 2] = f64::NAN;
     backend.upload(&mut fields.p, &p).unwrap();
-    let solve = solve_fixed(&mut backend, &model, &mut fields, model.d0).unwrap();
+    let solve = solve_fixed(&mut backend, &model, &mut fields, model.load.d0).unwrap();
     println!("{solve:?}");
     let retry = solve.retry.expect("a retry");
     assert_eq!(retry.first.end, CgEnd::NonFinite);

@@ -178,7 +178,15 @@ fn large_grid_cg(nx: usize) {
     let mut work = CgWork::new(&mut gpu).unwrap();
     let mut p = gpu.field().unwrap();
     let start = std::time::Instant::now();
-    let report = cg::solve(&mut gpu, &gpu_c, &mut work, &mut p, model.d0, &model.cg).unwrap();
+    let report = cg::solve(
+        &mut gpu,
+        &gpu_c,
+        &mut work,
+        &mut p,
+        model.load.d0,
+        &model.cg,
+    )
+    .unwrap();
     let wall = start.elapsed().as_secs_f64();
     let (mut u, mut r, zero) = (
         gpu.field().unwrap(),
@@ -186,12 +194,12 @@ fn large_grid_cg(nx: usize) {
         gpu.field().unwrap(),
     );
     let slot = gpu.slot().unwrap();
-    gpu.residual(&gpu_c, &zero, model.d0, &mut r).unwrap();
+    gpu.residual(&gpu_c, &zero, model.load.d0, &mut r).unwrap();
     gpu.dot(&gpu_c, &r, &r, slot).unwrap();
     let mut bb = [0.0];
     gpu.read_slots(&[slot], &mut bb).unwrap();
     gpu.convolve(&p, &mut u).unwrap();
-    gpu.residual(&gpu_c, &u, model.d0, &mut r).unwrap();
+    gpu.residual(&gpu_c, &u, model.load.d0, &mut r).unwrap();
     gpu.dot(&gpu_c, &r, &r, slot).unwrap();
     let mut rr = [0.0];
     gpu.read_slots(&[slot], &mut rr).unwrap();

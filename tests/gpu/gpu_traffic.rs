@@ -39,9 +39,16 @@ fn per_iteration(model: &Model, pre: Preconditioner, n: usize) -> Option<(f64, f
             accept: 1e-5,
         };
         let before = gpu.counters();
-        let made = cg::solve(&mut gpu, &gpu_c, &mut work, &mut p, model.d0, &settings)
-            .unwrap()
-            .iterations;
+        let made = cg::solve(
+            &mut gpu,
+            &gpu_c,
+            &mut work,
+            &mut p,
+            model.load.d0,
+            &settings,
+        )
+        .unwrap()
+        .iterations;
         let after = gpu.counters();
         (
             Counters {

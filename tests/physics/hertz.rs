@@ -15,7 +15,7 @@ fn approach(ratio: f64, nx: usize) -> (f64, f64, f64, f64) {
             ..Default::default()
         },
     );
-    model.d_final = model.d0;
+    model.load.d_final = model.load.d0;
     let run = common::run_model(model);
     assert_eq!(run.outcome.states.len(), 1);
     let s = &run.outcome.states[0];
