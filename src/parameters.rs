@@ -24,7 +24,7 @@ const fn p(flag: &'static str, keyword: &'static str, meaning: &'static str) -> 
     }
 }
 
-/// Every parameter a message of `scene`, `model` or `plan` can name.
+/// Every parameter a message of `scene`, `model`, `plan` or a simulation can name.
 pub const PARAMETERS: &[Parameter] = &[
     p("--ratio", "ratio", "the axis ratio R1/R2 (dimensionless)"),
     p(
@@ -153,6 +153,23 @@ pub const PARAMETERS: &[Parameter] = &[
         "the backend that solves (cpu, gpu, auto)",
     ),
     p("--jobs", "jobs", "runs at a time"),
+    p(
+        "--convolution",
+        "convolution",
+        "padded (exact) or periodic (to show its error)",
+    ),
+    p(
+        "--extrapolate",
+        "extrapolate",
+        "whether to extrapolate from several grids",
+    ),
+    p(
+        "--time-limit",
+        "time_limit",
+        "the wall-clock time an accuracy run may take (s)",
+    ),
+    p("--out", "out", "where the states are written"),
+    p("--summary", "summary", "where the summary JSON is written"),
 ];
 
 /// The parameter set by `flag`, if the library names it.
@@ -221,6 +238,8 @@ mod tests {
             include_str!("scene/measured.rs"),
             include_str!("plan.rs"),
             include_str!("analysis/crossed.rs"),
+            include_str!("run/simulate.rs"),
+            include_str!("run/open.rs"),
         ];
         for source in sources {
             let code = source.split("#[cfg(test)]").next().unwrap();

@@ -293,6 +293,11 @@ pub fn table_values(csv_text: &str) -> Vec<TableValue> {
         .collect()
 }
 
+/// The compiled-in reference table's CSV text (`data/reference/adhesive-force.csv`).
+pub fn reference_table_csv() -> &'static str {
+    REFERENCE_TABLE
+}
+
 /// [`table_values`] of the compiled-in reference table.
 pub fn reference_values() -> Vec<TableValue> {
     table_values(REFERENCE_TABLE)

@@ -508,7 +508,7 @@ mod tests {
             wall_s: 1.0,
             complete: true,
             error: None,
-            states_csv: String::new(),
+            states_csv: None,
             regrids: Vec::new(),
             stopped_after_minimum: true,
             warnings: Vec::new(),

@@ -82,8 +82,9 @@ pub struct RunReport {
     pub complete: bool,
     /// Why it did not, if it did not.
     pub error: Option<String>,
-    /// Where the states were written.
-    pub states_csv: String,
+    /// Where the states were written; null for a run kept in memory only.
+    #[serde(default)]
+    pub states_csv: Option<String>,
     /// The grid changes made during the run.
     pub regrids: Vec<RegridEvent>,
     /// Whether the run stopped once the force minimum was confirmed (adhesive-force measure).
@@ -128,13 +129,13 @@ fn default_margin() -> f64 {
 
 impl RunReport {
     /// The report of `outcome`, a run of `model` on `backend` (name, precision) that took
-    /// `wall_s` seconds and wrote its states to `states_csv`.
+    /// `wall_s` seconds and wrote its states to `states_csv` (`None`: kept in memory only).
     pub fn new(
         model: &Model,
         outcome: &Outcome,
         backend: (&str, &str),
         wall_s: f64,
-        states_csv: &Path,
+        states_csv: Option<&Path>,
     ) -> Self {
         let ratio = model.scene.ratio();
         let lowest = outcome.force_minimum();
@@ -183,7 +184,7 @@ impl RunReport {
             wall_s,
             complete: outcome.complete(),
             error: outcome.error.as_ref().map(|e| e.to_string()),
-            states_csv: states_csv.display().to_string(),
+            states_csv: states_csv.map(|p| p.display().to_string()),
             regrids: outcome.regrids.clone(),
             stopped_after_minimum: outcome.stopped_after_minimum,
             warnings,

@@ -421,7 +421,7 @@ mod tests {
             &outcome(states),
             ("cpu", "f64"),
             0.0,
-            Path::new("s.csv"),
+            Some(Path::new("s.csv")),
         );
         Summary::new(&AdhesiveResult::single(run, None))
     }

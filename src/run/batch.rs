@@ -4,7 +4,7 @@
 
 use super::claim::write_error;
 use super::open::{open_for, BackendRequest};
-use super::pulloff::pulloff_to_file;
+use super::pulloff::{pulloff, StatesFile};
 use super::{RunError, Watch};
 use crate::analysis::capture::{contour_rows, ContactCapture, ContourRow};
 use crate::analysis::estimate::AdhesiveResult;
@@ -133,6 +133,9 @@ impl Watch for NotesOnly<'_> {
     fn warning(&self, line: &str) {
         self.0.warning(line)
     }
+    fn keep_going(&self) -> bool {
+        self.0.keep_going()
+    }
 }
 
 /// Run every job, `threads` at a time (1: one after another, each using every core), each on
@@ -205,23 +208,22 @@ fn run_one(backend: &BackendRequest, mut job: Job, watch: &dyn Watch) -> Result<
     let notes = NotesOnly(watch);
     let run = crate::with_backend!(
         &mut any,
-        b => pulloff_to_file(b, &job.model, &job.out, "--out", &notes, Some(&mut capture), None)
+        b => pulloff(b, &job.model, Some(StatesFile { path: &job.out, flag: "--out" }), &notes, Some(&mut capture), None)
     )?;
     let [_, json, contours] = run_files(&job.out);
+    let shown = run.states_shown();
     let summary = Summary::new(&AdhesiveResult::single(run.report, job.target));
     summary.write_json(&json).map_err(write_error("--out"))?;
     let rows = contour_rows(&job.model, &capture.into_snapshots());
     crate::output::file::write_csv(&contours, None, rows.clone()).map_err(write_error("--out"))?;
-    let error = run.outcome.error.map(|e| {
-        format!(
-            "R1/R2 = {ratio}: {e} (states so far in {})",
-            run.states.display()
-        )
-    });
+    let error = run
+        .outcome
+        .error
+        .map(|e| format!("R1/R2 = {ratio}: {e} (states so far in {shown})"));
     Ok(Ran {
         summary,
         error,
-        complete: run.states == job.out,
+        complete: run.states.as_deref() == Some(job.out.as_path()),
         states: run.outcome.states,
         contours: rows,
     })

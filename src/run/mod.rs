@@ -67,6 +67,11 @@ pub trait Watch: Sync {
     fn pulloff_ended(&self) {}
     /// A warning about a result.
     fn warning(&self, _line: &str) {}
+    /// Asked after every state: `false` stops the pull-off there (what an interrupt from a
+    /// notebook needs); the run then returns the states it had, marked incomplete.
+    fn keep_going(&self) -> bool {
+        true
+    }
 }
 
 /// A [`Watch`] that shows nothing.

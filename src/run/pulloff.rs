@@ -1,5 +1,5 @@
-//! One pull-off of one model on an opened backend, its states streamed to a file under this
-//! run's partial name until it completes.
+//! One pull-off of one model on an opened backend, its states kept in memory and, where a
+//! file is asked for, streamed to it under this run's partial name until it completes.
 
 use super::claim::write_error;
 use super::{failed, RunError, Watch};
@@ -18,31 +18,59 @@ pub struct Pulloff {
     pub report: RunReport,
     /// The states and how the run ended.
     pub outcome: Outcome,
-    /// The states CSV: `out` if the run completed, else its partial name.
-    pub states: PathBuf,
+    /// The states CSV: `out` if the run completed, else its partial name; `None` where no
+    /// file was asked for.
+    pub states: Option<PathBuf>,
     /// Whether the run was stopped at its deadline (its states are kept under the partial
     /// name).
     pub timed_out: bool,
+    /// Whether the watch stopped the run ([`Watch::keep_going`]) before it ended.
+    pub stopped: bool,
 }
 
-/// Run `model`'s pull-off on `backend`, streaming its states to `out` (under this run's
-/// partial name `<stem>.incomplete-<pid>.csv` until the run completes; `flag` names `out` in
-/// messages). `watch` sees every state; `capture`, if given, sees every state with its
-/// contact mask (masks are read back from the device only then). If the states cannot be
-/// written, the run stops and that is the error. At
-/// `deadline`, if given, the run stops after the state it is computing (`timed_out`).
-pub fn pulloff_to_file<B: Backend>(
+impl Pulloff {
+    /// Where its states are, in words: the file, or "memory".
+    pub fn states_shown(&self) -> String {
+        self.states
+            .as_ref()
+            .map_or("memory".to_string(), |p| p.display().to_string())
+    }
+}
+
+/// Where a pull-off's states go besides memory: a CSV file, with the flag that named it.
+#[derive(Debug, Clone, Copy)]
+pub struct StatesFile<'a> {
+    /// The file's name (the run's states are written under its partial name until it
+    /// completes).
+    pub path: &'a Path,
+    /// The flag or parameter that named it, for messages.
+    pub flag: &'a str,
+}
+
+/// Run `model`'s pull-off on `backend`, its states kept in [`Pulloff::outcome`] and, if
+/// `file` is given, streamed to it (under this run's partial name `<stem>.incomplete-<pid>.csv`
+/// until the run completes). `watch` sees every state and may stop the run
+/// ([`Watch::keep_going`]); `capture`, if given, sees every state with its contact mask (masks
+/// are read back from the device only then). If the states cannot be written, the run stops
+/// and that is the error. At `deadline`, if given, the run stops after the state it is
+/// computing (`timed_out`).
+pub fn pulloff<B: Backend>(
     backend: &mut B,
     model: &Model,
-    out: &Path,
-    flag: &str,
+    file: Option<StatesFile>,
     watch: &dyn Watch,
     mut capture: Option<&mut ContactCapture>,
     deadline: Option<Instant>,
 ) -> Result<Pulloff, RunError> {
-    let mut writer = StateWriter::create(out, model.onsets.name()).map_err(write_error(flag))?;
+    let mut writer = match file {
+        Some(f) => {
+            Some(StateWriter::create(f.path, model.onsets.name()).map_err(write_error(f.flag))?)
+        }
+        None => None,
+    };
     let mut write_error_at = None;
     let mut timed_out = false;
+    let mut stopped = false;
     watch.pulloff_started(model);
     let start = Instant::now();
     let with_contact = capture.is_some();
@@ -51,42 +79,52 @@ pub fn pulloff_to_file<B: Backend>(
             c.observe(s, mask);
         }
         watch.state(model, s);
-        if let Err(e) = writer.write(s) {
+        if let Some(Err(e)) = writer.as_mut().map(|w| w.write(s)) {
             write_error_at.get_or_insert(e);
             return false;
         }
         timed_out = deadline.is_some_and(|d| Instant::now() >= d);
-        !timed_out
+        stopped = !watch.keep_going();
+        !(timed_out || stopped)
     });
     let wall = start.elapsed().as_secs_f64();
     watch.pulloff_ended();
     for w in &outcome.warnings {
         watch.warning(w);
     }
-    if let Some(e) = write_error_at {
-        let partial = writer.partial_path().display().to_string();
-        let _ = writer.finish(false);
-        return Err(failed(format!(
-            "{}; the run stopped after {} states, and what could be written is in {partial} \
-             (incomplete); nothing was written to {}",
-            e.with_flag(flag),
-            outcome.states.len(),
-            out.display()
-        )));
-    }
-    let path = writer
-        .finish(outcome.complete())
-        .map_err(write_error(flag))?;
+    let path = match (writer, file) {
+        (Some(writer), Some(f)) => {
+            if let Some(e) = write_error_at {
+                let partial = writer.partial_path().display().to_string();
+                let _ = writer.finish(false);
+                return Err(failed(format!(
+                    "{}; the run stopped after {} states, and what could be written is in \
+                     {partial} (incomplete); nothing was written to {}",
+                    e.with_flag(f.flag),
+                    outcome.states.len(),
+                    f.path.display()
+                )));
+            }
+            Some(
+                writer
+                    .finish(outcome.complete())
+                    .map_err(write_error(f.flag))?,
+            )
+        }
+        _ => None,
+    };
     let report = RunReport::new(
         model,
         &outcome,
         (backend.name(), backend.precision()),
         wall,
-        &path,
+        path.as_deref(),
     );
+    // A run that reached its end (or its confirmed minimum) at the deadline was not cut.
+    let cut = !outcome.complete();
     Ok(Pulloff {
-        // A run that reached its end (or its confirmed minimum) at the deadline was not cut.
-        timed_out: timed_out && !outcome.complete(),
+        timed_out: timed_out && cut,
+        stopped: stopped && cut && !timed_out,
         report,
         outcome,
         states: path,

@@ -8,7 +8,7 @@ pub mod reuse;
 
 use super::claim::{named, write_error, Outputs};
 use super::open::BackendRequest;
-use super::simulate::{simulate, Mode, SimulateRequest};
+use super::simulate::{simulate, Mode, SimulateRequest, Sink};
 use super::{failed, input, RunError, Watch};
 use crate::analysis::convergence::{self, TableLaw};
 use crate::analysis::estimate;
@@ -456,8 +456,10 @@ pub(crate) fn run_or_reuse(
         options,
         backend,
         mode: Mode::Single,
-        out: Some(states),
-        summary: None,
+        sink: Sink::Files {
+            out: Some(states),
+            summary: None,
+        },
         time_limit: None,
     };
     let done = simulate(&one, watch)?;

@@ -1,10 +1,11 @@
 //! One scene's pull-off: on one grid, on several grids extrapolated to Δx → 0, or on the grids
-//! a requested accuracy needs. Every run's states go to a CSV; the summary (one shape for all
-//! three) is returned, and written as JSON when asked.
+//! a requested accuracy needs. Every run's states and the summary (one shape for all three) are
+//! returned in memory; where the caller's [`Sink`] asks for files, the states also go to CSVs
+//! and the summary to JSON.
 
 use super::claim::Outputs;
 use super::open::{open_for, BackendRequest};
-use super::pulloff::{pulloff_to_file, Pulloff};
+use super::pulloff::{pulloff, Pulloff, StatesFile};
 use super::{failed, input, RunError, Watch};
 use crate::analysis::estimate::{self, AdhesiveResult};
 use crate::model::{Measure, Model, ModelOptions, Onsets};
@@ -40,16 +41,42 @@ pub struct SimulateRequest {
     pub backend: BackendRequest,
     /// One grid, several, or an accuracy.
     pub mode: Mode,
-    /// The states CSV (one grid), or the stem of the per-grid CSVs (`<stem>-n<Nx>.csv`);
-    /// `None`: under `jkrbem-out/`.
-    pub out: Option<PathBuf>,
-    /// Also write the summary JSON here.
-    pub summary: Option<PathBuf>,
+    /// Where the states and the summary go besides memory.
+    pub sink: Sink,
     /// Wall-clock time the request may take (with [`Mode::Accuracy`]): a grid still running
     /// then is stopped, and the answer comes from the grids that finished (the coarsest grid
     /// that resolves the contact runs first, so that there is one), with `target_met: false`
     /// where that falls short. `None`: no limit.
     pub time_limit: Option<Duration>,
+}
+
+/// Where a simulation's results go besides memory.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Sink {
+    /// Files: the states CSV (one grid), or the stem of the per-grid CSVs
+    /// (`<stem>-n<Nx>.csv`), `None` putting them under `jkrbem-out/`; and the summary JSON
+    /// where `summary` names it.
+    Files {
+        /// The states CSV or the per-grid stem.
+        out: Option<PathBuf>,
+        /// The summary JSON, if wanted.
+        summary: Option<PathBuf>,
+    },
+    /// Nothing written: the states and the summary are returned only.
+    Memory,
+}
+
+/// One grid's run of a simulation, in memory.
+pub struct GridRun {
+    /// Elements along x and y.
+    pub grid: (usize, usize),
+    /// Element side Δx at the start (length).
+    pub dx: f64,
+    /// Every state it recorded, in order.
+    pub states: Vec<crate::solver::State>,
+    /// Whether it reached its end (or its confirmed minimum); `false` for a run that failed,
+    /// ran out of time or was stopped by its watch.
+    pub complete: bool,
 }
 
 /// What a simulation produced.
@@ -58,8 +85,13 @@ pub struct Simulated {
     pub summary: Summary,
     /// What the accuracy plan chose, in words (with [`Mode::Accuracy`]).
     pub plan: Option<String>,
-    /// The states CSV of every run.
+    /// The states CSV of every run (none with [`Sink::Memory`]).
     pub states: Vec<PathBuf>,
+    /// Every grid's run, in the order run.
+    pub runs: Vec<GridRun>,
+    /// Whether the watch stopped a run ([`Watch::keep_going`]): the answer is from what
+    /// finished before, and the stopped run's states are in [`Simulated::runs`].
+    pub stopped: bool,
     /// Why a run stopped early, if one did (its states and the summary were written).
     pub failure: Option<String>,
 }
@@ -80,14 +112,20 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
         _ => "--extrapolate-grids",
     };
     plan::check_memory(&refs, 1, flag).map_err(input)?;
-    let outs = output_paths(req, &models)?;
-    let mut targets: Vec<(PathBuf, String)> =
-        outs.iter().map(|p| (p.clone(), "--out".into())).collect();
-    if let Some(p) = &req.summary {
-        targets.push((p.clone(), "--summary".into()));
-    }
-    Outputs::check(&targets)?;
-    let _claimed = Outputs::claim(&targets)?;
+    let (outs, _claimed) = match &req.sink {
+        Sink::Files { out, summary } => {
+            let outs = output_paths(req, out, &models)?;
+            let mut targets: Vec<(PathBuf, String)> =
+                outs.iter().map(|p| (p.clone(), "--out".into())).collect();
+            if let Some(p) = summary {
+                targets.push((p.clone(), "--summary".into()));
+            }
+            Outputs::check(&targets)?;
+            let claimed = Outputs::claim(&targets)?;
+            (outs.into_iter().map(Some).collect(), Some(claimed))
+        }
+        Sink::Memory => (vec![None; models.len()], None),
+    };
     let ran = run_grids(req, models, &outs, watch)?;
     Ok(conclude(
         req,
@@ -103,9 +141,13 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
 
 /// The states files of the request's models: `--out` itself for one grid (asked for, or the
 /// one an accuracy plan chose); for several, one file per grid from `--out` as a stem.
-fn output_paths(req: &SimulateRequest, models: &[Model]) -> Result<Vec<PathBuf>, RunError> {
+fn output_paths(
+    req: &SimulateRequest,
+    out: &Option<PathBuf>,
+    models: &[Model],
+) -> Result<Vec<PathBuf>, RunError> {
     let one_grid = models.len() == 1 && !matches!(req.mode, Mode::Extrapolate(_));
-    Ok(match (one_grid, &req.out) {
+    Ok(match (one_grid, out) {
         (true, Some(out)) => vec![out.clone()],
         (true, None) => vec![names::simulate_default(
             &req.scene.tag(),
@@ -140,21 +182,27 @@ fn output_paths(req: &SimulateRequest, models: &[Model]) -> Result<Vec<PathBuf>,
 /// minimum.
 struct Ran {
     runs: Vec<Pulloff>,
+    /// Every run's states, those cut off by the time limit included.
+    kept: Vec<GridRun>,
     failure: Option<String>,
     timed_out: Option<String>,
+    stopped: bool,
 }
 
-/// Run every model into its states file, within the request's time limit.
+/// Run every model (into its states file, where one is given), within the request's time
+/// limit, until the watch stops one.
 fn run_grids(
     req: &SimulateRequest,
     models: Vec<Model>,
-    outs: &[PathBuf],
+    outs: &[Option<PathBuf>],
     watch: &dyn Watch,
 ) -> Result<Ran, RunError> {
     let deadline = req.time_limit.map(|t| Instant::now() + t);
     let mut runs = Vec::new();
+    let mut kept = Vec::new();
     let mut failure = None;
     let mut timed_out = None;
+    let mut stopped = false;
     for (mut model, out) in models.into_iter().zip(outs) {
         if deadline.is_some_and(|d| Instant::now() >= d) {
             timed_out = Some(format!(
@@ -174,26 +222,44 @@ fn run_grids(
             opened.note
         ));
         let mut any = opened.backend;
+        let file = out.as_deref().map(|path| StatesFile {
+            path,
+            flag: "--out",
+        });
         let run: Pulloff = crate::with_backend!(
             &mut any,
-            backend => pulloff_to_file(backend, &model, out, "--out", watch, None, deadline)
+            backend => pulloff(backend, &model, file, watch, None, deadline)
         )?;
+        kept.push(GridRun {
+            grid: (model.nx, model.ny),
+            dx: model.dx,
+            states: run.outcome.states.clone(),
+            complete: run.outcome.complete(),
+        });
         if run.timed_out {
             timed_out = Some(format!(
                 "the {} grid was stopped after {} states (kept, incomplete, in {})",
                 run.report.grid,
                 run.outcome.states.len(),
-                run.states.display()
+                run.states_shown()
             ));
             break;
         }
-        if let Some(e) = &run.outcome.error {
+        if run.stopped {
+            stopped = true;
+            failure = Some(format!(
+                "the {} run was stopped by its caller after {} states (kept, incomplete, in {})",
+                run.report.grid,
+                run.outcome.states.len(),
+                run.states_shown()
+            ));
+        } else if let Some(e) = &run.outcome.error {
             failure = Some(format!(
                 "the {} run stopped early: {e}\n  the {} states computed so far are in {} \
                  (incomplete)",
                 run.report.grid,
                 run.outcome.states.len(),
-                run.states.display()
+                run.states_shown()
             ));
         }
         let reached = run.report.min_reached;
@@ -204,8 +270,10 @@ fn run_grids(
     }
     Ok(Ran {
         runs,
+        kept,
         failure,
         timed_out,
+        stopped,
     })
 }
 
@@ -222,8 +290,10 @@ struct Concluding {
 fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
     let Ran {
         runs,
+        kept,
         mut failure,
         timed_out,
+        stopped,
     } = ran;
     let Concluding {
         target,
@@ -231,7 +301,7 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
         fallback,
         planned_runs,
     } = plan;
-    let states: Vec<PathBuf> = runs.iter().map(|r| r.states.clone()).collect();
+    let states: Vec<PathBuf> = runs.iter().filter_map(|r| r.states.clone()).collect();
     let mut reports: Vec<_> = runs.into_iter().map(|r| r.report).collect();
     // Every planned grid finished: the answer is the plan's, the fallback grid is not used
     // (pooling it would change the estimator the plan chose after seeing the data).
@@ -278,7 +348,10 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
             crate::text::duration(limit)
         ));
     }
-    if let Some(p) = &req.summary {
+    if let Sink::Files {
+        summary: Some(p), ..
+    } = &req.sink
+    {
         // The answer is computed and the states are written: a summary that cannot be
         // written fails the run, but the answer is still given and the files already
         // replaced are named.
@@ -299,6 +372,8 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
         summary,
         plan: plan_note,
         states,
+        runs: kept,
+        stopped,
         failure,
     }
 }

@@ -197,8 +197,9 @@ pub fn run_with_contact<B: Backend>(
 
 /// The run behind [`run`] and [`run_with_contact`]: `observe` sees each state, with its
 /// contact mask if `with_contact` (else `None`: no mask is read back), and returns whether to
-/// go on: once it returns false (say, its states can no longer be written), the run stops at
-/// the next load step with [`SolverError::Interrupted`], keeping the states recorded so far.
+/// go on: once it returns false (say, its states can no longer be written, or its caller was
+/// interrupted), the run stops before its next state with [`SolverError::Interrupted`],
+/// keeping the states recorded so far.
 pub fn run_until<B: Backend>(
     backend: &mut B,
     model: &Model,
@@ -282,7 +283,8 @@ pub(super) struct Emitter<'a> {
 impl Emitter<'_> {
     /// Record a state: its work goes to the account (in its c̄ band), its retries to the
     /// run's; then it is handed on, or held if `hold`, with the contact mask read back if
-    /// the observer sees masks.
+    /// the observer sees masks. Once the observer has asked to stop, no state is recorded:
+    /// the run ends here with [`SolverError::Interrupted`].
     pub(super) fn emit<B: ContactKernels>(
         &mut self,
         backend: &mut B,
@@ -291,6 +293,9 @@ impl Emitter<'_> {
         eq: &mut Equilibrium,
         hold: bool,
     ) -> Result<(), SolverError> {
+        if !self.go_on() {
+            return Err(SolverError::Interrupted);
+        }
         self.cost.charge(state.c_bar, eq.work);
         eq.work = Work::default();
         self.retries.append(&mut eq.retries);
@@ -340,6 +345,9 @@ impl Emitter<'_> {
         let n = self.pending.iter().take_while(|s| s.0.step < step).count();
         let released: Vec<_> = self.pending.drain(..n).collect();
         for (s, m) in released {
+            if !self.go_on() {
+                break;
+            }
             if self.least.is_none_or(|(f, _)| s.force < f) {
                 self.least = Some((s.force, s.d_bar));
             }

@@ -181,13 +181,8 @@ fn a_shifted_or_slightly_tilted_height_map_gives_the_same_adhesive_force() {
     // A tilt of 1e-3 moves the apex by R1·1e-3, a fraction of an element: the grid phase
     // changes, within the single-grid uncertainty the ellipsoid's estimate states.
     let run = common::run_model(like.clone());
-    let report = jkrbem::analysis::report::RunReport::new(
-        &like,
-        &run.outcome,
-        ("cpu", "f64"),
-        0.0,
-        std::path::Path::new("unused.csv"),
-    );
+    let report =
+        jkrbem::analysis::report::RunReport::new(&like, &run.outcome, ("cpu", "f64"), 0.0, None);
     let stated = jkrbem::analysis::estimate::single_grid(&report)
         .unwrap()
         .f_ad_bar

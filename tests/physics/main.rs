@@ -11,6 +11,7 @@ mod analysis;
 mod coverage;
 mod ellipsoid;
 mod hertz;
+mod in_memory;
 mod indenters;
 mod jkr_sphere;
 mod mesh_angle;

@@ -6,7 +6,7 @@ use super::progress::Progress;
 use super::{run_error, CliError};
 use jkrbem::model::{Measure, ModelOptions, Onsets};
 use jkrbem::run::open::BackendRequest;
-use jkrbem::run::simulate::{failure_error, simulate, Mode, SimulateRequest};
+use jkrbem::run::simulate::{failure_error, simulate, Mode, SimulateRequest, Sink};
 use jkrbem::scene::Scene;
 
 mod args;
@@ -76,8 +76,10 @@ impl Args {
                 check_every: self.cg_check_every,
             },
             mode,
-            out: self.out.clone(),
-            summary: self.summary.clone(),
+            sink: Sink::Files {
+                out: self.out.clone(),
+                summary: self.summary.clone(),
+            },
             time_limit: self.time_limit,
         })
     }

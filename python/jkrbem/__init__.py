@@ -1,0 +1,468 @@
+"""jkrbem from Python: JKR-type adhesive contact of a rigid indenter with an elastic half-space,
+by the FFT-based boundary element method with the Pohrt–Popov detachment criterion.
+
+Units: give lengths in any unit L, the effective modulus ``e_star`` in F/L² and the work of
+adhesion ``work_of_adhesion`` in F/L; dimensional results come out in L and F. Normalised
+results (suffix ``_bar``) use Re = √(R1 R2) and c_r = (9π Re² Δγ / (4E*))^(1/3):
+c̄ = c/c_r, F̄ = F/(3π Re Δγ), d̄ = d·Re/c_r². For a sphere JKR gives |min F̄| = 1/2.
+
+>>> import jkrbem
+>>> r = jkrbem.simulate(ratio=1, grid=64, backend="cpu")
+>>> round(r.adhesive_force, 2)
+0.5
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import warnings
+from dataclasses import dataclass, field
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _jkrbem
+from ._jkrbem import InputError, SolveError
+
+__version__ = _jkrbem.__version__
+
+__all__ = [
+    "simulate",
+    "pulloff",
+    "plan",
+    "theory",
+    "reference_table",
+    "devices",
+    "Result",
+    "InputError",
+    "SolveError",
+    "STATE_COLUMNS",
+]
+
+#: The columns of :attr:`Result.states`, as in the CLI's states CSV (without ``onsets``).
+STATE_COLUMNS: Tuple[Tuple[str, str], ...] = (
+    ("step", "i8"),
+    ("phase", "U8"),
+    ("d", "f8"),
+    ("force", "f8"),
+    ("area", "f8"),
+    ("mean_radius", "f8"),
+    ("a_axis", "f8"),
+    ("b_axis", "f8"),
+    ("n_contact", "i8"),
+    ("cg_iterations", "i8"),
+    ("detach_sweeps", "i8"),
+    ("d_bar", "f8"),
+    ("f_bar", "f8"),
+    ("c_bar", "f8"),
+    ("a_bar", "f8"),
+    ("b_bar", "f8"),
+    ("cg_residual", "f8"),
+    ("dx", "f8"),
+)
+
+
+def _states_array(states: List[Dict[str, Any]]) -> np.ndarray:
+    """The states (dicts from the solver) as a numpy structured array."""
+    dtype = np.dtype(list(STATE_COLUMNS))
+    rows = [
+        tuple(
+            (s[name].lower() if isinstance(s[name], str) else s[name])
+            if s.get(name) is not None
+            else (math.nan if kind == "f8" else -1)
+            for name, kind in STATE_COLUMNS
+        )
+        for s in states
+    ]
+    return np.array(rows, dtype=dtype)
+
+
+@dataclass
+class Run:
+    """One grid's pull-off: its grid, element side and states."""
+
+    #: Elements along x and y.
+    grid: Tuple[int, int]
+    #: Element side Δx at the start (length).
+    dx: float
+    #: Whether it reached its end (or its confirmed force minimum).
+    complete: bool
+    #: Every recorded state, a structured array with :data:`STATE_COLUMNS`.
+    states: np.ndarray
+
+
+@dataclass
+class Result:
+    """A simulation's answer.
+
+    ``adhesive_force`` is |min F̄| (dimensionless; F = F̄·3π Re Δγ) with its ``uncertainty``
+    (absolute, same units) where the estimate states one; ``jg`` is Johnson–Greenwood's value
+    beside it, a comparison and never the reference (``deviation_from_jg`` is relative).
+    """
+
+    #: |min F̄| of the estimate (dimensionless), or None where no run reached the minimum.
+    adhesive_force: Optional[float]
+    #: Its stated half-width (absolute, dimensionless), where it has one.
+    uncertainty: Optional[float]
+    #: The estimate's kind ("single-grid", "extrapolated", …).
+    estimate: Optional[str]
+    #: Johnson–Greenwood's (JKR's for a sphere) |min F̄|, for comparison.
+    jg: Optional[float]
+    #: (adhesive_force − jg)/jg.
+    deviation_from_jg: Optional[float]
+    #: c̄ and d̄ at the force minimum (dimensionless).
+    c_bar_at_min: Optional[float]
+    d_bar_at_min: Optional[float]
+    #: Every grid's run, in the order run.
+    runs: List[Run]
+    #: The summary, the same dict as the CLI's ``--summary`` JSON.
+    summary: Dict[str, Any]
+    #: What an accuracy plan chose, in words.
+    plan: Optional[str] = None
+    #: Why the request fell short, if it did.
+    failure: Optional[str] = None
+    #: Whether Ctrl-C (KeyboardInterrupt) stopped a run; its partial states are kept.
+    interrupted: bool = False
+    #: Warnings about the answer.
+    warnings: List[str] = field(default_factory=list)
+
+    @property
+    def states(self) -> np.ndarray:
+        """The states of the run the answer rests on most (the finest grid run)."""
+        if not self.runs:
+            return _states_array([])
+        return self.runs[-1].states
+
+    @property
+    def complete(self) -> bool:
+        """Whether every run reached its end and nothing fell short."""
+        return self.failure is None and all(r.complete for r in self.runs)
+
+    def force_in(self, radius_e: float, work_of_adhesion: float) -> Optional[float]:
+        """The adhesive force in the user's force unit: |min F̄|·3π Re Δγ (Re in L, Δγ in F/L)."""
+        if self.adhesive_force is None:
+            return None
+        return self.adhesive_force * 3.0 * math.pi * radius_e * work_of_adhesion
+
+    def plot(self, ax=None):
+        """The pull-off curve F̄(d̄) with the force minimum marked (needs matplotlib)."""
+        try:
+            import matplotlib.pyplot as plt
+        except ImportError as e:  # pragma: no cover - depends on the environment
+            raise ImportError("Result.plot needs matplotlib: pip install matplotlib") from e
+        if ax is None:
+            _, ax = plt.subplots()
+        s = self.states
+        s = s[s["phase"] != "approach"]
+        ax.plot(s["d_bar"], s["f_bar"], lw=1, label="jkrbem")
+        if self.adhesive_force is not None:
+            ax.axhline(-self.adhesive_force, ls=":", c="k", lw=0.8, label="|min F̄|")
+        ax.set_xlabel("d̄ = d·Re/c_r²")
+        ax.set_ylabel("F̄ = F/(3π Re Δγ)")
+        ax.invert_xaxis()
+        ax.legend()
+        return ax
+
+    def __repr__(self) -> str:
+        f = "—" if self.adhesive_force is None else f"{self.adhesive_force:.5f}"
+        u = "" if self.uncertainty is None else f" ± {self.uncertainty:.5f}"
+        return f"<jkrbem.Result |min F̄| = {f}{u} ({self.estimate}), {len(self.runs)} run(s)>"
+
+
+def _percent(value: Union[str, float, None], name: str) -> Optional[float]:
+    """'2%' or 0.02 as 0.02."""
+    if value is None:
+        return None
+    if isinstance(value, str):
+        text = value.strip()
+        try:
+            return float(text[:-1]) / 100.0 if text.endswith("%") else float(text)
+        except ValueError:
+            raise InputError(f"{name} = {value!r} is invalid: a fraction (0.02) or a percentage ('2%')")
+    return float(value)
+
+
+def _progress(progress: Union[None, bool, Callable[[dict], Any]]) -> Optional[Callable[[dict], Any]]:
+    """The callable that sees a run's events: the user's, a tqdm bar (True), or none."""
+    if progress is None or progress is False:
+        return None
+    if callable(progress):
+        return progress
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        def show(event: dict) -> None:
+            if event["event"] in ("note", "warning"):
+                print(f"jkrbem: {event['text']}")
+        return show
+    bars: Dict[str, Any] = {}
+
+    def bar(event: dict) -> None:
+        if event["event"] == "start":
+            if "bar" in bars:
+                bars["bar"].close()
+            bars["bar"] = tqdm(total=event["expected_steps"], desc=f"grid {event['grid'][0]}×{event['grid'][1]}")
+        elif event["event"] == "state" and "bar" in bars:
+            b = bars["bar"]
+            b.update(max(0, event["step"] - b.n))
+            b.set_postfix(F=f"{event['f_bar']:.4f}", c=f"{event['c_bar']:.3f}")
+        elif event["event"] in ("note", "warning"):
+            tqdm.write(f"jkrbem: {event['text']}")
+
+    return bar
+
+
+def _request(
+    ratio: float,
+    r1: Optional[float],
+    r2: float,
+    e_star: float,
+    work_of_adhesion: float,
+    indenter: str,
+    radius: Optional[float],
+    exponent: Optional[float],
+    scale: Optional[float],
+    accuracy: Union[str, float, None],
+    grid: Optional[int],
+    grid_y: Optional[int],
+    extrapolate: Union[bool, Sequence[int]],
+    mesh_angle: float,
+    apex_offset: Tuple[float, float],
+    margin: float,
+    start_radius: float,
+    steps: Optional[int],
+    measure: Optional[str],
+    onsets: Optional[str],
+    backend: str,
+    time_limit: Optional[float],
+) -> str:
+    numbers = {
+        "ratio": ratio, "r1": r1, "r2": r2, "e_star": e_star, "work_of_adhesion": work_of_adhesion,
+        "radius": radius, "exponent": exponent, "scale": scale, "mesh_angle": mesh_angle,
+        "margin": margin, "start_radius": start_radius, "time_limit": time_limit,
+    }
+    for name, value in numbers.items():
+        if value is not None and not math.isfinite(float(value)):
+            raise InputError(f"{name} = {value} is invalid: a finite number is needed")
+    grids = None
+    if not isinstance(extrapolate, bool):
+        grids = [int(g) for g in extrapolate]
+    if len(tuple(apex_offset)) != 2:
+        raise InputError("apex_offset takes two fractions of an element, along x and y: e.g. (0.25, 0.5)")
+    return json.dumps(
+        {
+            "ratio": float(ratio),
+            "r1": None if r1 is None else float(r1),
+            "r2": float(r2),
+            "e_star": float(e_star),
+            "work_of_adhesion": float(work_of_adhesion),
+            "indenter": indenter,
+            "radius": radius,
+            "exponent": exponent,
+            "scale": scale,
+            "grid": grid,
+            "grid_y": grid_y,
+            "accuracy": _percent(accuracy, "accuracy"),
+            "extrapolate": bool(extrapolate) if grids is None else True,
+            "extrapolate_grids": grids,
+            "mesh_angle": float(mesh_angle),
+            "apex_offset": [float(a) for a in apex_offset],
+            "margin": float(margin),
+            "start_radius": float(start_radius),
+            "steps": steps,
+            "measure": measure,
+            "onsets": onsets,
+            "backend": backend,
+            "time_limit": time_limit,
+        }
+    )
+
+
+def _result(answer: Dict[str, Any]) -> Result:
+    s = answer["summary"]
+    runs = [
+        Run(grid=tuple(r["grid"]), dx=r["dx"], complete=r["complete"], states=_states_array(r["states"]))
+        for r in answer["runs"]
+    ]
+    jg = s.get("jg_f_ad_bar")
+    f = s.get("f_ad_bar")
+    return Result(
+        adhesive_force=f,
+        uncertainty=s.get("f_ad_bar_uncertainty"),
+        estimate=s.get("estimate"),
+        jg=jg,
+        deviation_from_jg=s.get("jg_deviation"),
+        c_bar_at_min=s.get("c_bar_at_min"),
+        d_bar_at_min=s.get("d_bar_at_min"),
+        runs=runs,
+        summary=s,
+        plan=answer.get("plan"),
+        failure=answer.get("failure"),
+        interrupted=answer.get("interrupted", False),
+        warnings=list(s.get("warnings", [])),
+    )
+
+
+def simulate(
+    ratio: float = 5.0,
+    *,
+    r1: Optional[float] = None,
+    r2: float = 1.0,
+    e_star: float = 1.0,
+    work_of_adhesion: float = 1.0,
+    indenter: str = "ellipsoid",
+    radius: Optional[float] = None,
+    exponent: Optional[float] = None,
+    scale: Optional[float] = None,
+    accuracy: Union[str, float, None] = None,
+    grid: Optional[int] = None,
+    grid_y: Optional[int] = None,
+    extrapolate: Union[bool, Sequence[int]] = False,
+    mesh_angle: float = 0.0,
+    apex_offset: Tuple[float, float] = (0.0, 0.0),
+    margin: float = 0.08,
+    start_radius: float = 1.5,
+    steps: Optional[int] = None,
+    measure: Optional[str] = None,
+    onsets: Optional[str] = None,
+    backend: str = "auto",
+    time_limit: Optional[float] = None,
+    progress: Union[None, bool, Callable[[dict], Any]] = None,
+) -> Result:
+    """Simulate the adhesive pull-off of one scene and estimate its adhesive force.
+
+    The scene: an ellipsoid h = x²/(2 R1) + y²/(2 R2) given by ``ratio`` = R1/R2 and ``r2``
+    (length), or by ``r1`` and ``r2``; or ``indenter="flat_punch"`` (``radius``, length) or
+    ``"power_law"`` (h = ``scale``·rⁿ, ``exponent`` n). ``e_star`` is E* (F/L²),
+    ``work_of_adhesion`` Δγ (F/L).
+
+    What runs: ``accuracy`` ("2%" or 0.02) plans the grids that reach it; ``grid`` (a power of
+    two) runs one grid; ``extrapolate`` (True, or a list of grids) runs several and
+    extrapolates to Δx → 0. With none of them the run aims at 2 %. ``backend`` is "auto",
+    "cpu" (f64) or "gpu" (f32). ``time_limit`` (s) bounds an accuracy run.
+
+    ``progress``: a callable receiving event dicts (``event`` = "note", "start", "state",
+    "warning"), or True for a tqdm bar where tqdm is installed. Ctrl-C stops the run: the result
+    then holds the states computed so far, with ``interrupted`` True (and a warning).
+
+    Raises :class:`InputError` (a ValueError) for a bad parameter, naming the keyword, and
+    :class:`SolveError` (a RuntimeError) when no run reached the force minimum; its
+    ``result`` attribute holds the partial states.
+    """
+    request = _request(
+        ratio, r1, r2, e_star, work_of_adhesion, indenter, radius, exponent, scale, accuracy,
+        grid, grid_y, extrapolate, mesh_angle, apex_offset, margin, start_radius, steps,
+        measure, onsets, backend, time_limit,
+    )
+    answer = json.loads(_jkrbem.simulate(request, _progress(progress)))
+    result = _result(answer)
+    if result.interrupted:
+        warnings.warn(
+            "jkrbem: the run was interrupted; the result holds the states computed so far",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+        return result
+    if result.adhesive_force is None and result.failure is not None:
+        error = SolveError(result.failure)
+        error.result = result
+        raise error
+    return result
+
+
+def pulloff(
+    ratio: float = 5.0,
+    *,
+    grid: int = 128,
+    measure: str = "curve",
+    onsets: str = "near_minimum",
+    **kwargs: Any,
+) -> Result:
+    """One pull-off on one grid (``grid`` elements along x), no accuracy estimate beyond the
+    single grid's: the whole curve (``measure="curve"``) or only up to the confirmed force
+    minimum (``measure="adhesive_force"``). Other keywords as :func:`simulate`."""
+    return simulate(ratio, grid=grid, measure=measure, onsets=onsets, **kwargs)
+
+
+def plan(
+    ratio: float = 5.0,
+    *,
+    accuracy: Union[str, float] = "2%",
+    r1: Optional[float] = None,
+    r2: float = 1.0,
+    e_star: float = 1.0,
+    work_of_adhesion: float = 1.0,
+    mesh_angle: float = 0.0,
+    apex_offset: Tuple[float, float] = (0.0, 0.0),
+    margin: float = 0.08,
+) -> Dict[str, Any]:
+    """What :func:`simulate` with ``accuracy`` would run, without running it: the grids, the
+    margin, the measure, the elements across the minor axis at the minimum (``n_d``) and the
+    uncertainty it predicts (relative), with a description."""
+    request = _request(
+        ratio, r1, r2, e_star, work_of_adhesion, "ellipsoid", None, None, None, accuracy,
+        None, None, False, mesh_angle, apex_offset, margin, 1.5, None, None, None, "cpu", None,
+    )
+    return json.loads(_jkrbem.plan(request))
+
+
+class _Theory:
+    """Closed forms, normalised: Hertz, JKR (sphere) and Johnson–Greenwood (ellipse)."""
+
+    def curve(self, model: str = "jg", ratio: float = 1.0, points: int = 200) -> np.ndarray:
+        """``points`` points of the closed-form curve, a structured array (c_bar, f_bar, d_bar,
+        a_bar, b_bar), by decreasing c̄. ``model``: "hertz", "jkr" (ratio 1) or "jg"."""
+        pts = json.loads(_jkrbem.theory_curve(model, float(ratio), int(points)))
+        dtype = np.dtype([(k, "f8") for k in ("c_bar", "f_bar", "d_bar", "a_bar", "b_bar")])
+        return np.array([tuple(p[k] for k in dtype.names) for p in pts], dtype=dtype)
+
+    def pull_off(self, model: str = "jg", ratio: float = 1.0) -> Dict[str, Dict[str, float]]:
+        """The force minimum (``force_min``) and the end of contact (``end_of_contact``)."""
+        return json.loads(_jkrbem.theory_pull_off(model, float(ratio)))
+
+    def adhesive_force(self, ratio: float = 1.0) -> float:
+        """|min F̄| of JKR (ratio 1, exactly 1/2) or Johnson–Greenwood."""
+        model = "jkr" if ratio == 1 else "jg"
+        return -self.pull_off(model, ratio)["force_min"]["f_bar"]
+
+
+#: The closed forms: ``jkrbem.theory.curve(...)``, ``.pull_off(...)``, ``.adhesive_force(...)``.
+theory = _Theory()
+
+
+def reference_table() -> np.ndarray:
+    """The reference table of converged adhesive forces per R1/R2 (|min F̄|, c̄ and d̄ at the
+    minimum at Δx → 0, with their uncertainties), as a structured array."""
+    import csv
+    import io
+
+    rows = list(csv.reader(io.StringIO(_jkrbem.reference_table_csv())))
+    header, body = rows[0], [r for r in rows[1:] if r]
+
+    def number(text: str) -> Optional[float]:
+        try:
+            return float(text)
+        except ValueError:
+            return None
+
+    dtype = []
+    for i, name in enumerate(header):
+        column = [r[i] for r in body]
+        if all(number(t) is not None or t == "" for t in column):
+            dtype.append((name, "f8"))
+        else:
+            dtype.append((name, f"U{max(len(t) for t in column)}"))
+    records = [
+        tuple(
+            (math.nan if t == "" else float(t)) if kind == "f8" else t
+            for t, (_, kind) in zip(r, dtype)
+        )
+        for r in body
+    ]
+    return np.array(records, dtype=dtype)
+
+
+def devices() -> List[Dict[str, Any]]:
+    """The GPU adapters wgpu sees, best first (name, device type, API, largest grid)."""
+    return json.loads(_jkrbem.devices())

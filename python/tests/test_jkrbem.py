@@ -1,0 +1,176 @@
+"""The Python package against physics (JKR's 1/2, the reference table, Johnson–Greenwood as a
+comparison, CPU against GPU) and its plumbing (errors naming keywords, interrupted runs keeping
+their states, the example script)."""
+
+import os
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import jkrbem
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def within(result, truth):
+    """Whether the stated interval holds `truth`."""
+    return abs(result.adhesive_force - truth) <= result.uncertainty
+
+
+def test_the_sphere_meets_jkr_within_its_stated_uncertainty():
+    r = jkrbem.simulate(ratio=1, grid=64, backend="cpu")
+    assert r.estimate == "single-grid"
+    assert within(r, 0.5), r
+    assert r.complete and not r.interrupted
+    # The grid's own minimum is a state of the curve; the estimate corrects it towards Δx → 0.
+    own = -r.states["f_bar"].min()
+    assert own == pytest.approx(r.summary["runs"][0]["f_ad_bar"], rel=1e-12)
+    assert own > r.adhesive_force, "the mesh-dependent criterion over-predicts on a grid"
+    # JKR's exact value beside it, as the summary's comparison.
+    assert r.jg == pytest.approx(0.5, rel=1e-12)
+
+
+@pytest.mark.slow
+def test_an_accuracy_run_holds_the_reference_table_value():
+    table = jkrbem.reference_table()
+    row = table[table["ratio"] == 3.0][0]
+    r = jkrbem.simulate(ratio=3, accuracy="5%", backend="cpu")
+    assert r.summary["target_met"] is True
+    stated = r.uncertainty + row["f_ad_bar_uncertainty"]
+    assert abs(r.adhesive_force - row["f_ad_bar"]) <= stated, (r, row)
+    # Johnson–Greenwood is shown beside it: a comparison, with its signed deviation.
+    assert r.deviation_from_jg == pytest.approx(r.adhesive_force / r.jg - 1.0, rel=1e-9)
+
+
+def test_states_are_a_structured_array_with_the_csv_columns():
+    r = jkrbem.pulloff(1, grid=32, backend="cpu")
+    s = r.states
+    assert s.dtype.names == tuple(name for name, _ in jkrbem.STATE_COLUMNS)
+    assert set(np.unique(s["phase"])) <= {"approach", "pulloff", "onset", "regrid"}
+    assert s["phase"][0] == "approach"
+    # Displacement control: d decreases along the pull-off (onsets sit inside their steps).
+    pull = s[s["phase"] == "pulloff"]
+    assert np.all(np.diff(pull["d"]) < 0)
+    # The normalised force is the force over 3π Re Δγ (Re = Δγ = 1 here).
+    assert np.allclose(s["f_bar"], s["force"] / (3 * np.pi), rtol=1e-12)
+
+
+def test_the_theory_gives_jkr_exactly_and_jg_below_it_for_slender_contacts():
+    assert jkrbem.theory.adhesive_force(1) == pytest.approx(0.5, abs=1e-12)
+    assert jkrbem.theory.adhesive_force(10) < jkrbem.theory.adhesive_force(2) < 0.5
+    curve = jkrbem.theory.curve("jkr", 1, 50)
+    assert len(curve) == 50 and curve["f_bar"].min() == pytest.approx(-0.5, abs=2e-3)
+    hertz = jkrbem.theory.curve("hertz", 1, 20)
+    assert np.all(hertz["f_bar"] >= 0)
+
+
+def test_plan_says_what_an_accuracy_run_would_do():
+    p = jkrbem.plan(5, accuracy="2%")
+    assert p["target"] == 0.02
+    assert p["predicted_uncertainty"] <= 0.02
+    assert all(g & (g - 1) == 0 for g in p["grids"])
+    assert "R1/R2 = 5" in p["description"]
+
+
+@pytest.mark.parametrize(
+    "kwargs, keyword",
+    [
+        ({"grid": 100}, "grid"),
+        ({"grid": 64, "mesh_angle": 400}, "mesh_angle"),
+        ({"grid": 64, "e_star": -1}, "e_star"),
+        ({"grid": 64, "work_of_adhesion": float("nan")}, "work_of_adhesion"),
+        ({"grid": 64, "apex_offset": (0.7, 0)}, "apex_offset"),
+        ({"accuracy": "two percent"}, "accuracy"),
+        ({"grid": 64, "backend": "tpu"}, "backend"),
+        ({"indenter": "cone"}, "indenter"),
+        ({"indenter": "flat_punch"}, "radius"),
+        ({"grid": 64, "time_limit": 5}, "time_limit"),
+    ],
+)
+def test_bad_inputs_raise_input_errors_that_name_the_keyword(kwargs, keyword):
+    with pytest.raises(jkrbem.InputError) as e:
+        jkrbem.simulate(1, backend=kwargs.pop("backend", "cpu"), **kwargs)
+    message = str(e.value)
+    assert keyword in message, message
+    assert "--" not in message, f"a CLI flag in a Python error: {message}"
+    assert isinstance(e.value, ValueError)
+
+
+def test_an_interrupted_run_returns_its_partial_states():
+    seen = []
+
+    def progress(event):
+        if event["event"] == "state":
+            seen.append(event)
+            if len(seen) == 3:
+                raise KeyboardInterrupt
+
+    # Every state reaches the callback (the 0.2 s throttle passes the first at once).
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        r = jkrbem.pulloff(1, grid=64, backend="cpu", progress=progress)
+    assert r.interrupted and not r.complete
+    assert any(issubclass(w.category, RuntimeWarning) for w in caught)
+    # The run stopped at the state the interrupt came in, keeping what it had computed.
+    assert len(r.states) > 0 and r.states["step"].max() <= seen[-1]["step"] + 1
+    full = jkrbem.pulloff(1, grid=64, backend="cpu")
+    assert len(r.states) < len(full.states)
+    n = len(r.states)
+    assert np.array_equal(r.states["f_bar"], full.states["f_bar"][:n])
+    assert not r.runs[0].complete
+
+
+def test_a_run_that_reaches_no_minimum_raises_solve_error_with_its_states():
+    with pytest.raises(jkrbem.SolveError) as e:
+        jkrbem.simulate(ratio=1, accuracy="1%", backend="cpu", time_limit=1e-3)
+    assert "time_limit" in str(e.value)
+    assert isinstance(e.value, RuntimeError)
+    assert e.value.result.adhesive_force is None
+
+
+def test_progress_sees_the_run():
+    events = []
+    jkrbem.pulloff(1, grid=32, backend="cpu", progress=events.append)
+    kinds = {e["event"] for e in events}
+    assert {"note", "start", "state"} <= kinds
+    assert any("grid 32" in e.get("text", "") for e in events if e["event"] == "note")
+
+
+def test_a_flat_punch_approaches_kendall():
+    r = jkrbem.simulate(indenter="flat_punch", radius=1.0, grid=128, backend="cpu")
+    # Kendall's |min F̄| = 1 in the punch's normalisation; the grid over-predicts by about
+    # 0.33 Δx/a (the criterion's first-order convergence, docs/indenters.md).
+    own = r.summary["runs"][0]["f_ad_bar"]
+    assert 1.0 <= own <= 1.0 + 0.5 * (2 / 128) / 1.0 * 2 + 0.003
+
+
+def gpu_adapters():
+    return [d for d in jkrbem.devices() if d.get("api") == "Vulkan"]
+
+
+def test_gpu_and_cpu_agree():
+    if not gpu_adapters():
+        if os.environ.get("JKRBEM_REQUIRE_GPU") == "1":
+            pytest.fail("JKRBEM_REQUIRE_GPU=1 but no GPU adapter was found")
+        pytest.skip("no GPU adapter (wgpu finds none): the GPU backend cannot be checked here")
+    cpu = jkrbem.pulloff(1, grid=64, backend="cpu", measure="adhesive_force")
+    gpu = jkrbem.pulloff(1, grid=64, backend="gpu", measure="adhesive_force")
+    f_cpu = cpu.summary["runs"][0]["f_ad_bar"]
+    f_gpu = gpu.summary["runs"][0]["f_ad_bar"]
+    assert gpu.summary["runs"][0]["precision"] == "f32"
+    assert f_gpu == pytest.approx(f_cpu, rel=1e-4)
+
+
+def test_the_example_script_runs():
+    out = subprocess.run(
+        [sys.executable, str(ROOT / "examples" / "quickstart.py")],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert out.returncode == 0, out.stderr
+    assert "|min F̄|" in out.stdout

@@ -1,0 +1,96 @@
+//! The session layer in memory: a simulation with no files returns the same answer and
+//! states as one that writes them, and a watch can stop a run, which then returns the states
+//! it had, marked incomplete.
+
+use jkrbem::backend::select::BackendKind;
+use jkrbem::model::ModelOptions;
+use jkrbem::run::open::BackendRequest;
+use jkrbem::run::simulate::{simulate, Mode, SimulateRequest, Sink};
+use jkrbem::run::Watch;
+use jkrbem::scene::Scene;
+use jkrbem::solver::State;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+fn request(sink: Sink) -> SimulateRequest {
+    SimulateRequest {
+        scene: Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap(),
+        options: ModelOptions {
+            nx: 64,
+            ..ModelOptions::default()
+        },
+        backend: BackendRequest {
+            kind: BackendKind::Cpu,
+            ..BackendRequest::default()
+        },
+        mode: Mode::Single,
+        sink,
+        time_limit: None,
+    }
+}
+
+#[test]
+fn a_run_in_memory_equals_the_run_to_files_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("s.csv");
+    let filed = simulate(
+        &request(Sink::Files {
+            out: Some(out.clone()),
+            summary: None,
+        }),
+        &jkrbem::run::Quiet,
+    )
+    .unwrap();
+    let kept = simulate(&request(Sink::Memory), &jkrbem::run::Quiet).unwrap();
+    assert!(kept.states.is_empty(), "no file named");
+    assert_eq!(filed.states, vec![out.clone()]);
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    let (a, b) = (&filed.runs[0], &kept.runs[0]);
+    assert!(a.complete && b.complete && !kept.stopped);
+    assert_eq!(a.states.len(), b.states.len());
+    for (x, y) in a.states.iter().zip(&b.states) {
+        assert_eq!((x.d_bar, x.f_bar, x.c_bar), (y.d_bar, y.f_bar, y.c_bar));
+    }
+    // The file holds exactly the states kept in memory.
+    let rows = std::fs::read_to_string(&out).unwrap().lines().count() - 1;
+    assert_eq!(rows, b.states.len());
+    assert_eq!(filed.summary.f_ad_bar, kept.summary.f_ad_bar);
+    assert!(kept.summary.runs[0].states_csv.is_none());
+    // The sphere's adhesive force on 64²: JKR's 1/2 within the stated uncertainty.
+    let s = &kept.summary;
+    let (f, u) = (s.f_ad_bar.unwrap(), s.f_ad_bar_uncertainty.unwrap());
+    assert!((f - 0.5).abs() <= u, "{f} ± {u}");
+}
+
+/// Stops the run after `limit` states.
+struct StopAfter {
+    limit: usize,
+    seen: AtomicUsize,
+}
+
+impl Watch for StopAfter {
+    fn state(&self, _model: &jkrbem::model::Model, _state: &State) {
+        self.seen.fetch_add(1, Ordering::SeqCst);
+    }
+    fn keep_going(&self) -> bool {
+        self.seen.load(Ordering::SeqCst) < self.limit
+    }
+}
+
+#[test]
+fn a_watch_stops_a_run_which_returns_its_states_marked_incomplete() {
+    let watch = StopAfter {
+        limit: 12,
+        seen: AtomicUsize::new(0),
+    };
+    let done = simulate(&request(Sink::Memory), &watch).unwrap();
+    assert!(done.stopped);
+    let run = &done.runs[0];
+    assert_eq!(run.states.len(), 12);
+    assert!(!run.complete);
+    let why = done.failure.expect("a stopped run says so");
+    assert!(
+        why.contains("stopped by its caller after 12 states"),
+        "{why}"
+    );
+    assert!(!done.summary.runs[0].complete);
+}
