@@ -35,6 +35,7 @@ __all__ = [
     "reference_table",
     "devices",
     "Result",
+    "Fields",
     "InputError",
     "SolveError",
     "STATE_COLUMNS",
@@ -93,6 +94,99 @@ class Run:
 
 
 @dataclass
+class Fields:
+    """The fields of one state on its grid. 2-D arrays have shape (ny, nx): ``a[j, i]`` is
+    the element at ``x[i]``, ``y[j]``. Each field is the state's contact set solved again on
+    the CPU (f64) at its approach."""
+
+    #: Which run (0: the first grid run) and which of its states (0: the first press).
+    run: int
+    index: int
+    #: Why it was kept ("force minimum", "state 12").
+    label: str
+    #: The state (a dict with the states' columns).
+    state: Dict[str, Any]
+    #: Element centres from the apex (length).
+    x: np.ndarray
+    y: np.ndarray
+    #: Contact pressure p (force/length², compressive positive; 0 off the contact).
+    pressure: np.ndarray
+    #: Gap g = h − d + u (length; 0 on the contact).
+    gap: np.ndarray
+    #: The contact set.
+    contact: np.ndarray
+    #: Element side (length) and detachment stress σ_c (force/length²).
+    dx: float
+    sigma_c: float
+
+    @property
+    def force(self) -> float:
+        """Σ p Δx² (force): the state's force."""
+        return float(self.pressure.sum() * self.dx * self.dx)
+
+    def plot(self, ax=None):
+        """The pressure as a heat map with the contact's outline (needs matplotlib)."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots()
+        h = 0.5 * self.dx
+        extent = (self.x[0] - h, self.x[-1] + h, self.y[0] - h, self.y[-1] + h)
+        scale = float(np.abs(self.pressure).max()) or 1.0
+        im = ax.imshow(self.pressure, origin="lower", extent=extent, cmap="bwr",
+                       vmin=-scale, vmax=scale)
+        ax.contour(self.x, self.y, self.contact.astype(float), levels=[0.5], colors="k", linewidths=0.8)
+        ax.set_xlabel("x (length)")
+        ax.set_ylabel("y (length)")
+        ax.set_aspect("equal")
+        ax.figure.colorbar(im, ax=ax, label="p (force/length²)")
+        ax.set_title(f"p, {self.label} (state {self.index})")
+        return ax
+
+
+def _fields(raw: List[Dict[str, Any]]) -> List[Fields]:
+    out = []
+    for d in raw:
+        meta = json.loads(d["meta"])
+        nx, ny = meta["nx"], meta["ny"]
+        grid = lambda key: np.frombuffer(d[key], dtype=np.float64).reshape(ny, nx).copy()
+        out.append(
+            Fields(
+                run=meta["run"],
+                index=meta["index"],
+                label=meta["label"],
+                state=meta["state"],
+                x=np.frombuffer(d["x"], dtype=np.float64).copy(),
+                y=np.frombuffer(d["y"], dtype=np.float64).copy(),
+                pressure=grid("pressure"),
+                gap=grid("gap"),
+                contact=np.frombuffer(d["contact"], dtype=np.uint8).reshape(ny, nx).astype(bool),
+                dx=meta["dx"],
+                sigma_c=meta["sigma_c"],
+            )
+        )
+    return out
+
+
+def _field_choice(fields: Union[None, str, Tuple[str, int], Sequence[int]]) -> str:
+    """The keyword ``fields`` in the solver's words."""
+    if fields is None or fields == "none":
+        return "none"
+    if fields == "minimum":
+        return "minimum"
+    if isinstance(fields, tuple) and len(fields) == 2 and fields[0] == "every":
+        return f"every:{int(fields[1])}"
+    if isinstance(fields, str):
+        return fields
+    try:
+        return "states:" + ",".join(str(int(i)) for i in fields)
+    except TypeError:
+        raise InputError(
+            f"fields = {fields!r} is invalid: None, \"minimum\", (\"every\", k) or a list of state indices"
+        )
+
+
+@dataclass
 class Result:
     """A simulation's answer.
 
@@ -126,6 +220,17 @@ class Result:
     interrupted: bool = False
     #: Warnings about the answer.
     warnings: List[str] = field(default_factory=list)
+    #: The fields kept (``fields=`` of :func:`simulate`), of every run.
+    fields: List[Fields] = field(default_factory=list)
+
+    @property
+    def field_at_minimum(self) -> Optional[Fields]:
+        """The fields of the last run's force minimum, if they were kept."""
+        last = len(self.runs) - 1
+        for f in self.fields:
+            if f.run == last and "force minimum" in f.label:
+                return f
+        return None
 
     @property
     def states(self) -> np.ndarray:
@@ -236,6 +341,7 @@ def _request(
     onsets: Optional[str],
     backend: str,
     time_limit: Optional[float],
+    fields: Union[None, str, Tuple[str, int], Sequence[int]] = None,
 ) -> str:
     numbers = {
         "ratio": ratio, "r1": r1, "r2": r2, "e_star": e_star, "work_of_adhesion": work_of_adhesion,
@@ -275,11 +381,12 @@ def _request(
             "onsets": onsets,
             "backend": backend,
             "time_limit": time_limit,
+            "fields": _field_choice(fields),
         }
     )
 
 
-def _result(answer: Dict[str, Any]) -> Result:
+def _result(answer: Dict[str, Any], fields: List[Fields]) -> Result:
     s = answer["summary"]
     runs = [
         Run(grid=tuple(r["grid"]), dx=r["dx"], complete=r["complete"], states=_states_array(r["states"]))
@@ -301,6 +408,7 @@ def _result(answer: Dict[str, Any]) -> Result:
         failure=answer.get("failure"),
         interrupted=answer.get("interrupted", False),
         warnings=list(s.get("warnings", [])),
+        fields=fields,
     )
 
 
@@ -328,6 +436,7 @@ def simulate(
     onsets: Optional[str] = None,
     backend: str = "auto",
     time_limit: Optional[float] = None,
+    fields: Union[None, str, Tuple[str, int], Sequence[int]] = None,
     progress: Union[None, bool, Callable[[dict], Any]] = None,
 ) -> Result:
     """Simulate the adhesive pull-off of one scene and estimate its adhesive force.
@@ -342,6 +451,10 @@ def simulate(
     extrapolates to Δx → 0. With none of them the run aims at 2 %. ``backend`` is "auto",
     "cpu" (f64) or "gpu" (f32). ``time_limit`` (s) bounds an accuracy run.
 
+    ``fields``: the states whose fields (pressure, gap, contact set as 2-D arrays, with x
+    and y) are kept in :attr:`Result.fields`: None (the default), "minimum" (the force
+    minimum), ("every", k) or a list of state indices (each also keeps the minimum).
+
     ``progress``: a callable receiving event dicts (``event`` = "note", "start", "state",
     "warning"), or True for a tqdm bar where tqdm is installed. Ctrl-C stops the run: the result
     then holds the states computed so far, with ``interrupted`` True (and a warning).
@@ -353,10 +466,10 @@ def simulate(
     request = _request(
         ratio, r1, r2, e_star, work_of_adhesion, indenter, radius, exponent, scale, accuracy,
         grid, grid_y, extrapolate, mesh_angle, apex_offset, margin, start_radius, steps,
-        measure, onsets, backend, time_limit,
+        measure, onsets, backend, time_limit, fields,
     )
-    answer = json.loads(_jkrbem.simulate(request, _progress(progress)))
-    result = _result(answer)
+    text, raw_fields = _jkrbem.simulate(request, _progress(progress))
+    result = _result(json.loads(text), _fields(raw_fields))
     if result.interrupted:
         warnings.warn(
             "jkrbem: the run was interrupted; the result holds the states computed so far",

@@ -3,6 +3,7 @@
 //! session layer in memory with the GIL released, and answers in JSON, which the Python side
 //! turns into numpy arrays. Errors name the Python keyword, never a CLI flag.
 
+use jkrbem::analysis::fields::FieldChoice;
 use jkrbem::backend::select::BackendKind;
 use jkrbem::model::{Measure, Model, ModelOptions, Onsets};
 use jkrbem::parameters::as_keywords;
@@ -15,6 +16,7 @@ use jkrbem::theory::{self, TheoryModel};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
 use serde::Deserialize;
 use serde_json::{json, Value};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -81,6 +83,8 @@ struct Request {
     backend: String,
     /// Seconds an accuracy run may take.
     time_limit: Option<f64>,
+    /// Which states' fields to keep: "none", "minimum", "every:K", "states:I,J".
+    fields: String,
 }
 
 /// A refusal naming Python keywords.
@@ -120,9 +124,11 @@ impl Request {
             }
             .checked()
             .and_then(|i| Scene::with_indenter(i, e, w)),
-            other => return Err(input_error(format!(
+            other => {
+                return Err(input_error(format!(
                 "indenter = {other:?} is invalid: \"ellipsoid\", \"flat_punch\" or \"power_law\""
-            ))),
+            )))
+            }
         };
         scene.map_err(input_error)
     }
@@ -214,6 +220,8 @@ impl Request {
             backend: self.backend()?,
             mode: self.mode()?,
             sink: Sink::Memory,
+            fields: FieldChoice::parse(&self.fields)
+                .map_err(|e| input_error(format!("fields = {e}")))?,
             time_limit,
         })
     }
@@ -288,8 +296,31 @@ impl Watch for PyWatch {
     }
 }
 
+/// The fields of every run as Python dicts: the arrays as raw bytes (native-endian f64,
+/// contact as u8; numpy reads them with `frombuffer`), the rest as JSON text.
+fn fields_out<'py>(py: Python<'py>, done: &Simulated) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    let mut all = Vec::new();
+    for (run, r) in done.runs.iter().enumerate() {
+        for f in &r.fields {
+            let d = PyDict::new(py);
+            let meta = json!({"run": run, "index": f.index, "label": f.label, "state": f.state,
+                              "nx": f.nx, "ny": f.ny, "dx": f.dx, "sigma_c": f.sigma_c});
+            d.set_item("meta", meta.to_string())?;
+            let bytes = |v: &[f64]| -> Vec<u8> { v.iter().flat_map(|x| x.to_ne_bytes()).collect() };
+            d.set_item("pressure", PyBytes::new(py, &bytes(&f.pressure)))?;
+            d.set_item("gap", PyBytes::new(py, &bytes(&f.gap)))?;
+            d.set_item("x", PyBytes::new(py, &bytes(&f.x)))?;
+            d.set_item("y", PyBytes::new(py, &bytes(&f.y)))?;
+            let contact: Vec<u8> = f.contact.iter().map(|c| *c as u8).collect();
+            d.set_item("contact", PyBytes::new(py, &contact))?;
+            all.push(d);
+        }
+    }
+    Ok(all)
+}
+
 /// The answer as JSON: the summary, the plan, why it fell short, and every grid's states.
-fn answer(done: Simulated, interrupted: bool) -> Value {
+fn answer(done: &Simulated, interrupted: bool) -> Value {
     let runs: Vec<Value> = done
         .runs
         .iter()
@@ -309,11 +340,16 @@ fn answer(done: Simulated, interrupted: bool) -> Value {
     })
 }
 
-/// Run a simulation (the request as JSON); returns the answer as JSON. The GIL is released
-/// while the solver runs; `progress` (a callable, or None) sees the run's events.
+/// Run a simulation (the request as JSON); returns the answer as JSON and the fields (a list
+/// of dicts of bytes). The GIL is released while the solver runs; `progress` (a callable, or
+/// None) sees the run's events.
 #[pyfunction]
 #[pyo3(signature = (request, progress=None))]
-fn simulate(py: Python<'_>, request: &str, progress: Option<Py<PyAny>>) -> PyResult<String> {
+fn simulate<'py>(
+    py: Python<'py>,
+    request: &str,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<(String, Vec<Bound<'py, PyDict>>)> {
     let req: Request = parse(request)?;
     let sim = req.simulate_request()?;
     let watch = PyWatch {
@@ -330,7 +366,11 @@ fn simulate(py: Python<'_>, request: &str, progress: Option<Py<PyAny>>) -> PyRes
         RunError::Input(m) => input_error(m),
         other => SolveError::new_err(as_keywords(&other.to_string())),
     })?;
-    Ok(answer(done, watch.interrupted.load(Ordering::SeqCst)).to_string())
+    let fields = fields_out(py, &done)?;
+    Ok((
+        answer(&done, watch.interrupted.load(Ordering::SeqCst)).to_string(),
+        fields,
+    ))
 }
 
 /// What a run to `accuracy` would do (the grids, the domain and the uncertainty it predicts),

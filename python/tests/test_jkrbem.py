@@ -174,3 +174,36 @@ def test_the_example_script_runs():
     )
     assert out.returncode == 0, out.stderr
     assert "|min F̄|" in out.stdout
+
+
+def test_fields_at_the_minimum_carry_the_force_and_follow_jkr():
+    r = jkrbem.simulate(ratio=1, grid=128, backend="cpu", fields="minimum")
+    f = r.field_at_minimum
+    assert f is not None and f.pressure.shape == (128, 128) == f.gap.shape == f.contact.shape
+    assert f.force == pytest.approx(f.state["force"], rel=1e-6)
+    scale = abs(f.state["d"])
+    assert np.abs(f.gap[f.contact]).max() <= 1e-6 * scale
+    assert f.gap[~f.contact].min() > 0
+    assert f.pressure[f.contact].min() >= -f.sigma_c * (1 + 1e-6)
+    assert np.all(f.pressure[~f.contact] == 0)
+    # JKR's pressure with the state's own contact radius a and approach d (R = E* = 1).
+    a, d = f.state["mean_radius"], f.state["d"]
+    X, Y = np.meshgrid(f.x, f.y)
+    r_ = np.hypot(X, Y)
+    inside = r_ < 0.7 * a
+    s = np.sqrt(a * a - r_[inside] ** 2)
+    jkr = 2 / np.pi * s + (d - a * a) / (np.pi * s)
+    p0 = abs(2 / np.pi * a + (d - a * a) / (np.pi * a))
+    assert np.abs(f.pressure[inside] - jkr).max() / p0 < 0.05
+
+
+def test_fields_of_listed_states_and_every_kth():
+    r = jkrbem.simulate(ratio=2, grid=32, backend="cpu", fields=[0, 10])
+    assert [f.index for f in r.fields][:2] == [0, 10]
+    assert r.fields[-1].label.endswith("force minimum")
+    for f in r.fields:
+        assert f.force == pytest.approx(f.state["force"], rel=1e-6, abs=1e-9)
+    every = jkrbem.simulate(ratio=2, grid=32, backend="cpu", fields=("every", 40))
+    assert [f.index for f in every.fields if f.label.startswith("state")][:3] == [0, 40, 80]
+    with pytest.raises(jkrbem.InputError, match="fields"):
+        jkrbem.simulate(ratio=2, grid=32, backend="cpu", fields=("every", 0))

@@ -18,6 +18,19 @@ pub struct Snapshot {
     pub mask: Vec<bool>,
 }
 
+/// What sees every recorded state of a run with its contact mask (row-major nx × ny, true =
+/// in contact).
+pub trait MaskObserver {
+    /// Look at one recorded state and its mask.
+    fn observe(&mut self, state: &State, mask: &[bool]);
+}
+
+impl MaskObserver for ContactCapture {
+    fn observe(&mut self, state: &State, mask: &[bool]) {
+        ContactCapture::observe(self, state, mask)
+    }
+}
+
 /// Collects [`Snapshot`]s as a run records states (see `solver::run_with_contact`).
 #[derive(Debug, Clone, Default)]
 pub struct ContactCapture {

@@ -10,6 +10,7 @@ pub mod convergence;
 pub mod crossed;
 pub mod estimate;
 pub mod extrapolate;
+pub mod fields;
 pub mod fit;
 pub mod line_fit;
 mod lstsq;

@@ -4,10 +4,12 @@
 
 pub mod bench;
 pub mod chart;
+pub mod fields_npz;
 pub mod file;
 pub mod line_chart;
 pub mod names;
 #[cfg(feature = "gpu")]
+pub mod pressure_chart;
 pub mod profile;
 pub mod states_csv;
 pub mod study_charts;
@@ -56,6 +58,16 @@ pub enum OutputError {
         /// The flag that named it.
         flag: Option<String>,
         /// What the plotting library said.
+        reason: String,
+    },
+    /// Data could not be encoded in the file's format (e.g. a `.npz` archive).
+    #[error("cannot encode {path}{}: {reason}", flag_note(flag))]
+    Encode {
+        /// The path.
+        path: String,
+        /// The flag that named it.
+        flag: Option<String>,
+        /// What the encoder said.
         reason: String,
     },
     /// The target may not be written (it is not a regular file, or two outputs clash).
@@ -110,6 +122,7 @@ impl OutputError {
             OutputError::Io { flag, .. }
             | OutputError::Csv { flag, .. }
             | OutputError::Chart { flag, .. }
+            | OutputError::Encode { flag, .. }
             | OutputError::Refused { flag, .. }
             | OutputError::Locked { flag, .. } => {
                 flag.get_or_insert_with(|| name.to_string());

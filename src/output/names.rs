@@ -36,6 +36,25 @@ pub fn contours(states: &Path) -> PathBuf {
     states.with_file_name(format!("{stem}.contours.csv"))
 }
 
+/// A file beside a states file: `<stem>.<suffix>`.
+fn beside(states: &Path, suffix: &str) -> PathBuf {
+    let stem = states
+        .file_stem()
+        .map_or_else(|| "states".into(), |s| s.to_string_lossy().into_owned());
+    states.with_file_name(format!("{stem}.{suffix}"))
+}
+
+/// The fields of a run's picked states beside its states file: `<stem>.fields.npz`.
+pub fn fields_npz(states: &Path) -> PathBuf {
+    beside(states, "fields.npz")
+}
+
+/// The picture of the pressure at the force minimum beside a states file:
+/// `<stem>.pressure.svg`.
+pub fn pressure_chart(states: &Path) -> PathBuf {
+    beside(states, "pressure.svg")
+}
+
 /// The summary JSON beside a states file: `<stem>.json`.
 pub fn summary_beside(states: &Path) -> PathBuf {
     states.with_extension("json")

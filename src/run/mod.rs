@@ -13,6 +13,7 @@ pub mod claim;
 pub mod coverage;
 pub mod crossed;
 pub mod curves;
+pub mod fields;
 pub mod open;
 pub mod pulloff;
 pub mod reference;

@@ -3,7 +3,7 @@
 
 use super::claim::write_error;
 use super::{failed, RunError, Watch};
-use crate::analysis::capture::ContactCapture;
+use crate::analysis::capture::MaskObserver;
 use crate::analysis::report::RunReport;
 use crate::backend::Backend;
 use crate::model::Model;
@@ -59,7 +59,7 @@ pub fn pulloff<B: Backend>(
     model: &Model,
     file: Option<StatesFile>,
     watch: &dyn Watch,
-    mut capture: Option<&mut ContactCapture>,
+    mut capture: Option<&mut dyn MaskObserver>,
     deadline: Option<Instant>,
 ) -> Result<Pulloff, RunError> {
     let mut writer = match file {

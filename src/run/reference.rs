@@ -460,6 +460,7 @@ pub(crate) fn run_or_reuse(
             out: Some(states),
             summary: None,
         },
+        fields: Default::default(),
         time_limit: None,
     };
     let done = simulate(&one, watch)?;

@@ -7,10 +7,12 @@ use super::claim::Outputs;
 use super::open::{open_for, BackendRequest};
 use super::pulloff::{pulloff, Pulloff, StatesFile};
 use super::{failed, input, RunError, Watch};
+use crate::analysis::capture::MaskObserver;
 use crate::analysis::estimate::{self, AdhesiveResult};
+use crate::analysis::fields::{FieldChoice, FieldPicks, StateFields};
 use crate::model::{Measure, Model, ModelOptions, Onsets};
-use crate::output::names;
 use crate::output::summary::Summary;
+use crate::output::{fields_npz, names, pressure_chart};
 use crate::plan;
 use crate::scene::Scene;
 use std::path::PathBuf;
@@ -43,6 +45,9 @@ pub struct SimulateRequest {
     pub mode: Mode,
     /// Where the states and the summary go besides memory.
     pub sink: Sink,
+    /// Which states' fields (pressure, gap, contact set) each run keeps, in memory (the CLI
+    /// writes the last run's beside its states).
+    pub fields: FieldChoice,
     /// Wall-clock time the request may take (with [`Mode::Accuracy`]): a grid still running
     /// then is stopped, and the answer comes from the grids that finished (the coarsest grid
     /// that resolves the contact runs first, so that there is one), with `target_met: false`
@@ -77,6 +82,8 @@ pub struct GridRun {
     /// Whether it reached its end (or its confirmed minimum); `false` for a run that failed,
     /// ran out of time or was stopped by its watch.
     pub complete: bool,
+    /// The fields of the states [`SimulateRequest::fields`] picked, by state index.
+    pub fields: Vec<StateFields>,
 }
 
 /// What a simulation produced.
@@ -94,6 +101,8 @@ pub struct Simulated {
     pub stopped: bool,
     /// Why a run stopped early, if one did (its states and the summary were written).
     pub failure: Option<String>,
+    /// The fields files written (with [`Sink::Files`] and fields asked for).
+    pub field_files: Vec<PathBuf>,
 }
 
 /// Run the request: check every input, claim the outputs, run, estimate, write the summary.
@@ -117,6 +126,12 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
             let outs = output_paths(req, out, &models)?;
             let mut targets: Vec<(PathBuf, String)> =
                 outs.iter().map(|p| (p.clone(), "--out".into())).collect();
+            if !req.fields.is_none() {
+                for o in &outs {
+                    targets.push((names::fields_npz(o), "--out".into()));
+                    targets.push((names::pressure_chart(o), "--out".into()));
+                }
+            }
             if let Some(p) = summary {
                 targets.push((p.clone(), "--summary".into()));
             }
@@ -126,8 +141,15 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
         }
         Sink::Memory => (vec![None; models.len()], None),
     };
-    let ran = run_grids(req, models, &outs, watch)?;
-    Ok(conclude(
+    let mut ran = run_grids(req, models, &outs, watch)?;
+    let (field_files, field_error) = write_fields(req, &ran.kept, &outs);
+    if let Some(e) = field_error {
+        ran.failure = Some(match ran.failure.take() {
+            Some(f) => format!("{f}\n  {e}"),
+            None => e,
+        });
+    }
+    let mut done = conclude(
         req,
         ran,
         Concluding {
@@ -136,7 +158,53 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
             fallback,
             planned_runs,
         },
-    ))
+    );
+    done.field_files = field_files;
+    Ok(done)
+}
+
+/// Write each run's fields beside its states file (where it has a file and fields): the
+/// `.npz` archive, and the pressure at the force minimum as a picture. Returns the files
+/// written and why one could not be, if one could not.
+fn write_fields(
+    req: &SimulateRequest,
+    runs: &[GridRun],
+    outs: &[Option<PathBuf>],
+) -> (Vec<PathBuf>, Option<String>) {
+    let mut written = Vec::new();
+    for (run, out) in runs.iter().zip(outs) {
+        let (Some(out), false) = (out, run.fields.is_empty()) else {
+            continue;
+        };
+        let about = serde_json::json!({
+            "program": "jkrbem",
+            "version": env!("CARGO_PKG_VERSION"),
+            "scene": req.scene.headline(),
+            "grid": [run.grid.0, run.grid.1],
+            "states_csv": out.display().to_string(),
+        });
+        let npz = names::fields_npz(out);
+        if let Err(e) = fields_npz::write_npz(&npz, &run.fields, about) {
+            return (written, Some(e.with_flag("--out").to_string()));
+        }
+        written.push(npz);
+        if let Some(min) = run
+            .fields
+            .iter()
+            .find(|f| f.label.contains("force minimum"))
+        {
+            let chart = names::pressure_chart(out);
+            let title = format!(
+                "p at the force minimum (state {}): F̄ = {:.4}, c̄ = {:.3}, {}×{}",
+                min.index, min.state.f_bar, min.state.c_bar, run.grid.0, run.grid.1
+            );
+            if let Err(e) = pressure_chart::write_pressure_svg(&chart, min, &title) {
+                return (written, Some(e.with_flag("--out").to_string()));
+            }
+            written.push(chart);
+        }
+    }
+    (written, None)
 }
 
 /// The states files of the request's models: `--out` itself for one grid (asked for, or the
@@ -226,15 +294,28 @@ fn run_grids(
             path,
             flag: "--out",
         });
+        let mut picks = FieldPicks::new(req.fields.clone());
+        let observer: Option<&mut dyn MaskObserver> = match req.fields.is_none() {
+            true => None,
+            false => Some(&mut picks),
+        };
         let run: Pulloff = crate::with_backend!(
             &mut any,
-            backend => pulloff(backend, &model, file, watch, None, deadline)
+            backend => pulloff(backend, &model, file, watch, observer, deadline)
         )?;
+        let mut fields = Vec::new();
+        for pick in picks.into_picks() {
+            match super::fields::rebuild(&model, pick) {
+                Ok(f) => fields.push(f),
+                Err(e) => watch.warning(&e.to_string()),
+            }
+        }
         kept.push(GridRun {
             grid: (model.nx, model.ny),
             dx: model.dx,
             states: run.outcome.states.clone(),
             complete: run.outcome.complete(),
+            fields,
         });
         if run.timed_out {
             timed_out = Some(format!(
@@ -375,6 +456,7 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
         runs: kept,
         stopped,
         failure,
+        field_files: Vec::new(),
     }
 }
 

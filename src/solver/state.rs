@@ -3,10 +3,11 @@
 use serde::{Deserialize, Serialize};
 
 /// Which part of the protocol a state belongs to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Phase {
     /// The first, non-adhesive press to d0.
+    #[default]
     Approach,
     /// A step of the adhesive pull-off.
     Pulloff,
@@ -21,7 +22,7 @@ pub enum Phase {
 
 /// One converged state. Dimensional values are in the scene's units; `*_bar` values are
 /// normalised as in physics §2.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct State {
     /// Load step (0 for the approach).
     pub step: usize,

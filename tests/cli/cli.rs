@@ -607,3 +607,80 @@ fn a_height_map_file_runs_and_bad_maps_are_refused() {
         assert!(err.contains(says), "{map:?} {extra:?}: {err}");
     }
 }
+
+#[test]
+fn fields_are_written_as_npz_numpy_reads_and_a_pressure_picture() {
+    use ndarray::{Array1, Array3};
+    use ndarray_npy::NpzReader;
+    let dir = tempfile::tempdir().unwrap();
+    let o = jkrbem(
+        &[
+            "simulate",
+            "--ratio",
+            "2",
+            "--grid",
+            "64",
+            "--backend",
+            "cpu",
+            "--fields",
+            "every:100",
+            "--out",
+            "r.csv",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("fields written to r.fields.npz"),
+        "{stdout}"
+    );
+    let svg = std::fs::read_to_string(dir.path().join("r.pressure.svg")).unwrap();
+    assert!(svg.contains("p (force/length²)") && svg.contains("force minimum"));
+    let mut npz =
+        NpzReader::new(std::fs::File::open(dir.path().join("r.fields.npz")).unwrap()).unwrap();
+    let p: Array3<f64> = npz.by_name("pressure").unwrap();
+    let c: Array3<bool> = npz.by_name("contact").unwrap();
+    let force: Array1<f64> = npz.by_name("force").unwrap();
+    let dx: Array1<f64> = npz.by_name("dx").unwrap();
+    let index: Array1<u64> = npz.by_name("state_index").unwrap();
+    let meta: Array1<u8> = npz.by_name("metadata").unwrap();
+    let meta: serde_json::Value = serde_json::from_slice(meta.as_slice().unwrap()).unwrap();
+    assert_eq!(p.shape(), c.shape());
+    assert_eq!(p.shape()[2], 64, "(states, ny, nx)");
+    assert_eq!(index.as_slice().unwrap()[..2], [0, 100]);
+    assert!(meta["labels"]
+        .as_array()
+        .unwrap()
+        .last()
+        .unwrap()
+        .as_str()
+        .unwrap()
+        .contains("force minimum"));
+    assert!(meta["units"]["pressure"]
+        .as_str()
+        .unwrap()
+        .starts_with("force/length²"));
+    // Each state's Σ p Δx² is its force; the states CSV has the same force on that row.
+    let states = jkrbem::output::states_csv::read_states(&dir.path().join("r.csv")).unwrap();
+    for k in 0..p.shape()[0] {
+        let sum = p.index_axis(ndarray::Axis(0), k).sum() * dx[k] * dx[k];
+        assert!(
+            (sum - force[k]).abs() <= 1e-6 * force[k].abs().max(1e-3),
+            "{sum} vs {}",
+            force[k]
+        );
+        let row: f64 = states[index[k] as usize][3].parse().unwrap();
+        assert_eq!(row, force[k]);
+    }
+    // A bad choice is refused naming the flag, before any work.
+    let o = jkrbem(
+        &[
+            "simulate", "--grid", "64", "--fields", "every:0", "--out", "b.csv",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--fields"), "{}", stderr(&o));
+    assert!(!dir.path().join("b.csv").exists());
+}

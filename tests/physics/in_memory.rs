@@ -24,6 +24,7 @@ fn request(sink: Sink) -> SimulateRequest {
         },
         mode: Mode::Single,
         sink,
+        fields: Default::default(),
         time_limit: None,
     }
 }

@@ -10,6 +10,7 @@ mod common;
 mod analysis;
 mod coverage;
 mod ellipsoid;
+mod fields;
 mod hertz;
 mod in_memory;
 mod indenters;

@@ -3,6 +3,7 @@
 
 use super::super::parse;
 use super::indenter::IndenterArgs;
+use jkrbem::analysis::fields::FieldChoice;
 use jkrbem::backend::select::BackendKind;
 use jkrbem::backend::Preconditioner;
 use jkrbem::model::{Measure, Onsets};
@@ -140,6 +141,15 @@ pub struct Args {
     /// Also write the summary as JSON to this file (not the --out file).
     #[arg(long)]
     pub summary: Option<PathBuf>,
+    /// Also write the fields of chosen states of the last grid's run: `minimum` (the state of
+    /// the force minimum), `every:K` (every K-th state, and the minimum) or `states:I,J` (those
+    /// states, counted from 0 as the states CSV's rows, and the minimum). They go to
+    /// <out>.fields.npz (numpy's format: pressure p in force/length², gap g in length and the
+    /// contact set, shape (states, ny, nx), with x and y in length and the units inside), and
+    /// the pressure at the minimum to <out>.pressure.svg (a heat map with the contact's outline).
+    /// Each field is the state's contact set solved again on the CPU (f64) at its approach.
+    #[arg(long, value_parser = parse_fields, default_value = "none")]
+    pub fields: FieldChoice,
     /// Run the scene on the grids of --extrapolate-grids (instead of --grid) and fit |min F̄|,
     /// c̄ and d̄ at the minimum together to their Δx → 0 limits (first order in 1/n_d, the
     /// law's k as a prior; physics §7), each with its stated uncertainty.
@@ -167,4 +177,9 @@ pub struct Args {
     /// stated uncertainty, `target_met: false` if that misses the target, exit status 0.
     #[arg(long, value_parser = parse::duration)]
     pub time_limit: Option<Duration>,
+}
+
+/// `--fields`: see [`FieldChoice::parse`].
+fn parse_fields(text: &str) -> Result<FieldChoice, String> {
+    FieldChoice::parse(text)
 }

@@ -80,6 +80,7 @@ impl Args {
                 out: self.out.clone(),
                 summary: self.summary.clone(),
             },
+            fields: self.fields.clone(),
             time_limit: self.time_limit,
         })
     }
@@ -127,6 +128,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
     out!("{}", done.summary.to_text());
     for path in &done.states {
         outln!("states written to {}", path.display());
+    }
+    for path in &done.field_files {
+        outln!("fields written to {}", path.display());
     }
     failure_error(done.failure).map_err(run_error)
 }
