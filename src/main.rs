@@ -134,6 +134,23 @@ fn checked(ptr: *mut u8, bytes: usize) -> *mut u8 {
     std::process::exit(1)
 }
 
+/// This process's command line, each argument quoted where the shell would need it.
+fn command_line() -> String {
+    std::env::args()
+        .map(|a| {
+            if !a.is_empty()
+                && a.chars()
+                    .all(|c| c.is_alphanumeric() || "-_./,=:%+@".contains(c))
+            {
+                a
+            } else {
+                format!("'{}'", a.replace('\'', "'\\''"))
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// Flags that name files: a value starting with `-` there is more likely a forgotten value
 /// followed by the next flag, and stays refused as an unknown argument.
 const PATH_FLAGS: &[&str] = &["out", "summary"];
@@ -198,6 +215,7 @@ fn install_signal_handlers() {
 
 fn main() -> ExitCode {
     install_signal_handlers();
+    jkrbem::run::provenance::set_command_line(command_line());
     let command = values_may_start_with_a_hyphen(Cli::command());
     let cli = Cli::from_arg_matches(&command.get_matches()).unwrap_or_else(|e| e.exit());
     jkrbem::output::file::set_force(cli.force);

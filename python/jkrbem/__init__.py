@@ -31,6 +31,9 @@ __all__ = [
     "simulate",
     "pulloff",
     "plan",
+    "sweep",
+    "sweep_results",
+    "crossed",
     "theory",
     "reference_table",
     "devices",
@@ -496,6 +499,64 @@ def pulloff(
     single grid's: the whole curve (``measure="curve"``) or only up to the confirmed force
     minimum (``measure="adhesive_force"``). Other keywords as :func:`simulate`."""
     return simulate(ratio, grid=grid, measure=measure, onsets=onsets, **kwargs)
+
+
+def sweep(
+    ratios: Sequence[float] = (1, 2, 3, 5, 10, 15, 20, 25),
+    **kwargs: Any,
+) -> np.ndarray:
+    """One :func:`simulate` per axis ratio R1/R2 (other keywords as there, e.g. ``accuracy`` or
+    ``grid``): a structured array, one row per ratio, with the adhesive force, its uncertainty,
+    the estimate's kind, c̄ and d̄ at the minimum, Johnson–Greenwood and the deviation from it
+    (a comparison). :func:`sweep_results` gives the :class:`Result` of each ratio instead."""
+    return _table(sweep_results(ratios, **kwargs))
+
+
+def sweep_results(ratios: Sequence[float] = (1, 2, 3, 5, 10, 15, 20, 25), **kwargs: Any) -> List[Result]:
+    """The :class:`Result` of :func:`simulate` for each ratio, in order."""
+    return [simulate(float(q), **kwargs) for q in ratios]
+
+
+def _table(results: List[Result]) -> np.ndarray:
+    dtype = [
+        ("ratio", "f8"), ("f_ad_bar", "f8"), ("f_ad_bar_uncertainty", "f8"), ("estimate", "U16"),
+        ("c_bar_at_min", "f8"), ("d_bar_at_min", "f8"), ("jg_f_ad_bar", "f8"), ("jg_deviation", "f8"),
+    ]
+    nan = lambda v: math.nan if v is None else v
+    rows = [
+        (r.summary["ratio"], nan(r.adhesive_force), nan(r.uncertainty), r.estimate or "",
+         nan(r.c_bar_at_min), nan(r.d_bar_at_min), nan(r.jg), nan(r.deviation_from_jg))
+        for r in results
+    ]
+    return np.array(rows, dtype=dtype)
+
+
+def crossed(
+    angles: Sequence[float] = (90, 60, 45, 30, 20),
+    *,
+    radius: float = 0.01,
+    young: float = 3e6,
+    poisson: float = 0.5,
+    work_of_adhesion: float = 0.05,
+    **kwargs: Any,
+) -> np.ndarray:
+    """Two identical elastic cylinders of ``radius`` (m), Young's modulus ``young`` (Pa),
+    Poisson's ratio ``poisson``, crossed at each of ``angles`` (degrees; 90 is sphere-like),
+    with ``work_of_adhesion`` (J/m²): the adhesive force in newtons with its uncertainty, beside
+    Johnson–Greenwood's (a comparison). Other keywords as :func:`simulate` (e.g. ``accuracy``)."""
+    rows = []
+    for angle in angles:
+        eq = json.loads(_jkrbem.crossed_scene(float(radius), float(young), float(poisson),
+                                              float(work_of_adhesion), float(angle)))
+        r = simulate(r1=eq["r1"], r2=eq["r2"], e_star=eq["e_star"],
+                     work_of_adhesion=work_of_adhesion, **kwargs)
+        f = eq["force_scale"]
+        nan = lambda v: math.nan if v is None else v
+        rows.append((float(angle), eq["ratio"], nan(r.adhesive_force) * f, nan(r.uncertainty) * f,
+                     nan(r.jg) * f, nan(r.deviation_from_jg)))
+    dtype = [("angle_deg", "f8"), ("ratio", "f8"), ("force_n", "f8"), ("force_n_uncertainty", "f8"),
+             ("jg_force_n", "f8"), ("jg_deviation", "f8")]
+    return np.array(rows, dtype=dtype)
 
 
 def plan(

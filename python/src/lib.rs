@@ -447,6 +447,33 @@ fn devices() -> String {
     Value::from(adapters).to_string()
 }
 
+/// The equivalent ellipsoid of two identical cylinders of `radius` (length), Young's modulus
+/// `young` (force/length²) and Poisson's ratio `poisson` crossed at `angle` (degrees), with
+/// `work_of_adhesion` (force/length): R1, R2, E* and the force scale 3π Re Δγ, as JSON.
+#[pyfunction]
+fn crossed_scene(
+    radius: f64,
+    young: f64,
+    poisson: f64,
+    work_of_adhesion: f64,
+    angle: f64,
+) -> PyResult<String> {
+    let c = jkrbem::analysis::crossed::CrossedCylinders {
+        radius,
+        angle_deg: angle,
+        young,
+        poisson,
+        work_of_adhesion,
+    };
+    c.validate().map_err(input_error)?;
+    let (r1, r2) = c.radii().map_err(input_error)?;
+    Ok(
+        json!({"r1": r1, "r2": r2, "e_star": c.e_star().map_err(input_error)?,
+              "force_scale": c.force_scale().map_err(input_error)?, "ratio": r1 / r2})
+        .to_string(),
+    )
+}
+
 /// The compiled module.
 #[pymodule]
 fn _jkrbem(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -459,5 +486,6 @@ fn _jkrbem(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(theory_pull_off, m)?)?;
     m.add_function(wrap_pyfunction!(reference_table_csv, m)?)?;
     m.add_function(wrap_pyfunction!(devices, m)?)?;
+    m.add_function(wrap_pyfunction!(crossed_scene, m)?)?;
     Ok(())
 }

@@ -207,3 +207,53 @@ def test_fields_of_listed_states_and_every_kth():
     assert [f.index for f in every.fields if f.label.startswith("state")][:3] == [0, 40, 80]
     with pytest.raises(jkrbem.InputError, match="fields"):
         jkrbem.simulate(ratio=2, grid=32, backend="cpu", fields=("every", 0))
+
+
+def test_the_summary_states_its_provenance():
+    r = jkrbem.simulate(r1=3.0, r2=1.5, e_star=2.0, work_of_adhesion=0.5, grid=32, backend="cpu")
+    p = r.summary["provenance"]
+    assert p["program"] == "jkrbem" and p["version"] == jkrbem.__version__
+    assert p["scene"] == {**p["scene"], "r1": 3.0, "r2": 1.5, "e_star": 2.0, "work_of_adhesion": 0.5}
+    assert p["options"]["grid"] == 32 and p["options"]["mode"]["kind"] == "single"
+    run = p["backend"]["runs"][0]
+    assert run["backend"] == "cpu" and run["precision"] == "f64" and run["device"]
+    assert p["command"] is None, "a Python call has no command line"
+    assert p["date"].endswith("Z")
+
+
+@pytest.mark.slow
+def test_the_example_notebook_runs():
+    import json
+
+    nb = json.loads((ROOT / "examples" / "quickstart.ipynb").read_text())
+    scope = {}
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        has_plots = True
+    except ImportError:
+        has_plots = False
+    for cell in nb["cells"]:
+        if cell["cell_type"] != "code":
+            continue
+        code = "".join(cell["source"])
+        if "matplotlib" in code and not has_plots:
+            continue  # matplotlib is optional; the notebook's other cells still run
+        exec(compile(code, "quickstart.ipynb", "exec"), scope)
+    r = scope["r"]
+    assert abs(r.adhesive_force - scope["row"]["f_ad_bar"]) <= r.uncertainty + scope["row"]["f_ad_bar_uncertainty"]
+
+
+def test_sweep_and_crossed_tables():
+    t = jkrbem.sweep([1, 3], grid=64, backend="cpu")
+    assert list(t["ratio"]) == [1.0, 3.0]
+    assert np.all(np.isfinite(t["f_ad_bar"])) and np.all(t["f_ad_bar_uncertainty"] > 0)
+    assert abs(t["f_ad_bar"][0] - 0.5) <= t["f_ad_bar_uncertainty"][0]
+    c = jkrbem.crossed([90], radius=0.01, young=3e6, poisson=0.5, work_of_adhesion=0.05, grid=64, backend="cpu")
+    # At 90° the cylinders are a sphere of radius R: JKR's pull-off 1.5 π R Δγ.
+    jkr = 1.5 * np.pi * 0.01 * 0.05
+    assert abs(c["force_n"][0] - jkr) <= c["force_n_uncertainty"][0]
+    assert c["jg_force_n"][0] == pytest.approx(jkr, rel=1e-9)
+    with pytest.raises(jkrbem.InputError, match="angle"):
+        jkrbem.crossed([120], grid=64, backend="cpu")

@@ -501,6 +501,7 @@ mod tests {
             n_d: Some(n_d),
             backend: "cpu".into(),
             precision: "f64".into(),
+            device: None,
             cg_iterations: 10,
             cg_residual_max: None,
             cg_retries: 0,

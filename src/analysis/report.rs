@@ -68,6 +68,9 @@ pub struct RunReport {
     pub backend: String,
     /// Its arithmetic ("f64", "f32").
     pub precision: String,
+    /// The device it ran on (the CPU model and threads, or the GPU adapter), where recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub device: Option<String>,
     /// CG iterations over the run.
     pub cg_iterations: usize,
     /// The largest relative CG residual of any state, recomputed from p (dimensionless).
@@ -177,6 +180,7 @@ impl RunReport {
             n_d,
             backend: backend.0.to_string(),
             precision: backend.1.to_string(),
+            device: None,
             cg_iterations: outcome.cg_iterations(),
             cg_residual_max: outcome.worst_cg_residual(),
             cg_retries: outcome.cg_retries.len(),

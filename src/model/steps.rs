@@ -16,7 +16,8 @@ const FALLBACK_HINT: PullOffHint = PullOffHint {
 };
 
 /// The hint the load path and the resolution check use: `given` (a planner's) or the
-/// scene's closed form, else [`FALLBACK_HINT`].
+/// scene's closed form, else the sphere's (an end of contact at d̄ = −0.5, b̄ = 0.5 at the
+/// force minimum).
 pub fn hint_for(scene: &Scene, given: Option<PullOffHint>) -> PullOffHint {
     given
         .or_else(|| {

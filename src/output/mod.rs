@@ -8,9 +8,10 @@ pub mod fields_npz;
 pub mod file;
 pub mod line_chart;
 pub mod names;
-#[cfg(feature = "gpu")]
 pub mod pressure_chart;
+#[cfg(feature = "gpu")]
 pub mod profile;
+pub mod provenance;
 pub mod states_csv;
 pub mod study_charts;
 pub mod study_index;

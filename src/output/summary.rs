@@ -63,6 +63,10 @@ pub struct Summary {
     pub warnings: Vec<String>,
     /// Every run, coarse to fine.
     pub runs: Vec<RunReport>,
+    /// Where the result comes from: version, date, scene in the user's units, options,
+    /// backend and device, command line (absent in summaries made without a session).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub provenance: Option<super::provenance::Provenance>,
 }
 
 /// The closed form of the Δx → 0 limit of |min F̄| for an indenter other than the ellipsoid,
@@ -115,6 +119,7 @@ impl Summary {
             wall_s: result.runs.iter().map(|r| r.wall_s).sum(),
             warnings: result.warnings(),
             runs: result.runs.clone(),
+            provenance: None,
         }
     }
 

@@ -212,7 +212,17 @@ fn run_one(backend: &BackendRequest, mut job: Job, watch: &dyn Watch) -> Result<
     )?;
     let [_, json, contours] = run_files(&job.out);
     let shown = run.states_shown();
-    let summary = Summary::new(&AdhesiveResult::single(run.report, job.target));
+    let mut report = run.report;
+    report.device = Some(any.device_summary());
+    let mut summary = Summary::new(&AdhesiveResult::single(report, job.target));
+    summary.provenance = Some(super::provenance::provenance(
+        &job.model.scene,
+        super::provenance::model_json(
+            &job.model,
+            serde_json::json!({"kind": "batch job", "target": job.target}),
+        ),
+        super::provenance::backend_json(backend, &summary.runs),
+    ));
     summary.write_json(&json).map_err(write_error("--out"))?;
     let rows = contour_rows(&job.model, &capture.into_snapshots());
     crate::output::file::write_csv(&contours, None, rows.clone()).map_err(write_error("--out"))?;

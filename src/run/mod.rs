@@ -15,6 +15,7 @@ pub mod crossed;
 pub mod curves;
 pub mod fields;
 pub mod open;
+pub mod provenance;
 pub mod pulloff;
 pub mod reference;
 pub mod simulate;

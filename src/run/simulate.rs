@@ -6,11 +6,12 @@
 use super::claim::Outputs;
 use super::open::{open_for, BackendRequest};
 use super::pulloff::{pulloff, Pulloff, StatesFile};
-use super::{failed, input, RunError, Watch};
+use super::{failed, input, provenance, RunError, Watch};
 use crate::analysis::capture::MaskObserver;
 use crate::analysis::estimate::{self, AdhesiveResult};
 use crate::analysis::fields::{FieldChoice, FieldPicks, StateFields};
 use crate::model::{Measure, Model, ModelOptions, Onsets};
+use crate::output::provenance::Provenance;
 use crate::output::summary::Summary;
 use crate::output::{fields_npz, names, pressure_chart};
 use crate::plan;
@@ -142,7 +143,13 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
         Sink::Memory => (vec![None; models.len()], None),
     };
     let mut ran = run_grids(req, models, &outs, watch)?;
-    let (field_files, field_error) = write_fields(req, &ran.kept, &outs);
+    let reports: Vec<_> = ran.runs.iter().map(|r| r.report.clone()).collect();
+    let provenance = provenance::provenance(
+        &req.scene,
+        provenance::options_json(&req.options, mode_json(req)),
+        provenance::backend_json(&req.backend, &reports),
+    );
+    let (field_files, field_error) = write_fields(&ran.kept, &outs, &provenance);
     if let Some(e) = field_error {
         ran.failure = Some(match ran.failure.take() {
             Some(f) => format!("{f}\n  {e}"),
@@ -157,6 +164,7 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
             plan_note,
             fallback,
             planned_runs,
+            provenance,
         },
     );
     done.field_files = field_files;
@@ -167,9 +175,9 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
 /// `.npz` archive, and the pressure at the force minimum as a picture. Returns the files
 /// written and why one could not be, if one could not.
 fn write_fields(
-    req: &SimulateRequest,
     runs: &[GridRun],
     outs: &[Option<PathBuf>],
+    provenance: &Provenance,
 ) -> (Vec<PathBuf>, Option<String>) {
     let mut written = Vec::new();
     for (run, out) in runs.iter().zip(outs) {
@@ -177,11 +185,9 @@ fn write_fields(
             continue;
         };
         let about = serde_json::json!({
-            "program": "jkrbem",
-            "version": env!("CARGO_PKG_VERSION"),
-            "scene": req.scene.headline(),
             "grid": [run.grid.0, run.grid.1],
             "states_csv": out.display().to_string(),
+            "provenance": provenance,
         });
         let npz = names::fields_npz(out);
         if let Err(e) = fields_npz::write_npz(&npz, &run.fields, about) {
@@ -299,10 +305,11 @@ fn run_grids(
             true => None,
             false => Some(&mut picks),
         };
-        let run: Pulloff = crate::with_backend!(
+        let mut run: Pulloff = crate::with_backend!(
             &mut any,
             backend => pulloff(backend, &model, file, watch, observer, deadline)
         )?;
+        run.report.device = Some(any.device_summary());
         let mut fields = Vec::new();
         for pick in picks.into_picks() {
             match super::fields::rebuild(&model, pick) {
@@ -358,12 +365,32 @@ fn run_grids(
     })
 }
 
+/// What the request ran, for the provenance: one grid, several, or an accuracy (with its
+/// time limit), and the fields kept.
+fn mode_json(req: &SimulateRequest) -> serde_json::Value {
+    let mode = match &req.mode {
+        Mode::Single => serde_json::json!({"kind": "single"}),
+        Mode::Extrapolate(g) => serde_json::json!({"kind": "extrapolate", "grids": g}),
+        Mode::Accuracy(t) => serde_json::json!({"kind": "accuracy", "target": t}),
+    };
+    let mut mode = mode;
+    mode["time_limit_s"] = serde_json::json!(req.time_limit.map(|t| t.as_secs_f64()));
+    mode["fields"] = serde_json::json!(format!("{:?}", req.fields));
+    if matches!(req.mode, Mode::Accuracy(_)) {
+        mode["note"] = serde_json::json!(
+            "the plan chose each run's grid, margin, load steps and measure: see the runs"
+        );
+    }
+    mode
+}
+
 /// What the plan said that the conclusion needs.
 struct Concluding {
     target: Option<f64>,
     plan_note: Option<String>,
     fallback: usize,
     planned_runs: usize,
+    provenance: Provenance,
 }
 
 /// The answer from the runs that finished: the estimate, its summary (written where asked)
@@ -381,6 +408,7 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
         mut plan_note,
         fallback,
         planned_runs,
+        provenance,
     } = plan;
     let states: Vec<PathBuf> = runs.iter().filter_map(|r| r.states.clone()).collect();
     let mut reports: Vec<_> = runs.into_iter().map(|r| r.report).collect();
@@ -422,6 +450,7 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
         AdhesiveResult::assemble(req.scene.ratio(), est.ok(), target, reports)
     };
     let mut summary = Summary::new(&result);
+    summary.provenance = Some(provenance);
     if let (Some(why), false) = (&timed_out, summary.runs.is_empty()) {
         let limit = req.time_limit.unwrap_or_default().as_secs_f64();
         summary.warnings.push(format!(

@@ -1,0 +1,37 @@
+"""Type stubs of the compiled part of jkrbem (``jkrbem._jkrbem``). Use the package's own
+functions (``jkrbem.simulate`` …): these take and return JSON text."""
+
+from typing import Any, Callable, Dict, List, Optional, Tuple
+
+__version__: str
+
+class InputError(ValueError):
+    """A parameter is out of its range or the combination cannot run; names the keyword."""
+
+class SolveError(RuntimeError):
+    """A run failed after it started; ``result`` keeps the partial states."""
+
+    result: Any
+
+def simulate(
+    request: str, progress: Optional[Callable[[Dict[str, Any]], Any]] = ...
+) -> Tuple[str, List[Dict[str, Any]]]:
+    """Run a simulation (request as JSON): the answer as JSON and the fields as dicts of bytes."""
+
+def plan(request: str) -> str:
+    """What a run to the request's accuracy would do, as JSON."""
+
+def theory_curve(model: str, ratio: float, points: int) -> str:
+    """A closed-form curve (c̄, F̄, d̄, ā, b̄ per point) as JSON."""
+
+def theory_pull_off(model: str, ratio: float) -> str:
+    """A closed form's force minimum and end of contact as JSON."""
+
+def reference_table_csv() -> str:
+    """The reference table of converged adhesive forces, as CSV text."""
+
+def devices() -> str:
+    """The GPU adapters wgpu sees, best first, as JSON."""
+
+def crossed_scene(radius: float, young: float, poisson: float, work_of_adhesion: float, angle: float) -> str:
+    """The equivalent ellipsoid of crossed cylinders (R1, R2, E*, force scale) as JSON."""

@@ -1,0 +1,44 @@
+//! Where a result comes from, as every summary and field file states it: the program, its
+//! version and commit, when it ran, the scene in the user's units, every option that shaped
+//! the run, the backend and device, and (for the CLI) the command line.
+
+use serde::Serialize;
+use serde_json::Value;
+
+/// The provenance of a result.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Provenance {
+    /// "jkrbem".
+    pub program: &'static str,
+    /// The crate's version.
+    pub version: &'static str,
+    /// The git commit it was built from, where known.
+    pub git_commit: Option<&'static str>,
+    /// When the result was made (UTC, RFC 3339).
+    pub date: String,
+    /// The scene in the user's units: the indenter and its parameters (lengths), E*
+    /// (force/length²) and Δγ (force/length).
+    pub scene: Value,
+    /// Every option that shaped the run (grid, domain, load path, CG, protocol, mode).
+    pub options: Value,
+    /// The backend asked for, and what ran: name, arithmetic and device of each run.
+    pub backend: Value,
+    /// The command line, where the result comes from the `jkrbem` command.
+    pub command: Option<String>,
+}
+
+impl Provenance {
+    /// The provenance of a result made now from `scene`, `options` and `backend`.
+    pub fn now(scene: Value, options: Value, backend: Value, command: Option<String>) -> Self {
+        Provenance {
+            program: "jkrbem",
+            version: env!("CARGO_PKG_VERSION"),
+            git_commit: option_env!("JKRBEM_GIT_COMMIT"),
+            date: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
+            scene,
+            options,
+            backend,
+            command,
+        }
+    }
+}

@@ -1,0 +1,105 @@
+//! The provenance a session states beside its results ([`Provenance`]): the scene in the
+//! user's units, the options that shaped the runs, the backend asked for and the device each
+//! run used, and the command line of the `jkrbem` process (set once by the CLI; a library
+//! caller such as the Python package has none).
+
+use super::open::BackendRequest;
+use crate::analysis::report::RunReport;
+use crate::model::{Model, ModelOptions};
+use crate::output::provenance::Provenance;
+use crate::scene::{Indenter, Scene};
+use serde_json::{json, Value};
+use std::sync::OnceLock;
+
+static COMMAND_LINE: OnceLock<String> = OnceLock::new();
+
+/// Record this process's command line (the CLI calls it once, first).
+pub fn set_command_line(line: String) {
+    let _ = COMMAND_LINE.set(line);
+}
+
+/// The scene in the user's units.
+pub fn scene_json(scene: &Scene) -> Value {
+    let shape = match &scene.indenter {
+        Indenter::Ellipsoid { r1, r2 } => json!({"indenter": "ellipsoid", "r1": r1, "r2": r2,
+                                                 "ratio": r1 / r2}),
+        Indenter::PowerLaw { n, scale } => json!({"indenter": "power-law", "exponent": n,
+                                                  "scale": scale}),
+        Indenter::FlatPunch { radius } => json!({"indenter": "flat-punch", "radius": radius}),
+        Indenter::HeightMap(m) => json!({"indenter": "height-map", "source": m.source,
+                                         "spacing": m.map.spacing(), "fitted_radii": [m.radii.0, m.radii.1]}),
+    };
+    let mut v = shape;
+    v["e_star"] = json!(scene.e_star);
+    v["work_of_adhesion"] = json!(scene.work_of_adhesion);
+    v["units"] = json!("lengths in the user's unit L, e_star in F/L², work_of_adhesion in F/L");
+    v
+}
+
+/// The options that shaped a run, with `mode` (what was run: one grid, several, an accuracy).
+pub fn options_json(opt: &ModelOptions, mode: Value) -> Value {
+    json!({
+        "mode": mode,
+        "grid": opt.nx,
+        "grid_y": opt.ny,
+        "start_radius": opt.start_radius_bar,
+        "steps": opt.steps,
+        "final_d": opt.final_d_bar,
+        "margin": opt.margin,
+        "mesh_angle": opt.mesh_angle_deg,
+        "apex_offset": [opt.apex_offset.0, opt.apex_offset.1],
+        "cg_tolerance": opt.cg_tolerance,
+        "cg_max_iterations": opt.cg_max_iterations,
+        "cg_accept": opt.cg_accept,
+        "preconditioner": format!("{:?}", opt.preconditioner).to_lowercase(),
+        "onsets": opt.onsets.name(),
+        "loose_rounds": opt.loose_rounds,
+        "measure": format!("{:?}", opt.measure).to_lowercase(),
+        "regrid": opt.regrid,
+    })
+}
+
+/// The options a built model carries (what a batch job ran), with `mode`.
+pub fn model_json(model: &Model, mode: Value) -> Value {
+    json!({
+        "mode": mode,
+        "grid": model.nx,
+        "grid_y": model.ny,
+        "dx": model.dx,
+        "margin": model.margin,
+        "mesh_angle": model.mesh.degrees,
+        "apex_offset": [model.apex_offset.0, model.apex_offset.1],
+        "load_step": model.load.d_step,
+        "final_d": model.load.d_final,
+        "cg_tolerance": model.cg.tolerance,
+        "cg_max_iterations": model.cg.max_iterations,
+        "cg_accept": model.cg.accept,
+        "preconditioner": format!("{:?}", model.preconditioner).to_lowercase(),
+        "onsets": model.onsets.name(),
+        "loose_rounds": model.loose_rounds,
+        "measure": format!("{:?}", model.measure).to_lowercase(),
+        "regrid": model.regrid,
+    })
+}
+
+/// The backend asked for and, per run, what ran.
+pub fn backend_json(request: &BackendRequest, runs: &[RunReport]) -> Value {
+    json!({
+        "requested": format!("{:?}", request.kind).to_lowercase(),
+        "convolution": format!("{:?}", request.convolution).to_lowercase(),
+        "check_every": request.check_every,
+        "runs": runs.iter().map(|r| json!({"grid": r.grid, "backend": r.backend,
+                                           "precision": r.precision, "device": r.device}))
+                    .collect::<Vec<_>>(),
+    })
+}
+
+/// The provenance of a result made now.
+pub fn provenance(scene: &Scene, options: Value, backend: Value) -> Provenance {
+    Provenance::now(
+        scene_json(scene),
+        options,
+        backend,
+        COMMAND_LINE.get().cloned(),
+    )
+}
