@@ -5,6 +5,7 @@
 use crate::analysis::{convergence, estimate};
 use crate::model::{self, Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID};
 use crate::scene::Scene;
+use crate::solver::protocol::REGRID_ABOVE_C_BAR;
 use crate::text::compact;
 use crate::theory::{self, TheoryModel};
 
@@ -13,8 +14,8 @@ use crate::theory::{self, TheoryModel};
 pub const MIN_PLAN_GRID: usize = 32;
 
 /// Predicted elements across the minor axis at the minimum below which a grid is not used:
-/// coarser grids are not yet first order (R1/R2 = 5 from 32×16, n_d = 12: observed order −0.8).
-pub const MIN_PLAN_N_D: f64 = 20.0;
+/// the threshold below which an answer is too coarse ([`convergence::COARSE_N_D`]).
+pub const MIN_PLAN_N_D: f64 = convergence::COARSE_N_D;
 
 /// A plan aims its predicted uncertainty at this fraction of the target, since the stated one
 /// also grows where n_d falls short of its prediction (the runs' own scatter, which widens an
@@ -87,7 +88,70 @@ impl Plan {
 /// the closed form's width there in initial elements, over the re-gridding's measured gain
 /// ([`regrid_gain`]).
 fn predicted_n_d(model: &Model) -> f64 {
-    closed_form_width(model) / regrid_gain(model.scene.ratio())
+    closed_form_width(model) / (regrid_gain(model.scene.ratio()) * turn_factor(model))
+}
+
+/// How much less a turned mesh's re-gridding refines than the aligned mesh's, whose gain
+/// [`regrid_gain`] measures (1 for an aligned mesh). A re-grid fits the same Nx × Ny to the
+/// contact's bounding box along the tighter of the two axes; the contact grows rounder as it
+/// shrinks, so on a mesh turned by 90° (the minor axis along x, binding) Δx shrinks as the
+/// minor axis does, less than the major axis that binds on the aligned mesh. Modelled by the
+/// closed form's axes at the first contact and at the last re-grid (c̄ =
+/// [`REGRID_ABOVE_C_BAR`]), each mesh's gain the ratio of the binding box sides.
+fn turn_factor(model: &Model) -> f64 {
+    if model.mesh.is_aligned() {
+        return 1.0;
+    }
+    let aligned = Model::build(
+        &model.scene,
+        &ModelOptions {
+            nx: model.nx,
+            ny: None,
+            mesh_angle_deg: 0.0,
+            margin: model.margin,
+            ..ModelOptions::default()
+        },
+    );
+    match (aligned, last_regrid_axes(model)) {
+        (Ok(aligned), Some(end)) => {
+            let g = geometric_gain(model, end);
+            let g0 = geometric_gain(&aligned, end);
+            if g.is_finite() && g0.is_finite() && g0 > 0.0 {
+                (g / g0).max(1.0)
+            } else {
+                1.0
+            }
+        }
+        _ => 1.0,
+    }
+}
+
+/// The closed form's contact half-axes (a, b) (length) at c̄ = [`REGRID_ABOVE_C_BAR`], where
+/// the last re-grid can fall.
+fn last_regrid_axes(model: &Model) -> Option<(f64, f64)> {
+    let ratio = model.scene.ratio();
+    let curve = theory::curve(TheoryModel::adhesive_reference(ratio), ratio, 400).ok()?;
+    let at = curve
+        .windows(2)
+        .find(|w| w[0].c_bar >= REGRID_ABOVE_C_BAR && w[1].c_bar <= REGRID_ABOVE_C_BAR)?;
+    let t = (at[0].c_bar - REGRID_ABOVE_C_BAR) / (at[0].c_bar - at[1].c_bar);
+    let length = model.scene.scales().length;
+    let lerp = |a: f64, b: f64| (a + t * (b - a)) * length;
+    Some((
+        lerp(at[0].a_bar, at[1].a_bar),
+        lerp(at[0].b_bar, at[1].b_bar),
+    ))
+}
+
+/// Δx after a re-grid that fits the contact of half-axes `end` (length) over the first Δx,
+/// on `model`'s mesh: the binding side of the bounding box, relative to the first contact's.
+fn geometric_gain(model: &Model, end: (f64, f64)) -> f64 {
+    let (nx, ny) = (model.nx as f64, model.ny as f64);
+    let side = |(a, b): (f64, f64)| {
+        let (ex, ey) = model.mesh.bounding_half_widths(a, b);
+        (ex / nx).max(ey / ny)
+    };
+    side(end) / side((model.initial.a, model.initial.b))
 }
 
 /// The closed form's contact width at the force minimum, 2b̄ (length), in elements of the
@@ -191,6 +255,9 @@ fn plan(
         ..base.clone()
     };
     let aim = PLAN_MARGIN * target;
+    // An apex off the element corner scatters the grids' answers more (the grid phase): the
+    // estimate states it so, and the plan predicts what the estimate will state.
+    let corner = base.apex_offset == (0.0, 0.0);
     // (nx, predicted n_d) of the grid before, once it resolves the contact.
     let mut previous: Option<(usize, f64)> = None;
     let mut finest: Option<(usize, f64)> = None;
@@ -221,13 +288,16 @@ fn plan(
                 predicted_uncertainty: u,
                 target,
             };
-            let alone = estimate::predicted_relative_uncertainty_bound(ratio, &[n_d]);
+            let alone = estimate::predicted_relative_uncertainty_bound(ratio, &[n_d], corner);
             if alone <= aim {
                 return Ok(plan(vec![nx], alone));
             }
             if let Some((coarse, coarse_n_d)) = previous.filter(|_| pairs) {
-                let pair =
-                    estimate::predicted_relative_uncertainty_bound(ratio, &[coarse_n_d, n_d]);
+                let pair = estimate::predicted_relative_uncertainty_bound(
+                    ratio,
+                    &[coarse_n_d, n_d],
+                    corner,
+                );
                 if pair <= aim {
                     return Ok(plan(vec![coarse, nx], pair));
                 }

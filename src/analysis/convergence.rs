@@ -414,9 +414,22 @@ pub fn expected_error(ratio: f64, n_d: f64) -> (f64, f64) {
     (lo / n_d, hi / n_d)
 }
 
-/// Elements across the minor axis at the minimum below which a run is called too coarse
-/// (an expected error above about 8–11 % for the sphere).
-pub const COARSE_N_D: f64 = 30.0;
+/// Elements across the minor axis at the minimum below which a run is called too coarse: below
+/// it the grid is not yet in the first-order regime that the convergence law, the estimate's
+/// correction and its stated uncertainty rest on (R1/R2 = 5 from 32×16, n_d = 12: observed
+/// order −0.8; the coverage study's cases from n_d ≈ 20 hold their stated uncertainties). The
+/// planner takes no grid below it, and one rule follows from it ([`answer_too_coarse`]): an
+/// answer whose finest run is below it carries the warning and never meets a target.
+pub const COARSE_N_D: f64 = 20.0;
+
+/// How every too-coarse warning begins ([`coarse_grid_warning`]).
+pub const COARSE_WARNING: &str = "too coarse a grid";
+
+/// Whether an answer resting on runs whose finest has `finest_n_d` elements across the minor
+/// axis at the minimum is too coarse: then it says so and states no target as met.
+pub fn answer_too_coarse(finest_n_d: Option<f64>) -> bool {
+    finest_n_d.is_none_or(|n| n < COARSE_N_D)
+}
 
 /// The elements n_d across the minor axis at the minimum that keep the expected error of
 /// R1/R2 = `ratio` (its upper bound) within `target` (relative, e.g. 0.05).
@@ -432,10 +445,11 @@ pub fn coarse_grid_warning(ratio: f64, n_d: f64) -> Option<String> {
     }
     let (lo, hi) = expected_error(ratio, n_d);
     Some(format!(
-        "too coarse a grid: only {n_d:.0} elements across the contact's minor axis at the force \
-         minimum; the grid's own |min F̄| over-predicts by about +{:.0}…{:.0} % here (first order \
-         in Δx, docs/physics.md §7), which the estimate corrects with the least certainty; use a \
-         finer --grid (n_d ≥ {:.0} for 10 % raw), --accuracy, --extrapolate, or --regrid",
+        "{COARSE_WARNING}: only {n_d:.0} elements across the contact's minor axis at the force \
+         minimum (at least {COARSE_N_D:.0} are needed for the first-order convergence the \
+         estimate's correction and uncertainty rest on); the grid's own |min F̄| over-predicts \
+         by about +{:.0}…{:.0} % here (docs/physics.md §7); use a finer --grid (n_d ≥ {:.0} for \
+         10 % raw), --accuracy, --extrapolate, or --regrid",
         100.0 * lo,
         100.0 * hi,
         n_d_for(ratio, 0.10).ceil()

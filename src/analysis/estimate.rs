@@ -143,13 +143,30 @@ impl AdhesiveResult {
     /// Every run's warnings, and a missed target's: what the stated uncertainty is, and what
     /// would shrink it.
     pub fn warnings(&self) -> Vec<String> {
+        // A too-coarse warning belongs to the answer, from its finest run: the coarser runs of
+        // an extrapolation are coarse by design (their reports keep it).
+        let finest = self.runs.len().saturating_sub(1);
         let mut w: Vec<String> = self
             .runs
             .iter()
-            .flat_map(|r| r.warnings.iter().cloned())
+            .enumerate()
+            .flat_map(|(i, r)| {
+                r.warnings
+                    .iter()
+                    .filter(move |w| i == finest || !w.starts_with(convergence::COARSE_WARNING))
+                    .cloned()
+            })
             .collect();
         if let Some(t) = self.target.filter(|t| !t.met) {
             w.push(match &self.estimate {
+                Some(e) if e.f_ad_bar.relative() <= t.target => format!(
+                    "target ± {:.2} % not met: the stated uncertainty ± {:.2} % rests on a grid \
+                     too coarse for the convergence law it corrects by (fewer than {:.0} \
+                     elements across the minor axis at the minimum)",
+                    100.0 * t.target,
+                    100.0 * e.f_ad_bar.relative(),
+                    convergence::COARSE_N_D
+                ),
                 Some(e) => format!(
                     "target ± {:.2} % not met: the stated uncertainty is ± {:.2} % (a finer \
                      grid, or a target within what this machine reaches, shrinks it)",
@@ -199,11 +216,15 @@ impl AdhesiveResult {
         runs: Vec<RunReport>,
     ) -> Self {
         let comparison = compare(ratio, estimate.as_ref().map(|e| e.f_ad_bar.value));
+        // One rule: an answer too coarse for the estimate's law meets no target.
+        let coarse =
+            convergence::answer_too_coarse(runs.iter().filter_map(|r| r.n_d).reduce(f64::max));
         let target = target.map(|t| TargetCheck {
             target: t,
-            met: estimate
-                .as_ref()
-                .is_some_and(|e| e.f_ad_bar.relative() <= t),
+            met: !coarse
+                && estimate
+                    .as_ref()
+                    .is_some_and(|e| e.f_ad_bar.relative() <= t),
         });
         AdhesiveResult {
             ratio,
@@ -436,10 +457,19 @@ fn from_runs_with(runs: &[RunReport], spread: Option<f64>) -> Result<AdhesiveEst
 
 /// The relative uncertainty (dimensionless) [`from_runs`] is expected to state for runs of
 /// R1/R2 = `ratio` with `n_ds` elements across the minor axis at the minimum (one per run),
-/// with the apex on an element corner, if they follow the convergence law: for planning before
-/// any run.
-pub fn predicted_relative_uncertainty(ratio: f64, n_ds: &[f64]) -> f64 {
+/// with the apex on an element corner (`corner`) or off it, if they follow the convergence
+/// law: for planning before any run. Off the corner the runs' grid-phase scatter is
+/// [`OFFSET_SCATTER`] and the law's spread of k doubled, as [`from_runs`] states them.
+pub fn predicted_relative_uncertainty(ratio: f64, n_ds: &[f64], corner: bool) -> f64 {
     let k = convergence::coefficient_central(ratio);
+    let (scatter, k_sd) = if corner {
+        (CORNER_SCATTER, convergence::k_relative_sd(ratio))
+    } else {
+        (
+            OFFSET_SCATTER,
+            2.0 * convergence::k_relative_sd(ratio).max(0.15),
+        )
+    };
     let pts: Vec<Point> = n_ds
         .iter()
         .map(|&n| {
@@ -448,14 +478,14 @@ pub fn predicted_relative_uncertainty(ratio: f64, n_ds: &[f64]) -> f64 {
             Point {
                 x,
                 y,
-                sd: CORNER_SCATTER * x * y,
+                sd: scatter * x * y,
             }
         })
         .collect();
     let Some(finest) = pts.iter().copied().min_by(|a, b| a.x.total_cmp(&b.x)) else {
         return f64::INFINITY;
     };
-    let prior = slope_prior(ratio, convergence::k_relative_sd(ratio), finest, true);
+    let prior = slope_prior(ratio, k_sd, finest, true);
     fit_line(&pts, prior).map_or(f64::INFINITY, |f| 2.0 * f.intercept_sd / f.intercept)
 }
 
@@ -466,9 +496,9 @@ pub fn predicted_relative_uncertainty(ratio: f64, n_ds: &[f64]) -> f64 {
 /// more do (their fit has one degree of freedom per run beyond the first, with the law's
 /// prior on k), and the stated interval grows where they disagree: a plan of several runs
 /// keeps its target only if it does so even then.
-pub fn predicted_relative_uncertainty_bound(ratio: f64, n_ds: &[f64]) -> f64 {
+pub fn predicted_relative_uncertainty_bound(ratio: f64, n_ds: &[f64], corner: bool) -> f64 {
     let dof = n_ds.len().saturating_sub(1);
-    predicted_relative_uncertainty(ratio, n_ds) * super::line_fit::birge_quantile_90(dof)
+    predicted_relative_uncertainty(ratio, n_ds, corner) * super::line_fit::birge_quantile_90(dof)
 }
 
 #[cfg(test)]
@@ -667,18 +697,18 @@ mod tests {
         // One run has no residual: the bound is the prediction. Two runs (one degree of
         // freedom with the law's prior) may disagree: 1.645× one time in ten.
         assert_eq!(
-            predicted_relative_uncertainty_bound(5.0, &[60.0]),
-            predicted_relative_uncertainty(5.0, &[60.0])
+            predicted_relative_uncertainty_bound(5.0, &[60.0], true),
+            predicted_relative_uncertainty(5.0, &[60.0], true)
         );
         let two = [40.0, 40.0];
-        let ratio = predicted_relative_uncertainty_bound(5.0, &two)
-            / predicted_relative_uncertainty(5.0, &two);
+        let ratio = predicted_relative_uncertainty_bound(5.0, &two, true)
+            / predicted_relative_uncertainty(5.0, &two, true);
         assert!((ratio - 1.644_85).abs() < 1e-4, "{ratio}");
         // Two runs of one grid, bounded, state more than one run of that grid: averaging
         // the grid phase does not pay for the risk that they disagree.
         assert!(
-            predicted_relative_uncertainty_bound(5.0, &two)
-                > predicted_relative_uncertainty_bound(5.0, &[40.0])
+            predicted_relative_uncertainty_bound(5.0, &two, true)
+                > predicted_relative_uncertainty_bound(5.0, &[40.0], true)
         );
     }
 
@@ -694,7 +724,7 @@ mod tests {
                     .collect();
                 let stated = from_runs(&runs).unwrap().f_ad_bar;
                 assert!((stated.value / 0.47 - 1.0).abs() < 1e-12);
-                let predicted = predicted_relative_uncertainty(ratio, n_ds);
+                let predicted = predicted_relative_uncertainty(ratio, n_ds, true);
                 assert!(
                     (stated.relative() / predicted - 1.0).abs() < 1e-9,
                     "{ratio} {n_ds:?}: {} vs {predicted}",
@@ -703,9 +733,9 @@ mod tests {
             }
         }
         // More elements, smaller uncertainty; a coarser grid added helps a little.
-        let one = predicted_relative_uncertainty(1.0, &[100.0]);
-        assert!(predicted_relative_uncertainty(1.0, &[200.0]) < one);
-        assert!(predicted_relative_uncertainty(1.0, &[50.0, 100.0]) < one);
+        let one = predicted_relative_uncertainty(1.0, &[100.0], true);
+        assert!(predicted_relative_uncertainty(1.0, &[200.0], true) < one);
+        assert!(predicted_relative_uncertainty(1.0, &[50.0, 100.0], true) < one);
     }
 
     #[test]
@@ -714,5 +744,51 @@ mod tests {
         r.min_reached = false;
         assert!(from_runs(&[r]).unwrap_err().contains("did not reach"));
         assert!(from_runs(&[]).is_err());
+    }
+
+    /// One rule for too-coarse warnings and targets: an answer whose finest run is below
+    /// [`convergence::COARSE_N_D`] says so and meets no target, however small its stated
+    /// uncertainty; an extrapolation's coarser runs do not lend it their warnings.
+    #[test]
+    fn a_too_coarse_answer_warns_and_never_meets_its_target() {
+        let with_warning = |mut r: RunReport| {
+            r.warnings = convergence::coarse_grid_warning(r.ratio, r.n_d.unwrap())
+                .into_iter()
+                .collect();
+            r
+        };
+        let coarse = with_warning(run(1.0, 32, 0.56, 15.0));
+        let result = AdhesiveResult::single(coarse, Some(0.9));
+        assert!(
+            !result.target.unwrap().met,
+            "a 90 % target is not met at n_d = 15"
+        );
+        let w = result.warnings();
+        assert!(
+            w.iter().any(|w| w.starts_with(convergence::COARSE_WARNING)),
+            "{w:?}"
+        );
+        assert!(
+            w.iter()
+                .any(|w| w.contains("too coarse for the convergence law")),
+            "{w:?}"
+        );
+        let fine = with_warning(run(1.0, 128, 0.51, 60.0));
+        let result = AdhesiveResult::single(fine, Some(0.9));
+        assert!(result.target.unwrap().met);
+        assert!(result.warnings().is_empty());
+        // A ladder's coarse rung keeps its warning in its own report, not in the answer.
+        let runs: Vec<RunReport> = [(32, 0.56, 15.0), (64, 0.53, 30.0), (128, 0.515, 60.0)]
+            .into_iter()
+            .map(|(nx, f, n)| with_warning(run(1.0, nx, f, n)))
+            .collect();
+        assert!(!runs[0].warnings.is_empty());
+        let est = from_runs(&runs).ok();
+        let result = AdhesiveResult::assemble(1.0, est, Some(0.9), runs);
+        assert!(result
+            .warnings()
+            .iter()
+            .all(|w| !w.starts_with(convergence::COARSE_WARNING)));
+        assert!(result.target.unwrap().met);
     }
 }

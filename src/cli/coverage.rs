@@ -36,6 +36,14 @@ pub struct Args {
         default_value = "fixed,regrid"
     )]
     pub variants: Vec<CaseVariant>,
+    /// Mesh angles θ in degrees, comma-separated (the grid turned against the contact's major
+    /// axis, in [−90, 90]; 90 puts the minor axis along x): every case runs at each.
+    #[arg(long, value_delimiter = ',', default_value = "0")]
+    pub mesh_angles: Vec<f64>,
+    /// Apex offsets within the element grid, comma-separated `x:y` pairs (elements, each in
+    /// [−0.5, 0.5]; 0:0 puts the apex on an element corner): every case runs at each.
+    #[arg(long, value_delimiter = ',', value_parser = parse_offset, default_value = "0:0")]
+    pub apex_offsets: Vec<(f64, f64)>,
     /// Runs per case: each case is estimated from this many runs at consecutive margins of one
     /// grid together (as `reference --phases` does); every window of consecutive margins is a
     /// case.
@@ -74,6 +82,8 @@ pub fn run(args: Args) -> Result<(), CliError> {
         grids: (!args.grids.is_empty()).then_some(args.grids),
         margins,
         variants: args.variants,
+        mesh_angles: args.mesh_angles,
+        apex_offsets: args.apex_offsets,
         runs_per_case: args.runs_per_case,
         backend: BackendRequest {
             kind: args.backend,
@@ -108,4 +118,17 @@ pub fn run(args: Args) -> Result<(), CliError> {
         done.summary_csv.display()
     );
     Ok(())
+}
+
+/// One `--apex-offsets` entry, `x:y` (elements).
+fn parse_offset(text: &str) -> Result<(f64, f64), String> {
+    let (x, y) = text
+        .split_once(':')
+        .ok_or_else(|| format!("{text:?} is not an offset: give x:y, e.g. 0.25:0.25"))?;
+    let num = |t: &str| {
+        t.trim()
+            .parse::<f64>()
+            .map_err(|_| format!("{text:?} is not an offset: give x:y, e.g. 0.25:0.25"))
+    };
+    Ok((num(x)?, num(y)?))
 }

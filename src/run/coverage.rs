@@ -65,6 +65,11 @@ pub struct CoverageRequest {
     pub margins: Vec<f64>,
     /// Fixed, re-gridded or both.
     pub variants: Vec<CaseVariant>,
+    /// Mesh angles θ (degrees, the grid against the major axis): each case runs at each.
+    pub mesh_angles: Vec<f64>,
+    /// Apex offsets within the element grid (elements along x and y, each in [−0.5, 0.5]):
+    /// each case runs at each.
+    pub apex_offsets: Vec<(f64, f64)>,
     /// Runs per case (1 to the number of margins): each case is estimated from this many runs
     /// at consecutive margins of one grid and variant together, as `reference --phases` does;
     /// the cases are every such window of margins.
@@ -88,6 +93,12 @@ pub struct CoverageCase {
     pub runs: usize,
     /// fixed or regrid.
     pub variant: &'static str,
+    /// The mesh angle θ (degrees).
+    pub mesh_angle_deg: f64,
+    /// The apex offset along x (elements).
+    pub apex_offset_x: f64,
+    /// The apex offset along y (elements).
+    pub apex_offset_y: f64,
     /// Elements across the minor axis at the minimum (the runs' mean).
     pub n_d: Option<f64>,
     /// The runs' own |min F̄| (uncorrected; their mean).
@@ -261,23 +272,62 @@ pub const MIN_CASE_GRID: usize = crate::plan::MIN_PLAN_GRID;
 
 /// The flags of `jkrbem coverage`: advice from a run that names any other (a `simulate` flag,
 /// which coverage sets to its defaults) is followed by what to change here.
-pub const COVERAGE_FLAGS: [&str; 7] = [
+pub const COVERAGE_FLAGS: [&str; 9] = [
     "--ratios",
     "--grids",
     "--margins",
     "--variants",
+    "--mesh-angles",
+    "--apex-offsets",
     "--runs-per-case",
     "--backend",
     "--out",
 ];
 
-/// The options of a case's run on grid `nx` at `margin` run as `variant`.
-fn case_options(nx: usize, margin: f64, variant: CaseVariant) -> ModelOptions {
+/// How the grid lies against the contact in a case: its mesh angle θ (degrees) and the
+/// apex's offset within the element grid (elements).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Placement {
+    /// θ (degrees).
+    pub mesh_angle_deg: f64,
+    /// The apex offset (elements along x and y).
+    pub apex_offset: (f64, f64),
+}
+
+impl Placement {
+    /// The default: aligned, the apex on an element corner.
+    pub const ALIGNED: Placement = Placement {
+        mesh_angle_deg: 0.0,
+        apex_offset: (0.0, 0.0),
+    };
+
+    /// The suffix of a case's file name ("" for [`Placement::ALIGNED`], so that the runs of
+    /// earlier studies are reused).
+    fn suffix(&self) -> String {
+        let mut s = String::new();
+        if self.mesh_angle_deg != 0.0 {
+            s.push_str(&format!("-a{}", crate::text::compact(self.mesh_angle_deg)));
+        }
+        if self.apex_offset != (0.0, 0.0) {
+            s.push_str(&format!(
+                "-o{}_{}",
+                crate::text::compact(self.apex_offset.0),
+                crate::text::compact(self.apex_offset.1)
+            ));
+        }
+        s
+    }
+}
+
+/// The options of a case's run on grid `nx` at `margin` run as `variant`, placed `at`.
+fn case_options(nx: usize, margin: f64, variant: CaseVariant, at: Placement) -> ModelOptions {
     let regrid = variant == CaseVariant::Regrid;
     ModelOptions {
         nx,
         margin,
         regrid,
+        mesh_angle_deg: at.mesh_angle_deg,
+        apex_offset: at.apex_offset,
         measure: Measure::AdhesiveForce,
         onsets: Onsets::NearMinimum,
         steps: crate::model::default_steps(Measure::AdhesiveForce, Onsets::NearMinimum, regrid),
@@ -293,6 +343,7 @@ fn check_case_grid(
     nx: usize,
     margins: &[f64],
     variants: &[CaseVariant],
+    placements: &[Placement],
 ) -> Result<(), RunError> {
     if !nx.is_power_of_two() || !(MIN_CASE_GRID..=MAX_GRID).contains(&nx) {
         return Err(input(format!(
@@ -303,7 +354,9 @@ fn check_case_grid(
     let builds = |nx: usize| -> Result<(), ModelError> {
         for &margin in margins {
             for &variant in variants {
-                Model::build(scene, &case_options(nx, margin, variant))?;
+                for &at in placements {
+                    Model::build(scene, &case_options(nx, margin, variant, at))?;
+                }
             }
         }
         Ok(())
@@ -317,11 +370,13 @@ fn check_case_grid(
             }
             Err(input(format!(
                 "--grids {nx}: too coarse for R1/R2 = {} (the contact would span too few \
-                 elements at the --margins asked); give --grids {fine} or finer",
+                 elements at the --margins and --mesh-angles asked); give --grids {fine} or finer",
                 crate::text::compact(scene.ratio())
             )))
         }
-        Err(e) => Err(input(format!("--grids {nx} with these --margins: {e}"))),
+        Err(e) => Err(input(format!(
+            "--grids {nx} with these --margins, --mesh-angles and --apex-offsets: {e}"
+        ))),
     }
 }
 
@@ -369,17 +424,21 @@ pub fn coverage(req: &CoverageRequest, watch: &dyn Watch) -> Result<CoverageDone
         let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
         for &nx in &grids {
             for &variant in &req.variants {
-                // This grid's and variant's run at every margin, in order.
-                let mut runs = Vec::new();
-                for &margin in &req.margins {
-                    let name = crate::output::names::coverage_case(ratio, nx, margin, variant);
-                    let options = case_options(nx, margin, variant);
-                    let run = run_or_reuse(&scene, options, req.backend, &req.out, &name, watch)
-                        .map_err(in_coverage_words)?;
-                    runs.push((margin, run));
-                }
-                for window in runs.windows(req.runs_per_case) {
-                    cases.push(case_of(ratio, nx, variant, window, &reference)?);
+                for at in placements(req) {
+                    // This grid's, variant's and placement's run at every margin, in order.
+                    let mut runs = Vec::new();
+                    for &margin in &req.margins {
+                        let name = crate::output::names::coverage_case(ratio, nx, margin, variant)
+                            + &at.suffix();
+                        let options = case_options(nx, margin, variant, at);
+                        let run =
+                            run_or_reuse(&scene, options, req.backend, &req.out, &name, watch)
+                                .map_err(in_coverage_words)?;
+                        runs.push((margin, run));
+                    }
+                    for window in runs.windows(req.runs_per_case) {
+                        cases.push(case_of(ratio, nx, variant, at, window, &reference)?);
+                    }
                 }
             }
         }
@@ -392,6 +451,30 @@ pub fn coverage(req: &CoverageRequest, watch: &dyn Watch) -> Result<CoverageDone
             summarise(&crate::text::compact(r), &mine)
         })
         .collect();
+    // By placement, where several were asked for: the mesh angles, then the apex offsets.
+    if req.mesh_angles.len() > 1 {
+        for &a in &req.mesh_angles {
+            let mine: Vec<&CoverageCase> = cases.iter().filter(|c| c.mesh_angle_deg == a).collect();
+            summary.extend(summarise(
+                &format!("angle {}", crate::text::compact(a)),
+                &mine,
+            ));
+        }
+    }
+    if req.apex_offsets.len() > 1 {
+        for &(x, y) in &req.apex_offsets {
+            let mine: Vec<&CoverageCase> = cases
+                .iter()
+                .filter(|c| (c.apex_offset_x, c.apex_offset_y) == (x, y))
+                .collect();
+            let name = format!(
+                "offset {}:{}",
+                crate::text::compact(x),
+                crate::text::compact(y)
+            );
+            summary.extend(summarise(&name, &mine));
+        }
+    }
     summary.extend(summarise("all", &cases.iter().collect::<Vec<_>>()));
     crate::output::file::write_csv(&csv, None, &cases).map_err(write_error("--out"))?;
     crate::output::file::write_csv(&summary_csv, None, &summary).map_err(write_error("--out"))?;
@@ -406,9 +489,15 @@ pub fn coverage(req: &CoverageRequest, watch: &dyn Watch) -> Result<CoverageDone
 /// Refuse a request without ratios, margins or variants, or with margins or a window the
 /// runs cannot have.
 fn check_request(req: &CoverageRequest) -> Result<(), RunError> {
-    if req.ratios.is_empty() || req.margins.is_empty() || req.variants.is_empty() {
+    if req.ratios.is_empty()
+        || req.margins.is_empty()
+        || req.variants.is_empty()
+        || req.mesh_angles.is_empty()
+        || req.apex_offsets.is_empty()
+    {
         return Err(input(
-            "--ratios, --margins and --variants: give at least one of each",
+            "--ratios, --margins, --variants, --mesh-angles and --apex-offsets: give at least \
+             one of each",
         ));
     }
     if !(1..=req.margins.len()).contains(&req.runs_per_case) {
@@ -459,11 +548,24 @@ fn plan_cases(req: &CoverageRequest) -> Result<Vec<(f64, Vec<usize>, CaseReferen
             }
         }
         for &nx in &grids {
-            check_case_grid(&scene, nx, &req.margins, &req.variants)?;
+            check_case_grid(&scene, nx, &req.margins, &req.variants, &placements(req))?;
         }
         plan.push((ratio, grids, reference));
     }
     Ok(plan)
+}
+
+/// Every placement of the request: each mesh angle with each apex offset.
+fn placements(req: &CoverageRequest) -> Vec<Placement> {
+    req.mesh_angles
+        .iter()
+        .flat_map(|&a| {
+            req.apex_offsets.iter().map(move |&o| Placement {
+                mesh_angle_deg: a,
+                apex_offset: o,
+            })
+        })
+        .collect()
 }
 
 /// The case of one window of runs (`runs_per_case` margins of one grid and variant): its
@@ -472,11 +574,12 @@ fn case_of(
     ratio: f64,
     nx: usize,
     variant: CaseVariant,
+    at: Placement,
     window: &[(f64, crate::analysis::report::RunReport)],
     reference: &CaseReference,
 ) -> Result<CoverageCase, RunError> {
     let reports: Vec<_> = window.iter().map(|(_, r)| r.clone()).collect();
-    let name = crate::output::names::coverage_case(ratio, nx, window[0].0, variant);
+    let name = crate::output::names::coverage_case(ratio, nx, window[0].0, variant) + &at.suffix();
     let e = estimate::from_runs(&reports)
         .map_err(|why| failed(format!("{name} ({} runs): {why}", reports.len())))?;
     let mean = |get: fn(&crate::analysis::report::RunReport) -> Option<f64>| {
@@ -494,6 +597,9 @@ fn case_of(
         margin: window[0].0,
         runs: reports.len(),
         variant: variant.name(),
+        mesh_angle_deg: at.mesh_angle_deg,
+        apex_offset_x: at.apex_offset.0,
+        apex_offset_y: at.apex_offset.1,
         n_d: mean(|r| r.n_d),
         f_ad_bar_grid: mean(|r| r.f_ad_bar).unwrap_or(f64::NAN),
         f_ad_bar: f,
@@ -565,6 +671,9 @@ mod tests {
             margin: 0.08,
             runs: 1,
             variant: "fixed",
+            mesh_angle_deg: 0.0,
+            apex_offset_x: 0.0,
+            apex_offset_y: 0.0,
             n_d: Some(30.0),
             f_ad_bar_grid: 0.53,
             f_ad_bar: 0.5 + error,

@@ -104,7 +104,7 @@ pub fn study(args: &StudyRequest, watch: &dyn Watch) -> Result<StudyDone, RunErr
     announce(args, watch);
     let results = run_study_jobs(work, args, watch);
     let mut failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
-    let mut warnings: Vec<String> = results.iter().flat_map(JobResult::warnings).collect();
+    let mut warnings = study_warnings(&results, args.quick);
     let rows = write_sweep_rows(&sweep_dir, &results)?;
     let ratio_runs = ratio_runs(&results);
     let fits = fit_branches(&ratio_runs, &mut warnings);
@@ -256,6 +256,35 @@ fn ratio_runs(results: &[JobResult]) -> Vec<(f64, Vec<RatioRun>)> {
                 })
                 .collect();
             (ratio, runs)
+        })
+        .collect()
+}
+
+/// The runs' warnings as the study's answers carry them: a ratio's coarser grids are rungs
+/// of its ladder, coarse by design, so only its finest grid's too-coarse warning is kept, with
+/// advice this command can follow.
+fn study_warnings(results: &[JobResult], quick: bool) -> Vec<String> {
+    let advice = if quick {
+        "; the full study (reproduce without --quick) runs finer grids"
+    } else {
+        "; the study's grids are fixed: simulate this ratio with --accuracy for its answer"
+    };
+    results
+        .iter()
+        .flat_map(|r| {
+            let finest = !results
+                .iter()
+                .any(|o| o.ratio == r.ratio && o.grid.0 > r.grid.0);
+            r.warnings().into_iter().filter_map(move |w| {
+                if !w.contains(crate::analysis::convergence::COARSE_WARNING) {
+                    Some(w)
+                } else if finest {
+                    let head = w.split("; use a finer --grid").next().unwrap_or(&w);
+                    Some(format!("{head}{advice}"))
+                } else {
+                    None
+                }
+            })
         })
         .collect()
 }
@@ -516,11 +545,13 @@ fn crossed_step(
                     .iter()
                     .map(|f| format!("crossed cylinders: {f}")),
             );
-            warnings.extend(
-                done.warnings
-                    .iter()
-                    .map(|w| format!("crossed cylinders: {w}")),
-            );
+            let advice = "; the study's crossed cylinders run fixed grids: simulate that ratio \
+                          with --accuracy for its answer";
+            warnings.extend(done.warnings.iter().map(|w| {
+                let head = w.split("; use a finer --grid").next().unwrap_or(w);
+                let tail = if head.len() < w.len() { advice } else { "" };
+                format!("crossed cylinders: {head}{tail}")
+            }));
         }
         Err(e) => failures.push(format!("crossed cylinders: {e}")),
     }
