@@ -683,4 +683,50 @@ mod tests {
             assert!(e.to_string().contains("--accuracy"), "{e}");
         }
     }
+
+    /// An apex off the element corner is planned with the scatter its estimate will state:
+    /// a finer grid than on the corner, predicting the offset's wider interval.
+    #[test]
+    fn an_apex_offset_is_planned_for() {
+        let corner = for_accuracy_within(&sphere(), 0.02, &ModelOptions::default(), None).unwrap();
+        let offset = ModelOptions {
+            apex_offset: (0.25, 0.25),
+            ..ModelOptions::default()
+        };
+        let off = for_accuracy_within(&sphere(), 0.02, &offset, None).unwrap();
+        assert!(off.grids[0] > corner.grids[0], "{off:?} vs {corner:?}");
+        let n_ds = [off.n_d];
+        let stated = estimate::predicted_relative_uncertainty_bound(1.0, &n_ds, false);
+        assert!((off.predicted_uncertainty - stated).abs() < 1e-12);
+        assert!(off.predicted_uncertainty <= PLAN_MARGIN * 0.02);
+        // Planned as on the corner, the offset's estimate would state more than the target.
+        let naive = estimate::predicted_relative_uncertainty_bound(1.0, &[corner.n_d], false);
+        assert!(naive > 0.02, "{naive}");
+    }
+
+    /// A turned mesh refines less on re-gridding than the aligned one: its predicted n_d
+    /// counts that, so 5:1 turned by 90° is not planned from the aligned contact's gain.
+    #[test]
+    fn a_turned_mesh_is_planned_from_its_own_regridding() {
+        let scene = Scene::from_ratio(5.0, 1.0, 1.0, 1.0).unwrap();
+        let turned = |deg: f64, nx: usize| {
+            Model::build(
+                &scene,
+                &ModelOptions {
+                    nx,
+                    mesh_angle_deg: deg,
+                    regrid: true,
+                    ..ModelOptions::default()
+                },
+            )
+            .unwrap()
+        };
+        assert_eq!(turn_factor(&turned(0.0, 128)), 1.0);
+        let t = turn_factor(&turned(90.0, 32));
+        assert!(t > 1.2, "90°: {t}");
+        // Measured: 32×128 turned by 90° reached 24 elements, its prediction now says so
+        // (within the table's gain), where the aligned gain promised 33.
+        let n = predicted_n_d(&turned(90.0, 32));
+        assert!((20.0..30.0).contains(&n), "{n}");
+    }
 }

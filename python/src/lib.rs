@@ -8,7 +8,9 @@ use jkrbem::backend::select::BackendKind;
 use jkrbem::model::{Measure, Model, ModelOptions, Onsets};
 use jkrbem::parameters::as_keywords;
 use jkrbem::run::open::BackendRequest;
-use jkrbem::run::simulate::{simulate as run_simulate, Mode, SimulateRequest, Simulated, Sink};
+use jkrbem::run::simulate::{
+    simulate as run_simulate, Mode, SimulateRequest, Simulated, Sink, DEFAULT_ACCURACY,
+};
 use jkrbem::run::{RunError, Watch};
 use jkrbem::scene::{Indenter, Scene};
 use jkrbem::solver::State;
@@ -35,9 +37,6 @@ create_exception!(
     PyRuntimeError,
     "A run failed after it started; the partial states are kept on the exception."
 );
-
-/// The accuracy a simulation aims at when neither a grid nor an accuracy is given (2 %).
-const DEFAULT_ACCURACY: f64 = 0.02;
 
 /// A simulation's request, as the Python package sends it (its keywords, in the user's units).
 #[derive(Debug, Deserialize)]
@@ -135,33 +134,38 @@ impl Request {
 
     fn options(&self) -> PyResult<ModelOptions> {
         let base = ModelOptions::default();
+        let onsets = match self.onsets.as_deref() {
+            None | Some("near_minimum") => Onsets::NearMinimum,
+            Some("all") => Onsets::All,
+            Some("none") => Onsets::None,
+            Some(o) => {
+                return Err(input_error(format!(
+                    "onsets = {o:?} is invalid: \"near_minimum\", \"all\" or \"none\""
+                )))
+            }
+        };
+        let measure = match self.measure.as_deref() {
+            None | Some("curve") => Measure::Curve,
+            Some("adhesive_force") => Measure::AdhesiveForce,
+            Some(m) => {
+                return Err(input_error(format!(
+                    "measure = {m:?} is invalid: \"curve\" or \"adhesive_force\""
+                )))
+            }
+        };
         Ok(ModelOptions {
             nx: self.grid.unwrap_or(256),
             ny: self.grid_y,
             start_radius_bar: self.start_radius,
-            steps: self.steps.unwrap_or(base.steps),
+            // As the CLI: the steps the measure and onsets need, unless given.
+            steps: self
+                .steps
+                .unwrap_or(jkrbem::model::default_steps(measure, onsets, base.regrid)),
             margin: self.margin,
             mesh_angle_deg: self.mesh_angle,
             apex_offset: (self.apex_offset[0], self.apex_offset[1]),
-            onsets: match self.onsets.as_deref() {
-                None | Some("near_minimum") => Onsets::NearMinimum,
-                Some("all") => Onsets::All,
-                Some("none") => Onsets::None,
-                Some(o) => {
-                    return Err(input_error(format!(
-                        "onsets = {o:?} is invalid: \"near_minimum\", \"all\" or \"none\""
-                    )))
-                }
-            },
-            measure: match self.measure.as_deref() {
-                None | Some("curve") => Measure::Curve,
-                Some("adhesive_force") => Measure::AdhesiveForce,
-                Some(m) => {
-                    return Err(input_error(format!(
-                        "measure = {m:?} is invalid: \"curve\" or \"adhesive_force\""
-                    )))
-                }
-            },
+            onsets,
+            measure,
             ..base
         })
     }
@@ -190,12 +194,8 @@ impl Request {
             || self.steps.is_some()
             || self.onsets.is_some()
             || self.measure.is_some();
-        let mode = match (self.accuracy, self.extrapolate, one_grid) {
-            (Some(a), _, _) => Mode::Accuracy(a),
-            (None, true, _) => Mode::Extrapolate(self.extrapolate_grids.clone()),
-            (None, false, true) => Mode::Single,
-            (None, false, false) => Mode::Accuracy(DEFAULT_ACCURACY),
-        };
+        let extrapolate = self.extrapolate.then(|| self.extrapolate_grids.clone());
+        let mode = Mode::choose(self.accuracy, extrapolate, one_grid);
         if self.time_limit.is_some() && !matches!(mode, Mode::Accuracy(_)) {
             return Err(input_error(
                 "time_limit applies to a run to an accuracy (accuracy given, or neither grid nor \

@@ -257,3 +257,12 @@ def test_sweep_and_crossed_tables():
     assert c["jg_force_n"][0] == pytest.approx(jkr, rel=1e-9)
     with pytest.raises(jkrbem.InputError, match="angle"):
         jkrbem.crossed([120], grid=64, backend="cpu")
+
+
+def test_defaults_follow_the_cli():
+    # Measuring only the adhesive force takes the CLI's 20 whole load steps unless given.
+    r = jkrbem.pulloff(1, grid=32, measure="adhesive_force", backend="cpu")
+    assert r.summary["provenance"]["options"]["steps"] == 20
+    curve = jkrbem.pulloff(1, grid=32, backend="cpu")
+    assert curve.summary["provenance"]["options"]["steps"] == 200
+    assert r.summary["runs"][0]["f_ad_bar"] == pytest.approx(curve.summary["runs"][0]["f_ad_bar"], rel=1e-6)

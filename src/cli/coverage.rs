@@ -92,13 +92,21 @@ pub fn run(args: Args) -> Result<(), CliError> {
         out: args.out,
     };
     let done = coverage(&req, &Progress::new()).map_err(run_error)?;
+    let w = done
+        .summary
+        .iter()
+        .map(|s| s.ratio.chars().count())
+        .max()
+        .unwrap_or(5)
+        .max(5);
     outln!(
-        "R1/R2   cases  held          median width/|error|  RMS error/sd  half-widths      \
-         c̄ held  d̄ held (of)"
+        "{:<w$}   cases  held          median width/|error|  RMS error/sd  half-widths      \
+         c̄ held  d̄ held (of)",
+        "R1/R2"
     );
     for s in &done.summary {
         outln!(
-            "{:<7} {:>5}  {:>4} ({:>5.1} %)  {:>20.2}  {:>12.2}  {:>6.2}–{:<6.2} %  {:>6}  {:>6} ({})",
+            "{:<w$} {:>7}  {:>4} ({:>5.1} %)  {:>20.2}  {:>12.2}  {:>6.2}–{:<6.2} %  {:>6}  {:>6} ({})",
             s.ratio,
             s.cases,
             s.held,

@@ -33,6 +33,28 @@ pub enum Mode {
     Accuracy(f64),
 }
 
+/// The accuracy a simulation aims at when neither a grid nor an accuracy is asked for (2 %).
+pub const DEFAULT_ACCURACY: f64 = 0.02;
+
+impl Mode {
+    /// What a front end's choices ask for: the accuracy given; else an extrapolation where
+    /// asked (`extrapolate`: its grids, or `None` for those that fit); else one grid where an
+    /// option that only a single grid takes was given (`one_grid`: a grid, load steps, a
+    /// measure, an indenter without a convergence law …); else [`DEFAULT_ACCURACY`].
+    pub fn choose(
+        accuracy: Option<f64>,
+        extrapolate: Option<Option<Vec<usize>>>,
+        one_grid: bool,
+    ) -> Mode {
+        match (accuracy, extrapolate, one_grid) {
+            (Some(target), _, _) => Mode::Accuracy(target),
+            (None, Some(grids), _) => Mode::Extrapolate(grids),
+            (None, None, true) => Mode::Single,
+            (None, None, false) => Mode::Accuracy(DEFAULT_ACCURACY),
+        }
+    }
+}
+
 /// A request to simulate one scene.
 #[derive(Debug, Clone)]
 pub struct SimulateRequest {

@@ -16,7 +16,7 @@ pub use args::Args;
 pub use indenter::IndenterKind;
 
 /// The accuracy of a bare `simulate` (relative): the adhesive force to 2 %.
-pub const DEFAULT_ACCURACY: f64 = 0.02;
+pub use jkrbem::run::simulate::DEFAULT_ACCURACY;
 
 /// Nx of a one-grid run that names no --grid.
 pub const DEFAULT_GRID: usize = 256;
@@ -55,12 +55,8 @@ impl Args {
             || self.measure.is_some()
             || self.regrid
             || self.final_d.is_some();
-        let mode = match (self.accuracy, self.extrapolate, one_grid) {
-            (Some(target), _, _) => Mode::Accuracy(target),
-            (None, true, _) => Mode::Extrapolate(self.extrapolate_grids.clone()),
-            (None, false, true) => Mode::Single,
-            (None, false, false) => Mode::Accuracy(DEFAULT_ACCURACY),
-        };
+        let extrapolate = self.extrapolate.then(|| self.extrapolate_grids.clone());
+        let mode = Mode::choose(self.accuracy, extrapolate, one_grid);
         if self.time_limit.is_some() && !matches!(mode, Mode::Accuracy(_)) {
             return Err(super::input(
                 "--time-limit applies to an --accuracy run (the default without --grid and \
