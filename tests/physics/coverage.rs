@@ -38,7 +38,8 @@ fn the_coverage_command_writes_every_case_and_reuses_its_runs() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "ratio,grid,margin,runs,variant,n_d,f_ad_bar_grid,f_ad_bar,uncertainty,reference,\
+        "ratio,grid,margin,runs,variant,mesh_angle_deg,apex_offset_x,apex_offset_y,n_d,\
+         f_ad_bar_grid,f_ad_bar,uncertainty,reference,\
          reference_uncertainty,error,held,width_over_error,c_bar_at_min,c_bar_uncertainty,\
          c_bar_reference,c_bar_reference_uncertainty,c_bar_held,d_bar_at_min,d_bar_uncertainty,\
          d_bar_reference,d_bar_reference_uncertainty,d_bar_held"
