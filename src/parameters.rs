@@ -182,21 +182,24 @@ pub fn by_flag(flag: &str) -> Option<&'static Parameter> {
 pub fn as_keywords(message: &str) -> String {
     let mut out = String::with_capacity(message.len());
     let mut rest = message;
-    while let Some(at) = rest.find("--") {
-        out.push_str(&rest[..at]);
-        let tail = &rest[at..];
-        let len = 2 + tail[2..]
-            .find(|c: char| !(c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'))
-            .unwrap_or(tail.len() - 2);
-        let token = &tail[..len];
-        match by_flag(token) {
-            Some(p) => out.push_str(p.keyword),
-            None => out.push_str(token),
-        }
-        rest = &tail[len..];
+    while let Some((before, token, after)) = next_flag(rest) {
+        out.push_str(before);
+        out.push_str(by_flag(token).map_or(token, |p| p.keyword));
+        rest = after;
     }
     out.push_str(rest);
     out
+}
+
+/// The first flag-like token of `text` ("--" and the lower-case letters, digits and hyphens
+/// that follow), with the text before and after it.
+fn next_flag(text: &str) -> Option<(&str, &str, &str)> {
+    let at = text.find("--")?;
+    let tail = &text[at..];
+    let len = 2 + tail[2..]
+        .find(|c: char| !(c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'))
+        .unwrap_or(tail.len() - 2);
+    Some((&text[..at], &tail[..len], &tail[len..]))
 }
 
 #[cfg(test)]
@@ -244,17 +247,11 @@ mod tests {
         for source in sources {
             let code = source.split("#[cfg(test)]").next().unwrap();
             let mut rest = code;
-            while let Some(at) = rest.find("--") {
-                let tail = &rest[at + 2..];
-                let len = tail
-                    .find(|c: char| !(c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'))
-                    .unwrap_or(tail.len());
-                let name = &tail[..len];
-                if !name.is_empty() && name.starts_with(|c: char| c.is_ascii_lowercase()) {
-                    let flag = format!("--{name}");
-                    assert!(by_flag(&flag).is_some(), "{flag} is not in PARAMETERS");
+            while let Some((_, flag, after)) = next_flag(rest) {
+                if flag[2..].starts_with(|c: char| c.is_ascii_lowercase()) {
+                    assert!(by_flag(flag).is_some(), "{flag} is not in PARAMETERS");
                 }
-                rest = &tail[len..];
+                rest = after;
             }
         }
     }

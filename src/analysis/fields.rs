@@ -52,6 +52,22 @@ impl FieldChoice {
         }
     }
 
+    /// The choice as [`FieldChoice::parse`] reads it.
+    pub fn name(&self) -> String {
+        match self {
+            FieldChoice::None => "none".into(),
+            FieldChoice::Minimum => "minimum".into(),
+            FieldChoice::Every(k) => format!("every:{k}"),
+            FieldChoice::States(v) => format!(
+                "states:{}",
+                v.iter()
+                    .map(|i| i.to_string())
+                    .collect::<Vec<_>>()
+                    .join(",")
+            ),
+        }
+    }
+
     /// Whether no field is kept.
     pub fn is_none(&self) -> bool {
         *self == FieldChoice::None
@@ -223,6 +239,9 @@ mod tests {
             FieldChoice::parse("states:0, 7"),
             Ok(FieldChoice::States(vec![0, 7]))
         );
+        for choice in ["none", "minimum", "every:5", "states:0,7"] {
+            assert_eq!(FieldChoice::parse(choice).unwrap().name(), choice);
+        }
         for bad in ["every:0", "states:", "max", "every:x"] {
             assert!(FieldChoice::parse(bad).is_err(), "{bad}");
         }

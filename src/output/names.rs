@@ -1,6 +1,7 @@
 //! Every file name a run writes, in one place: the commands, the session layer and the
 //! charts all take their names from here.
 
+use crate::text::compact;
 use std::fmt::Display;
 use std::path::{Path, PathBuf};
 
@@ -118,9 +119,29 @@ pub fn reference_run(ratio: f64, nx: usize, phase: usize, margin: f64) -> String
     }
 }
 
-/// The name (no extension) of one coverage case's run.
-pub fn coverage_case(ratio: f64, nx: usize, margin: f64, variant: impl Display) -> String {
-    format!("r{ratio}-n{nx}-m{margin}-{variant}")
+/// The name (no extension) of one coverage case's run: `r<ratio>-n<nx>-m<margin>-<variant>`,
+/// with `-a<degrees>` on a turned mesh and `-o<x>_<y>` for an apex off the element corner
+/// (neither for the aligned default, so that earlier studies' runs keep their names).
+pub fn coverage_case(
+    ratio: f64,
+    nx: usize,
+    margin: f64,
+    variant: impl Display,
+    mesh_angle_deg: f64,
+    apex_offset: (f64, f64),
+) -> String {
+    let mut name = format!("r{ratio}-n{nx}-m{margin}-{variant}");
+    if mesh_angle_deg != 0.0 {
+        name.push_str(&format!("-a{}", compact(mesh_angle_deg)));
+    }
+    if apex_offset != (0.0, 0.0) {
+        name.push_str(&format!(
+            "-o{}_{}",
+            compact(apex_offset.0),
+            compact(apex_offset.1)
+        ));
+    }
+    name
 }
 
 #[cfg(test)]

@@ -295,27 +295,16 @@ pub struct Placement {
 }
 
 impl Placement {
-    /// The default: aligned, the apex on an element corner.
-    pub const ALIGNED: Placement = Placement {
-        mesh_angle_deg: 0.0,
-        apex_offset: (0.0, 0.0),
-    };
-
-    /// The suffix of a case's file name ("" for [`Placement::ALIGNED`], so that the runs of
-    /// earlier studies are reused).
-    fn suffix(&self) -> String {
-        let mut s = String::new();
-        if self.mesh_angle_deg != 0.0 {
-            s.push_str(&format!("-a{}", crate::text::compact(self.mesh_angle_deg)));
-        }
-        if self.apex_offset != (0.0, 0.0) {
-            s.push_str(&format!(
-                "-o{}_{}",
-                crate::text::compact(self.apex_offset.0),
-                crate::text::compact(self.apex_offset.1)
-            ));
-        }
-        s
+    /// The name of a case's run placed so ([`crate::output::names::coverage_case`]).
+    fn case_name(&self, ratio: f64, nx: usize, margin: f64, variant: CaseVariant) -> String {
+        crate::output::names::coverage_case(
+            ratio,
+            nx,
+            margin,
+            variant,
+            self.mesh_angle_deg,
+            self.apex_offset,
+        )
     }
 }
 
@@ -428,8 +417,7 @@ pub fn coverage(req: &CoverageRequest, watch: &dyn Watch) -> Result<CoverageDone
                     // This grid's, variant's and placement's run at every margin, in order.
                     let mut runs = Vec::new();
                     for &margin in &req.margins {
-                        let name = crate::output::names::coverage_case(ratio, nx, margin, variant)
-                            + &at.suffix();
+                        let name = at.case_name(ratio, nx, margin, variant);
                         let options = case_options(nx, margin, variant, at);
                         let run =
                             run_or_reuse(&scene, options, req.backend, &req.out, &name, watch)
@@ -579,7 +567,7 @@ fn case_of(
     reference: &CaseReference,
 ) -> Result<CoverageCase, RunError> {
     let reports: Vec<_> = window.iter().map(|(_, r)| r.clone()).collect();
-    let name = crate::output::names::coverage_case(ratio, nx, window[0].0, variant) + &at.suffix();
+    let name = at.case_name(ratio, nx, window[0].0, variant);
     let e = estimate::from_runs(&reports)
         .map_err(|why| failed(format!("{name} ({} runs): {why}", reports.len())))?;
     let mean = |get: fn(&crate::analysis::report::RunReport) -> Option<f64>| {

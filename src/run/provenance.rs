@@ -18,6 +18,13 @@ pub fn set_command_line(line: String) {
     let _ = COMMAND_LINE.set(line);
 }
 
+/// An option's value as the CLI spells it (e.g. "adhesive-force").
+fn word<T: clap::ValueEnum>(value: T) -> String {
+    value
+        .to_possible_value()
+        .map_or_else(String::new, |v| v.get_name().to_string())
+}
+
 /// The scene in the user's units.
 pub fn scene_json(scene: &Scene) -> Value {
     let shape = match &scene.indenter {
@@ -51,10 +58,10 @@ pub fn options_json(opt: &ModelOptions, mode: Value) -> Value {
         "cg_tolerance": opt.cg_tolerance,
         "cg_max_iterations": opt.cg_max_iterations,
         "cg_accept": opt.cg_accept,
-        "preconditioner": format!("{:?}", opt.preconditioner).to_lowercase(),
+        "preconditioner": word(opt.preconditioner),
         "onsets": opt.onsets.name(),
         "loose_rounds": opt.loose_rounds,
-        "measure": format!("{:?}", opt.measure).to_lowercase(),
+        "measure": word(opt.measure),
         "regrid": opt.regrid,
     })
 }
@@ -74,10 +81,10 @@ pub fn model_json(model: &Model, mode: Value) -> Value {
         "cg_tolerance": model.cg.tolerance,
         "cg_max_iterations": model.cg.max_iterations,
         "cg_accept": model.cg.accept,
-        "preconditioner": format!("{:?}", model.preconditioner).to_lowercase(),
+        "preconditioner": word(model.preconditioner),
         "onsets": model.onsets.name(),
         "loose_rounds": model.loose_rounds,
-        "measure": format!("{:?}", model.measure).to_lowercase(),
+        "measure": word(model.measure),
         "regrid": model.regrid,
     })
 }
@@ -85,8 +92,8 @@ pub fn model_json(model: &Model, mode: Value) -> Value {
 /// The backend asked for and, per run, what ran.
 pub fn backend_json(request: &BackendRequest, runs: &[RunReport]) -> Value {
     json!({
-        "requested": format!("{:?}", request.kind).to_lowercase(),
-        "convolution": format!("{:?}", request.convolution).to_lowercase(),
+        "requested": word(request.kind),
+        "convolution": word(request.convolution),
         "check_every": request.check_every,
         "runs": runs.iter().map(|r| json!({"grid": r.grid, "backend": r.backend,
                                            "precision": r.precision, "device": r.device}))

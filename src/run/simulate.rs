@@ -333,16 +333,18 @@ fn run_grids(
         )?;
         run.report.device = Some(any.device_summary());
         let mut fields = Vec::new();
-        for pick in picks.into_picks() {
-            match super::fields::rebuild(&model, pick) {
+        for f in super::fields::rebuild(&model, picks.into_picks()) {
+            match f {
                 Ok(f) => fields.push(f),
                 Err(e) => watch.warning(&e.to_string()),
             }
         }
+        // The run's states move to its grid's record; the messages below need only their count.
+        let recorded = run.outcome.states.len();
         kept.push(GridRun {
             grid: (model.nx, model.ny),
             dx: model.dx,
-            states: run.outcome.states.clone(),
+            states: std::mem::take(&mut run.outcome.states),
             complete: run.outcome.complete(),
             fields,
         });
@@ -350,7 +352,7 @@ fn run_grids(
             timed_out = Some(format!(
                 "the {} grid was stopped after {} states (kept, incomplete, in {})",
                 run.report.grid,
-                run.outcome.states.len(),
+                recorded,
                 run.states_shown()
             ));
             break;
@@ -360,7 +362,7 @@ fn run_grids(
             failure = Some(format!(
                 "the {} run was stopped by its caller after {} states (kept, incomplete, in {})",
                 run.report.grid,
-                run.outcome.states.len(),
+                recorded,
                 run.states_shown()
             ));
         } else if let Some(e) = &run.outcome.error {
@@ -368,7 +370,7 @@ fn run_grids(
                 "the {} run stopped early: {e}\n  the {} states computed so far are in {} \
                  (incomplete)",
                 run.report.grid,
-                run.outcome.states.len(),
+                recorded,
                 run.states_shown()
             ));
         }
@@ -397,7 +399,7 @@ fn mode_json(req: &SimulateRequest) -> serde_json::Value {
     };
     let mut mode = mode;
     mode["time_limit_s"] = serde_json::json!(req.time_limit.map(|t| t.as_secs_f64()));
-    mode["fields"] = serde_json::json!(format!("{:?}", req.fields));
+    mode["fields"] = serde_json::json!(req.fields.name());
     if matches!(req.mode, Mode::Accuracy(_)) {
         mode["note"] = serde_json::json!(
             "the plan chose each run's grid, margin, load steps and measure: see the runs"

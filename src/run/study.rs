@@ -279,8 +279,7 @@ fn study_warnings(results: &[JobResult], quick: bool) -> Vec<String> {
                 if !w.contains(crate::analysis::convergence::COARSE_WARNING) {
                     Some(w)
                 } else if finest {
-                    let head = w.split("; use a finer --grid").next().unwrap_or(&w);
-                    Some(format!("{head}{advice}"))
+                    Some(with_advice(&w, advice))
                 } else {
                     None
                 }
@@ -288,6 +287,18 @@ fn study_warnings(results: &[JobResult], quick: bool) -> Vec<String> {
         })
         .collect()
 }
+
+/// A too-coarse warning with its `simulate` advice replaced by `advice` (what the study's
+/// user can change); any other warning as it is.
+fn with_advice(warning: &str, advice: &str) -> String {
+    match warning.split_once(SIMULATE_ADVICE) {
+        Some((head, _)) => format!("{head}{advice}"),
+        None => warning.to_string(),
+    }
+}
+
+/// Where a too-coarse warning's advice for `simulate` begins.
+const SIMULATE_ADVICE: &str = "; use a finer --grid";
 
 /// The branch laws of each ratio: at Δx → 0 from the full study's grids, else the one
 /// grid's (with a warning where grids could not be extrapolated together).
@@ -547,11 +558,11 @@ fn crossed_step(
             );
             let advice = "; the study's crossed cylinders run fixed grids: simulate that ratio \
                           with --accuracy for its answer";
-            warnings.extend(done.warnings.iter().map(|w| {
-                let head = w.split("; use a finer --grid").next().unwrap_or(w);
-                let tail = if head.len() < w.len() { advice } else { "" };
-                format!("crossed cylinders: {head}{tail}")
-            }));
+            warnings.extend(
+                done.warnings
+                    .iter()
+                    .map(|w| format!("crossed cylinders: {}", with_advice(w, advice))),
+            );
         }
         Err(e) => failures.push(format!("crossed cylinders: {e}")),
     }
