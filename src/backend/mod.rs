@@ -32,6 +32,7 @@ pub mod kernel;
 pub mod measure;
 pub mod rules;
 pub mod select;
+pub mod shares;
 
 pub use crate::setup::{ChordAxes, GridSetup, Preconditioner};
 pub use measure::ContactMeasure;
@@ -324,6 +325,16 @@ pub trait ContactKernels: Device {
         attach_at: Option<f64>,
         sigma_c: f64,
     ) -> Result<ContactChange, BackendError>;
+    /// A cascade round's predicted start: p += Σ_o w_o · before_{i+o} on C, over the offsets
+    /// o within [`shares::SHARE_RADIUS`] whose element lies off C, w being
+    /// [`shares::detachment_shares`]. `before` is p as it was before the sweep (zero off the
+    /// contact set it was on), so only the elements that sweep detached hand on their load.
+    fn spread_detached(
+        &mut self,
+        c: &Self::Mask,
+        before: &Self::Field,
+        p: &mut Self::Field,
+    ) -> Result<(), BackendError>;
     /// The fraction t ∈ [0, 1] of a load step at which the first element of C reaches the
     /// detachment stress, with p moving linearly from `p_old` (t = 0, all p ≥ −σ_c) to
     /// `p_new` (t = 1) on a fixed contact set: min over C of (−σ_c − p_old)/(p_new − p_old)

@@ -50,6 +50,9 @@ pub struct Model {
     /// Whether a cascade's intermediate rounds are solved loosely (see
     /// [`crate::solver::equilibrium`]).
     pub loose_rounds: bool,
+    /// Whether a cascade round's solve starts from the detached elements' load handed to
+    /// their neighbours ([`crate::backend::shares`]); on with [`Model::loose_rounds`].
+    pub spread_detached: bool,
     /// What the run is for.
     pub measure: Measure,
     /// Whether to re-grid as the contact shrinks.
@@ -185,6 +188,7 @@ impl Model {
             margin: opt.margin,
             onsets: opt.onsets,
             loose_rounds: opt.loose_rounds,
+            spread_detached: opt.loose_rounds,
             measure: opt.measure,
             regrid: opt.regrid,
             mesh,

@@ -10,6 +10,10 @@
 //! solved exactly: the detachment rule is monotone (removing an element or pulling further
 //! never lowers the tension on the others), so the set it ends on is the greatest stable
 //! subset of the one it started from, whatever the order in which elements left.
+//!
+//! Each round's solve starts from the load of the elements just detached handed to the
+//! contact elements around them by their shares ([`crate::backend::shares`]): CG has less
+//! left to correct.
 
 use super::cg::{self, CgEnd, CgWork, Goal};
 use super::cost::Work;
@@ -114,6 +118,8 @@ pub struct Fields<F, M> {
     pub p_onset: F,
     /// Pressure a solve started from, to retry from if it diverges.
     pub p_start: F,
+    /// Pressure before a cascade's sweep (the load the elements it detaches hand on).
+    pub p_before: F,
     /// CG work fields.
     pub cg: CgWork<F>,
 }
@@ -134,6 +140,7 @@ impl<F, M> Fields<F, M> {
             p_last: backend.field()?,
             p_onset: backend.field()?,
             p_start: backend.field()?,
+            p_before: backend.field()?,
             cg: CgWork::new(backend)?,
         })
     }
@@ -316,6 +323,7 @@ pub fn settle<B: Backend>(
 ) -> Result<Equilibrium, SolverError> {
     let d_bar = d / model.scene.scales().approach;
     let loose_rounds = model.loose_rounds && sigma_c > 0.0;
+    let spread = model.spread_detached && sigma_c > 0.0;
     let mut eq = Equilibrium::default();
     if held == Held::WarmStart {
         eq.add_solve(solve_fixed(backend, model, fields, d)?);
@@ -331,6 +339,9 @@ pub fn settle<B: Backend>(
         } else {
             (None, sigma_c + margin)
         };
+        if spread {
+            backend.copy(&fields.p, &mut fields.p_before)?;
+        }
         let change = backend.update_contact(
             &mut fields.c,
             &mut fields.p,
@@ -350,6 +361,11 @@ pub fn settle<B: Backend>(
         }
         if change.detached + change.attached > 0 {
             fields.u_valid = false;
+            if spread && change.detached > 0 {
+                // The round's solve starts from the detached load handed on (a prediction
+                // that CG corrects: the state is the same, the iterations fewer).
+                backend.spread_detached(&fields.c, &fields.p_before, &mut fields.p)?;
+            }
             eq.work.rounds += 1;
             if eq.work.rounds >= model.max_sweeps {
                 return Err(SolverError::DetachmentCycles {

@@ -393,6 +393,51 @@ fn sweep<B: Backend>(mut s: Subject<B>, attach_at: Option<f64>) {
     s.assert_close("p after the sweep", &got, &want_p);
 }
 
+/// A cascade round's predicted start: each element of C takes the shares of the load that
+/// its neighbours off C held before the sweep (within the share radius, on the grid).
+fn spread_detached<B: Backend>(mut s: Subject<B>) {
+    use jkrbem::backend::shares::{detachment_shares, SHARE_RADIUS};
+    // Before the sweep: a larger contact set (C plus about half of the rest), p on it.
+    let extra: Vec<bool> = pseudo_random(NX * NY, 23)
+        .iter()
+        .map(|v| *v < 0.0)
+        .collect();
+    let old: Vec<bool> = (0..NX * NY).map(|i| s.mask[i] || extra[i]).collect();
+    let before = on_c(&pseudo_random(NX * NY, 21), &old);
+    let p = pseudo_random(NX * NY, 22);
+    let fb = s.put(&before);
+    let mut fp = s.put(&poisoned(&p, &s.mask));
+    s.b.spread_detached(&s.c, &fb, &mut fp).unwrap();
+    let (w, r) = (detachment_shares(), SHARE_RADIUS as i64);
+    let want: Vec<f64> = (0..NX * NY)
+        .map(|i| {
+            if !s.mask[i] {
+                return 0.0;
+            }
+            let (x, y) = ((i % NX) as i64, (i / NX) as i64);
+            let mut v = p[i];
+            for oy in -r..=r {
+                for ox in -r..=r {
+                    let (xx, yy) = (x + ox, y + oy);
+                    if (0..NX as i64).contains(&xx) && (0..NY as i64).contains(&yy) {
+                        let j = yy as usize * NX + xx as usize;
+                        if !s.mask[j] {
+                            v += w[((oy + r) * (2 * r + 1) + ox + r) as usize] * before[j];
+                        }
+                    }
+                }
+            }
+            v
+        })
+        .collect();
+    assert!(
+        (0..NX * NY).any(|i| s.mask[i] && (want[i] - p[i]).abs() > 0.01),
+        "the inputs must hand some load on"
+    );
+    let got = on_c(&s.get(&fp), &s.mask);
+    s.assert_close("p after the spread", &got, &want);
+}
+
 /// The convolution is linear and symmetric (⟨a, Kb⟩ = ⟨Ka, b⟩) on every backend, and the
 /// padded ones equal the padded CPU backend.
 fn convolution<B: Backend>(mut s: Subject<B>) {
@@ -567,6 +612,7 @@ fn checks<B: Backend + 'static>() -> Vec<(&'static str, Check<B>)> {
             "update_contact_detach_only",
             update_contact_detach_only::<B>,
         ),
+        ("spread_detached", spread_detached::<B>),
         ("convolution", convolution::<B>),
         ("preconditioner", preconditioner::<B>),
         ("fused", fused::<B>),

@@ -286,6 +286,15 @@ impl CgKernels for CpuBackend {
 }
 
 impl ContactKernels for CpuBackend {
+    fn spread_detached(
+        &mut self,
+        mask: &Vec<bool>,
+        before: &Vec<f64>,
+        p: &mut Vec<f64>,
+    ) -> Result<(), BackendError> {
+        super::shares::spread_detached(mask, before, p, self.nx, self.ny);
+        Ok(())
+    }
     fn update_contact(
         &mut self,
         mask: &mut Vec<bool>,

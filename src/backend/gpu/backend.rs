@@ -89,6 +89,16 @@ struct ContactParams {
     _pad: [u32; 3],
 }
 
+/// Uniform parameters of shaders/spread.wgsl (`struct Params`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct SpreadParams {
+    nx: u32,
+    ny: u32,
+    radius: u32,
+    _pad: u32,
+}
+
 /// Which reduction of reduce.wgsl to run.
 #[derive(Debug, Clone, Copy)]
 enum Reduction {
@@ -125,6 +135,7 @@ struct Kernels {
     finish_measure: Kernel,
     finish_min: Kernel,
     update_contact: Kernel,
+    spread_detached: Kernel,
     spectral: SpectralKernels,
 }
 
@@ -133,6 +144,7 @@ impl Kernels {
         let v = module(ctx, "vector.wgsl", shaders::VECTOR);
         let r = module(ctx, "reduce.wgsl", shaders::REDUCE);
         let c = module(ctx, "contact.wgsl", shaders::CONTACT);
+        let s = module(ctx, "spread.wgsl", shaders::SPREAD);
         let k = |m: &wgpu::ShaderModule, table, entry| {
             Kernel::new(ctx, m, entry, shaders::bindings(table, entry))
         };
@@ -153,6 +165,7 @@ impl Kernels {
             finish_measure: reduce("finish_measure"),
             finish_min: reduce("finish_min"),
             update_contact: k(&c, shaders::CONTACT_KERNELS, "update_contact"),
+            spread_detached: k(&s, shaders::SPREAD_KERNELS, "spread_detached"),
             spectral: SpectralKernels::new(ctx),
         }
     }
@@ -167,6 +180,8 @@ pub struct GpuBackend {
     convolution: GpuSpectralFilter,
     preconditioner: Option<GpuSpectralFilter>,
     profile: wgpu::Buffer,
+    /// The detachment shares (f32, `backend::shares::detachment_shares`).
+    shares: wgpu::Buffer,
     /// Bound to the mask binding of a kernel that does not read it (the unmasked
     /// convolution): the kernels' layouts share that binding.
     no_mask: wgpu::Buffer,
@@ -289,6 +304,17 @@ impl GpuBackend {
                 contents: bytemuck::cast_slice(&profile),
                 usage: wgpu::BufferUsages::STORAGE,
             });
+        let shares: Vec<f32> = crate::backend::shares::detachment_shares()
+            .iter()
+            .map(|&v| v as f32)
+            .collect();
+        let shares = ctx
+            .device()
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("detachment shares"),
+                contents: bytemuck::cast_slice(&shares),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
         let reduce_groups = n
             .div_ceil(WORKGROUP as usize * REDUCE_PER_THREAD)
             .clamp(1, MAX_REDUCE_GROUPS) as u32;
@@ -299,6 +325,7 @@ impl GpuBackend {
             convolution,
             preconditioner,
             profile,
+            shares,
             no_mask: storage(&ctx, "unread mask", n as u64 * 4),
             scalars: storage(&ctx, "scalars", scalars_bytes()),
             pending: [0; SLOTS],
@@ -959,6 +986,36 @@ impl ContactKernels for GpuBackend {
             n_contact: n[2] as usize,
             at_edge: n[3] as usize,
         })
+    }
+    fn spread_detached(
+        &mut self,
+        c: &GpuMask,
+        before: &GpuField,
+        p: &mut GpuField,
+    ) -> Result<(), BackendError> {
+        let params = SpreadParams {
+            nx: self.nx as u32,
+            ny: self.ny as u32,
+            radius: crate::backend::shares::SHARE_RADIUS as u32,
+            _pad: 0,
+        };
+        let prm = self.rec.uniform(&self.ctx, &params)?;
+        let grid = grid_for(&self.ctx, self.n());
+        // p read and written, the mask and `before` read; the neighbours' reads hit the cache.
+        let bytes = traffic::elementwise(self.n(), 4);
+        self.rec.dispatch(
+            &self.ctx,
+            &self.kernels.spread_detached,
+            &[
+                (0, &prm),
+                (1, &p.buffer),
+                (2, &before.buffer),
+                (3, &c.buffer),
+                (4, &self.shares),
+            ],
+            grid,
+            bytes,
+        )
     }
     fn first_crossing(
         &mut self,

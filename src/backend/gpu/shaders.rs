@@ -179,6 +179,18 @@ pub const CONTACT_KERNELS: &[KernelLayout] = &[KernelLayout {
     ],
 }];
 
+/// The kernel of spread.wgsl.
+pub const SPREAD_KERNELS: &[KernelLayout] = &[KernelLayout {
+    entry: "spread_detached",
+    bindings: &[
+        (0, Uniform),
+        (1, ReadWrite),
+        (2, Read),
+        (3, Read),
+        (4, Read),
+    ],
+}];
+
 /// The bindings of `entry` in `kernels`. Panics if it is not there (a programming error that
 /// every GPU test would show).
 pub fn bindings(kernels: &[KernelLayout], entry: &str) -> &'static [(u32, Binding)] {
@@ -236,12 +248,19 @@ pub const CONTACT: &str = concat!(
     include_str!("../../../shaders/contact.wgsl"),
 );
 
+/// A cascade round's predicted start.
+pub const SPREAD: &str = concat!(
+    include_str!("../../../shaders/shared/common.wgsl"),
+    include_str!("../../../shaders/spread.wgsl"),
+);
+
 /// Every module, by the name of its own file, with its kernels: what a validation test
 /// compiles and checks.
-pub const MODULES: [(&str, &str, &[KernelLayout]); 5] = [
+pub const MODULES: [(&str, &str, &[KernelLayout]); 6] = [
     ("spectral.wgsl (2048)", SPECTRAL_2048, SPECTRAL_KERNELS),
     ("spectral.wgsl (4096)", SPECTRAL_4096, SPECTRAL_KERNELS),
     ("vector.wgsl", VECTOR, VECTOR_KERNELS),
     ("reduce.wgsl", REDUCE, REDUCE_KERNELS),
     ("contact.wgsl", CONTACT, CONTACT_KERNELS),
+    ("spread.wgsl", SPREAD, SPREAD_KERNELS),
 ];
