@@ -8,7 +8,7 @@
 //! handed to the contact elements within [`SHARE_RADIUS`] by these shares, scaled up to what
 //! the edge neighbour of a straight front takes (a front element has fewer neighbours in
 //! contact). CG then only corrects the prediction: the states are the same, with fewer
-//! iterations (5:1 at 512×256: 13 274 → 11 393 CG iterations over the adhesive force run).
+//! iterations (5:1 at 512×256: 13 274 → 11 230 CG iterations over the adhesive force run).
 
 use super::kernel::influence;
 use std::sync::OnceLock;
