@@ -25,6 +25,7 @@
 //!   ([`GridSetup`]);
 //! - pressure p has units of stress, displacement u and gap g of length.
 
+pub mod certify;
 pub mod cpu;
 #[cfg(feature = "gpu")]
 pub mod gpu;
@@ -335,6 +336,23 @@ pub trait ContactKernels: Device {
         before: &Self::Field,
         p: &mut Self::Field,
     ) -> Result<(), BackendError>;
+    /// After a sweep that only detached: detach the elements of C certainly over `sigma_c`
+    /// (stress) once the elements just detached hand on their load, zero p on them, and
+    /// return how many ([`certify::certify_detached`], a host computation). `before` is p
+    /// before the sweep, `eps` (stress) the error estimate of the solve it came from. The
+    /// default detaches none: the states are the same, only the solves more. A backend whose
+    /// fields live on a device keeps it (the bound would need them on the host).
+    fn certify_detached(
+        &mut self,
+        c: &mut Self::Mask,
+        before: &Self::Field,
+        p: &mut Self::Field,
+        sigma_c: f64,
+        eps: f64,
+    ) -> Result<usize, BackendError> {
+        let _ = (c, before, p, sigma_c, eps);
+        Ok(0)
+    }
     /// The fraction t ∈ [0, 1] of a load step at which the first element of C reaches the
     /// detachment stress, with p moving linearly from `p_old` (t = 0, all p ≥ −σ_c) to
     /// `p_new` (t = 1) on a fixed contact set: min over C of (−σ_c − p_old)/(p_new − p_old)

@@ -30,10 +30,7 @@ pub fn detachment_shares() -> &'static [f64] {
         let r = SHARE_RADIUS as i64;
         let k = PATCH_RADIUS;
         // The whole plane less the origin (a disc of the patch's radius).
-        let plane: Vec<(i64, i64)> = (-k..=k)
-            .flat_map(|y| (-k..=k).map(move |x| (x, y)))
-            .filter(|&(x, y)| (x, y) != (0, 0) && x * x + y * y <= k * k)
-            .collect();
+        let plane = disc_less_origin(k);
         // A straight front: the half-plane y ≥ 0 less its edge element at the origin.
         let front: Vec<(i64, i64)> = (0..=k)
             .flat_map(|y| (-2 * k..=2 * k).map(move |x| (x, y)))
@@ -56,9 +53,18 @@ pub fn detachment_shares() -> &'static [f64] {
     })
 }
 
+/// The offsets (elements) of a disc of radius `k` elements about the origin, less the origin:
+/// the whole plane less one element, as far as a balayage onto it needs.
+pub(super) fn disc_less_origin(k: i64) -> Vec<(i64, i64)> {
+    (-k..=k)
+        .flat_map(|y| (-k..=k).map(move |x| (x, y)))
+        .filter(|&(x, y)| (x, y) != (0, 0) && x * x + y * y <= k * k)
+        .collect()
+}
+
 /// The shares q on the elements `set` (offsets, elements) of a unit pressure removed from
 /// the origin: K_SS q = K_S0, the displacement on the set kept unchanged.
-fn balayage(set: &[(i64, i64)]) -> Vec<f64> {
+pub(super) fn balayage(set: &[(i64, i64)]) -> Vec<f64> {
     let n = set.len();
     let k =
         |a: (i64, i64), b: (i64, i64)| influence((a.0 - b.0) as f64, (a.1 - b.1) as f64, 1.0, 1.0);
@@ -73,7 +79,7 @@ fn balayage(set: &[(i64, i64)]) -> Vec<f64> {
 
 /// Solve A x = b in place (A symmetric positive definite, n × n row-major, overwritten by its
 /// Cholesky factor; b by x).
-fn cholesky_solve(a: &mut [f64], b: &mut [f64], n: usize) {
+pub(super) fn cholesky_solve(a: &mut [f64], b: &mut [f64], n: usize) {
     for j in 0..n {
         let d = a[j * n + j] - (0..j).map(|k| a[j * n + k] * a[j * n + k]).sum::<f64>();
         let d = d.sqrt();

@@ -53,6 +53,10 @@ pub struct Model {
     /// Whether a cascade round's solve starts from the detached elements' load handed to
     /// their neighbours ([`crate::backend::shares`]); on with [`Model::loose_rounds`].
     pub spread_detached: bool,
+    /// Whether a cascade detaches, without a solve, the elements certain to go once the
+    /// detached load is handed on ([`crate::backend::certify`]); on with
+    /// [`Model::loose_rounds`].
+    pub certify_detached: bool,
     /// What the run is for.
     pub measure: Measure,
     /// Whether to re-grid as the contact shrinks.
@@ -189,6 +193,7 @@ impl Model {
             onsets: opt.onsets,
             loose_rounds: opt.loose_rounds,
             spread_detached: opt.loose_rounds,
+            certify_detached: opt.loose_rounds,
             measure: opt.measure,
             regrid: opt.regrid,
             mesh,

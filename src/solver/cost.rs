@@ -21,6 +21,10 @@ pub struct Work {
     pub convolutions: usize,
     /// Detachment/attachment sweeps that changed the contact set (cascade rounds).
     pub rounds: usize,
+    /// Elements detached without a solve, certain to go once the detached load is handed
+    /// on ([`crate::backend::certify`]).
+    #[serde(default)]
+    pub certified: usize,
 }
 
 impl Work {
@@ -30,6 +34,7 @@ impl Work {
         self.cg_iterations += other.cg_iterations;
         self.convolutions += other.convolutions;
         self.rounds += other.rounds;
+        self.certified += other.certified;
     }
 }
 
@@ -152,6 +157,12 @@ impl CostAccount {
             w.cg_iterations,
             w.convolutions
         );
+        if w.certified > 0 {
+            s.push_str(&format!(
+                ", {} elements detached without a solve",
+                w.certified
+            ));
+        }
         if self.readbacks > 0 {
             s.push_str(&format!(", {} readbacks", self.readbacks));
         }
@@ -200,6 +211,7 @@ mod tests {
             cg_iterations: 20,
             convolutions: 4,
             rounds: 1,
+            certified: 3,
         };
         a.charge(0.5, w);
         a.charge(0.8, w);
@@ -217,5 +229,6 @@ mod tests {
         b.absorb(&a);
         assert_eq!(b.work.solves, 16);
         assert_eq!(b.bands[3].work.cg_iterations, 80);
+        assert_eq!(b.work.certified, 24);
     }
 }

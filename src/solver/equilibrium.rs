@@ -324,9 +324,15 @@ pub fn settle<B: Backend>(
     let d_bar = d / model.scene.scales().approach;
     let loose_rounds = model.loose_rounds && sigma_c > 0.0;
     let spread = model.spread_detached && sigma_c > 0.0;
+    let certify = model.certify_detached && sigma_c > 0.0;
     let mut eq = Equilibrium::default();
+    // The error estimate of the p held (stress), where a solve gave it.
+    let mut eps = None;
     if held == Held::WarmStart {
         eq.add_solve(solve_fixed(backend, model, fields, d)?);
+        if certify {
+            eps = Some(error_estimate(backend, fields)?);
+        }
     }
     let mut exact = true;
     // Beyond σ_c by this (stress), a loosely solved element is surely over it.
@@ -339,16 +345,31 @@ pub fn settle<B: Backend>(
         } else {
             (None, sigma_c + margin)
         };
-        if spread {
+        if spread || certify {
             backend.copy(&fields.p, &mut fields.p_before)?;
         }
-        let change = backend.update_contact(
+        let mut change = backend.update_contact(
             &mut fields.c,
             &mut fields.p,
             &fields.u,
             attach_at,
             threshold,
         )?;
+        if let (true, Some(eps)) = (certify, eps) {
+            if change.detached > 0 && change.attached == 0 {
+                // The elements certain to follow go now, without a solve of their own.
+                let more = backend.certify_detached(
+                    &mut fields.c,
+                    &fields.p_before,
+                    &mut fields.p,
+                    sigma_c,
+                    eps,
+                )?;
+                change.detached += more;
+                change.n_contact -= more;
+                eq.work.certified += more;
+            }
+        }
         eq.n_contact = change.n_contact;
         if change.at_edge > 0 {
             return Err(SolverError::ContactAtEdge {
@@ -383,14 +404,24 @@ pub fn settle<B: Backend>(
             let solve = solve_for(backend, model, fields, d, goal)?;
             exact = solve.exact;
             eq.add_solve(solve);
-            if !exact {
-                margin = LOOSE_SAFETY * error_estimate(backend, fields)?;
+            eps = None;
+            if !exact || certify {
+                let e = error_estimate(backend, fields)?;
+                eps = Some(e);
+                if !exact {
+                    margin = LOOSE_SAFETY * e;
+                }
             }
         } else if !exact {
             // Nothing more is surely over σ_c: solve this round exactly and sweep it again.
             let solve = solve_for(backend, model, fields, d, Goal::Exact)?;
             exact = true;
             eq.add_solve(solve);
+            eps = if certify {
+                Some(error_estimate(backend, fields)?)
+            } else {
+                None
+            };
         } else if attach_at.is_none() {
             // Stable under detachment, but attachment is still to be checked: it needs u.
             fields.ensure_u(backend, &mut eq.work)?;

@@ -99,3 +99,53 @@ fn detached_load_handed_on_cuts_iterations_not_states() {
     println!("5:1 128×64: {ia} CG iterations with the shares, {ib} without");
     assert!(ia * 20 < ib * 19, "{ia} against {ib}: less than 5 % saved");
 }
+
+#[test]
+fn certified_detachments_cut_solves_not_states() {
+    // A cascade detaching at once the elements its bound proves to be over σ_c, or finding
+    // each in a round of its own: the same states (onsets, contact sets, forces), fewer
+    // rounds and CG iterations. The bound itself is checked against exact solves in
+    // backend::certify's unit test (and fails there when inflated).
+    let options = ModelOptions {
+        measure: Measure::AdhesiveForce,
+        // The CLI's load steps for this measure.
+        steps: 20,
+        ..ModelOptions::default()
+    };
+    let with = model(5.0, 128, Some(64), options);
+    let mut without = with.clone();
+    without.certify_detached = false;
+    assert!(with.certify_detached, "on by default with the loose rounds");
+    let (a, b) = (run_model(with), run_model(without));
+    assert_same_answers("5:1 128×64, certified detachments", &a, &b);
+    let (sa, sb) = (&a.outcome.states, &b.outcome.states);
+    assert_eq!(sa.len(), sb.len(), "the same onsets are located");
+    for (x, y) in sa.iter().zip(sb) {
+        assert_eq!((x.phase, x.n_contact), (y.phase, y.n_contact));
+        let scale = y.f_bar.abs().max(0.1);
+        assert!(
+            (x.f_bar - y.f_bar).abs() <= 1e-6 * scale,
+            "{} vs {}",
+            x.f_bar,
+            y.f_bar
+        );
+    }
+    let (wa, wb) = (a.outcome.cost.work, b.outcome.cost.work);
+    println!(
+        "5:1 128×64: {} rounds, {} CG iterations, {} elements certified; without: {} rounds, {} CG iterations",
+        wa.rounds, wa.cg_iterations, wa.certified, wb.rounds, wb.cg_iterations
+    );
+    assert!(wa.certified > 0 && wb.certified == 0);
+    assert!(
+        wa.rounds * 4 < wb.rounds * 3,
+        "rounds {} against {}",
+        wa.rounds,
+        wb.rounds
+    );
+    assert!(
+        wa.cg_iterations * 5 < wb.cg_iterations * 4,
+        "{} CG iterations against {}: less than 20 % saved",
+        wa.cg_iterations,
+        wb.cg_iterations
+    );
+}

@@ -117,10 +117,12 @@ pub struct Args {
     /// CG preconditioner.
     #[arg(long, value_enum, default_value_t = Preconditioner::Stiffness)]
     pub preconditioner: Preconditioner,
-    /// Solve every round of a detachment cascade to --cg-tolerance. By default the rounds
-    /// between are solved only as far as needed to tell which elements are over σ_c (1e-4,
-    /// detaching only those beyond it by 2 %) and the last round exactly: the same states at a
-    /// fraction of the CG iterations.
+    /// Solve every round of a detachment cascade to --cg-tolerance, each from p as the sweep
+    /// left it. By default the rounds between are solved only as far as needed to tell which
+    /// elements are over σ_c (to 1e-5, detaching only those beyond it by twice CG's error
+    /// estimate), each starts from the detached load handed on, the elements a bound proves
+    /// to follow are detached without a solve (CPU backend), and the last round is exact: the
+    /// same states at a fraction of the CG iterations.
     #[arg(long)]
     pub exact_cascade: bool,
     /// Backend: `cpu` (f64, rustfft), `gpu` (f32, wgpu; the best adapter, a software one such
