@@ -120,27 +120,24 @@ pub fn certify_detached(
         return 0;
     }
     let first = removed.len();
-    let mut is_removed = vec![false; n];
+    // The generation (from 1) in which each element was removed; 0 for one still in C.
+    let mut removed_in = vec![0u32; n];
     for &j in &removed {
-        is_removed[j] = true;
+        removed_in[j] = 1;
     }
     // The hole's solution of the last generation by element: the next one starts from it.
     let mut warm: HashMap<usize, f64> = HashMap::new();
-    // Elements removed in the last generation: only their groups' bounds change.
-    let mut fresh = is_removed.clone();
     let mut label = vec![u32::MAX; n];
     let limit = -sigma_c - ERROR_MARGIN * eps;
-    loop {
+    for generation in 1.. {
         let groups = clusters(&removed, nx, ny, &mut label);
-        let (cm, rm, wm): (&[bool], &[bool], &HashMap<usize, f64>) = (c, &is_removed, &warm);
+        let (cm, rm, wm): (&[bool], &[u32], &HashMap<usize, f64>) = (c, &removed_in, &warm);
+        // Only the groups that gained elements in the last generation have a new bound.
         let found: Vec<GroupBound> = groups
             .par_iter()
-            .filter(|g| g.iter().any(|&j| fresh[j]))
+            .filter(|g| g.iter().any(|&j| rm[j] == generation))
             .map(|members| bound_cluster(members, cm, rm, before, wm, nx, ny))
             .collect();
-        for &j in &removed {
-            fresh[j] = false;
-        }
         let mut certain = Vec::new();
         for (deltas, hole) in found {
             // Groups' candidates are disjoint: each Δ is the whole bound's change.
@@ -159,8 +156,7 @@ pub fn certify_detached(
         for &i in &certain {
             c[i] = false;
             p[i] = 0.0;
-            is_removed[i] = true;
-            fresh[i] = true;
+            removed_in[i] = generation + 1;
         }
         removed.extend(certain);
     }
@@ -210,11 +206,12 @@ fn clusters(removed: &[usize], nx: usize, ny: usize, label: &mut [u32]) -> Vec<V
 /// One group's bound: Δ (stress) on each candidate, and the hole's solution v by element.
 type GroupBound = (Vec<(usize, f64)>, Vec<(usize, f64)>);
 
-/// One group's bound: (Δ on each candidate, the hole's solution v by element).
+/// The bound of the group `members` ([`GroupBound`]); `removed_in` is non-zero on the
+/// elements removed so far.
 fn bound_cluster(
     members: &[usize],
     c: &[bool],
-    removed: &[bool],
+    removed_in: &[u32],
     before: &[f64],
     warm: &HashMap<usize, f64>,
     nx: usize,
@@ -252,7 +249,9 @@ fn bound_cluster(
                         candidate[local] = true;
                         cands.push(i);
                     }
-                } else if frame.index[local] == u32::MAX && (dist <= HOLE_REACH || removed[i]) {
+                } else if frame.index[local] == u32::MAX
+                    && (dist <= HOLE_REACH || removed_in[i] > 0)
+                {
                     frame.index[local] = hole.len() as u32;
                     hole.push(i);
                 }
@@ -435,7 +434,7 @@ mod tests {
             .collect();
         let exact = sphere_pressure(&swept, n);
         let members: Vec<usize> = (0..n * n).filter(|&i| c[i] && !swept[i]).collect();
-        let removed: Vec<bool> = (0..n * n).map(|i| c[i] && !swept[i]).collect();
+        let removed: Vec<u32> = (0..n * n).map(|i| (c[i] && !swept[i]) as u32).collect();
         let (deltas, _) = bound_cluster(&members, &swept, &removed, &before, &HashMap::new(), n, n);
         let worst = deltas
             .iter()

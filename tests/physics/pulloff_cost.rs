@@ -10,7 +10,7 @@ use crate::common;
 
 use common::run_model;
 use common::same_answers::{assert_account_adds_up, assert_same_answers, compare, exact, model};
-use jkrbem::model::{Measure, ModelOptions};
+use jkrbem::model::{Measure, Model, ModelOptions};
 use jkrbem::solver::{Phase, State};
 
 #[test]
@@ -72,26 +72,47 @@ fn solves_and_convolutions_are_made_only_where_needed() {
     }
 }
 
+/// 5:1 at 128×64, adhesive force with `options`, run with a cascade rule on (its default) and
+/// off (`rule` names its flag): the same answers, the same onsets and the same contact set in
+/// every state. Returns the two runs, the rule on first.
+fn with_and_without(
+    what: &str,
+    options: ModelOptions,
+    rule: fn(&mut Model) -> &mut bool,
+) -> (common::Run, common::Run) {
+    let mut with = model(
+        5.0,
+        128,
+        Some(64),
+        ModelOptions {
+            measure: Measure::AdhesiveForce,
+            ..options
+        },
+    );
+    let mut without = with.clone();
+    assert!(
+        *rule(&mut with),
+        "{what}: on by default with the loose rounds"
+    );
+    *rule(&mut without) = false;
+    let (a, b) = (run_model(with), run_model(without));
+    assert_same_answers(what, &a, &b);
+    let (sa, sb) = (&a.outcome.states, &b.outcome.states);
+    assert_eq!(sa.len(), sb.len(), "{what}: the same onsets are located");
+    for (x, y) in sa.iter().zip(sb) {
+        assert_eq!((x.phase, x.n_contact), (y.phase, y.n_contact));
+    }
+    (a, b)
+}
+
 #[test]
 fn detached_load_handed_on_cuts_iterations_not_states() {
     // A cascade round's solve started from the detached elements' load handed to their
     // neighbours, or from p with that load dropped: the same states (contact sets, forces),
     // fewer CG iterations. Shares of the wrong sign or size make more iterations, not fewer.
-    let options = ModelOptions {
-        measure: Measure::AdhesiveForce,
-        ..ModelOptions::default()
-    };
-    let with = model(5.0, 128, Some(64), options);
-    let mut without = with.clone();
-    without.spread_detached = false;
-    assert!(with.spread_detached, "on by default with the loose rounds");
-    let (a, b) = (run_model(with), run_model(without));
-    assert_same_answers("5:1 128×64, shares", &a, &b);
-    let (sa, sb) = (&a.outcome.states, &b.outcome.states);
-    assert_eq!(sa.len(), sb.len(), "the same onsets are located");
-    for (x, y) in sa.iter().zip(sb) {
-        assert_eq!((x.phase, x.n_contact), (y.phase, y.n_contact));
-    }
+    let (a, b) = with_and_without("5:1 128×64, shares", ModelOptions::default(), |m| {
+        &mut m.spread_detached
+    });
     let (ia, ib) = (
         a.outcome.cost.work.cg_iterations,
         b.outcome.cost.work.cg_iterations,
@@ -107,21 +128,14 @@ fn certified_detachments_cut_solves_not_states() {
     // rounds and CG iterations. The bound itself is checked against exact solves in
     // backend::certify's unit test (and fails there when inflated).
     let options = ModelOptions {
-        measure: Measure::AdhesiveForce,
         // The CLI's load steps for this measure.
         steps: 20,
         ..ModelOptions::default()
     };
-    let with = model(5.0, 128, Some(64), options);
-    let mut without = with.clone();
-    without.certify_detached = false;
-    assert!(with.certify_detached, "on by default with the loose rounds");
-    let (a, b) = (run_model(with), run_model(without));
-    assert_same_answers("5:1 128×64, certified detachments", &a, &b);
-    let (sa, sb) = (&a.outcome.states, &b.outcome.states);
-    assert_eq!(sa.len(), sb.len(), "the same onsets are located");
-    for (x, y) in sa.iter().zip(sb) {
-        assert_eq!((x.phase, x.n_contact), (y.phase, y.n_contact));
+    let (a, b) = with_and_without("5:1 128×64, certified detachments", options, |m| {
+        &mut m.certify_detached
+    });
+    for (x, y) in a.outcome.states.iter().zip(&b.outcome.states) {
         let scale = y.f_bar.abs().max(0.1);
         assert!(
             (x.f_bar - y.f_bar).abs() <= 1e-6 * scale,
