@@ -438,6 +438,76 @@ fn spread_detached<B: Backend>(mut s: Subject<B>) {
     s.assert_close("p after the spread", &got, &want);
 }
 
+/// Detachments certain before a solve: the backend's certification equals the host's
+/// (`backend::certify::certify_detached`, the twin of shaders/certify.wgsl) on a band of
+/// contact whose lower edge has partly just detached: the same elements certified, their p
+/// zeroed. The periodic backend certifies none (its bound is the plane's).
+fn certify_detached<B: Backend>(mut s: Subject<B>) {
+    let sigma_c = 1.0;
+    let eps = 1e-3;
+    // Before the sweep: the band 3 ≤ y ≤ 12 in contact, tensile, most so near its edges.
+    let noise = pseudo_random(NX * NY, 31);
+    let band = |i: usize| (3..=12).contains(&(i / NX));
+    let before: Vec<f64> = (0..NX * NY)
+        .map(|i| {
+            if !band(i) {
+                return 0.0;
+            }
+            let edge = (i / NX).abs_diff(3).min((i / NX).abs_diff(12)) as f64;
+            (-0.92 + 0.4 * edge + 0.04 * noise[i]).min(-0.1)
+        })
+        .collect();
+    // The sweep detached the lower edge's elements 6 ≤ x ≤ 24 (made over σ_c).
+    let mut before = before;
+    let swept: Vec<bool> = (0..NX * NY)
+        .map(|i| {
+            let detached = i / NX == 3 && (6..=24).contains(&(i % NX));
+            if detached {
+                before[i] = -1.2 - 0.1 * noise[i].abs();
+            }
+            band(i) && !detached
+        })
+        .collect();
+    let p = on_c(&before, &swept);
+    s.b.upload_mask(&mut s.c, &swept).unwrap();
+    let fb = s.put(&before);
+    let mut fp = s.put(&p);
+    let got =
+        s.b.certify_detached(&mut s.c, &fb, &mut fp, sigma_c, eps)
+            .unwrap();
+    let mut got_mask = vec![false; NX * NY];
+    s.b.download_mask(&s.c, &mut got_mask).unwrap();
+    let got_p = s.get(&fp);
+    if s.b.name() == "cpu-periodic" {
+        assert_eq!(got, 0, "the periodic backend certified {got}");
+        assert_eq!(got_mask, swept);
+        return;
+    }
+    let (mut want_mask, mut want_p) = (swept.clone(), p.clone());
+    let want = jkrbem::backend::certify::certify_detached(
+        &mut want_mask,
+        &before,
+        &mut want_p,
+        NX,
+        NY,
+        sigma_c,
+        eps,
+    );
+    assert!(want > 0, "the inputs must certify some");
+    // Candidates kept too (within the candidates' reach of the rows removed): the bound
+    // decides both ways.
+    assert!(
+        (4 * NX..8 * NX).any(|i| want_mask[i]),
+        "the inputs must leave some candidates in contact"
+    );
+    assert_eq!(got, want, "elements certified");
+    assert_eq!(
+        got_mask, want_mask,
+        "the contact set after the certification"
+    );
+    s.assert_close("p after the certification", &got_p, &want_p);
+}
+
 /// The convolution is linear and symmetric (⟨a, Kb⟩ = ⟨Ka, b⟩) on every backend, and the
 /// padded ones equal the padded CPU backend.
 fn convolution<B: Backend>(mut s: Subject<B>) {
@@ -613,6 +683,7 @@ fn checks<B: Backend + 'static>() -> Vec<(&'static str, Check<B>)> {
             update_contact_detach_only::<B>,
         ),
         ("spread_detached", spread_detached::<B>),
+        ("certify_detached", certify_detached::<B>),
         ("convolution", convolution::<B>),
         ("preconditioner", preconditioner::<B>),
         ("fused", fused::<B>),

@@ -99,6 +99,55 @@ struct SpreadParams {
     _pad: u32,
 }
 
+/// Uniform parameters of shaders/certify.wgsl (`struct Params`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct CertifyParams {
+    nx: u32,
+    ny: u32,
+    generation: u32,
+    truncation: u32,
+    hole_reach: u32,
+    candidate_reach: u32,
+    /// −σ_c − 3ε (stress).
+    limit: f32,
+    safety: f32,
+}
+
+/// The device fields of the certified detachments (shaders/certify.wgsl), made at the first
+/// cascade that takes them: each element's generation and role, the hole's Jacobi iterate
+/// (two buffers, ping-pong), G's table and the count of one dispatch.
+struct CertifyBuffers {
+    gen: wgpu::Buffer,
+    role: wgpu::Buffer,
+    v: [wgpu::Buffer; 2],
+    g: wgpu::Buffer,
+    count: wgpu::Buffer,
+}
+
+impl CertifyBuffers {
+    fn new(ctx: &GpuContext, n: usize) -> CertifyBuffers {
+        let g: Vec<f32> = crate::backend::certify::inverse_influence()
+            .iter()
+            .map(|&v| v as f32)
+            .collect();
+        let field = |label| storage(ctx, label, n as u64 * 4);
+        CertifyBuffers {
+            gen: field("certify generation"),
+            role: field("certify role"),
+            v: [field("certify v (a)"), field("certify v (b)")],
+            g: ctx
+                .device()
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("inverse influence"),
+                    contents: bytemuck::cast_slice(&g),
+                    usage: wgpu::BufferUsages::STORAGE,
+                }),
+            count: storage(ctx, "certified count", 4),
+        }
+    }
+}
+
 /// Which reduction of reduce.wgsl to run.
 #[derive(Debug, Clone, Copy)]
 enum Reduction {
@@ -136,6 +185,10 @@ struct Kernels {
     finish_min: Kernel,
     update_contact: Kernel,
     spread_detached: Kernel,
+    certify_seed: Kernel,
+    certify_mark: Kernel,
+    certify_jacobi: Kernel,
+    certify: Kernel,
     spectral: SpectralKernels,
 }
 
@@ -145,6 +198,7 @@ impl Kernels {
         let r = module(ctx, "reduce.wgsl", shaders::REDUCE);
         let c = module(ctx, "contact.wgsl", shaders::CONTACT);
         let s = module(ctx, "spread.wgsl", shaders::SPREAD);
+        let cf = module(ctx, "certify.wgsl", shaders::CERTIFY);
         let k = |m: &wgpu::ShaderModule, table, entry| {
             Kernel::new(ctx, m, entry, shaders::bindings(table, entry))
         };
@@ -166,6 +220,10 @@ impl Kernels {
             finish_min: reduce("finish_min"),
             update_contact: k(&c, shaders::CONTACT_KERNELS, "update_contact"),
             spread_detached: k(&s, shaders::SPREAD_KERNELS, "spread_detached"),
+            certify_seed: k(&cf, shaders::CERTIFY_KERNELS, "seed"),
+            certify_mark: k(&cf, shaders::CERTIFY_KERNELS, "mark"),
+            certify_jacobi: k(&cf, shaders::CERTIFY_KERNELS, "jacobi"),
+            certify: k(&cf, shaders::CERTIFY_KERNELS, "certify"),
             spectral: SpectralKernels::new(ctx),
         }
     }
@@ -200,6 +258,8 @@ pub struct GpuBackend {
     partials: wgpu::Buffer,
     counts: wgpu::Buffer,
     contact_counters: wgpu::Buffer,
+    /// Made at the first certification.
+    certify: Option<CertifyBuffers>,
     reduce_groups: u32,
     rec: Recorder,
 }
@@ -336,6 +396,7 @@ impl GpuBackend {
             partials: storage(&ctx, "partials", 3 * reduce_groups as u64 * 4),
             counts: storage(&ctx, "partial counts", (5 * reduce_groups as u64 + 8) * 4),
             contact_counters: storage(&ctx, "contact counters", 16),
+            certify: None,
             reduce_groups,
             rec: Recorder::default(),
             ctx,
@@ -1016,6 +1077,108 @@ impl ContactKernels for GpuBackend {
             grid,
             bytes,
         )
+    }
+    fn certify_detached(
+        &mut self,
+        c: &mut GpuMask,
+        before: &GpuField,
+        p: &mut GpuField,
+        sigma_c: f64,
+        eps: f64,
+    ) -> Result<usize, BackendError> {
+        use crate::backend::certify::{
+            CANDIDATE_REACH, DISC_SAFETY, ERROR_MARGIN, HOLE_REACH, JACOBI_STEPS, TRUNCATION,
+        };
+        let n = self.n();
+        let bufs = self
+            .certify
+            .get_or_insert_with(|| CertifyBuffers::new(&self.ctx, n));
+        let enc = self.rec.encoder(&self.ctx);
+        for b in [&bufs.gen, &bufs.role, &bufs.v[0], &bufs.v[1]] {
+            enc.clear_buffer(b, 0, None);
+        }
+        let grid = grid_for(&self.ctx, n);
+        let mut params = CertifyParams {
+            nx: self.nx as u32,
+            ny: self.ny as u32,
+            generation: 1,
+            truncation: TRUNCATION as u32,
+            hole_reach: HOLE_REACH as u32,
+            candidate_reach: CANDIDATE_REACH as u32,
+            limit: (-sigma_c - ERROR_MARGIN * eps) as f32,
+            safety: DISC_SAFETY as f32,
+        };
+        let prm = self.rec.uniform(&self.ctx, &params)?;
+        self.rec.dispatch(
+            &self.ctx,
+            &self.kernels.certify_seed,
+            &[
+                (0, &prm),
+                (2, &before.buffer),
+                (3, &c.buffer),
+                (4, &bufs.gen),
+            ],
+            grid,
+            traffic::elementwise(n, 3),
+        )?;
+        // The stencils' neighbour reads hit the cache: each kernel moves about its own
+        // elements' fields.
+        let mut certified = 0;
+        for generation in 1u32.. {
+            params.generation = generation;
+            let prm = self.rec.uniform(&self.ctx, &params)?;
+            self.rec.dispatch(
+                &self.ctx,
+                &self.kernels.certify_mark,
+                &[(0, &prm), (3, &c.buffer), (4, &bufs.gen), (5, &bufs.role)],
+                grid,
+                traffic::elementwise(n, 3),
+            )?;
+            for step in 0..JACOBI_STEPS {
+                let (from, to) = (&bufs.v[step % 2], &bufs.v[(step + 1) % 2]);
+                self.rec.dispatch(
+                    &self.ctx,
+                    &self.kernels.certify_jacobi,
+                    &[
+                        (0, &prm),
+                        (2, &before.buffer),
+                        (4, &bufs.gen),
+                        (5, &bufs.role),
+                        (6, from),
+                        (7, to),
+                        (8, &bufs.g),
+                    ],
+                    grid,
+                    traffic::elementwise(n, 2),
+                )?;
+            }
+            self.rec
+                .encoder(&self.ctx)
+                .clear_buffer(&bufs.count, 0, None);
+            self.rec.dispatch(
+                &self.ctx,
+                &self.kernels.certify,
+                &[
+                    (0, &prm),
+                    (1, &p.buffer),
+                    (2, &before.buffer),
+                    (3, &c.buffer),
+                    (4, &bufs.gen),
+                    (5, &bufs.role),
+                    (6, &bufs.v[JACOBI_STEPS % 2]),
+                    (8, &bufs.g),
+                    (9, &bufs.count),
+                ],
+                grid,
+                traffic::elementwise(n, 2),
+            )?;
+            let more: Vec<u32> = self.rec.read(&self.ctx, &bufs.count, 0, 4)?;
+            if more[0] == 0 {
+                break;
+            }
+            certified += more[0] as usize;
+        }
+        Ok(certified)
     }
     fn first_crossing(
         &mut self,

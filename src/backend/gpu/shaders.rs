@@ -191,6 +191,44 @@ pub const SPREAD_KERNELS: &[KernelLayout] = &[KernelLayout {
     ],
 }];
 
+/// The kernels of certify.wgsl.
+pub const CERTIFY_KERNELS: &[KernelLayout] = &[
+    KernelLayout {
+        entry: "seed",
+        bindings: &[(0, Uniform), (2, Read), (3, ReadWrite), (4, ReadWrite)],
+    },
+    KernelLayout {
+        entry: "mark",
+        bindings: &[(0, Uniform), (3, ReadWrite), (4, ReadWrite), (5, ReadWrite)],
+    },
+    KernelLayout {
+        entry: "jacobi",
+        bindings: &[
+            (0, Uniform),
+            (2, Read),
+            (4, ReadWrite),
+            (5, ReadWrite),
+            (6, Read),
+            (7, ReadWrite),
+            (8, Read),
+        ],
+    },
+    KernelLayout {
+        entry: "certify",
+        bindings: &[
+            (0, Uniform),
+            (1, ReadWrite),
+            (2, Read),
+            (3, ReadWrite),
+            (4, ReadWrite),
+            (5, ReadWrite),
+            (6, Read),
+            (8, Read),
+            (9, ReadWrite),
+        ],
+    },
+];
+
 /// The bindings of `entry` in `kernels`. Panics if it is not there (a programming error that
 /// every GPU test would show).
 pub fn bindings(kernels: &[KernelLayout], entry: &str) -> &'static [(u32, Binding)] {
@@ -254,13 +292,20 @@ pub const SPREAD: &str = concat!(
     include_str!("../../../shaders/spread.wgsl"),
 );
 
+/// Detachments certain before a solve.
+pub const CERTIFY: &str = concat!(
+    include_str!("../../../shaders/shared/common.wgsl"),
+    include_str!("../../../shaders/certify.wgsl"),
+);
+
 /// Every module, by the name of its own file, with its kernels: what a validation test
 /// compiles and checks.
-pub const MODULES: [(&str, &str, &[KernelLayout]); 6] = [
+pub const MODULES: [(&str, &str, &[KernelLayout]); 7] = [
     ("spectral.wgsl (2048)", SPECTRAL_2048, SPECTRAL_KERNELS),
     ("spectral.wgsl (4096)", SPECTRAL_4096, SPECTRAL_KERNELS),
     ("vector.wgsl", VECTOR, VECTOR_KERNELS),
     ("reduce.wgsl", REDUCE, REDUCE_KERNELS),
     ("contact.wgsl", CONTACT, CONTACT_KERNELS),
     ("spread.wgsl", SPREAD, SPREAD_KERNELS),
+    ("certify.wgsl", CERTIFY, CERTIFY_KERNELS),
 ];
