@@ -7,7 +7,8 @@
 // `mark` (the hole H: elements off C within the hole's reach of an element of generation g;
 // the candidates: elements of C within the candidates' reach of one), `jacobi` JACOBI_STEPS
 // times (ping-pong between v_in and v_out), then `certify` (an element of C whose bound is
-// below the limit leaves C, p = 0 on it, gen = g + 1, counted). Every kernel runs over the
+// below the limit leaves C, p = 0 on it, gen = g + 1, counted; on a candidate kept p is set
+// to before + Δ, the round's predicted start). Every kernel runs over the
 // whole grid and returns at once for the elements outside H and the candidates, so a
 // generation costs the hole's work plus a few reads per element.
 
@@ -137,5 +138,8 @@ fn certify(
         p[i] = 0.0;
         gen[i] = params.generation + 1u;
         atomicAdd(&certified[0], 1u);
+    } else {
+        // The round's predicted start; the last generation's (which certifies none) stays.
+        p[i] = before[i] + delta;
     }
 }

@@ -35,6 +35,11 @@
 //! shaders/certify.wgsl runs these steps over the whole grid (this module is its twin), so
 //! the GPU backend certifies what the CPU backend does without its fields leaving the device.
 //!
+//! The last generation's bound, which certifies nothing more, is also the round's predicted
+//! start: p + Δ on the candidates kept (unscaled), the load they take from S onto the plane
+//! less the actual hole, which CG corrects (in place of the fixed shares of
+//! [`super::shares`], which know no hole).
+//!
 //! Only the solve's count changes, never a state: 5:1 at 512×256, adhesive force, 2 148 →
 //! 1 304 cascade rounds and 11 230 → 7 568 CG iterations, every contact set equal.
 
@@ -252,8 +257,11 @@ const PARALLEL_FROM: usize = 2048;
 /// Detach the elements of C (`c`) that are certainly over `sigma_c` (stress) once the
 /// elements just detached hand on their load; return how many. `before` is p before the
 /// sweep (the detached elements are those off C with `before` ≠ 0); `p` is zeroed on the
-/// elements certified. `eps` (stress) is the error estimate of `before`. Nothing is done if
-/// a detached element was not tensile. Grid nx × ny, row-major, x fastest.
+/// elements certified and, on the candidates kept, set to the round's predicted start
+/// before + Δ (the balayage onto the plane less the last hole: nearly the load they take,
+/// which CG corrects). `eps` (stress) is the error estimate of `before`. `None` (nothing
+/// done) if a detached element was not tensile or none was. Grid nx × ny, row-major, x
+/// fastest.
 pub fn certify_detached(
     c: &mut [bool],
     before: &[f64],
@@ -262,11 +270,11 @@ pub fn certify_detached(
     ny: usize,
     sigma_c: f64,
     eps: f64,
-) -> usize {
+) -> Option<usize> {
     let n = nx * ny;
     let mut fresh: Vec<usize> = (0..n).filter(|&j| !c[j] && before[j] != 0.0).collect();
     if fresh.is_empty() || fresh.iter().any(|&j| before[j] >= 0.0) {
-        return 0;
+        return None;
     }
     // The generation (from 1) in which each element was removed; 0 for one still in C.
     let mut removed_in = vec![0u32; n];
@@ -279,13 +287,17 @@ pub fn certify_detached(
     for generation in 1.. {
         hole.grow(&fresh, c, before, &removed_in, nx, ny);
         hole.jacobi();
-        let mut certain: Vec<usize> = hole
-            .deltas(c, nx, ny)
-            .into_iter()
-            .filter(|&(i, d)| before[i] < 0.0 && before[i] + DISC_SAFETY * d < limit)
-            .map(|(i, _)| i)
+        let deltas = hole.deltas(c, nx, ny);
+        let mut certain: Vec<usize> = deltas
+            .iter()
+            .filter(|&&(i, d)| before[i] < 0.0 && before[i] + DISC_SAFETY * d < limit)
+            .map(|&(i, _)| i)
             .collect();
         if certain.is_empty() {
+            // The last bound, unscaled, is the round's predicted start.
+            for (i, d) in deltas {
+                p[i] = before[i] + d;
+            }
             break;
         }
         certain.sort_unstable();
@@ -297,7 +309,7 @@ pub fn certify_detached(
         certified += certain.len();
         fresh = certain;
     }
-    certified
+    Some(certified)
 }
 
 #[cfg(test)]
@@ -446,7 +458,7 @@ mod tests {
                 *pi = 0.0;
             }
         }
-        let count = certify_detached(&mut certified, &before, &mut p, n, n, sigma_c, 0.0);
+        let count = certify_detached(&mut certified, &before, &mut p, n, n, sigma_c, 0.0).unwrap();
         // The exact cascade (solve, sweep, until nothing changes) keeps every element that
         // the certification kept.
         let mut stable = swept.clone();

@@ -337,12 +337,13 @@ pub trait ContactKernels: Device {
         p: &mut Self::Field,
     ) -> Result<(), BackendError>;
     /// After a sweep that only detached: detach the elements of C certainly over `sigma_c`
-    /// (stress) once the elements just detached hand on their load, zero p on them, and
-    /// return how many ([`certify::certify_detached`] is the definition and the host twin of
+    /// (stress) once the elements just detached hand on their load, zero p on them, set p on
+    /// the candidates kept to the round's predicted start, and return how many were
+    /// certified ([`certify::certify_detached`] is the definition and the host twin of
     /// shaders/certify.wgsl). `before` is p before the sweep, `eps` (stress) the error
-    /// estimate of the solve it came from. A backend may detach fewer (none: the periodic
-    /// one, whose convolution is not the plane's): the states are the same, only the solves
-    /// more.
+    /// estimate of the solve it came from. `None`: not taken (the periodic backend, whose
+    /// convolution is not the plane's), p untouched; the states are the same, only the
+    /// solves more.
     fn certify_detached(
         &mut self,
         c: &mut Self::Mask,
@@ -350,7 +351,7 @@ pub trait ContactKernels: Device {
         p: &mut Self::Field,
         sigma_c: f64,
         eps: f64,
-    ) -> Result<usize, BackendError>;
+    ) -> Result<Option<usize>, BackendError>;
     /// The fraction t ∈ [0, 1] of a load step at which the first element of C reaches the
     /// detachment stress, with p moving linearly from `p_old` (t = 0, all p ≥ −σ_c) to
     /// `p_new` (t = 1) on a fixed contact set: min over C of (−σ_c − p_old)/(p_new − p_old)

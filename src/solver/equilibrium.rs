@@ -355,19 +355,23 @@ pub fn settle<B: Backend>(
             attach_at,
             threshold,
         )?;
+        // Whether the certification set the round's predicted start.
+        let mut predicted = false;
         if let (true, Some(eps)) = (certify, eps) {
             if change.detached > 0 && change.attached == 0 {
                 // The elements certain to follow go now, without a solve of their own.
-                let more = backend.certify_detached(
+                if let Some(more) = backend.certify_detached(
                     &mut fields.c,
                     &fields.p_before,
                     &mut fields.p,
                     sigma_c,
                     eps,
-                )?;
-                change.detached += more;
-                change.n_contact -= more;
-                eq.work.certified += more;
+                )? {
+                    predicted = true;
+                    change.detached += more;
+                    change.n_contact -= more;
+                    eq.work.certified += more;
+                }
             }
         }
         eq.n_contact = change.n_contact;
@@ -382,9 +386,10 @@ pub fn settle<B: Backend>(
         }
         if change.detached + change.attached > 0 {
             fields.u_valid = false;
-            if spread && change.detached > 0 {
+            if spread && change.detached > 0 && !predicted {
                 // The round's solve starts from the detached load handed on (a prediction
-                // that CG corrects: the state is the same, the iterations fewer).
+                // that CG corrects: the state is the same, the iterations fewer); the
+                // certification's bound predicts it better where it ran.
                 backend.spread_detached(&fields.c, &fields.p_before, &mut fields.p)?;
             }
             eq.work.rounds += 1;

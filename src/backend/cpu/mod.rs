@@ -293,10 +293,10 @@ impl ContactKernels for CpuBackend {
         p: &mut Vec<f64>,
         sigma_c: f64,
         eps: f64,
-    ) -> Result<usize, BackendError> {
+    ) -> Result<Option<usize>, BackendError> {
         if self.periodic {
             // The bound is the plane's: a periodic convolution is only for showing.
-            return Ok(0);
+            return Ok(None);
         }
         Ok(super::certify::certify_detached(
             mask, before, p, self.nx, self.ny, sigma_c, eps,

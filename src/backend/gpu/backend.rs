@@ -1085,7 +1085,7 @@ impl ContactKernels for GpuBackend {
         p: &mut GpuField,
         sigma_c: f64,
         eps: f64,
-    ) -> Result<usize, BackendError> {
+    ) -> Result<Option<usize>, BackendError> {
         use crate::backend::certify::{
             CANDIDATE_REACH, DISC_SAFETY, ERROR_MARGIN, HOLE_REACH, JACOBI_STEPS, TRUNCATION,
         };
@@ -1178,7 +1178,7 @@ impl ContactKernels for GpuBackend {
             }
             certified += more[0] as usize;
         }
-        Ok(certified)
+        Ok(Some(certified))
     }
     fn first_crossing(
         &mut self,
