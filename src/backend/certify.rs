@@ -26,14 +26,21 @@
 //! The hole's system is solved by [`JACOBI_STEPS`] Jacobi sweeps per generation, on the whole
 //! set S removed so far at once (its hole grows with it), each generation starting from the
 //! last one's v. That keeps it a bound at every step: G_HH is strictly diagonally dominant
-//! (the one-element shares within the truncation sum to 0.915), so Jacobi's iterates
+//! (the one-element shares within the truncation sum to 0.955), so Jacobi's iterates
 //! from a subsolution (G_HH v ≤ b; zero is one, and the last generation's v extended by zero
 //! is one of the grown hole's system, whose new rows have b ≥ 0 and non-positive couplings)
 //! rise towards the solution and stay below it: v smaller, Δ less negative, the bound looser,
-//! never wrong. Sixteen sweeps certify what a converged solve does (5:1 at 256×128: 10 056
-//! elements against 10 060 with 32 sweeps). Jacobi is the same on the host and on a device:
-//! shaders/certify.wgsl runs these steps over the whole grid (this module is its twin), so
-//! the GPU backend certifies what the CPU backend does without its fields leaving the device.
+//! never wrong. More sweeps tighten it a little (24 save under 1 % of the CG iterations at
+//! 5:1, 512×256) for more host time than they save. Jacobi is the same on the host and on a
+//! device, in f32 on both: shaders/certify.wgsl runs these steps over the whole grid (this
+//! module is its twin), so the GPU backend certifies what the CPU backend does without its
+//! fields leaving the device. On the host, v lives on the grid and each stencil row is summed
+//! in vectors (AVX2 where the CPU has it).
+//!
+//! The reaches. The bound is only as tight as the hole is large and G is wide: with the hole,
+//! the candidates and G within 8 elements (a 17×17 stencil), 5:1 at 512×256 takes 5 213 CG
+//! iterations; within 4 (9×9), 7 023; and the host's sweeps cost about the same wall time
+//! (AVX2 on 2 cores; the wider bound certifies more and leaves fewer rounds to sweep).
 //!
 //! The last generation's bound, which certifies nothing more, is also the round's predicted
 //! start: p + Δ on the candidates kept (unscaled), the load they take from S onto the plane
@@ -41,55 +48,120 @@
 //! [`super::shares`], which know no hole).
 //!
 //! Only the solve's count changes, never a state: 5:1 at 512×256, adhesive force, 2 148 →
-//! 1 258 cascade rounds and 11 230 → 7 023 CG iterations (with the predicted start), every
+//! 912 cascade rounds and 11 230 → 5 213 CG iterations (with the predicted start), every
 //! contact set equal.
 
-use super::shares;
 use rayon::prelude::*;
 use std::sync::OnceLock;
 
 /// Contact elements within this many elements (along x and y) of a removed one are tested.
-pub const CANDIDATE_REACH: i64 = 4;
+pub const CANDIDATE_REACH: i64 = 8;
 
 /// Elements off C within this many elements of a removed one belong to the hole H.
-pub const HOLE_REACH: i64 = 4;
+pub const HOLE_REACH: i64 = 8;
 
 /// Entries of G beyond this many elements (along x or y) are left out (see the module).
-pub const TRUNCATION: i64 = 4;
+pub const TRUNCATION: i64 = 8;
 
 /// An element is certified only below −σ_c − this × ε (ε: the solve's error estimate).
 pub const ERROR_MARGIN: f64 = 3.0;
 
-/// The computed change Δ is scaled by this before the test: G is computed on a disc of
-/// radius [`DISC_RADIUS`], whose balayage weights exceed the whole plane's by less than 1 %
-/// within [`TRUNCATION`] (the sign that would loosen the bound).
-pub const DISC_SAFETY: f64 = 0.98;
+/// The computed change Δ is scaled by this before the test: a margin for the rounding of
+/// the hole's system, solved in f32 on the host and on a device alike (its relative error
+/// stays below 1e-5: sums of at most 288 terms, 16 sweeps), and for the extrapolation of
+/// [`PLANE_SHARES`].
+pub const DISC_SAFETY: f64 = 0.99;
 
-/// Radius (elements) of the disc on which G's entries are computed.
-pub const DISC_RADIUS: i64 = 16;
+/// Radii (elements) of the discs from whose weights [`PLANE_SHARES`] are extrapolated.
+pub const DISC_RADII: (i64, i64) = (40, 56);
+
+/// −G/G(0) at the offsets (x, y), 0 ≤ y ≤ x ≤ 8 (the other offsets by symmetry): the share
+/// of a unit load removed from one element that each element of the plane less it takes
+/// (dimensionless). A disc of radius R less its centre (`shares::balayage`, a dense solve)
+/// gives weights above the plane's, by an excess that falls as R^−3.3 (within 8 elements, at
+/// most 14 %, 2.7 %, 0.89 % and 0.34 % above radius 56's for R = 16, 24, 32, 40). The table
+/// is 2 w₅₆ − w₄₀ (the radii [`DISC_RADII`]): below the plane's for any excess falling at
+/// least as R^−2, and within about 0.1 % of it for R^−3.3. With G's off-diagonal entries no
+/// larger than the plane's, the hole's system gives a v no larger than the plane's
+/// (comparison of M-matrices): what makes the bound a bound. Too slow to make at every start
+/// (9 852 unknowns); the ignored test `the_table_is_extrapolated_from_two_discs` makes it
+/// again.
+pub const PLANE_SHARES: [(i64, i64, f64); 44] = [
+    (1, 0, 0.15746081408335863),
+    (1, 1, 0.04108913010207998),
+    (2, 0, 0.0022949311049869),
+    (2, 1, 0.004212487321342624),
+    (2, 2, 0.002703138390155864),
+    (3, 0, 0.0027123396268318597),
+    (3, 1, 0.002194838994571239),
+    (3, 2, 0.0014357244003267201),
+    (3, 3, 0.0008790075017860071),
+    (4, 0, 0.0010307438981135763),
+    (4, 1, 0.0009486278818818285),
+    (4, 2, 0.0007493725510353764),
+    (4, 3, 0.0005391311507531288),
+    (4, 4, 0.00037359901431816694),
+    (5, 0, 0.0005402175372891577),
+    (5, 1, 0.0005093178245295864),
+    (5, 2, 0.0004327143984288367),
+    (5, 3, 0.0003413947622194641),
+    (5, 4, 0.0002582563952924921),
+    (5, 5, 0.00019206114842020705),
+    (6, 0, 0.0003134999242868284),
+    (6, 1, 0.000300966740108263),
+    (6, 2, 0.00026794893204737445),
+    (6, 3, 0.00022477454859375515),
+    (6, 4, 0.0001811373460461591),
+    (6, 5, 0.00014270203639714572),
+    (6, 6, 0.00011137049473688774),
+    (7, 0, 0.0001979583365482491),
+    (7, 1, 0.00019207438960340466),
+    (7, 2, 0.0001760637184159433),
+    (7, 3, 0.00015387607372620223),
+    (7, 4, 0.00012977789203294136),
+    (7, 5, 0.00010689851412148455),
+    (7, 6, 8.687685018083392e-05),
+    (7, 7, 7.020307338740956e-05),
+    (8, 0, 0.00013282501557231686),
+    (8, 1, 0.00012978121682123854),
+    (8, 2, 0.00012131320184075064),
+    (8, 3, 0.00010909807106783181),
+    (8, 4, 9.51292890273417e-05),
+    (8, 5, 8.109758170809018e-05),
+    (8, 6, 6.811052582952202e-05),
+    (8, 7, 5.671296035800557e-05),
+    (8, 8, 4.704637202321017e-05),
+];
 
 /// G / G(0) on the offsets within [`TRUNCATION`], row-major over (2T+1)², centre 1
 /// (dimensionless).
 pub fn inverse_influence() -> &'static [f64] {
     static G: OnceLock<Vec<f64>> = OnceLock::new();
     G.get_or_init(|| {
-        let k = DISC_RADIUS;
         let t = TRUNCATION;
-        let disc = shares::disc_less_origin(k);
-        let w = shares::balayage(&disc);
         let side = (2 * t + 1) as usize;
         let mut g = vec![0.0; side * side];
-        for (&(x, y), &wi) in disc.iter().zip(&w) {
-            if x.abs() <= t && y.abs() <= t {
-                g[((y + t) as usize) * side + (x + t) as usize] = -wi;
+        for oy in -t..=t {
+            for ox in -t..=t {
+                let (x, y) = (ox.abs().max(oy.abs()), ox.abs().min(oy.abs()));
+                g[((oy + t) as usize) * side + (ox + t) as usize] = match (x, y) {
+                    (0, 0) => 1.0,
+                    _ => {
+                        -PLANE_SHARES
+                            .iter()
+                            .find(|&&(a, b, _)| (a, b) == (x, y))
+                            .expect("an offset within the table")
+                            .2
+                    }
+                };
             }
         }
-        g[(t as usize) * side + t as usize] = 1.0;
         g
     })
 }
 
 /// G / G(0) at offset (ox, oy), |ox|, |oy| ≤ [`TRUNCATION`].
+#[cfg(test)]
 fn g_at(g: &[f64], ox: i64, oy: i64) -> f64 {
     let t = TRUNCATION;
     g[((oy + t) * (2 * t + 1) + ox + t) as usize]
@@ -101,51 +173,55 @@ fn g_at(g: &[f64], ox: i64, oy: i64) -> f64 {
 /// matrix), so every iterate gives a bound: more sweeps only tighten it.
 pub const JACOBI_STEPS: usize = 16;
 
-/// One row of G_HH off the diagonal: (hole index, G/G(0)).
-type Row = Vec<(u32, f64)>;
+/// G / G(0) off the diagonal (the centre zero), row-major over (2T+1)² (dimensionless): the
+/// stencil of the hole's Jacobi step and of Δ.
+fn off_diagonal() -> &'static [f32] {
+    static G: OnceLock<Vec<f32>> = OnceLock::new();
+    G.get_or_init(|| {
+        let mut g: Vec<f32> = inverse_influence().iter().map(|&w| w as f32).collect();
+        let t = TRUNCATION as usize;
+        g[t * (2 * t + 1) + t] = 0.0;
+        g
+    })
+}
 
 /// The hole H, the candidates and v on the grid, grown generation by generation.
+#[derive(Clone)]
 struct Hole {
-    /// The hole's index of each element, or `u32::MAX` (n, row-major).
-    slot: Vec<u32>,
+    /// Whether each element belongs to the hole (n, row-major).
+    in_hole: Vec<bool>,
     /// The hole's elements.
     cells: Vec<usize>,
-    /// −p before the sweep on the removed elements, 0 on the others (stress).
-    b: Vec<f64>,
-    /// The hole's Jacobi iterate (stress).
-    v: Vec<f64>,
-    /// G_HH's off-diagonal entries within the truncation by row (hole index, value), built
-    /// when a cell joins and extended when its neighbours join later.
-    rows: Vec<Row>,
+    /// −p before the sweep on the removed elements, 0 on the others (stress), by hole index.
+    b: Vec<f32>,
+    /// The hole's Jacobi iterate on the grid, zero off the hole (stress, n).
+    v: Vec<f32>,
     /// Whether an element of C is a candidate (n).
     is_candidate: Vec<bool>,
     /// The candidates, in the order found (some may have been certified since).
     candidates: Vec<usize>,
+    nx: usize,
+    ny: usize,
 }
 
 impl Hole {
-    fn new(n: usize) -> Hole {
+    fn new(nx: usize, ny: usize) -> Hole {
+        let n = nx * ny;
         Hole {
-            slot: vec![u32::MAX; n],
+            in_hole: vec![false; n],
             cells: Vec::new(),
             b: Vec::new(),
-            v: Vec::new(),
-            rows: Vec::new(),
+            v: vec![0.0; n],
             is_candidate: vec![false; n],
             candidates: Vec::new(),
+            nx,
+            ny,
         }
     }
 
     /// Grow the hole and the candidates around the elements `fresh` just removed.
-    fn grow(
-        &mut self,
-        fresh: &[usize],
-        c: &[bool],
-        before: &[f64],
-        removed_in: &[u32],
-        nx: usize,
-        ny: usize,
-    ) {
+    fn grow(&mut self, fresh: &[usize], c: &[bool], before: &[f64], removed_in: &[u32]) {
+        let (nx, ny) = (self.nx, self.ny);
         let reach = CANDIDATE_REACH.max(HOLE_REACH);
         for &j in fresh {
             let (jx, jy) = ((j % nx) as i64, (j / nx) as i64);
@@ -158,96 +234,114 @@ impl Hole {
                             self.is_candidate[i] = true;
                             self.candidates.push(i);
                         }
-                    } else if dist <= HOLE_REACH && self.slot[i] == u32::MAX {
-                        self.join(i, before, removed_in, nx, ny);
+                    } else if dist <= HOLE_REACH && !self.in_hole[i] {
+                        self.in_hole[i] = true;
+                        self.cells.push(i);
+                        self.b.push(if removed_in[i] > 0 {
+                            -before[i] as f32
+                        } else {
+                            0.0
+                        });
                     }
                 }
             }
         }
     }
 
-    /// Element i joins the hole: its row of G_HH, and its entry in its neighbours' rows.
-    fn join(&mut self, i: usize, before: &[f64], removed_in: &[u32], nx: usize, ny: usize) {
-        let g = inverse_influence();
+    /// Σ_{o ≠ 0} g(o) v(i + o) over the offsets within the truncation (stress): G's
+    /// off-diagonal part applied to v (zero off the hole), row by row of the stencil.
+    #[inline(always)]
+    fn g_times_v(&self, i: usize) -> f32 {
+        const SIDE: usize = 2 * TRUNCATION as usize + 1;
+        let g = off_diagonal();
+        let (nx, ny) = (self.nx, self.ny);
         let t = TRUNCATION;
-        let k = self.cells.len() as u32;
-        self.slot[i] = k;
-        self.cells.push(i);
-        self.b
-            .push(if removed_in[i] > 0 { -before[i] } else { 0.0 });
-        self.v.push(0.0);
         let (ix, iy) = ((i % nx) as i64, (i / nx) as i64);
-        let mut row = Vec::new();
-        for y in (iy - t).max(0)..=(iy + t).min(ny as i64 - 1) {
-            for x in (ix - t).max(0)..=(ix + t).min(nx as i64 - 1) {
-                let m = self.slot[y as usize * nx + x as usize];
-                if m != u32::MAX && m != k {
-                    let w = g_at(g, x - ix, y - iy);
-                    row.push((m, w));
-                    self.rows[m as usize].push((k, w));
+        let (x0, x1) = ((ix - t).max(0), (ix + t).min(nx as i64 - 1));
+        let (y0, y1) = ((iy - t).max(0), (iy + t).min(ny as i64 - 1));
+        if x1 - x0 + 1 == SIDE as i64 {
+            // A whole stencil row at a time, one partial sum per column (vectorised).
+            let mut acc = [0.0; SIDE];
+            for y in y0..=y1 {
+                let gr: &[f32; SIDE] = g[(y - iy + t) as usize * SIDE..][..SIDE]
+                    .try_into()
+                    .expect("a stencil row");
+                let vr: &[f32; SIDE] = self.v[y as usize * nx + x0 as usize..][..SIDE]
+                    .try_into()
+                    .expect("a grid row");
+                for k in 0..SIDE {
+                    acc[k] += gr[k] * vr[k];
                 }
             }
+            return acc.iter().sum();
         }
-        self.rows.push(row);
-    }
-
-    /// Σ_o g(o) v(i + o) over the offsets within the truncation (stress).
-    fn g_times_v(&self, g: &[f64], i: usize, nx: usize, ny: usize) -> f64 {
-        let t = TRUNCATION;
-        let (ix, iy) = ((i % nx) as i64, (i / nx) as i64);
+        let len = (x1 - x0 + 1) as usize;
         let mut acc = 0.0;
-        for y in (iy - t).max(0)..=(iy + t).min(ny as i64 - 1) {
-            for x in (ix - t).max(0)..=(ix + t).min(nx as i64 - 1) {
-                let k = self.slot[y as usize * nx + x as usize];
-                if k != u32::MAX {
-                    acc += g_at(g, x - ix, y - iy) * self.v[k as usize];
-                }
-            }
+        for y in y0..=y1 {
+            let gr = &g[(y - iy + t) as usize * SIDE + (x0 - ix + t) as usize..][..len];
+            let vr = &self.v[y as usize * nx + x0 as usize..][..len];
+            acc += gr.iter().zip(vr).map(|(a, b)| a * b).sum::<f32>();
         }
         acc
     }
 
+    /// `out[k]` = G's off-diagonal part applied to v at `cells[k]` (stress), on the pool's
+    /// threads when there are many.
+    fn stencils(&self, cells: &[usize], out: &mut [f32]) {
+        if cells.len() >= PARALLEL_FROM {
+            out.par_chunks_mut(PARALLEL_FROM / 4)
+                .zip(cells.par_chunks(PARALLEL_FROM / 4))
+                .for_each(|(o, c)| self.stencils_here(c, o));
+        } else {
+            self.stencils_here(cells, out);
+        }
+    }
+
+    /// [`Hole::stencils`] on this thread, with the widest vectors the CPU has.
+    fn stencils_here(&self, cells: &[usize], out: &mut [f32]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2, checked just above.
+            unsafe { self.stencils_avx2(cells, out) };
+            return;
+        }
+        self.stencils_plain(cells, out);
+    }
+
+    #[inline(always)]
+    fn stencils_plain(&self, cells: &[usize], out: &mut [f32]) {
+        for (o, &i) in out.iter_mut().zip(cells) {
+            *o = self.g_times_v(i);
+        }
+    }
+
+    /// [`Hole::stencils_plain`] compiled for AVX2 (the stencil's rows in 8-wide vectors).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn stencils_avx2(&self, cells: &[usize], out: &mut [f32]) {
+        self.stencils_plain(cells, out);
+    }
+
     /// [`JACOBI_STEPS`] Jacobi sweeps of G_HH v = b (G's diagonal is 1).
     fn jacobi(&mut self) {
-        let mut next = vec![0.0; self.v.len()];
-        let parallel = self.cells.len() >= PARALLEL_FROM;
+        let mut next = vec![0.0; self.cells.len()];
         for _ in 0..JACOBI_STEPS {
-            let v = &self.v;
-            let sweep = |(o, (row, &b)): (&mut f64, (&Row, &f64))| {
-                *o = b - row.iter().map(|&(m, w)| w * v[m as usize]).sum::<f64>();
-            };
-            if parallel {
-                next.par_iter_mut()
-                    .zip(self.rows.par_iter().zip(&self.b))
-                    .with_min_len(PARALLEL_FROM / 4)
-                    .for_each(sweep);
-            } else {
-                next.iter_mut()
-                    .zip(self.rows.iter().zip(&self.b))
-                    .for_each(sweep);
+            self.stencils(&self.cells, &mut next);
+            for ((&i, &b), &x) in self.cells.iter().zip(&self.b).zip(&next) {
+                self.v[i] = b - x;
             }
-            std::mem::swap(&mut self.v, &mut next);
         }
     }
 
     /// Δ (stress, ≤ 0) on every candidate still in C.
-    fn deltas(&self, c: &[bool], nx: usize, ny: usize) -> Vec<(usize, f64)> {
-        let g = inverse_influence();
-        let delta = |&i: &usize| (i, self.g_times_v(g, i, nx, ny).min(0.0));
-        if self.candidates.len() >= PARALLEL_FROM {
-            self.candidates
-                .par_iter()
-                .with_min_len(PARALLEL_FROM / 4)
-                .filter(|&&i| c[i])
-                .map(delta)
-                .collect()
-        } else {
-            self.candidates
-                .iter()
-                .filter(|&&i| c[i])
-                .map(delta)
-                .collect()
-        }
+    fn deltas(&self, c: &[bool]) -> Vec<(usize, f64)> {
+        let kept: Vec<usize> = self.candidates.iter().copied().filter(|&i| c[i]).collect();
+        let mut sums = vec![0.0; kept.len()];
+        self.stencils(&kept, &mut sums);
+        kept.into_iter()
+            .zip(sums)
+            .map(|(i, s)| (i, f64::from(s).min(0.0)))
+            .collect()
     }
 }
 
@@ -282,13 +376,13 @@ pub fn certify_detached(
     for &j in &fresh {
         removed_in[j] = 1;
     }
-    let mut hole = Hole::new(n);
+    let mut hole = Hole::new(nx, ny);
     let limit = -sigma_c - ERROR_MARGIN * eps;
     let mut certified = 0;
     for generation in 1.. {
-        hole.grow(&fresh, c, before, &removed_in, nx, ny);
+        hole.grow(&fresh, c, before, &removed_in);
         hole.jacobi();
-        let deltas = hole.deltas(c, nx, ny);
+        let deltas = hole.deltas(c);
         let mut certain: Vec<usize> = deltas
             .iter()
             .filter(|&&(i, d)| before[i] < 0.0 && before[i] + DISC_SAFETY * d < limit)
@@ -317,6 +411,7 @@ pub fn certify_detached(
 mod tests {
     use super::*;
     use crate::backend::kernel::influence;
+    use crate::backend::shares;
 
     #[test]
     fn the_inverse_influence_is_a_stieltjes_kernel() {
@@ -324,7 +419,7 @@ mod tests {
         let t = TRUNCATION;
         assert_eq!(g_at(g, 0, 0), 1.0);
         // The edge neighbour's balayage share on the whole plane, negated.
-        assert!((g_at(g, 1, 0) + 0.15746).abs() < 1e-4, "{}", g_at(g, 1, 0));
+        assert!((g_at(g, 1, 0) + 0.15746).abs() < 1e-5, "{}", g_at(g, 1, 0));
         for oy in -t..=t {
             for ox in -t..=t {
                 if (ox, oy) != (0, 0) {
@@ -334,9 +429,56 @@ mod tests {
             }
         }
         // Strictly diagonally dominant, so Jacobi converges and its iterates bound (see the
-        // module).
+        // module): the shares within the truncation sum to 0.955 (the plane's, all of
+        // them, to 1).
         let off: f64 = g.iter().map(|w| w.abs()).sum::<f64>() - 1.0;
-        assert!(off < 0.95, "the shares within the truncation sum to {off}");
+        assert!(
+            (off - 0.955).abs() < 1e-3,
+            "the shares within the truncation sum to {off}"
+        );
+    }
+
+    /// The table's weights on the disc of radius `r` (elements), within the truncation.
+    fn disc_shares(r: i64) -> Vec<((i64, i64), f64)> {
+        let disc = shares::disc_less_origin(r);
+        let w = shares::balayage(&disc);
+        disc.into_iter()
+            .zip(w)
+            .filter(|&((x, y), _)| 0 <= y && y <= x && x <= TRUNCATION)
+            .collect()
+    }
+
+    /// The table entry at (x, y), 0 ≤ y ≤ x ≤ 8.
+    fn table(x: i64, y: i64) -> f64 {
+        PLANE_SHARES
+            .iter()
+            .find(|e| (e.0, e.1) == (x, y))
+            .unwrap()
+            .2
+    }
+
+    #[test]
+    fn a_smaller_disc_exceeds_the_table_by_its_measured_excess() {
+        // Radius 24: 2.7 % above radius 56 within the truncation (the table's note), 3.0 %
+        // above the table, and everywhere
+        // above: the weights fall towards the plane's as the disc grows.
+        for ((x, y), w) in disc_shares(24) {
+            let excess = w / table(x, y) - 1.0;
+            assert!(
+                excess > 0.0 && excess < 0.031,
+                "({x}, {y}): radius 24 exceeds the table by {excess}"
+            );
+        }
+    }
+
+    #[test]
+    #[ignore = "dense solves of 5 024 and 9 852 unknowns: about 5 minutes"]
+    fn the_table_is_extrapolated_from_two_discs() {
+        let (inner, outer) = DISC_RADII;
+        for (((x, y), w_in), (_, w_out)) in disc_shares(inner).into_iter().zip(disc_shares(outer)) {
+            let w = 2.0 * w_out - w_in;
+            assert!((w / table(x, y) - 1.0).abs() < 1e-12, "({x}, {y})");
+        }
     }
 
     #[test]
@@ -356,20 +498,15 @@ mod tests {
         let mut removed_in = vec![0u32; nx * ny];
         let first: Vec<usize> = (10..30).map(|x| 6 * nx + x).collect();
         let second: Vec<usize> = (12..28).map(|x| 7 * nx + x).collect();
-        let mut hole = Hole::new(nx * ny);
+        let mut hole = Hole::new(nx, ny);
         for (generation, fresh) in [&first, &second].into_iter().enumerate() {
             for &j in fresh {
                 c[j] = false;
                 removed_in[j] = generation as u32 + 1;
             }
-            hole.grow(fresh, &c, &before, &removed_in, nx, ny);
+            hole.grow(fresh, &c, &before, &removed_in);
             // The solution, from far more sweeps than needed.
-            let mut exact = Hole {
-                v: hole.v.clone(),
-                rows: hole.rows.clone(),
-                b: hole.b.clone(),
-                ..Hole::new(0)
-            };
+            let mut exact = hole.clone();
             for _ in 0..50 {
                 exact.jacobi();
             }
@@ -444,10 +581,10 @@ mod tests {
         let exact = sphere_pressure(&swept, n);
         let members: Vec<usize> = (0..n * n).filter(|&i| c[i] && !swept[i]).collect();
         let removed: Vec<u32> = (0..n * n).map(|i| (c[i] && !swept[i]) as u32).collect();
-        let mut hole = Hole::new(n * n);
-        hole.grow(&members, &swept, &before, &removed, n, n);
+        let mut hole = Hole::new(n, n);
+        hole.grow(&members, &swept, &before, &removed);
         hole.jacobi();
-        let deltas = hole.deltas(&swept, n, n);
+        let deltas = hole.deltas(&swept);
         let worst = deltas
             .iter()
             .map(|&(i, d)| exact[i] - (before[i] + scale * DISC_SAFETY * d))
