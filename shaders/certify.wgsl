@@ -18,7 +18,8 @@ struct Params {
     ny: u32,
     // The generation g being taken (from 1).
     generation: u32,
-    // G's truncation T (elements); the table `g` is (2T + 1)², row-major, centre 1.
+    // G's truncation T (elements); the table `g` is (2T + 1)², row-major, G off the
+    // diagonal (centre 0: `backend::certify::off_diagonal`).
     truncation: u32,
     // Reach (elements, along x and y) of the hole and of the candidates.
     hole_reach: u32,
@@ -91,8 +92,8 @@ fn mark(
     }
 }
 
-// Σ_o g(o) v_in[i + o] over the offsets within the truncation, on the grid (v_in is zero
-// outside the hole).
+// Σ_{o ≠ 0} g(o) v_in[i + o] over the offsets within the truncation, on the grid (v_in is
+// zero outside the hole; the table's centre is zero).
 fn g_times_v(i: u32) -> f32 {
     let t = i32(params.truncation);
     let side = 2 * t + 1;
@@ -102,9 +103,7 @@ fn g_times_v(i: u32) -> f32 {
     for (var yy = max(y - t, 0); yy <= min(y + t, i32(params.ny) - 1); yy++) {
         for (var xx = max(x - t, 0); xx <= min(x + t, i32(params.nx) - 1); xx++) {
             let j = u32(yy) * params.nx + u32(xx);
-            if j != i {
-                acc += g[(yy - y + t) * side + xx - x + t] * v_in[j];
-            }
+            acc += g[(yy - y + t) * side + xx - x + t] * v_in[j];
         }
     }
     return acc;

@@ -70,7 +70,7 @@ pub const ERROR_MARGIN: f64 = 3.0;
 /// the hole's system, solved in f32 on the host and on a device alike (its relative error
 /// stays below 1e-5: sums of at most 288 terms, 16 sweeps), and for the extrapolation of
 /// [`PLANE_SHARES`].
-pub const DISC_SAFETY: f64 = 0.99;
+pub const ROUNDING_SAFETY: f64 = 0.99;
 
 /// Radii (elements) of the discs from whose weights [`PLANE_SHARES`] are extrapolated.
 pub const DISC_RADII: (i64, i64) = (40, 56);
@@ -133,6 +133,15 @@ pub const PLANE_SHARES: [(i64, i64, f64); 44] = [
     (8, 8, 4.704637202321017e-05),
 ];
 
+/// The plane's share at offset (x, y), 0 ≤ y ≤ x ≤ 8, from [`PLANE_SHARES`] (dimensionless).
+fn plane_share(x: i64, y: i64) -> f64 {
+    PLANE_SHARES
+        .iter()
+        .find(|&&(a, b, _)| (a, b) == (x, y))
+        .expect("an offset within the table")
+        .2
+}
+
 /// G / G(0) on the offsets within [`TRUNCATION`], row-major over (2T+1)², centre 1
 /// (dimensionless).
 pub fn inverse_influence() -> &'static [f64] {
@@ -146,13 +155,7 @@ pub fn inverse_influence() -> &'static [f64] {
                 let (x, y) = (ox.abs().max(oy.abs()), ox.abs().min(oy.abs()));
                 g[((oy + t) as usize) * side + (ox + t) as usize] = match (x, y) {
                     (0, 0) => 1.0,
-                    _ => {
-                        -PLANE_SHARES
-                            .iter()
-                            .find(|&&(a, b, _)| (a, b) == (x, y))
-                            .expect("an offset within the table")
-                            .2
-                    }
+                    _ => -plane_share(x, y),
                 };
             }
         }
@@ -173,9 +176,10 @@ fn g_at(g: &[f64], ox: i64, oy: i64) -> f64 {
 /// matrix), so every iterate gives a bound: more sweeps only tighten it.
 pub const JACOBI_STEPS: usize = 16;
 
-/// G / G(0) off the diagonal (the centre zero), row-major over (2T+1)² (dimensionless): the
-/// stencil of the hole's Jacobi step and of Δ.
-fn off_diagonal() -> &'static [f32] {
+/// G / G(0) off the diagonal (the centre zero), row-major over (2T+1)², in f32
+/// (dimensionless): the stencil of the hole's Jacobi step and of Δ, on the host and (the same
+/// table uploaded) on a device.
+pub fn off_diagonal() -> &'static [f32] {
     static G: OnceLock<Vec<f32>> = OnceLock::new();
     G.get_or_init(|| {
         let mut g: Vec<f32> = inverse_influence().iter().map(|&w| w as f32).collect();
@@ -385,7 +389,7 @@ pub fn certify_detached(
         let deltas = hole.deltas(c);
         let mut certain: Vec<usize> = deltas
             .iter()
-            .filter(|&&(i, d)| before[i] < 0.0 && before[i] + DISC_SAFETY * d < limit)
+            .filter(|&&(i, d)| before[i] < 0.0 && before[i] + ROUNDING_SAFETY * d < limit)
             .map(|&(i, _)| i)
             .collect();
         if certain.is_empty() {
@@ -448,22 +452,13 @@ mod tests {
             .collect()
     }
 
-    /// The table entry at (x, y), 0 ≤ y ≤ x ≤ 8.
-    fn table(x: i64, y: i64) -> f64 {
-        PLANE_SHARES
-            .iter()
-            .find(|e| (e.0, e.1) == (x, y))
-            .unwrap()
-            .2
-    }
-
     #[test]
     fn a_smaller_disc_exceeds_the_table_by_its_measured_excess() {
         // Radius 24: 2.7 % above radius 56 within the truncation (the table's note), 3.0 %
-        // above the table, and everywhere
-        // above: the weights fall towards the plane's as the disc grows.
+        // above the table, and above it everywhere: the weights fall towards the plane's as
+        // the disc grows.
         for ((x, y), w) in disc_shares(24) {
-            let excess = w / table(x, y) - 1.0;
+            let excess = w / plane_share(x, y) - 1.0;
             assert!(
                 excess > 0.0 && excess < 0.031,
                 "({x}, {y}): radius 24 exceeds the table by {excess}"
@@ -477,7 +472,7 @@ mod tests {
         let (inner, outer) = DISC_RADII;
         for (((x, y), w_in), (_, w_out)) in disc_shares(inner).into_iter().zip(disc_shares(outer)) {
             let w = 2.0 * w_out - w_in;
-            assert!((w / table(x, y) - 1.0).abs() < 1e-12, "({x}, {y})");
+            assert!((w / plane_share(x, y) - 1.0).abs() < 1e-12, "({x}, {y})");
         }
     }
 
@@ -587,7 +582,7 @@ mod tests {
         let deltas = hole.deltas(&swept);
         let worst = deltas
             .iter()
-            .map(|&(i, d)| exact[i] - (before[i] + scale * DISC_SAFETY * d))
+            .map(|&(i, d)| exact[i] - (before[i] + scale * ROUNDING_SAFETY * d))
             .fold(f64::NEG_INFINITY, f64::max);
         let mut certified = swept.clone();
         let mut p = before.clone();

@@ -127,10 +127,7 @@ struct CertifyBuffers {
 
 impl CertifyBuffers {
     fn new(ctx: &GpuContext, n: usize) -> CertifyBuffers {
-        let g: Vec<f32> = crate::backend::certify::inverse_influence()
-            .iter()
-            .map(|&v| v as f32)
-            .collect();
+        let g = crate::backend::certify::off_diagonal();
         let field = |label| storage(ctx, label, n as u64 * 4);
         CertifyBuffers {
             gen: field("certify generation"),
@@ -139,8 +136,8 @@ impl CertifyBuffers {
             g: ctx
                 .device()
                 .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("inverse influence"),
-                    contents: bytemuck::cast_slice(&g),
+                    label: Some("inverse influence off the diagonal"),
+                    contents: bytemuck::cast_slice(g),
                     usage: wgpu::BufferUsages::STORAGE,
                 }),
             count: storage(ctx, "certified count", 4),
@@ -1087,7 +1084,7 @@ impl ContactKernels for GpuBackend {
         eps: f64,
     ) -> Result<Option<usize>, BackendError> {
         use crate::backend::certify::{
-            CANDIDATE_REACH, DISC_SAFETY, ERROR_MARGIN, HOLE_REACH, JACOBI_STEPS, TRUNCATION,
+            CANDIDATE_REACH, ERROR_MARGIN, HOLE_REACH, JACOBI_STEPS, ROUNDING_SAFETY, TRUNCATION,
         };
         let n = self.n();
         let bufs = self
@@ -1106,7 +1103,7 @@ impl ContactKernels for GpuBackend {
             hole_reach: HOLE_REACH as u32,
             candidate_reach: CANDIDATE_REACH as u32,
             limit: (-sigma_c - ERROR_MARGIN * eps) as f32,
-            safety: DISC_SAFETY as f32,
+            safety: ROUNDING_SAFETY as f32,
         };
         let prm = self.rec.uniform(&self.ctx, &params)?;
         self.rec.dispatch(
