@@ -5,12 +5,13 @@
 // Per call: `seed` once (gen = 1 on the elements the sweep just detached: off C with p ≠ 0
 // before it; gen, role and both v buffers cleared by the host first). Per generation g:
 // `mark` (the hole H: elements off C within the hole's reach of an element of generation g;
-// the candidates: elements of C within the candidates' reach of one), `jacobi` JACOBI_STEPS
-// times (ping-pong between v_in and v_out), then `certify` (an element of C whose bound is
-// below the limit leaves C, p = 0 on it, gen = g + 1, counted; on a candidate kept p is set
-// to before + Δ, the round's predicted start). Every kernel runs over the
-// whole grid and returns at once for the elements outside H and the candidates, so a
-// generation costs the hole's work plus a few reads per element.
+// the candidates: elements of C within the candidates' reach of one; scattered from the
+// generation's elements), `jacobi` JACOBI_STEPS times (ping-pong between v_in and v_out),
+// then `certify` (an element of C whose bound is below the limit leaves C, p = 0 on it,
+// gen = g + 1, counted; on a candidate kept p is set to before + Δ, the round's predicted
+// start). Every kernel runs over the whole grid and returns at once for the elements outside
+// its part (the generation's elements, H, the candidates), so a generation costs the hole's
+// work plus a few reads per element.
 
 // Must stay in sync with `CertifyParams` in src/backend/gpu/backend.rs.
 struct Params {
@@ -36,8 +37,8 @@ struct Params {
 @group(0) @binding(3) var<storage, read_write> mask: array<u32>;
 // Generation each element was removed in (0: never).
 @group(0) @binding(4) var<storage, read_write> gen: array<u32>;
-// 0: neither; 1: in the hole; 2: a candidate.
-@group(0) @binding(5) var<storage, read_write> role: array<u32>;
+// 0: neither; 1: in the hole; 2: a candidate (atomic: `mark` scatters it).
+@group(0) @binding(5) var<storage, read_write> role: array<atomic<u32>>;
 @group(0) @binding(6) var<storage, read> v_in: array<f32>;
 @group(0) @binding(7) var<storage, read_write> v_out: array<f32>;
 @group(0) @binding(8) var<storage, read> g: array<f32>;
@@ -65,28 +66,34 @@ fn seed(
     }
 }
 
+// Scattered from the elements of generation g (as the CPU twin grows its hole): every
+// element within the reaches of one takes its role, so that a generation costs its own
+// elements' stencils plus one read per element. Writers of an element store the same role
+// (it depends only on whether that element is in C, which `mark` does not change).
 @compute @workgroup_size(WG)
 fn mark(
     @builtin(global_invocation_id) gid: vec3<u32>,
     @builtin(num_workgroups) nwg: vec3<u32>,
 ) {
     let i = element(gid, nwg);
-    if i >= params.nx * params.ny {
+    if i >= params.nx * params.ny || gen[i] != params.generation {
         return;
     }
-    let in_c = mask[i] != 0u;
-    // The hole only grows; a candidate stays one while in C.
-    if role[i] == HOLE || (role[i] == CANDIDATE && in_c) {
-        return;
-    }
-    let reach = i32(select(params.hole_reach, params.candidate_reach, in_c));
+    let reach = i32(max(params.hole_reach, params.candidate_reach));
     let x = i32(i % params.nx);
     let y = i32(i / params.nx);
     for (var yy = max(y - reach, 0); yy <= min(y + reach, i32(params.ny) - 1); yy++) {
         for (var xx = max(x - reach, 0); xx <= min(x + reach, i32(params.nx) - 1); xx++) {
-            if gen[u32(yy) * params.nx + u32(xx)] == params.generation {
-                role[i] = select(HOLE, CANDIDATE, in_c);
-                return;
+            let j = u32(yy) * params.nx + u32(xx);
+            let dist = u32(max(abs(xx - x), abs(yy - y)));
+            if mask[j] != 0u {
+                // A candidate stays one while in C.
+                if dist <= params.candidate_reach {
+                    atomicStore(&role[j], CANDIDATE);
+                }
+            } else if dist <= params.hole_reach {
+                // The hole only grows (a candidate certified before joins it).
+                atomicStore(&role[j], HOLE);
             }
         }
     }
@@ -115,7 +122,7 @@ fn jacobi(
     @builtin(num_workgroups) nwg: vec3<u32>,
 ) {
     let i = element(gid, nwg);
-    if i >= params.nx * params.ny || role[i] != HOLE {
+    if i >= params.nx * params.ny || atomicLoad(&role[i]) != HOLE {
         return;
     }
     let b = select(0.0, -before[i], gen[i] != 0u);
@@ -128,7 +135,7 @@ fn certify(
     @builtin(num_workgroups) nwg: vec3<u32>,
 ) {
     let i = element(gid, nwg);
-    if i >= params.nx * params.ny || role[i] != CANDIDATE || mask[i] == 0u {
+    if i >= params.nx * params.ny || atomicLoad(&role[i]) != CANDIDATE || mask[i] == 0u {
         return;
     }
     let delta = min(g_times_v(i), 0.0);

@@ -1129,7 +1129,7 @@ impl ContactKernels for GpuBackend {
                 &self.kernels.certify_mark,
                 &[(0, &prm), (3, &c.buffer), (4, &bufs.gen), (5, &bufs.role)],
                 grid,
-                traffic::elementwise(n, 3),
+                traffic::elementwise(n, 1),
             )?;
             for step in 0..JACOBI_STEPS {
                 let (from, to) = (&bufs.v[step % 2], &bufs.v[(step + 1) % 2]);
