@@ -8,10 +8,13 @@
 //! device). Once the minimum is confirmed, the search goes back to those steps, lowest bound
 //! first. A part of the load it searches (a step, or a piece of one) is pruned when its bound
 //! lies at or above the lowest onset found; else its first onset is recorded, and if more are
-//! likely to follow closely it is split in two: the first half keeps the part's start and
-//! has as bound the same contact set at the half's end (an interpolation), the second starts
-//! from the cascade at the midpoint and is probed to the end. Pieces with few onsets are
-//! walked through them, the walk stopping as soon as the rest lies above the lowest onset.
+//! likely to follow closely it is split in two: the first piece keeps the part's start and
+//! has as bound the same contact set at the piece's end (an interpolation), the second starts
+//! from the cascade at the split and is probed to the end. The split lies where the part's
+//! bound, a straight line in the load, reaches the lowest onset found ([`split_at`]): the
+//! first piece is then pruned at once, and the search goes on from there; where that point
+//! lies before the part's first onset, at the midpoint. Pieces with few onsets are walked
+//! through them, the walk stopping as soon as the rest lies above the lowest onset.
 //!
 //! Every part left unsearched thus has its bound at or above the force minimum found, which
 //! the report states as the window's margin. Each located onset is checked against the bound
@@ -31,6 +34,26 @@ use serde::{Deserialize, Serialize};
 /// A part of the load whose first onset lies in this first fraction of it is split rather
 /// than walked: its onsets are dense.
 const SPLIT_BELOW: f64 = 0.25;
+
+/// Where a part is split ([`split_at`]), its first piece's bound lies this fraction of the
+/// force above the level it is pruned at: the bound's CG error is covered by
+/// [`BOUND_TOLERANCE`], a hundredth of this.
+const SPLIT_ABOVE: f64 = 1e-5;
+
+/// The fraction of `part` at which it is split, given the force (force) below which onsets
+/// are searched for (the lowest onset found plus the slack): where the part's bound, the line
+/// from its start's force `base` to its probe's `lower`, reaches that level raised by
+/// [`SPLIT_ABOVE`] (the first piece is then pruned at once, its onsets all above the level),
+/// if that lies after the part's first onset and before its end; else the midpoint.
+fn split_at(part: &Part, level: f64) -> f64 {
+    let level = level + SPLIT_ABOVE * level.abs();
+    let at = (part.base - level) / (part.base - part.lower);
+    if at.is_finite() && at > part.t && at < 1.0 {
+        at
+    } else {
+        0.5
+    }
+}
 
 /// Parts are not split below this fraction of a load step.
 const MIN_SPLIT: f64 = 1.0 / 4096.0;
@@ -688,23 +711,24 @@ fn search<B: Backend>(
             let d_on = part.d_from + part.t * (part.d_to() - part.d_from);
             onsets::record_onset(backend, run, out, &walk, &probe, d_on)?;
         }
-        // The first half: the same start, the same contact set to the midpoint.
-        let half = Part {
-            frac: part.frac / 2.0,
-            lower: part.base + 0.5 * (part.lower - part.base),
-            t: 2.0 * part.t,
+        let at = split_at(&part, run.best + slack);
+        // The first piece: the same start, the same contact set to the split.
+        let first = Part {
+            frac: part.frac * at,
+            lower: part.base + at * (part.lower - part.base),
+            t: part.t / at,
             first_known: true,
-            share: part.share / 2.0,
+            share: part.share * at,
             ..part
         };
         run.window.pool.snaps[part.slot].refs += 1;
-        open.push(half);
-        // The second half: the cascade at the midpoint, probed to the part's end.
-        let d_mid = part.d_from + 0.5 * (part.d_to() - part.d_from);
+        open.push(first);
+        // The second piece: the cascade at the split, probed to the part's end.
+        let d_mid = part.d_from + at * (part.d_to() - part.d_from);
         {
             let s = &run.window.pool.snaps[part.slot];
             let f = &mut run.fields;
-            backend.lerp(&f.c, &s.p, &s.probe, part.frac / 2.0, &mut f.p)?;
+            backend.lerp(&f.c, &s.p, &s.probe, part.frac * at, &mut f.p)?;
             f.u_valid = false;
         }
         run.window.pool.release(part.slot);
@@ -754,9 +778,50 @@ fn search<B: Backend>(
             lower: probe.lower,
             t: probe.t,
             first_known: false,
-            share: part.share / 2.0,
+            share: part.share * (1.0 - at),
             ..part
         });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn part(base: f64, lower: f64, t: f64) -> Part {
+        Part {
+            step: 1,
+            slot: 0,
+            d_from: 1.0,
+            d_end: 0.0,
+            frac: 1.0,
+            base,
+            lower,
+            t,
+            first_known: true,
+            share: 1.0,
+        }
+    }
+
+    #[test]
+    fn a_part_is_split_where_its_bound_meets_the_lowest_onset() {
+        // Bound from −1.0 at the start to −2.0 at the end; first onset at 0.1 (−1.1).
+        let p = part(-1.0, -2.0, 0.1);
+        let level = -1.8;
+        let at = split_at(&p, level);
+        let bound = p.base + at * (p.lower - p.base);
+        // The first piece's bound lies above the level, by SPLIT_ABOVE of it: pruned at once.
+        assert!(bound > level, "{at} {bound}");
+        assert!(
+            (bound - level - SPLIT_ABOVE * level.abs()).abs() < 1e-12,
+            "{bound}"
+        );
+        assert!((at - 0.8).abs() < 1e-4, "{at}");
+        // Where the level is met before the first onset, or not inside the part: the midpoint.
+        assert_eq!(split_at(&part(-1.0, -2.0, 0.6), -1.5), 0.5);
+        assert_eq!(split_at(&part(-1.0, -2.0, 0.1), -2.5), 0.5);
+        assert_eq!(split_at(&part(-1.0, -1.0, 0.1), -1.5), 0.5);
+        assert_eq!(split_at(&part(-1.0, -2.0, 0.1), f64::NEG_INFINITY), 0.5);
+    }
 }
