@@ -7,7 +7,9 @@
 //! (an interpolation, no solve of its own), resolves the detachment cascade just past it and
 //! probes again from there, so the curve and its force minimum do not depend on the step
 //! size. A walk that may prune stops as soon as the bound of the rest of the step lies at or
-//! above the lowest onset located: no onset there can be the minimum.
+//! above the lowest onset located: no onset there can be the minimum; and after each onset it
+//! goes on from where the rest's bound (a straight line in the load) reaches the lowest onset,
+//! if that lies further: no onset before that point can be the minimum either.
 
 use super::cg::Goal;
 use super::equilibrium::{settle, solve_for, Equilibrium, Held};
@@ -128,7 +130,17 @@ pub(super) fn through<B: Backend>(
             record_onset(backend, run, out, walk, &probe, d_on)?;
         }
         record_this = true;
-        let t_push = (probe.t + ONSET_PUSH).min(1.0);
+        let mut t_push = (probe.t + ONSET_PUSH).min(1.0);
+        if walk.prune {
+            // No onset lies below the lowest one found before the rest's bound reaches it:
+            // the walk goes on from there.
+            let meets = super::window::bound_meets(probe.base, probe.lower, run.best);
+            if meets.is_finite() && meets > t_push && meets < 1.0 {
+                let level = probe.base + meets * (probe.lower - probe.base);
+                run.window.skipped(level);
+                t_push = meets;
+            }
+        }
         let f = &mut run.fields;
         std::mem::swap(&mut f.p, &mut f.p_probe);
         backend.lerp(&f.c, &f.p_base, &f.p_probe, t_push, &mut f.p)?;
@@ -144,7 +156,13 @@ pub(super) fn through<B: Backend>(
             return Ok(true);
         }
         // The next probe starts from the state just reached, whose K p is known (a start
-        // from the last probe, on the contact set left, was measured to save nothing).
+        // from the last probe, on the contact set left, was measured to save nothing); its
+        // force is the start of the rest's bound where the walk may skip.
+        let base = if walk.prune {
+            force_of(backend, &m, &run.fields.c, &run.fields.p)?
+        } else {
+            f64::NAN
+        };
         let f = &mut run.fields;
         backend.copy(&f.p, &mut f.p_base)?;
         let solve = solve_for(backend, &m, f, d_to, Goal::Exact)?;
@@ -154,7 +172,7 @@ pub(super) fn through<B: Backend>(
         let f = &run.fields;
         let t = backend.first_crossing(&f.c, &f.p_base, &f.p, m.sigma_c)?;
         probe = Probe {
-            base: f64::NAN,
+            base,
             lower,
             t,
             residual,

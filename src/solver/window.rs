@@ -40,14 +40,21 @@ const SPLIT_BELOW: f64 = 0.25;
 /// [`BOUND_TOLERANCE`], a hundredth of this.
 const SPLIT_ABOVE: f64 = 1e-5;
 
-/// The fraction of `part` at which it is split, given the force (force) below which onsets
-/// are searched for (the lowest onset found plus the slack): where the part's bound, the line
-/// from its start's force `base` to its probe's `lower`, reaches that level raised by
-/// [`SPLIT_ABOVE`] (the first piece is then pruned at once, its onsets all above the level),
-/// if that lies after the part's first onset and before its end; else the midpoint.
-fn split_at(part: &Part, level: f64) -> f64 {
+/// The fraction of a stretch of the load at which its bound, the line from the force `base`
+/// at its start to its probe's `lower` (forces), reaches `level` (force) raised by
+/// [`SPLIT_ABOVE`]: none of the stretch's onsets before it lies below that (dimensionless;
+/// not finite, or outside (0, 1), where the line does not cross it inside).
+pub(super) fn bound_meets(base: f64, lower: f64, level: f64) -> f64 {
     let level = level + SPLIT_ABOVE * level.abs();
-    let at = (part.base - level) / (part.base - part.lower);
+    (base - level) / (base - lower)
+}
+
+/// The fraction of `part` at which it is split, given the force (force) below which onsets
+/// are searched for (the lowest onset found plus the slack): where the part's bound reaches
+/// it ([`bound_meets`]; the first piece is then pruned at once, its onsets all above the
+/// level), if that lies after the part's first onset and before its end; else the midpoint.
+fn split_at(part: &Part, level: f64) -> f64 {
+    let at = bound_meets(part.base, part.lower, level);
     if at.is_finite() && at > part.t && at < 1.0 {
         at
     } else {
@@ -384,6 +391,13 @@ impl<F, M> Window<F, M> {
     /// the lowest onset.
     pub fn pruned_rest(&mut self, _step: usize, lower: f64) {
         self.report.cut_short += 1;
+        self.set_aside(lower);
+    }
+
+    /// A walk skipped a stretch of its part whose bound, `lower` (force), lay above the
+    /// lowest onset: set aside unsearched, like a pruned part.
+    pub fn skipped(&mut self, lower: f64) {
+        self.report.pruned += 1;
         self.set_aside(lower);
     }
 
