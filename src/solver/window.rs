@@ -35,17 +35,17 @@ use serde::{Deserialize, Serialize};
 /// than walked: its onsets are dense.
 const SPLIT_BELOW: f64 = 0.25;
 
-/// Where a part is split ([`split_at`]), its first piece's bound lies this fraction of the
-/// force above the level it is pruned at: the bound's CG error is covered by
-/// [`BOUND_TOLERANCE`], a hundredth of this.
-const SPLIT_ABOVE: f64 = 1e-5;
+/// Where a part is split ([`split_at`]) or a walk skips ahead ([`bound_meets`]), the bound
+/// of the stretch left behind lies this fraction of the force above the lowest onset found:
+/// the bound's CG error is covered by [`BOUND_TOLERANCE`], a hundredth of this.
+const MEET_ABOVE: f64 = 1e-5;
 
 /// The fraction of a stretch of the load at which its bound, the line from the force `base`
 /// at its start to its probe's `lower` (forces), reaches `level` (force) raised by
-/// [`SPLIT_ABOVE`]: none of the stretch's onsets before it lies below that (dimensionless;
+/// [`MEET_ABOVE`]: none of the stretch's onsets before it lies below that (dimensionless;
 /// not finite, or outside (0, 1), where the line does not cross it inside).
 pub(super) fn bound_meets(base: f64, lower: f64, level: f64) -> f64 {
-    let level = level + SPLIT_ABOVE * level.abs();
+    let level = level + MEET_ABOVE * level.abs();
     (base - level) / (base - lower)
 }
 
@@ -720,7 +720,7 @@ fn search<B: Backend>(
             continue;
         }
         run.window.report.splits += 1;
-        // Its first onset, exactly: it lies in the first half.
+        // Its first onset, exactly: it lies in the first piece.
         if !part.first_known {
             let d_on = part.d_from + part.t * (part.d_to() - part.d_from);
             onsets::record_onset(backend, run, out, &walk, &probe, d_on)?;
@@ -738,7 +738,7 @@ fn search<B: Backend>(
         run.window.pool.snaps[part.slot].refs += 1;
         open.push(first);
         // The second piece: the cascade at the split, probed to the part's end.
-        let d_mid = part.d_from + at * (part.d_to() - part.d_from);
+        let d_split = part.d_from + at * (part.d_to() - part.d_from);
         {
             let s = &run.window.pool.snaps[part.slot];
             let f = &mut run.fields;
@@ -746,7 +746,14 @@ fn search<B: Backend>(
             f.u_valid = false;
         }
         run.window.pool.release(part.slot);
-        let settled = settle(backend, &m, &mut run.fields, d_mid, m.sigma_c, Held::Solved)?;
+        let settled = settle(
+            backend,
+            &m,
+            &mut run.fields,
+            d_split,
+            m.sigma_c,
+            Held::Solved,
+        )?;
         let vanished = settled.n_contact == 0;
         eq.absorb(settled);
         if vanished {
@@ -754,10 +761,10 @@ fn search<B: Backend>(
         }
         let base = force_of(backend, &m, &run.fields.c, &run.fields.p)?;
         let Some(slot) = run.window.pool.take(backend)? else {
-            // No room to keep it: walk the second half from here.
-            let probe = onsets::probe(backend, run, d_mid, part.d_to(), None, base, eq)?;
+            // No room to keep it: walk the second piece from here.
+            let probe = onsets::probe(backend, run, d_split, part.d_to(), None, base, eq)?;
             let walk = Through {
-                d_from: d_mid,
+                d_from: d_split,
                 record_first: true,
                 ..walk
             };
@@ -770,7 +777,7 @@ fn search<B: Backend>(
             backend.copy(&run.fields.p, &mut s.p)?;
             backend.copy_mask(&run.fields.c, &mut s.contact)?;
         }
-        let probe = onsets::probe(backend, run, d_mid, part.d_to(), None, base, eq)?;
+        let probe = onsets::probe(backend, run, d_split, part.d_to(), None, base, eq)?;
         let s = &mut run.window.pool.snaps[slot];
         backend.copy(&run.fields.p, &mut s.probe)?;
         s.probed = true;
@@ -785,7 +792,7 @@ fn search<B: Backend>(
         }
         open.push(Part {
             slot,
-            d_from: d_mid,
+            d_from: d_split,
             d_end: part.d_to(),
             frac: 1.0,
             base,
@@ -825,10 +832,10 @@ mod tests {
         let level = -1.8;
         let at = split_at(&p, level);
         let bound = p.base + at * (p.lower - p.base);
-        // The first piece's bound lies above the level, by SPLIT_ABOVE of it: pruned at once.
+        // The first piece's bound lies above the level, by MEET_ABOVE of it: pruned at once.
         assert!(bound > level, "{at} {bound}");
         assert!(
-            (bound - level - SPLIT_ABOVE * level.abs()).abs() < 1e-12,
+            (bound - level - MEET_ABOVE * level.abs()).abs() < 1e-12,
             "{bound}"
         );
         assert!((at - 0.8).abs() < 1e-4, "{at}");
