@@ -11,7 +11,7 @@
 //! likely to follow closely it is split in two: the first piece keeps the part's start and
 //! has as bound the same contact set at the piece's end (an interpolation), the second starts
 //! from the cascade at the split and is probed to the end. The split lies where the part's
-//! bound, a straight line in the load, reaches the lowest onset found ([`split_at`]): the
+//! bound, a straight line in the load, reaches the lowest onset found (`split_at`): the
 //! first piece is then pruned at once, and the search goes on from there; where that point
 //! lies before the part's first onset, at the midpoint. Pieces with few onsets are walked
 //! through them, the walk stopping as soon as the rest lies above the lowest onset.
