@@ -163,20 +163,7 @@ pub(super) fn through<B: Backend>(
         } else {
             f64::NAN
         };
-        let f = &mut run.fields;
-        backend.copy(&f.p, &mut f.p_base)?;
-        let solve = solve_for(backend, &m, f, d_to, Goal::Exact)?;
-        let residual = solve.residual;
-        eq.add_solve(solve);
-        let lower = force_of(backend, &m, &run.fields.c, &run.fields.p)?;
-        let f = &run.fields;
-        let t = backend.first_crossing(&f.c, &f.p_base, &f.p, m.sigma_c)?;
-        probe = Probe {
-            base,
-            lower,
-            t,
-            residual,
-        };
+        probe = self::probe(backend, run, d_c, d_to, None, base, eq)?;
     }
     if !walk.finish {
         return Ok(false);
