@@ -386,6 +386,10 @@ pub const CONFIRM_D_BAR: f64 = 0.1;
 /// [`CONFIRM_D_BAR`], to confirm the minimum.
 pub const CONFIRM_RISE: f64 = 0.02;
 
+/// The fraction of a load step taken where only the force's rise is left to confirm the
+/// minimum ([`confirming_end`]).
+const CONFIRMING_STEP: f64 = 0.25;
+
 /// Re-grid once the contact (with its margin) fits in this fraction of the domain.
 pub const REGRID_BELOW: f64 = 0.8;
 
@@ -467,14 +471,24 @@ fn pull_off<B: Backend>(
 ) -> Result<(), SolverError> {
     let mut d_prev = model.load.d0;
     let mut step = 0;
+    // Load steps of the schedule reached (a step ended early to confirm the minimum is not
+    // one of them).
+    let mut planned = 0;
+    // Whether the steps are shortened to confirm the minimum ([`confirming_end`]).
+    let mut confirming = false;
     loop {
         if !out.go_on() {
             return Err(SolverError::Interrupted);
         }
         step += 1;
-        let d = model.load.approach(step);
+        let mut d = model.load.approach(planned + 1);
         if d < model.load.d_final {
             break;
+        }
+        let held = run.held.force;
+        match confirming_end(out, &run.model, held, &mut confirming, d_prev, d) {
+            Some(d_confirm) => d = d_confirm,
+            None => planned += 1,
         }
         let end = load_step(backend, run, out, step, d_prev, d)?;
         d_prev = d;
@@ -497,6 +511,34 @@ fn pull_off<B: Backend>(
     }
     // The contact vanished, or the final approach came first: locate what is left to locate.
     super::window::refine(backend, run, out)
+}
+
+/// Where a step from `d_prev` to `d` (lengths) ends instead when only the adhesive force is
+/// measured, once the state held at `d_prev` (force `held`) meets one of the two tests that
+/// confirm the minimum known, [`CONFIRM_D_BAR`] past it or [`CONFIRM_RISE`] above it
+/// (`confirming`, latched here): at the first approach [`CONFIRM_D_BAR`] past the minimum,
+/// or [`CONFIRMING_STEP`] of the step if that lies further. The minimum does not depend on
+/// where the steps end (the contact set at a load is the greatest stable subset of the one
+/// it came from); what the shorter steps save is their cascades: past the minimum the
+/// contact shrinks fast, and a whole step there detaches a wide ring.
+fn confirming_end(
+    out: &Emitter,
+    model: &Model,
+    held: f64,
+    confirming: &mut bool,
+    d_prev: f64,
+    d: f64,
+) -> Option<f64> {
+    if model.measure != Measure::AdhesiveForce {
+        return None;
+    }
+    let (f_min, d_bar_min) = out.minimum()?;
+    let scale = model.scene.scales().approach;
+    // A hair beyond, so that the step end's d̄ passes the test despite rounding.
+    let d_confirm = (d_bar_min - CONFIRM_D_BAR - 1e-9) * scale;
+    *confirming |= d_prev <= d_confirm || held - f_min >= CONFIRM_RISE * f_min.abs();
+    let end = d_confirm.min(d_prev - CONFIRMING_STEP * (d_prev - d));
+    (*confirming && end > d).then_some(end)
 }
 
 /// One load step from `d_prev` to `d` (lengths): the probe, then the step taken whole or

@@ -95,6 +95,10 @@ pub struct Refinement {
     pub cut_short: usize,
     /// Candidates whose start had not been kept, reached again by whole steps.
     pub recomputed: usize,
+    /// Candidates probed again when gone back to: those whose start was reached again (a
+    /// kept start keeps its step's probe too).
+    #[serde(default)]
+    pub probed_again: usize,
     /// Load steps taken whole and not searched, each with its bound checked against the
     /// minimum.
     pub whole_steps: usize,
@@ -120,6 +124,8 @@ struct Bound {
     lower: f64,
     /// Force of the step's start state (force).
     base: f64,
+    /// Fraction of the step at which its first element reaches σ_c (1: none does).
+    t: f64,
     /// c̄ at the step's end (for the account).
     c_bar: f64,
     /// The pool slot holding the step's start, if kept.
@@ -313,9 +319,14 @@ impl<F, M> Window<F, M> {
             if self.origin.is_none() || probe.lower < upper {
                 snapshot = self.take_slot(backend, probe.lower)?;
                 if let Some(slot) = snapshot {
+                    // The start, and the probe just solved from it (in `p`): going back to
+                    // the step then needs no probe of its own.
                     let s = &mut self.pool.snaps[slot];
                     backend.copy(&fields.p_base, &mut s.p)?;
                     backend.copy_mask(&fields.c, &mut s.contact)?;
+                    backend.copy(&fields.p, &mut s.probe)?;
+                    s.probed = true;
+                    s.residual = probe.residual;
                     if self.origin.is_none() {
                         self.origin = Some(slot);
                     }
@@ -328,6 +339,7 @@ impl<F, M> Window<F, M> {
             d_to,
             lower: probe.lower,
             base: probe.base,
+            t: probe.t,
             c_bar: f64::NAN,
             snapshot,
             searched: false,
@@ -640,7 +652,7 @@ fn root_part<B: Backend>(
         frac: 1.0,
         base: b.base,
         lower: b.lower,
-        t: 0.0,
+        t: b.t,
         // Recorded when the step was taken whole.
         first_known: true,
         share: 1.0,
@@ -672,7 +684,8 @@ fn search<B: Backend>(
         let snap = &run.window.pool.snaps[part.slot];
         restore(backend, &mut run.fields, snap)?;
         if !snap.probed {
-            // The root: probe its step now.
+            // The root, its start reached again: probe its step now.
+            run.window.report.probed_again += 1;
             let probe = onsets::probe(backend, run, part.d_from, part.d_end, None, part.base, eq)?;
             let s = &mut run.window.pool.snaps[part.slot];
             backend.copy(&run.fields.p, &mut s.probe)?;

@@ -126,6 +126,9 @@ pub fn compare(what: &str, ratio: f64, nx: usize, ny: Option<usize>, options: Mo
     assert!(w.margin_f_bar.is_some_and(|m| m >= 0.0), "{what}: {w:?}");
     assert_eq!(w.bound_violation_f_bar, 0.0, "{what}: {w:?}");
     assert!(!w.widened && !w.steps.is_empty(), "{what}: {w:?}");
+    // A step gone back to is probed again only where its start was not kept: a kept start
+    // keeps its step's probe.
+    assert_eq!(w.probed_again, w.recomputed, "{what}: {w:?}");
     // The minimum is an onset of a searched step.
     let min = fast.outcome.force_minimum().unwrap();
     assert_eq!(min.phase, Phase::Onset, "{what}");

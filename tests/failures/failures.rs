@@ -178,7 +178,19 @@ fn measuring_only_the_adhesive_force_gives_the_same_answer_for_less() {
         let (cf, cm) = (full.outcome.cg_iterations(), only.outcome.cg_iterations());
         println!("R1/R2 = {ratio}, {nx}: curve {f:.6} in {cf} CG its, measure {m:.6} in {cm}");
         assert!(only.outcome.stopped_after_minimum && only.outcome.complete());
-        assert!((m / f - 1.0).abs() < 1e-9, "{m} vs {f}");
+        // The same onset on the same contact set; its force is interpolated from a probe
+        // that may be solved at another approach (once a test that confirms the minimum
+        // holds, the steps are shortened; on a coarse grid that can happen before the
+        // minimum): two CG solves of one system, within CG's tolerance (1e-8) of each other.
+        let (a, b) = (
+            full.outcome.force_minimum().unwrap(),
+            only.outcome.force_minimum().unwrap(),
+        );
+        assert_eq!(
+            a.n_contact, b.n_contact,
+            "R1/R2 = {ratio}: the minimum's onset"
+        );
+        assert!((m / f - 1.0).abs() < 1e-7, "{m} vs {f}");
         assert!(cm < cf, "{cm} ≥ {cf}");
         // States go on in order: nothing taken again is written twice.
         let d: Vec<f64> = only.outcome.states.iter().map(|s| s.d).collect();

@@ -172,3 +172,58 @@ fn certified_detachments_cut_solves_not_states() {
         wb.cg_iterations
     );
 }
+
+#[test]
+fn the_steps_that_confirm_an_adhesive_force_go_no_further_than_needed() {
+    // Once the state held meets one of the two tests that confirm the minimum (far enough
+    // past it, or risen enough above it), the steps go only as far as the other test needs,
+    // at least a quarter of a step: the same minimum as the whole curve on the same steps,
+    // a last step shorter than the schedule's, and fewer CG iterations after the minimum.
+    for (what, ratio, ny) in [("5:1 128×64", 5.0, Some(64)), ("sphere 128²", 1.0, None)] {
+        let options = ModelOptions {
+            measure: Measure::AdhesiveForce,
+            steps: 20,
+            ..ModelOptions::default()
+        };
+        let only = run_model(model(ratio, 128, ny, options.clone()));
+        let curve = run_model(model(
+            ratio,
+            128,
+            ny,
+            ModelOptions {
+                measure: Measure::Curve,
+                ..options
+            },
+        ));
+        let (m, f) = (
+            common::same_answers::f_min(&only),
+            common::same_answers::f_min(&curve),
+        );
+        assert!((m / f - 1.0).abs() < 1e-9, "{what}: {m} vs {f}");
+        let ends = common::same_answers::step_ends(&only);
+        let (a, b) = (ends[ends.len() - 2], ends[ends.len() - 1]);
+        let d_step = only.model.load.d_step;
+        println!(
+            "{what}: last step {:.4} of the schedule's, to d̄ {:.4}; {} CG iterations",
+            (a.d - b.d) / d_step,
+            b.d_bar,
+            b.cg_iterations
+        );
+        assert!(a.d - b.d < 0.99 * d_step, "{what}: a whole last step");
+        assert!(
+            a.d - b.d >= 0.25 * d_step * (1.0 - 1e-9),
+            "{what}: a sliver"
+        );
+        // What the curve spent on its step to the schedule's next approach after `a`.
+        let whole = common::same_answers::step_ends(&curve)
+            .into_iter()
+            .find(|s| s.d < a.d)
+            .expect("the curve's next step");
+        assert!(
+            b.cg_iterations < whole.cg_iterations,
+            "{what}: {} CG iterations against a whole step's {}",
+            b.cg_iterations,
+            whole.cg_iterations
+        );
+    }
+}
