@@ -386,8 +386,8 @@ pub const CONFIRM_D_BAR: f64 = 0.1;
 /// [`CONFIRM_D_BAR`], to confirm the minimum.
 pub const CONFIRM_RISE: f64 = 0.02;
 
-/// The fraction of a load step taken where only the force's rise is left to confirm the
-/// minimum ([`confirming_end`]).
+/// The least fraction of a load step taken once a step end meets one of the tests that
+/// confirm the minimum ([`confirming_end`]).
 const CONFIRMING_STEP: f64 = 0.25;
 
 /// Re-grid once the contact (with its margin) fits in this fraction of the domain.

@@ -4,8 +4,8 @@
 //! Every step taken whole leaves a bound: its probe's force, below which none of its onsets
 //! lies; and, when an element crossed σ_c in it, its first onset's force exactly. While the
 //! force falls the steps are taken whole, the bound of each is noted, and the start state of
-//! each step whose bound lies below the lowest onset known so far is kept (a snapshot on the
-//! device). Once the minimum is confirmed, the search goes back to those steps, lowest bound
+//! each step whose bound lies below the lowest onset known so far is kept with its probe (a
+//! snapshot on the device; going back to the step then solves nothing again). Once the minimum is confirmed, the search goes back to those steps, lowest bound
 //! first. A part of the load it searches (a step, or a piece of one) is pruned when its bound
 //! lies at or above the lowest onset found; else its first onset is recorded, and if more are
 //! likely to follow closely it is split in two: the first piece keeps the part's start and
