@@ -5,16 +5,17 @@
 //! lies; and, when an element crossed σ_c in it, its first onset's force exactly. While the
 //! force falls the steps are taken whole, the bound of each is noted, and the start state of
 //! each step whose bound lies below the lowest onset known so far is kept with its probe (a
-//! snapshot on the device; going back to the step then solves nothing again). Once the minimum is confirmed, the search goes back to those steps, lowest bound
-//! first. A part of the load it searches (a step, or a piece of one) is pruned when its bound
-//! lies at or above the lowest onset found; else its first onset is recorded, and if more are
-//! likely to follow closely it is split in two: the first piece keeps the part's start and
-//! has as bound the same contact set at the piece's end (an interpolation), the second starts
-//! from the cascade at the split and is probed to the end. The split lies where the part's
-//! bound, a straight line in the load, reaches the lowest onset found (`split_at`): the
-//! first piece is then pruned at once, and the search goes on from there; where that point
-//! lies before the part's first onset, at the midpoint. Pieces with few onsets are walked
-//! through them, the walk stopping as soon as the rest lies above the lowest onset.
+//! snapshot on the device; going back to the step then solves nothing again). Once the minimum
+//! is confirmed, the search goes back to those steps, lowest bound first. A part of the load it
+//! searches (a step, or a piece of one) is pruned when its bound lies at or above the lowest
+//! onset found; else its first onset is recorded, and if more are likely to follow closely it
+//! is split in two: the first piece keeps the part's start and has as bound the same contact
+//! set at the piece's end (an interpolation), the second starts from the cascade at the split
+//! and is probed to the end. The split lies where the part's bound, a straight line in the
+//! load, reaches the lowest onset found (`split_at`): the first piece is then pruned at once,
+//! and the search goes on from there; where that point lies before the part's first onset, at
+//! the midpoint. Pieces with few onsets are walked through them, the walk stopping as soon as
+//! the rest lies above the lowest onset.
 //!
 //! Every part left unsearched thus has its bound at or above the force minimum found, which
 //! the report states as the window's margin. Each located onset is checked against the bound
@@ -348,7 +349,8 @@ impl<F, M> Window<F, M> {
     }
 
     /// A pool slot for a step of bound `lower`: a free one, a new one, or that of the kept
-    /// step with the highest bound if it lies above `lower` (`None`: not worth keeping).
+    /// step with the highest bound if it lies above `lower` (`None`: not worth keeping). Its
+    /// contents are to be overwritten: the start and the probe of the step noted.
     fn take_slot<B: Backend<Field = F, Mask = M>>(
         &mut self,
         backend: &mut B,
@@ -363,14 +365,9 @@ impl<F, M> Window<F, M> {
             .iter_mut()
             .filter(|b| b.snapshot.is_some() && b.snapshot != origin)
             .max_by(|a, b| a.lower.total_cmp(&b.lower));
+        // The caller fills the slot with the new step's start and probe.
         Ok(match worst {
-            Some(b) if b.lower > lower => {
-                let slot = b.snapshot.take();
-                if let Some(s) = slot {
-                    self.pool.snaps[s].probed = false;
-                }
-                slot
-            }
+            Some(b) if b.lower > lower => b.snapshot.take(),
             _ => None,
         })
     }

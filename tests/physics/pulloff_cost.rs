@@ -9,7 +9,9 @@
 use crate::common;
 
 use common::run_model;
-use common::same_answers::{assert_account_adds_up, assert_same_answers, compare, exact, model};
+use common::same_answers::{
+    assert_account_adds_up, assert_same_answers, compare, exact, f_min, model, step_ends,
+};
 use jkrbem::model::{Measure, Model, ModelOptions};
 use jkrbem::solver::{Phase, State};
 
@@ -195,12 +197,9 @@ fn the_steps_that_confirm_an_adhesive_force_go_no_further_than_needed() {
                 ..options
             },
         ));
-        let (m, f) = (
-            common::same_answers::f_min(&only),
-            common::same_answers::f_min(&curve),
-        );
+        let (m, f) = (f_min(&only), f_min(&curve));
         assert!((m / f - 1.0).abs() < 1e-9, "{what}: {m} vs {f}");
-        let ends = common::same_answers::step_ends(&only);
+        let ends = step_ends(&only);
         let (a, b) = (ends[ends.len() - 2], ends[ends.len() - 1]);
         let d_step = only.model.load.d_step;
         println!(
@@ -215,7 +214,7 @@ fn the_steps_that_confirm_an_adhesive_force_go_no_further_than_needed() {
             "{what}: a sliver"
         );
         // What the curve spent on its step to the schedule's next approach after `a`.
-        let whole = common::same_answers::step_ends(&curve)
+        let whole = step_ends(&curve)
             .into_iter()
             .find(|s| s.d < a.d)
             .expect("the curve's next step");
