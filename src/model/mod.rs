@@ -57,6 +57,10 @@ pub struct Model {
     /// detached load is handed on ([`crate::backend::certify`]); on with
     /// [`Model::loose_rounds`].
     pub certify_detached: bool,
+    /// Whether a loose round that detaches nothing is solved once more, to
+    /// [`crate::solver::equilibrium::TIGHT_TOLERANCE`], before the exact solve; on with
+    /// [`Model::loose_rounds`].
+    pub tighten_stalls: bool,
     /// What the run is for.
     pub measure: Measure,
     /// Whether to re-grid as the contact shrinks.
@@ -194,6 +198,7 @@ impl Model {
             loose_rounds: opt.loose_rounds,
             spread_detached: opt.loose_rounds,
             certify_detached: opt.loose_rounds,
+            tighten_stalls: opt.loose_rounds,
             measure: opt.measure,
             regrid: opt.regrid,
             mesh,

@@ -14,6 +14,10 @@ use serde::{Deserialize, Serialize};
 pub struct Work {
     /// CG solves on a fixed contact set (a safer retry counts as part of its solve).
     pub solves: usize,
+    /// Of those, the solves made to CG's tolerance: every state's, and a cascade's last
+    /// round (the others are its loose rounds, [`crate::solver::equilibrium`]).
+    #[serde(default)]
+    pub exact_solves: usize,
     /// CG iterations (one convolution of a search direction each).
     pub cg_iterations: usize,
     /// Convolutions u = K p made outside CG's iterations: a solve's start residual, the
@@ -31,6 +35,7 @@ impl Work {
     /// Add `other` to this work.
     pub fn add(&mut self, other: Work) {
         self.solves += other.solves;
+        self.exact_solves += other.exact_solves;
         self.cg_iterations += other.cg_iterations;
         self.convolutions += other.convolutions;
         self.rounds += other.rounds;
@@ -142,18 +147,19 @@ impl CostAccount {
         }
     }
 
-    /// One line for people: "572 states, 202 steps, 369 onsets, 1108 rounds, 1681 solves,
-    /// 11956 CG iterations, 3400 convolutions outside CG".
+    /// One line for people: "572 states, 202 steps, 369 onsets, 1108 rounds, 1681 solves
+    /// (573 exact), 11956 CG iterations, 3400 convolutions outside CG".
     pub fn line(&self) -> String {
         let w = &self.work;
         let mut s = format!(
-            "{} states, {} steps, {} onsets, {} cascade rounds, {} solves, {} CG iterations, \
-             {} convolutions outside CG",
+            "{} states, {} steps, {} onsets, {} cascade rounds, {} solves ({} exact), \
+             {} CG iterations, {} convolutions outside CG",
             self.states,
             self.steps,
             self.onsets,
             w.rounds,
             w.solves,
+            w.exact_solves,
             w.cg_iterations,
             w.convolutions
         );
@@ -208,6 +214,7 @@ mod tests {
         let mut a = CostAccount::default();
         let w = Work {
             solves: 2,
+            exact_solves: 1,
             cg_iterations: 20,
             convolutions: 4,
             rounds: 1,
@@ -228,6 +235,7 @@ mod tests {
         let mut b = a.clone();
         b.absorb(&a);
         assert_eq!(b.work.solves, 16);
+        assert_eq!(b.work.exact_solves, 8);
         assert_eq!(b.bands[3].work.cg_iterations, 80);
         assert_eq!(b.work.certified, 24);
     }

@@ -120,9 +120,10 @@ pub struct Args {
     /// Solve every round of a detachment cascade to --cg-tolerance, each from p as the sweep
     /// left it. By default the rounds between are solved only as far as needed to tell which
     /// elements are over σ_c (to 1e-5, detaching only those beyond it by twice CG's error
-    /// estimate), each starts from the detached load handed on, the elements a bound proves
-    /// to follow are detached without a solve (CPU backend), and the last round is exact: the
-    /// same states at a fraction of the CG iterations.
+    /// estimate; a round that detaches nothing is solved again to 1e-6 before the exact
+    /// solve), each starts from the detached load handed on, the elements a bound proves to
+    /// follow are detached without a solve, and the last round is exact: the same states at
+    /// a fraction of the CG iterations.
     #[arg(long)]
     pub exact_cascade: bool,
     /// Backend: `cpu` (f64, rustfft), `gpu` (f32, wgpu; the best adapter, a software one such
