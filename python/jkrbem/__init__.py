@@ -459,8 +459,10 @@ def simulate(
     minimum), ("every", k) or a list of state indices (each also keeps the minimum).
 
     ``progress``: a callable receiving event dicts (``event`` = "note", "start", "state",
-    "warning"), or True for a tqdm bar where tqdm is installed. Ctrl-C stops the run: the result
-    then holds the states computed so far, with ``interrupted`` True (and a warning).
+    "warning"; a "state" with ``held`` True was found but is recorded later, once the search
+    for the force minimum has gone back to the steps before it), or True for a tqdm bar where
+    tqdm is installed. Ctrl-C stops the run, also while it searches: the result then holds the
+    states recorded so far, with ``interrupted`` True (and a warning).
 
     Raises :class:`InputError` (a ValueError) for a bad parameter, naming the keyword, and
     :class:`SolveError` (a RuntimeError) when no run reached the force minimum; its

@@ -259,6 +259,24 @@ impl PyWatch {
     }
 }
 
+impl PyWatch {
+    /// A "state" event, at most every 0.2 s; `held`: found but held back while the search
+    /// for the force minimum may still go back to earlier steps (it is recorded later).
+    fn state_event(&self, model: &Model, s: &State, held: bool) {
+        let mut last = self.last.lock().unwrap();
+        if last.is_some_and(|t| t.elapsed() < Duration::from_millis(200)) {
+            return;
+        }
+        *last = Some(Instant::now());
+        drop(last);
+        self.call(
+            json!({"event": "state", "grid": [model.nx, model.ny], "step": s.step,
+                         "expected_steps": model.expected_steps(), "held": held,
+                         "d_bar": s.d_bar, "f_bar": s.f_bar, "c_bar": s.c_bar}),
+        );
+    }
+}
+
 impl Watch for PyWatch {
     fn note(&self, line: &str) {
         self.call(json!({"event": "note", "text": as_keywords(line)}));
@@ -268,17 +286,10 @@ impl Watch for PyWatch {
                          "expected_steps": model.expected_steps()}));
     }
     fn state(&self, model: &Model, s: &State) {
-        let mut last = self.last.lock().unwrap();
-        if last.is_some_and(|t| t.elapsed() < Duration::from_millis(200)) {
-            return;
-        }
-        *last = Some(Instant::now());
-        drop(last);
-        self.call(
-            json!({"event": "state", "grid": [model.nx, model.ny], "step": s.step,
-                         "expected_steps": model.expected_steps(),
-                         "d_bar": s.d_bar, "f_bar": s.f_bar, "c_bar": s.c_bar}),
-        );
+        self.state_event(model, s, false);
+    }
+    fn state_held(&self, model: &Model, s: &State) {
+        self.state_event(model, s, true);
     }
     fn warning(&self, line: &str) {
         self.call(json!({"event": "warning", "text": as_keywords(line)}));

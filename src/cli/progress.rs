@@ -1,4 +1,5 @@
-//! What a person sees while a run goes: a progress line on stderr (when it is a terminal),
+//! What a person sees while a run goes: a progress line on stderr (a bar redrawn in place
+//! when stderr is a terminal; else, as in a log file, a plain line at most once a minute),
 //! the notes and the warnings.
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -7,17 +8,23 @@ use jkrbem::run::Watch;
 use jkrbem::solver::{Phase, State};
 use std::io::IsTerminal;
 use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+/// Least time between two plain progress lines where stderr is not a terminal.
+pub const PLAIN_EVERY: Duration = Duration::from_secs(60);
 
 /// The progress line's layout: elapsed time, a bar of the load steps, the fraction done and
 /// the estimated time left, then [`progress_message`].
 pub const PROGRESS_TEMPLATE: &str = "[{elapsed_precise}] {bar:20} {percent:>3}% ETA {eta} {msg}";
 
 /// The progress line's text for the latest state: the load step of all expected, and where
-/// the pull-off is (the bar, percentage and ETA are drawn beside it).
-pub fn progress_message(model: &Model, s: &State) -> String {
+/// the pull-off is (the bar, percentage and ETA are drawn beside it). An onset `held` back
+/// was located by the search for the force minimum, which goes back to earlier steps.
+pub fn progress_message(model: &Model, s: &State, held: bool) -> String {
     let phase = match s.phase {
         Phase::Approach => "approach",
         Phase::Pulloff => "pull-off",
+        Phase::Onset if held => "onset, searching near the minimum",
         Phase::Onset => "onset",
         Phase::Regrid => "re-grid",
     };
@@ -41,17 +48,76 @@ fn progress_scene(scene: &jkrbem::scene::Scene) -> String {
     }
 }
 
-/// A [`Watch`] for a person: notes and warnings on stderr, and a progress bar of each
-/// pull-off's load steps when stderr is a terminal.
+/// When a plain progress line is due: at most once per `every` since the last one (or
+/// since the start).
+#[derive(Debug)]
+pub struct Throttle {
+    every: Duration,
+    start: Instant,
+    last: Instant,
+}
+
+impl Throttle {
+    /// A throttle that starts counting at `now`.
+    pub fn new(every: Duration, now: Instant) -> Self {
+        Throttle {
+            every,
+            start: now,
+            last: now,
+        }
+    }
+
+    /// The time since the start if a line is due at `now` (it is then counted as given).
+    pub fn due(&mut self, now: Instant) -> Option<Duration> {
+        if now.saturating_duration_since(self.last) < self.every {
+            return None;
+        }
+        self.last = now;
+        Some(now.saturating_duration_since(self.start))
+    }
+}
+
+/// "[01:02:03]": hours, minutes and seconds.
+fn clock(t: Duration) -> String {
+    let s = t.as_secs();
+    format!("[{:02}:{:02}:{:02}]", s / 3600, s / 60 % 60, s % 60)
+}
+
+/// A [`Watch`] for a person: notes and warnings on stderr, and the progress of each
+/// pull-off's load steps: a bar when stderr is a terminal, else a plain line at most every
+/// [`PLAIN_EVERY`].
 #[derive(Default)]
 pub struct Progress {
     bar: Mutex<Option<ProgressBar>>,
+    plain: Mutex<Option<Throttle>>,
 }
 
 impl Progress {
     /// A watch with no bar yet (one is drawn per pull-off).
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// Show `s`, found by the pull-off of `model` (`held`: held back, see [`progress_message`]).
+    fn show(&self, model: &Model, s: &State, held: bool) {
+        if let Some(pb) = self.bar.lock().ok().as_ref().and_then(|b| b.as_ref()) {
+            // An onset found on going back does not move the bar back.
+            pb.set_position(pb.position().max(s.step as u64));
+            pb.set_message(progress_message(model, s, held));
+            return;
+        }
+        let due = self
+            .plain
+            .lock()
+            .ok()
+            .and_then(|mut t| t.as_mut().and_then(|t| t.due(Instant::now())));
+        if let Some(elapsed) = due {
+            errln!(
+                "jkrbem: {} {}",
+                clock(elapsed),
+                progress_message(model, s, held)
+            );
+        }
     }
 }
 
@@ -62,6 +128,10 @@ impl Watch for Progress {
 
     fn pulloff_started(&self, model: &Model) {
         if !std::io::stderr().is_terminal() {
+            if let Ok(mut plain) = self.plain.lock() {
+                // Concurrent pull-offs (a sweep's) share the one throttle.
+                plain.get_or_insert_with(|| Throttle::new(PLAIN_EVERY, Instant::now()));
+            }
             return;
         }
         let pb = ProgressBar::new(model.expected_steps() as u64);
@@ -75,10 +145,11 @@ impl Watch for Progress {
     }
 
     fn state(&self, model: &Model, s: &State) {
-        if let Some(pb) = self.bar.lock().ok().as_ref().and_then(|b| b.as_ref()) {
-            pb.set_position(s.step as u64);
-            pb.set_message(progress_message(model, s));
-        }
+        self.show(model, s, false);
+    }
+
+    fn state_held(&self, model: &Model, s: &State) {
+        self.show(model, s, true);
     }
 
     fn pulloff_ended(&self) {
@@ -132,8 +203,13 @@ mod tests {
             cg_residual: 1e-9,
             dx: 0.1,
         };
-        let text = progress_message(&model, &state);
+        let text = progress_message(&model, &state, false);
         assert!(text.contains("step 57/200 (onset)"), "{text}");
+        let held = progress_message(&model, &state, true);
+        assert!(
+            held.contains("step 57/200 (onset, searching near the minimum)"),
+            "{held}"
+        );
         assert!(
             text.contains("d̄ = 0.0000") && text.contains("F̄ = -0.4321"),
             "{text}"
@@ -155,5 +231,26 @@ mod tests {
         )
         .unwrap();
         assert!(short.expected_steps() < 200);
+    }
+
+    #[test]
+    fn a_plain_progress_line_is_due_at_most_once_a_period() {
+        // Where stderr is not a terminal (a log file), progress is a plain line, not a bar
+        // redrawn in place: at most one per period, with the time since the start.
+        let t0 = Instant::now();
+        let every = Duration::from_secs(60);
+        let mut t = Throttle::new(every, t0);
+        assert_eq!(t.due(t0), None);
+        assert_eq!(t.due(t0 + Duration::from_secs(59)), None);
+        assert_eq!(
+            t.due(t0 + Duration::from_secs(61)),
+            Some(Duration::from_secs(61))
+        );
+        assert_eq!(t.due(t0 + Duration::from_secs(100)), None);
+        assert_eq!(
+            t.due(t0 + Duration::from_secs(3725)),
+            Some(Duration::from_secs(3725))
+        );
+        assert_eq!(clock(Duration::from_secs(3725)), "[01:02:05]");
     }
 }

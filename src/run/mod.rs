@@ -65,12 +65,18 @@ pub trait Watch: Sync {
     fn pulloff_started(&self, _model: &Model) {}
     /// The pull-off of `model` recorded `state`.
     fn state(&self, _model: &Model, _state: &State) {}
+    /// The pull-off of `model` found `state` but holds it back while its search for the force
+    /// minimum may still go back to earlier steps: for progress only (it reaches
+    /// [`Watch::state`] later, in the order of the load). [`Watch::keep_going`] is asked after
+    /// it too.
+    fn state_held(&self, _model: &Model, _state: &State) {}
     /// The pull-off ended.
     fn pulloff_ended(&self) {}
     /// A warning about a result.
     fn warning(&self, _line: &str) {}
-    /// Asked after every state: `false` stops the pull-off there (what an interrupt from a
-    /// notebook needs); the run then returns the states it had, marked incomplete.
+    /// Asked after every state, held ones included: `false` stops the pull-off there (what an
+    /// interrupt from a notebook needs); the run then returns the states it had handed on,
+    /// marked incomplete.
     fn keep_going(&self) -> bool {
         true
     }

@@ -69,24 +69,38 @@ pub fn pulloff<B: Backend>(
         None => None,
     };
     let mut write_error_at = None;
-    let mut timed_out = false;
-    let mut stopped = false;
     watch.pulloff_started(model);
     let start = Instant::now();
     let with_contact = capture.is_some();
-    let outcome = solver::run_until(backend, model, with_contact, &mut |s, mask| {
-        if let (Some(c), Some(mask)) = (capture.as_deref_mut(), mask) {
-            c.observe(s, mask);
-        }
-        watch.state(model, s);
-        if let Some(Err(e)) = writer.as_mut().map(|w| w.write(s)) {
-            write_error_at.get_or_insert(e);
-            return false;
-        }
-        timed_out = deadline.is_some_and(|d| Instant::now() >= d);
-        stopped = !watch.keep_going();
-        !(timed_out || stopped)
-    });
+    let timed_out = std::cell::Cell::new(false);
+    let stopped = std::cell::Cell::new(false);
+    // Whether to go on after a state, handed on or held.
+    let go_on = || {
+        timed_out.set(deadline.is_some_and(|d| Instant::now() >= d));
+        stopped.set(!watch.keep_going());
+        !(timed_out.get() || stopped.get())
+    };
+    let outcome = solver::run_watched(
+        backend,
+        model,
+        with_contact,
+        &mut |s, mask| {
+            if let (Some(c), Some(mask)) = (capture.as_deref_mut(), mask) {
+                c.observe(s, mask);
+            }
+            watch.state(model, s);
+            if let Some(Err(e)) = writer.as_mut().map(|w| w.write(s)) {
+                write_error_at.get_or_insert(e);
+                return false;
+            }
+            go_on()
+        },
+        &mut |s| {
+            watch.state_held(model, s);
+            go_on()
+        },
+    );
+    let (timed_out, stopped) = (timed_out.get(), stopped.get());
     let wall = start.elapsed().as_secs_f64();
     watch.pulloff_ended();
     for w in &outcome.warnings {

@@ -11,7 +11,7 @@ pub mod retry;
 pub mod state;
 pub mod window;
 
-pub use protocol::{run, run_until, run_with_contact, Outcome};
+pub use protocol::{run, run_until, run_watched, run_with_contact, Outcome};
 pub use state::{Phase, State};
 
 use crate::backend::BackendError;

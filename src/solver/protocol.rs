@@ -206,6 +206,21 @@ pub fn run_until<B: Backend>(
     with_contact: bool,
     observe: &mut dyn FnMut(&State, Option<&[bool]>) -> bool,
 ) -> Outcome {
+    run_watched(backend, model, with_contact, observe, &mut |_| true)
+}
+
+/// Like [`run_until`], and `held` sees each state that is held back when it is found (a
+/// step's end while the search for the force minimum may still go back to it, an onset
+/// located on going back): it is handed to `observe` later, in the order of the load. For
+/// progress only; it returns whether to go on, as `observe` does, so that a run can be
+/// stopped while it searches, when no state is handed on for a long time.
+pub fn run_watched<B: Backend>(
+    backend: &mut B,
+    model: &Model,
+    with_contact: bool,
+    observe: &mut dyn FnMut(&State, Option<&[bool]>) -> bool,
+    held: &mut dyn FnMut(&State) -> bool,
+) -> Outcome {
     let mut states = Vec::new();
     let go_on = std::cell::Cell::new(true);
     let readbacks = backend.counters().readbacks;
@@ -217,6 +232,7 @@ pub fn run_until<B: Backend>(
             }
             states.push(s);
         },
+        held,
         with_contact,
         go_on: &go_on,
         pending: Vec::new(),
@@ -262,6 +278,8 @@ pub fn run_until<B: Backend>(
 /// among them; and the run's account.
 pub(super) struct Emitter<'a> {
     push: &'a mut dyn FnMut(State, Option<&[bool]>),
+    /// Sees each state held back when it is found; false: stop.
+    held: &'a mut dyn FnMut(&State) -> bool,
     /// Whether the observer sees each state's contact mask.
     with_contact: bool,
     /// False once the observer asked to stop.
@@ -313,6 +331,9 @@ impl Emitter<'_> {
             None
         };
         self.cost.states += 1;
+        if hold && !(self.held)(&state) {
+            self.go_on.set(false);
+        }
         self.pending.push((state, mask));
         if !hold {
             self.release(usize::MAX);

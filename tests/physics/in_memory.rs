@@ -95,3 +95,72 @@ fn a_watch_stops_a_run_which_returns_its_states_marked_incomplete() {
     );
     assert!(!done.summary.runs[0].complete);
 }
+
+/// Keeps the states recorded and those held back, and stops the run at the `stop_at`-th
+/// state held back (never if 0).
+#[derive(Default)]
+struct SeesHeld {
+    recorded: std::sync::Mutex<Vec<State>>,
+    held: std::sync::Mutex<Vec<State>>,
+    stop_at: usize,
+}
+
+impl Watch for SeesHeld {
+    fn state(&self, _model: &jkrbem::model::Model, s: &State) {
+        self.recorded.lock().unwrap().push(s.clone());
+    }
+    fn state_held(&self, _model: &jkrbem::model::Model, s: &State) {
+        self.held.lock().unwrap().push(s.clone());
+    }
+    fn keep_going(&self) -> bool {
+        self.stop_at == 0 || self.held.lock().unwrap().len() < self.stop_at
+    }
+}
+
+#[test]
+fn a_watch_sees_the_states_held_for_the_search_and_can_stop_the_run_there() {
+    // 5:1, adhesive force: the step ends are held while the search for the minimum may still
+    // go back to them, and so are the onsets it locates on going back. A watch sees each as it
+    // is found (for progress; recorded later, the same state, in the order of the load), and
+    // can stop the run while it searches, when no state is recorded for a long time.
+    let mut req = request(Sink::Memory);
+    req.scene = Scene::from_ratio(5.0, 1.0, 1.0, 1.0).unwrap();
+    req.options = ModelOptions {
+        nx: 128,
+        ny: Some(64),
+        measure: jkrbem::model::Measure::AdhesiveForce,
+        ..ModelOptions::default()
+    };
+    let all = SeesHeld::default();
+    let done = simulate(&req, &all).unwrap();
+    assert!(!done.stopped && done.runs[0].complete);
+    let (held, recorded) = (all.held.lock().unwrap(), all.recorded.lock().unwrap());
+    let onsets = held
+        .iter()
+        .filter(|s| s.phase == jkrbem::solver::Phase::Onset)
+        .count();
+    assert!(onsets > 0, "{} states held, none an onset", held.len());
+    for s in held.iter() {
+        assert!(
+            recorded
+                .iter()
+                .any(|r| (r.step, r.phase, r.d, r.force) == (s.step, s.phase, s.d, s.force)),
+            "held state of step {} at d̄ = {} not recorded",
+            s.step,
+            s.d_bar
+        );
+    }
+    // Stopped at the first onset located on going back: before any of them is recorded.
+    let first = held
+        .iter()
+        .position(|s| s.phase == jkrbem::solver::Phase::Onset)
+        .unwrap();
+    let stop = SeesHeld {
+        stop_at: first + 1,
+        ..SeesHeld::default()
+    };
+    let stopped = simulate(&req, &stop).unwrap();
+    assert!(stopped.stopped && !stopped.runs[0].complete);
+    assert!(stopped.runs[0].states.len() < recorded.len());
+    assert_eq!(stop.held.lock().unwrap().len(), first + 1);
+}
