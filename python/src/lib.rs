@@ -257,9 +257,7 @@ impl PyWatch {
             }
         });
     }
-}
 
-impl PyWatch {
     /// A "state" event, at most every 0.2 s; `held`: found but held back while the search
     /// for the force minimum may still go back to earlier steps (it is recorded later).
     fn state_event(&self, model: &Model, s: &State, held: bool) {

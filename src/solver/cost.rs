@@ -14,8 +14,9 @@ use serde::{Deserialize, Serialize};
 pub struct Work {
     /// CG solves on a fixed contact set (a safer retry counts as part of its solve).
     pub solves: usize,
-    /// Of those, the solves made to CG's tolerance: every state's, and a cascade's last
-    /// round (the others are its loose rounds, [`crate::solver::equilibrium`]).
+    /// Of those, the solves made to CG's tolerance: the probes, the first press and a
+    /// cascade's exact rounds (the others are its loose rounds,
+    /// [`crate::solver::equilibrium`]).
     #[serde(default)]
     pub exact_solves: usize,
     /// CG iterations (one convolution of a search direction each).

@@ -55,24 +55,25 @@ fn error_estimate<B: Backend>(
     backend.max_abs(&fields.c, &cg.z)
 }
 
-/// Account a cascade round's `solve` in `eq`; returns whether it was exact and, where a
-/// loose round's margin or the certification needs it, the error estimate of the p it left
-/// (stress).
-fn loose_round_solved<B: Backend>(
+/// Account a cascade round's `solve` in `eq`. Returns whether it was exact; the error
+/// estimate of the p it left (stress), where a loose round or the certification needs it;
+/// and the margin (stress) beyond σ_c by which a loosely solved element is surely over it
+/// (0 after an exact solve, whose sweep uses σ_c itself).
+fn round_solved<B: Backend>(
     backend: &mut B,
     fields: &mut Fields<B::Field, B::Mask>,
     eq: &mut Equilibrium,
     solve: Solve,
     certify: bool,
-) -> Result<(bool, Option<f64>), BackendError> {
+) -> Result<(bool, Option<f64>, f64), BackendError> {
     let exact = solve.exact;
     eq.add_solve(solve);
-    let eps = if !exact || certify {
-        Some(error_estimate(backend, fields)?)
-    } else {
-        None
-    };
-    Ok((exact, eps))
+    if exact && !certify {
+        return Ok((true, None, 0.0));
+    }
+    let eps = error_estimate(backend, fields)?;
+    let margin = if exact { 0.0 } else { LOOSE_SAFETY * eps };
+    Ok((exact, Some(eps), margin))
 }
 
 /// The result of equilibrating one approach.
@@ -455,18 +456,12 @@ pub fn settle<B: Backend>(
                 Goal::Exact
             };
             let solve = solve_for(backend, model, fields, d, goal)?;
-            (exact, eps) = loose_round_solved(backend, fields, &mut eq, solve, certify)?;
-            if !exact {
-                margin = LOOSE_SAFETY * eps.unwrap_or(0.0);
-            }
+            (exact, eps, margin) = round_solved(backend, fields, &mut eq, solve, certify)?;
         } else if !exact && tighten && !tightened {
             // Nothing is surely over σ_c at the loose margin: solve to a narrower one first.
             tightened = true;
             let solve = solve_to(backend, model, fields, d, Goal::Loose, TIGHT_TOLERANCE)?;
-            (exact, eps) = loose_round_solved(backend, fields, &mut eq, solve, certify)?;
-            if !exact {
-                margin = LOOSE_SAFETY * eps.unwrap_or(0.0);
-            }
+            (exact, eps, margin) = round_solved(backend, fields, &mut eq, solve, certify)?;
         } else if !exact {
             // Nothing more is surely over σ_c: solve this round exactly and sweep it again.
             let solve = solve_for(backend, model, fields, d, Goal::Exact)?;
