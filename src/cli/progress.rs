@@ -77,10 +77,9 @@ impl Throttle {
     }
 }
 
-/// "[01:02:03]": hours, minutes and seconds.
+/// "[01:02:03]": hours, minutes and seconds, as the bar's elapsed time shows them.
 fn clock(t: Duration) -> String {
-    let s = t.as_secs();
-    format!("[{:02}:{:02}:{:02}]", s / 3600, s / 60 % 60, s % 60)
+    format!("[{}]", indicatif::FormattedDuration(t))
 }
 
 /// A [`Watch`] for a person: notes and warnings on stderr, and the progress of each

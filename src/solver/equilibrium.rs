@@ -55,10 +55,10 @@ fn error_estimate<B: Backend>(
     backend.max_abs(&fields.c, &cg.z)
 }
 
-/// Account a cascade round's `solve` in `eq`. Returns whether it was exact; the error
-/// estimate of the p it left (stress), where a loose round or the certification needs it;
-/// and the margin (stress) beyond σ_c by which a loosely solved element is surely over it
-/// (0 after an exact solve, whose sweep uses σ_c itself).
+/// Account a cascade's `solve` (of its warm start, or of a round) in `eq`. Returns whether
+/// it was exact; the error estimate of the p it left (stress), where a loose round or the
+/// certification needs it; and the margin (stress) beyond σ_c by which a loosely solved
+/// element is surely over it (0 after an exact solve, whose sweep uses σ_c itself).
 fn round_solved<B: Backend>(
     backend: &mut B,
     fields: &mut Fields<B::Field, B::Mask>,
@@ -372,17 +372,14 @@ pub fn settle<B: Backend>(
     let certify = model.certify_detached && sigma_c > 0.0;
     let tighten = model.tighten_stalls && loose_rounds;
     let mut eq = Equilibrium::default();
-    // The error estimate of the p held (stress), where a solve gave it.
-    let mut eps = None;
+    // Whether the p held is a state's (an exact solve's, or the one the cascade starts from);
+    // the error estimate of the p held (stress), where a solve gave it; and beyond σ_c by
+    // how much (stress) a loosely solved element is surely over it.
+    let (mut exact, mut eps, mut margin) = (true, None, 0.0);
     if held == Held::WarmStart {
-        eq.add_solve(solve_fixed(backend, model, fields, d)?);
-        if certify {
-            eps = Some(error_estimate(backend, fields)?);
-        }
+        let solve = solve_fixed(backend, model, fields, d)?;
+        (exact, eps, margin) = round_solved(backend, fields, &mut eq, solve, certify)?;
     }
-    let mut exact = true;
-    // Beyond σ_c by this (stress), a loosely solved element is surely over it.
-    let mut margin = 0.0;
     // Whether the p held was solved to TIGHT_TOLERANCE after a loose round detached nothing.
     let mut tightened = false;
     loop {
@@ -465,13 +462,7 @@ pub fn settle<B: Backend>(
         } else if !exact {
             // Nothing more is surely over σ_c: solve this round exactly and sweep it again.
             let solve = solve_for(backend, model, fields, d, Goal::Exact)?;
-            exact = true;
-            eq.add_solve(solve);
-            eps = if certify {
-                Some(error_estimate(backend, fields)?)
-            } else {
-                None
-            };
+            (exact, eps, margin) = round_solved(backend, fields, &mut eq, solve, certify)?;
         } else if attach_at.is_none() {
             // Stable under detachment, but attachment is still to be checked: it needs u.
             fields.ensure_u(backend, &mut eq.work)?;
