@@ -1,18 +1,35 @@
 //! Makes the certification's table of the plane's shares again and checks it against the one
-//! compiled in (`jkrbem::backend::certify::PLANE_SHARES`): the balayage of a unit load on the
-//! discs of radius 40 and 56 elements less their centres, extrapolated as 2 w₅₆ − w₄₀.
+//! compiled in (`jkrbem::backend::certify::PLANE_SHARES`): −G(o)/G(0) of the plane's inverse
+//! influence on the 4096 × 4096 periodic lattice, less the table's margin.
 //!
-//! `cargo run --release --example plane_shares` (dense solves: about 5 minutes on 2 cores).
-//! Exits with status 1 if an entry differs by more than 1e-12 relative.
+//! `cargo run --release --example plane_shares` (a few seconds on 2 cores); with `-- --print`
+//! it prints the table made as Rust. Exits with status 1 if an entry differs from the table by
+//! more than 1e-12 relative.
 
-use jkrbem::backend::certify::{plane_shares_from_discs, DISC_RADII, PLANE_SHARES};
+use jkrbem::backend::certify::{
+    plane_shares_on_lattice, PLANE_SHARES, TABLE_LATTICE, TABLE_MARGIN,
+};
 
 fn main() {
-    let (inner, outer) = DISC_RADII;
+    let print = std::env::args().any(|a| a == "--print");
+    let made: Vec<(i64, i64, f64)> = plane_shares_on_lattice(TABLE_LATTICE)
+        .into_iter()
+        .map(|(x, y, w)| (x, y, w * (1.0 - TABLE_MARGIN)))
+        .collect();
+    if print {
+        println!(
+            "pub const PLANE_SHARES: [(i64, i64, f64); {}] = [",
+            made.len()
+        );
+        for (x, y, w) in &made {
+            println!("    ({x}, {y}, {w:?}),");
+        }
+        println!("];");
+        return;
+    }
     println!(
-        "the plane's shares, 2 w{outer} - w{inner} (discs of radius {inner} and {outer} elements):"
+        "the plane's shares on the {TABLE_LATTICE} × {TABLE_LATTICE} lattice, less {TABLE_MARGIN:e}:"
     );
-    let made = plane_shares_from_discs();
     let mut worst = 0.0f64;
     for (x, y, w) in &made {
         let table = PLANE_SHARES

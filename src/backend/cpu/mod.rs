@@ -29,6 +29,8 @@ pub struct CpuBackend {
     scratch: Vec<f64>,
     /// The scalar registers handed out so far.
     slots: Vec<f64>,
+    /// The certification's workspace, made at its first use.
+    certifier: Option<super::certify::Certifier>,
 }
 
 impl CpuBackend {
@@ -79,6 +81,7 @@ impl CpuBackend {
             periodic,
             scratch: vec![0.0; nx * ny],
             slots: Vec::new(),
+            certifier: None,
         }
     }
 
@@ -298,9 +301,11 @@ impl ContactKernels for CpuBackend {
             // The bound is the plane's: a periodic convolution is only for showing.
             return Ok(None);
         }
-        Ok(super::certify::certify_detached(
-            mask, before, p, self.nx, self.ny, sigma_c, eps,
-        ))
+        let (nx, ny) = (self.nx, self.ny);
+        let certifier = self
+            .certifier
+            .get_or_insert_with(|| super::certify::Certifier::new(nx, ny));
+        Ok(certifier.certify(mask, before, p, sigma_c, eps))
     }
     fn spread_detached(
         &mut self,
