@@ -19,9 +19,9 @@
 //! exact cascade detaches it too, whatever else it detaches first (the rule is monotone and
 //! the set it ends on is the greatest stable subset). Certified elements join S and the
 //! bound is taken again (for removing all of S from C at once, each element with its
-//! tensile p from before the sweep), until a generation certifies nothing. ε is the error estimate of
-//! the p the sweep used (the loose rounds' one): p and the detached loads are each within
-//! about ε of the exact solve's, and the shares sum to at most 1.
+//! tensile p from before the sweep), until a generation certifies nothing. ε is the error
+//! estimate of the p the sweep used (the loose rounds' one): p and the detached loads are each
+//! within about ε of the exact solve's, and the shares sum to at most 1.
 //!
 //! The hole's system is solved by [`JACOBI_STEPS`] Jacobi sweeps per generation, on the whole
 //! set S removed so far at once (its hole grows with it), each generation starting from the
@@ -35,8 +35,8 @@
 //! the GPU backend certifies what the CPU backend does without its fields leaving the device.
 //! On the host, v lives on the grid padded by the truncation, and eight cells of a row are
 //! summed at once, each weight of the stencil broadcast and multiplied into the eight in one
-//! vector instruction ([`stencil`]; AVX2 and FMA where the CPU has them); the workspace
-//! ([`Certifier`]) is kept between rounds and only its touched cells are cleared.
+//! vector instruction (the `stencil` module; AVX2 and FMA where the CPU has them); the
+//! workspace ([`Certifier`]) is kept between rounds and only its touched cells are cleared.
 //!
 //! The reaches. The bound is only as tight as the hole is large and G is wide. Measured at
 //! 5:1 (adhesive force, CPU, CG iterations at 256×128 / 512×256 / 1024×512): within 8

@@ -91,8 +91,8 @@ fn transposed(a: &[Complex<f64>], m: usize) -> Vec<Complex<f64>> {
     out
 }
 
-/// −G/G(0) at the offsets (x, y), 1 ≤ x ≤ [`TRUNCATION`], 0 ≤ y ≤ x (the other offsets by symmetry):
-/// the share of a unit load removed from one element that each element of the plane less it
+/// −G/G(0) at the offsets (x, y), 1 ≤ x ≤ [`TRUNCATION`], 0 ≤ y ≤ x (the other offsets by
+/// symmetry): the share of a unit load removed from one element that each element of the plane less it
 /// takes (dimensionless). The m = [`TABLE_LATTICE`] lattice's ([`plane_shares_on_lattice`])
 /// less [`TABLE_MARGIN`]: see the module.
 pub const PLANE_SHARES: [(i64, i64, f64); 90] = [
