@@ -18,7 +18,7 @@
 //! tests check it against the m = 2048 lattice.
 
 use super::TRUNCATION;
-use crate::backend::kernel::influence;
+use crate::backend::kernel::padded_kernel;
 use rayon::prelude::*;
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
@@ -36,18 +36,11 @@ pub const TABLE_MARGIN: f64 = 1e-5;
 /// at m = 4096 on 2 cores.
 pub fn plane_shares_on_lattice(m: usize) -> Vec<(i64, i64, f64)> {
     assert!(m.is_power_of_two() && m >= 4 * TRUNCATION as usize);
-    let half = m / 2;
-    let offset = |k: usize| {
-        if k < half {
-            k as f64
-        } else {
-            k as f64 - m as f64
-        }
-    };
-    // K on the lattice (unit Δx and E*: the shares depend on neither).
-    let mut a: Vec<Complex<f64>> = (0..m * m)
-        .into_par_iter()
-        .map(|i| Complex::new(influence(offset(i % m), offset(i / m), 1.0, 1.0), 0.0))
+    // K on the lattice, negative offsets wrapped (unit Δx and E*: the shares depend on
+    // neither): the padded convolution's kernel of an (m/2)² grid is laid out the same way.
+    let mut a: Vec<Complex<f64>> = padded_kernel(m / 2, m / 2, 1.0, 1.0)
+        .into_iter()
+        .map(|k| Complex::new(k, 0.0))
         .collect();
     let mut planner = FftPlanner::new();
     transform(&mut a, m, planner.plan_fft_forward(m).as_ref());
@@ -65,30 +58,12 @@ pub fn plane_shares_on_lattice(m: usize) -> Vec<(i64, i64, f64)> {
 
 /// The 2-D transform of the m × m array `a` (row-major) by `fft` along both axes.
 fn transform(a: &mut Vec<Complex<f64>>, m: usize, fft: &dyn Fft<f64>) {
+    let mut out = vec![Complex::new(0.0, 0.0); m * m];
     for _ in 0..2 {
         a.par_chunks_mut(m).for_each(|row| fft.process(row));
-        *a = transposed(a, m);
+        transpose::transpose(a, &mut out, m, m);
+        std::mem::swap(a, &mut out);
     }
-}
-
-/// The transpose of the m × m array `a` (row-major), by blocks.
-fn transposed(a: &[Complex<f64>], m: usize) -> Vec<Complex<f64>> {
-    const BLOCK: usize = 32;
-    let mut out = vec![Complex::new(0.0, 0.0); m * m];
-    out.par_chunks_mut(m * BLOCK.min(m))
-        .enumerate()
-        .for_each(|(band, rows)| {
-            let r0 = band * BLOCK.min(m);
-            for c0 in (0..m).step_by(BLOCK) {
-                for (k, row) in rows.chunks_mut(m).enumerate() {
-                    let r = r0 + k;
-                    for c in c0..(c0 + BLOCK).min(m) {
-                        row[c] = a[c * m + r];
-                    }
-                }
-            }
-        });
-    out
 }
 
 /// −G/G(0) at the offsets (x, y), 1 ≤ x ≤ [`TRUNCATION`], 0 ≤ y ≤ x (the other offsets by
@@ -188,7 +163,7 @@ pub const PLANE_SHARES: [(i64, i64, f64); 90] = [
     (12, 12, 1.3984082823232261e-5),
 ];
 
-/// The plane's share at offset (x, y), 0 ≤ y ≤ x ≤ 8, from [`PLANE_SHARES`] (dimensionless).
+/// The plane's share at offset (x, y), 0 ≤ y ≤ x ≤ [`TRUNCATION`], from [`PLANE_SHARES`] (dimensionless).
 fn plane_share(x: i64, y: i64) -> f64 {
     PLANE_SHARES
         .iter()
