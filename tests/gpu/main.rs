@@ -12,6 +12,8 @@ mod common;
 mod cli_gpu;
 mod conformance;
 #[cfg(feature = "gpu")]
+mod device_session;
+#[cfg(feature = "gpu")]
 mod failure_cg_gpu;
 #[cfg(feature = "gpu")]
 mod gpu_backend;
@@ -34,6 +36,7 @@ fn main() {
     {
         let missing = missing.as_deref();
         all.extend(cli_gpu::trials(missing));
+        all.extend(device_session::trials(missing));
         all.extend(failure_cg_gpu::trials(missing));
         all.extend(gpu_backend::trials(missing));
         all.extend(gpu_fft::trials(missing));
