@@ -2,6 +2,7 @@
 //! choose the grid, the domain, the load steps and what to compute, by the convergence law
 //! (physics §7, [`crate::analysis::convergence`]).
 
+use crate::analysis::fields::{FieldChoice, FIELD_BYTES_PER_ELEMENT};
 use crate::analysis::{convergence, estimate};
 use crate::model::{self, Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID};
 use crate::scene::Scene;
@@ -207,7 +208,7 @@ fn regrid_gain(ratio: f64) -> f64 {
 /// that no grid fitting in memory (or up to the largest grid) reaches is refused, naming the
 /// finest reachable.
 pub fn for_accuracy(scene: &Scene, target: f64, base: &ModelOptions) -> Result<Plan, ModelError> {
-    plan(scene, target, base, available_memory(), true)
+    plan(scene, target, base, available_memory()?, true)
 }
 
 /// [`for_accuracy`] restricted to one grid (for batches, where each scene is one run).
@@ -216,7 +217,7 @@ pub fn for_accuracy_one_grid(
     target: f64,
     base: &ModelOptions,
 ) -> Result<Plan, ModelError> {
-    plan(scene, target, base, available_memory(), false)
+    plan(scene, target, base, available_memory()?, false)
 }
 
 /// [`for_accuracy`] with the memory available given (bytes; `None`: unlimited).
@@ -330,7 +331,7 @@ fn plan(
 /// a time-limited accuracy request, so that it has an answer however early the limit comes.
 pub fn coarsest_resolving_grid(scene: &Scene, base: &ModelOptions) -> Result<usize, ModelError> {
     // Every grid that resolves the contact meets a 50 % target alone: the plan is the first.
-    let plan = plan(scene, 0.5, base, available_memory(), false)?;
+    let plan = plan(scene, 0.5, base, available_memory()?, false)?;
     Ok(plan.grids[0])
 }
 
@@ -384,14 +385,31 @@ pub fn extrapolation_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usi
 /// (`MemAvailable` in /proc/meminfo), what the process's control group may still use and what
 /// its own limits leave it ([`limits_room`]); or
 /// the value of the environment variable `JKRBEM_MEMORY_LIMIT` (bytes) if set, to plan for
-/// less. `None` where neither can be read (the check is then skipped).
-pub fn available_memory() -> Option<u64> {
-    if let Some(v) = std::env::var("JKRBEM_MEMORY_LIMIT")
-        .ok()
-        .and_then(|v| v.trim().parse::<f64>().ok())
-    {
-        return Some(v.max(0.0) as u64);
+/// less. `None` where neither can be read (the check is then skipped). A limit that is not a
+/// number of bytes (finite, ≥ 0; "1e9" and "2000000000" are) is refused, naming the variable.
+pub fn available_memory() -> Result<Option<u64>, ModelError> {
+    if let Ok(v) = std::env::var("JKRBEM_MEMORY_LIMIT") {
+        return memory_limit(&v).map(Some);
     }
+    Ok(system_memory())
+}
+
+/// `JKRBEM_MEMORY_LIMIT`'s value `text` as bytes.
+fn memory_limit(text: &str) -> Result<u64, ModelError> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v.min(u64::MAX as f64) as u64),
+        _ => Err(ModelError::Invalid {
+            flag: "JKRBEM_MEMORY_LIMIT",
+            value: format!("\"{}\"", crate::text::printable(text, 40)),
+            expected: "the environment variable must be the memory a run may use, in bytes (a \
+                       finite number ≥ 0, e.g. 8e9); unset it to use what the machine has"
+                .into(),
+        }),
+    }
+}
+
+/// What the machine can give a run (see [`available_memory`]), without the variable.
+fn system_memory() -> Option<u64> {
     let meminfo = std::fs::read_to_string("/proc/meminfo").ok();
     let available = meminfo.as_deref().and_then(|m| {
         m.lines()
@@ -470,27 +488,84 @@ pub fn bytes_text(b: u64) -> String {
 /// `models` run `jobs` at a time, so the `jobs` largest must fit together. `flag` names the
 /// grid flag in the message, which gives the estimate and the largest grid that fits.
 pub fn check_memory(models: &[&Model], jobs: usize, flag: &'static str) -> Result<(), ModelError> {
-    check_memory_within(models, jobs, flag, available_memory())
+    check_memory_within(models, jobs, flag, &FieldChoice::None, available_memory()?)
 }
 
-/// [`check_memory`] against `available` bytes (no check if `None`).
+/// [`check_memory`] for runs that also keep the fields of the states `fields` chooses
+/// (`--fields`): their memory counts too, and where the grid alone would fit the message
+/// names `--fields` and how many states fit.
+pub fn check_memory_with_fields(
+    models: &[&Model],
+    jobs: usize,
+    flag: &'static str,
+    fields: &FieldChoice,
+) -> Result<(), ModelError> {
+    check_memory_within(models, jobs, flag, fields, available_memory()?)
+}
+
+/// The memory a model's run needs with the fields `fields` keeps (bytes), and the fields'
+/// part of it.
+fn run_memory(model: &Model, fields: &FieldChoice) -> (u64, u64) {
+    let kept = fields.memory_estimate(model.nx * model.ny, model.expected_states());
+    (model.memory_estimate().saturating_add(kept), kept)
+}
+
+/// [`check_memory_with_fields`] against `available` bytes (no check if `None`).
 pub fn check_memory_within(
     models: &[&Model],
     jobs: usize,
     flag: &'static str,
+    fields: &FieldChoice,
     available: Option<u64>,
 ) -> Result<(), ModelError> {
     let Some(available) = available else {
         return Ok(());
     };
-    let mut needs: Vec<(u64, &Model)> = models.iter().map(|m| (m.memory_estimate(), *m)).collect();
-    needs.sort_by_key(|n| std::cmp::Reverse(n.0));
+    let mut needs: Vec<((u64, u64), &Model)> =
+        models.iter().map(|m| (run_memory(m, fields), *m)).collect();
+    needs.sort_by_key(|n| std::cmp::Reverse(n.0 .0));
     let jobs = jobs.max(1).min(needs.len().max(1));
-    let total: u64 = needs.iter().take(jobs).map(|n| n.0).sum();
+    let total: u64 = needs.iter().take(jobs).map(|n| n.0 .0).sum();
     if total <= available {
         return Ok(());
     }
-    let (_, big) = needs[0];
+    let ((_, kept), big) = needs[0];
+    let at_a_time = if jobs > 1 {
+        format!(" ({jobs} runs at a time with --jobs {jobs})")
+    } else {
+        String::new()
+    };
+    let grids: u64 = needs.iter().take(jobs).map(|n| n.1.memory_estimate()).sum();
+    if kept > 0 && grids <= available {
+        // The grid fits; the fields kept do not.
+        let states = big.expected_states();
+        let per_state = (FIELD_BYTES_PER_ELEMENT * (big.nx * big.ny) as u64).max(1);
+        let room = (available - grids) / (jobs as u64);
+        let fit = room / per_state;
+        let advice = match fields {
+            FieldChoice::Every(_) if fit >= 3 => format!(
+                "keep fewer states: --fields every:{} or coarser, or --fields minimum",
+                (states as u64).div_ceil(fit - 2).max(2)
+            ),
+            _ if fit >= 1 => "keep fewer states, or --fields minimum".to_string(),
+            _ => "leave out --fields, or use a smaller grid".to_string(),
+        };
+        return Err(ModelError::Invalid {
+            flag: "--fields",
+            value: fields.name(),
+            expected: format!(
+                "the fields of about {} states (of about {states} the run records) on the {}×{} \
+                 grid need about {} beside the run's {}{at_a_time}, more than the {} this machine \
+                 has available (free memory, control group and process limits); {advice}",
+                fields.kept_states(states),
+                big.nx,
+                big.ny,
+                bytes_text(kept),
+                bytes_text(big.memory_estimate()),
+                bytes_text(available),
+            ),
+        });
+    }
     // The largest power-of-two Nx (same aspect) whose `jobs` runs fit.
     let aspect = big.ny as f64 / big.nx as f64;
     let mut fits = None;
@@ -502,8 +577,12 @@ pub fn check_memory_within(
         }
         nx *= 2;
     }
-    let at_a_time = if jobs > 1 {
-        format!(" ({jobs} runs at a time with --jobs {jobs})")
+    let with_fields = if kept > 0 {
+        format!(
+            " ({} of it for the fields --fields {} keeps)",
+            bytes_text(kept),
+            fields.name()
+        )
     } else {
         String::new()
     };
@@ -511,8 +590,8 @@ pub fn check_memory_within(
         flag,
         value: format!("{}", big.nx),
         expected: format!(
-            "a {}×{} grid needs about {}{at_a_time}, more than the {} this machine has \
-             available (free memory, control group and process limits); {}",
+            "a {}×{} grid needs about {}{with_fields}{at_a_time}, more than the {} this machine \
+             has available (free memory, control group and process limits); {}",
             big.nx,
             big.ny,
             bytes_text(total),
@@ -616,7 +695,7 @@ mod tests {
         )
         .unwrap();
         let available = 1_000_000_000;
-        let e = check_memory_within(&[&m], 1, "--grid", Some(available))
+        let e = check_memory_within(&[&m], 1, "--grid", &FieldChoice::None, Some(available))
             .unwrap_err()
             .to_string();
         assert!(e.contains("--grid") && e.contains("4096×4096"), "{e}");
@@ -627,7 +706,9 @@ mod tests {
             "{e}"
         );
         assert!(e.contains("7 GB") && e.contains("1 GB"), "{e}");
-        assert!(check_memory_within(&[&m], 1, "--grid", Some(u64::MAX)).is_ok());
+        assert!(
+            check_memory_within(&[&m], 1, "--grid", &FieldChoice::None, Some(u64::MAX)).is_ok()
+        );
         // Two at a time need twice as much.
         let small = Model::build(
             &sphere(),
@@ -638,8 +719,22 @@ mod tests {
         )
         .unwrap();
         let room = 1_200_000_000;
-        assert!(check_memory_within(&[&small, &small], 1, "--grid", Some(room)).is_ok());
-        let e = check_memory_within(&[&small, &small], 2, "--grid", Some(room)).unwrap_err();
+        assert!(check_memory_within(
+            &[&small, &small],
+            1,
+            "--grid",
+            &FieldChoice::None,
+            Some(room)
+        )
+        .is_ok());
+        let e = check_memory_within(
+            &[&small, &small],
+            2,
+            "--grid",
+            &FieldChoice::None,
+            Some(room),
+        )
+        .unwrap_err();
         assert!(e.to_string().contains("--jobs 2"), "{e}");
     }
 

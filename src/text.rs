@@ -86,9 +86,36 @@ pub fn power_law(k1: f64, k2: f64, k3: f64) -> String {
     )
 }
 
+/// User text (a file's name or contents, a value given) made safe to echo to a terminal:
+/// control characters written as escapes (`\u{1b}`, `\n`, `\0`), so that no escape sequence
+/// from a file or a name reaches the terminal, and at most `max` characters, "..." beyond.
+pub fn printable(text: &str, max: usize) -> String {
+    let mut out = String::new();
+    for (i, c) in text.chars().enumerate() {
+        if i == max {
+            out.push_str("...");
+            break;
+        }
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn printable_escapes_control_characters_and_clips() {
+        assert_eq!(printable("a\u{1b}]0;x\u{7}b", 80), "a\\u{1b}]0;x\\u{7}b");
+        assert_eq!(printable("x\0\n", 80), "x\\u{0}\\n");
+        assert_eq!(printable("abcdef", 3), "abc...");
+        assert_eq!(printable("Δγ é", 80), "Δγ é");
+    }
 
     #[test]
     fn huge_and_tiny_values_are_short() {

@@ -81,10 +81,14 @@ impl ContactCapture {
         }
     }
 
-    /// The snapshots taken, the force minimum last.
-    pub fn into_snapshots(self) -> Vec<Snapshot> {
+    /// The snapshots taken, the force minimum last (labelled as only the lowest force seen
+    /// where the run did not reach the minimum, `min_reached` false).
+    pub fn into_snapshots(self, min_reached: bool) -> Vec<Snapshot> {
         let mut all = self.taken;
-        all.extend(self.minimum);
+        all.extend(self.minimum.map(|mut m| {
+            m.label = super::fields::minimum_label(min_reached).into();
+            m
+        }));
         all
     }
 }

@@ -522,6 +522,7 @@ mod tests {
             f_ad_bar: Some(f),
             min_reached: true,
             min_resolved: true,
+            withheld: None,
             lowest_f_bar: Some(-f),
             d_bar_at_lowest: Some(-0.3),
             c_bar_at_min: Some(0.8 * (1.0 + 1.0 / n_d)),

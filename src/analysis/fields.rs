@@ -72,6 +72,43 @@ impl FieldChoice {
     pub fn is_none(&self) -> bool {
         *self == FieldChoice::None
     }
+
+    /// How many states' fields a run that records about `states` states keeps (the force
+    /// minimum's among them).
+    pub fn kept_states(&self, states: usize) -> usize {
+        match self {
+            FieldChoice::None => 0,
+            FieldChoice::Minimum => 1,
+            FieldChoice::Every(k) => states / (*k).max(1) + 2,
+            FieldChoice::States(v) => v.len() + 1,
+        }
+    }
+
+    /// The memory the kept fields need on a grid of `elements` whose run records about
+    /// `states` states (bytes; [`FIELD_BYTES_PER_ELEMENT`] per element of each kept state).
+    pub fn memory_estimate(&self, elements: usize, states: usize) -> u64 {
+        (self.kept_states(states) as u64)
+            .saturating_mul(elements as u64)
+            .saturating_mul(FIELD_BYTES_PER_ELEMENT)
+    }
+}
+
+/// Memory one kept state's fields take per grid element (bytes): its contact mask while the
+/// run goes (1), then its pressure and gap in f64 and its contact set (17), and the arrays the
+/// `.npz` is written from (16).
+pub const FIELD_BYTES_PER_ELEMENT: u64 = 34;
+
+/// The label of the lowest state of a run that did not reach the force minimum (it holds no
+/// "force minimum", which names the reached minimum alone).
+pub const LOWEST_NOT_MINIMUM: &str = "lowest force recorded (the run did not reach the minimum)";
+
+/// The label of a run's lowest state: "force minimum" where the run reached it.
+pub fn minimum_label(min_reached: bool) -> &'static str {
+    if min_reached {
+        "force minimum"
+    } else {
+        LOWEST_NOT_MINIMUM
+    }
 }
 
 /// A state chosen for its fields, with its contact mask.
@@ -106,14 +143,29 @@ impl FieldPicks {
         }
     }
 
+    /// The indices `--fields states:…` listed that the run never recorded (it recorded
+    /// fewer states): they have no fields, which the caller says.
+    pub fn unrecorded(&self) -> Vec<usize> {
+        match &self.choice {
+            FieldChoice::States(v) => v.iter().copied().filter(|&i| i >= self.seen).collect(),
+            _ => Vec::new(),
+        }
+    }
+
     /// The states picked, by index, the force minimum among them (once, even where it is
-    /// also an every-k-th or listed state).
-    pub fn into_picks(self) -> Vec<Pick> {
+    /// also an every-k-th or listed state). Where the run did not reach the force minimum
+    /// (`min_reached` false), the lowest state is labelled [`LOWEST_NOT_MINIMUM`] instead:
+    /// it is only the lowest force seen.
+    pub fn into_picks(self, min_reached: bool) -> Vec<Pick> {
         let mut all = self.picked;
-        if let Some(m) = self.minimum {
+        if let Some(mut m) = self.minimum {
+            let label = minimum_label(min_reached);
             match all.iter_mut().find(|p| p.index == m.index) {
-                Some(p) => p.label = format!("{}, force minimum", p.label),
-                None => all.push(m),
+                Some(p) => p.label = format!("{}, {label}", p.label),
+                None => {
+                    m.label = label.into();
+                    all.push(m)
+                }
             }
         }
         all.sort_by_key(|p| p.index);
@@ -259,7 +311,7 @@ mod tests {
             };
             picks.observe(&state(*f, phase), &[i % 2 == 0]);
         }
-        let p = picks.into_picks();
+        let p = picks.into_picks(true);
         let idx: Vec<usize> = p.iter().map(|p| p.index).collect();
         assert_eq!(idx, vec![0, 2, 3, 4]);
         assert_eq!(p[2].label, "force minimum");
@@ -267,7 +319,13 @@ mod tests {
         for (i, f) in forces.iter().enumerate() {
             only.observe(&state(*f, Phase::Pulloff), &[i == 3]);
         }
-        let p = only.into_picks();
+        let p = only.clone().into_picks(true);
         assert_eq!((p.len(), p[0].index, p[0].mask.clone()), (1, 3, vec![true]));
+        assert_eq!(p[0].label, "force minimum");
+        // A run that stopped before its minimum: its lowest state is not called one.
+        let p = only.into_picks(false);
+        assert_eq!((p.len(), p[0].index), (1, 3));
+        assert_eq!(p[0].label, LOWEST_NOT_MINIMUM);
+        assert!(!p[0].label.contains("force minimum"));
     }
 }

@@ -2,10 +2,12 @@
 //! cost and what to warn about. Built from a model and its outcome; `output` only writes it.
 
 use super::convergence;
-use crate::model::{Model, Onsets};
+use crate::model::{Model, Onsets, MIN_MAP_SPACINGS_AT_MINIMUM};
 use crate::solver::cost::CostAccount;
 use crate::solver::window::Refinement;
+use crate::solver::State;
 use crate::solver::{protocol::RegridEvent, Outcome};
+use crate::text::compact;
 use serde::Serialize;
 use std::path::Path;
 
@@ -49,6 +51,12 @@ pub struct RunReport {
     /// the lowest state seen is not it. No adhesive force is estimated from such a run.
     #[serde(default = "resolved")]
     pub min_resolved: bool,
+    /// Why the adhesive force is withheld although the run reached the force minimum: a
+    /// height map too coarse for the contact there (fewer than
+    /// [`crate::model::MIN_MAP_SPACINGS_AT_MINIMUM`] map spacings across its minor axis).
+    /// `f_ad_bar` is then null. Absent where nothing is withheld.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub withheld: Option<String>,
     /// The lowest F̄ recorded (dimensionless), minimum or not; null if no state was recorded.
     pub lowest_f_bar: Option<f64>,
     /// d̄ of that state.
@@ -147,6 +155,7 @@ impl RunReport {
         // 2b/Δx is a count of elements (half-integers on an aligned mesh): rounded to 1e-6 so
         // that it does not read 25.999999999999996.
         let n_d = min.map(|s| (2e6 * s.b_axis / s.dx).round() / 1e6);
+        let withheld = min.and_then(|s| map_too_coarse(model, s));
         let unresolved = step_warning(model, outcome);
         let min_resolved = unresolved.is_none();
         let warnings = n_d
@@ -154,6 +163,7 @@ impl RunReport {
             .and_then(|n| convergence::coarse_grid_warning(ratio, n))
             .into_iter()
             .chain(unresolved)
+            .chain(withheld.clone())
             .chain(outcome.warnings.iter().cloned())
             .collect();
         RunReport {
@@ -168,9 +178,10 @@ impl RunReport {
             mesh_angle_deg: model.mesh.degrees,
             apex_offset: [model.apex_offset.0, model.apex_offset.1],
             sigma_c: model.sigma_c,
-            f_ad_bar: min.map(|s| -s.f_bar),
+            f_ad_bar: min.filter(|_| withheld.is_none()).map(|s| -s.f_bar),
             min_reached,
             min_resolved,
+            withheld,
             lowest_f_bar: lowest.map(|s| s.f_bar),
             d_bar_at_lowest: lowest.map(|s| s.d_bar),
             c_bar_at_min: min.map(|s| s.c_bar),
@@ -203,6 +214,27 @@ impl RunReport {
     pub fn dx_bar_at_min(&self, length_scale: f64) -> Option<f64> {
         self.dx_at_min.map(|dx| dx / length_scale)
     }
+}
+
+/// For a height map, why its force minimum `at_min` cannot be trusted: the contact there spans
+/// fewer than [`MIN_MAP_SPACINGS_AT_MINIMUM`] map spacings across its minor axis, so the solver
+/// worked on the map's facets (the check before the run predicts this from the closed form;
+/// this one measures it). `None` where the map resolves it, and for the other shapes.
+fn map_too_coarse(model: &Model, at_min: &State) -> Option<String> {
+    let spacing = model.scene.indenter.map_spacing()?;
+    let width = 2.0 * at_min.b_axis;
+    let across = width / spacing;
+    (across < MIN_MAP_SPACINGS_AT_MINIMUM).then(|| {
+        format!(
+            "height map too coarse for its contact: at the force minimum the contact spans \
+             {across:.1} map spacings across its minor axis (2b = {}; at least \
+             {MIN_MAP_SPACINGS_AT_MINIMUM} are needed), so the solver worked on the map's flat \
+             facets instead of the surface's shape: the adhesive force is withheld; give a map \
+             of --spacing {} or finer over the same area",
+            compact(width),
+            compact(width / MIN_MAP_SPACINGS_AT_MINIMUM)
+        )
+    })
 }
 
 /// With [`Onsets::None`], a warning if the steps around the force minimum detached
@@ -238,4 +270,63 @@ fn step_warning(model: &Model, outcome: &Outcome) -> Option<String> {
             100.0 * jump / f_min
         )
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::ModelOptions;
+    use crate::scene::height_map::HeightMap;
+    use crate::scene::{Indenter, MeasuredSurface, Scene};
+    use std::sync::Arc;
+
+    /// A model of the sphere (x² + y²)/2 given as a 161 × 161 map of spacing 0.05 (length),
+    /// E* = Δγ = 1: the contact at the force minimum is predicted about 61 spacings wide.
+    fn sphere_map_model() -> Model {
+        let (n, s) = (161usize, 0.05);
+        let c = (n - 1) as f64 / 2.0;
+        let heights = (0..n * n)
+            .map(|k| {
+                let (x, y) = (((k % n) as f64 - c) * s, ((k / n) as f64 - c) * s);
+                0.5 * (x * x + y * y)
+            })
+            .collect();
+        let map = HeightMap::new(n, n, s, heights).unwrap();
+        let surface = MeasuredSurface::new(map, "sphere").unwrap();
+        let scene = Scene::with_indenter(Indenter::HeightMap(Arc::new(surface)), 1.0, 1.0).unwrap();
+        Model::build(&scene, &ModelOptions::default()).unwrap()
+    }
+
+    #[test]
+    fn a_height_map_too_coarse_for_the_measured_contact_withholds_the_answer() {
+        let model = sphere_map_model();
+        // A contact 2b = 0.5 wide spans 10 map spacings: withheld, saying why and what helps.
+        let narrow = State {
+            b_axis: 0.25,
+            ..State::default()
+        };
+        let why = map_too_coarse(&model, &narrow).expect("10 spacings are too few");
+        assert!(
+            why.contains("10.0 map spacings") && why.contains("withheld"),
+            "{why}"
+        );
+        assert!(why.contains("--spacing 0.03125 or finer"), "{why}");
+        // 2b = 1 spans 20: the answer stands.
+        let wide = State {
+            b_axis: 0.5,
+            ..State::default()
+        };
+        assert_eq!(map_too_coarse(&model, &wide), None);
+    }
+
+    #[test]
+    fn other_shapes_are_not_judged_as_maps() {
+        let scene = Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap();
+        let model = Model::build(&scene, &ModelOptions::default()).unwrap();
+        let tiny = State {
+            b_axis: 1e-9,
+            ..State::default()
+        };
+        assert_eq!(map_too_coarse(&model, &tiny), None);
+    }
 }

@@ -1,6 +1,9 @@
 //! An invalid model choice, named as the flag that sets it.
 
-use super::limits::{MAX_GRID, MIN_ELEMENTS_AT_MINIMUM, MIN_ELEMENTS_FIRST_CONTACT, MIN_GRID};
+use super::limits::{
+    MAX_GRID, MIN_ELEMENTS_AT_MINIMUM, MIN_ELEMENTS_FIRST_CONTACT, MIN_GRID,
+    MIN_MAP_SPACINGS_AT_MINIMUM,
+};
 use crate::text::compact;
 use thiserror::Error;
 
@@ -43,6 +46,29 @@ pub enum ModelError {
         at_minimum: f64,
         /// The grid that resolves it, or what else to change.
         advice: String,
+    },
+    /// A height map too coarse for the contact it must resolve: too few map spacings across
+    /// the contact's minor axis at the force minimum.
+    #[error(
+        "--height-map: the {map} is too coarse for the contact it must resolve: at the force \
+         minimum the contact is expected to span {} map spacings across its minor axis \
+         (2b ≈ {}; at least {MIN_MAP_SPACINGS_AT_MINIMUM} are needed, or the solver works on \
+         the map's flat facets instead of the surface's shape and its answer is wrong); give a \
+         map of --spacing {} or finer over the same area, or a scene whose contact is larger \
+         (the contact scales as c_r = (9π Re² Δγ / (4E*))^(1/3), here {}: a larger Δγ / E*)",
+        compact_count(*at_minimum), compact(*width), compact(*needed_spacing), compact(*c_r)
+    )]
+    MapTooCoarse {
+        /// The map in words (its file, nodes and spacing).
+        map: String,
+        /// Predicted map spacings across the minor axis at the force minimum.
+        at_minimum: f64,
+        /// The predicted width 2b there (length).
+        width: f64,
+        /// The spacing that would resolve it (length).
+        needed_spacing: f64,
+        /// The contact length scale c_r (length).
+        c_r: f64,
     },
     /// A scale of the problem is not a number the backend can hold.
     #[error(

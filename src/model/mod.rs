@@ -3,7 +3,7 @@
 //! a caller chooses), `grid` (the grid against the scene) and `steps` (the load path); this
 //! module builds the model.
 
-use crate::scene::{FirstContact, Scene};
+use crate::scene::{FirstContact, PullOffHint, Scene};
 use crate::setup::Preconditioner;
 use crate::text::compact;
 
@@ -151,13 +151,18 @@ impl Model {
             .indenter
             .first_contact(c0_len, scene.e_star, scene.work_of_adhesion)
             .map_err(|e| invalid("--indenter", scene.indenter.describe(), e))?;
-        // The box around the (rotated) initial contact, plus the margin.
+        // The box around the (rotated) initial contact, plus the margin: at least
+        // [`MIN_FREE_ELEMENTS`] whole elements on each side along x (on the smallest grids the
+        // default margin is less than one element, and the adhesive first contact, larger than
+        // Hertz's, reaches the domain's edge).
         let (box_x, box_y) = mesh.bounding_half_widths(initial.a, initial.b);
-        let half_x = box_x * (1.0 + opt.margin);
+        let free = MIN_FREE_ELEMENTS as f64;
+        let margin = opt.margin.max(2.0 * free / (opt.nx as f64 - 2.0 * free));
+        let half_x = box_x * (1.0 + margin);
         let dx = 2.0 * half_x / opt.nx as f64;
         // Elements the initial contact and its margin span along y (the 1e-9 absorbs round-off
         // when the box is square and this equals nx).
-        let need_y = (2.0 * box_y * (1.0 + opt.margin) / dx - 1e-9).ceil() as usize;
+        let need_y = (2.0 * box_y * (1.0 + margin) / dx - 1e-9).ceil() as usize;
         let ny = match opt.ny {
             Some(ny) if ny < need_y => {
                 return Err(invalid(
@@ -176,6 +181,7 @@ impl Model {
         let hint = steps::hint_for(scene, opt.hint);
         let load = LoadPath::new(initial.d, scales.approach, opt.steps, opt.final_d_bar, hint)?;
         check_resolution(scene, opt, hint, initial.b, dx)?;
+        check_map_resolution(scene, hint)?;
         check_covered(scene, &mesh, opt, (opt.nx, ny), dx)?;
         let model = Model {
             scene: scene.clone(),
@@ -193,7 +199,7 @@ impl Model {
             },
             preconditioner: opt.preconditioner,
             max_sweeps: opt.max_sweeps,
-            margin: opt.margin,
+            margin,
             onsets: opt.onsets,
             loose_rounds: opt.loose_rounds,
             spread_detached: opt.loose_rounds,
@@ -260,6 +266,18 @@ impl Model {
     /// Load steps the pull-off is expected to take (see [`LoadPath::expected_steps`]).
     pub fn expected_steps(&self) -> usize {
         self.load.expected_steps()
+    }
+
+    /// States the run is expected to record: a state per load step, and the detachment
+    /// onsets it locates (about 150 near the minimum in the study's runs up to 2048×1024; with
+    /// `--onsets all`, every ring of the front, up to about 5 per element along the grid).
+    pub fn expected_states(&self) -> usize {
+        let onsets = match self.onsets {
+            Onsets::None => 0,
+            Onsets::NearMinimum => 200,
+            Onsets::All => 5 * self.nx.max(self.ny),
+        };
+        self.expected_steps().saturating_add(onsets)
     }
 
     /// The memory this model's run needs (bytes): [`BYTES_FIXED`] plus
@@ -367,6 +385,28 @@ impl Model {
 
 /// Refuse a domain that reaches beyond the indenter's known heights (a height map's edge),
 /// naming `--height-map` and what would fit.
+/// Refuse a height map whose spacing is too coarse for the contact at the force minimum
+/// (fewer than [`MIN_MAP_SPACINGS_AT_MINIMUM`] spacings across its minor axis, from the
+/// closed form's b̄ there); other shapes pass.
+fn check_map_resolution(scene: &Scene, hint: PullOffHint) -> Result<(), ModelError> {
+    let Some(spacing) = scene.indenter.map_spacing() else {
+        return Ok(());
+    };
+    let c_r = scene.scales().length;
+    let width = 2.0 * hint.b_bar_at_min * c_r;
+    let at_minimum = width / spacing;
+    if at_minimum >= MIN_MAP_SPACINGS_AT_MINIMUM {
+        return Ok(());
+    }
+    Err(ModelError::MapTooCoarse {
+        map: scene.indenter.describe(),
+        at_minimum,
+        width,
+        needed_spacing: width / MIN_MAP_SPACINGS_AT_MINIMUM,
+        c_r,
+    })
+}
+
 fn check_covered(
     scene: &Scene,
     mesh: &MeshAngle,

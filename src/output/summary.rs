@@ -181,6 +181,20 @@ impl Summary {
                 }
                 s += "\n";
             }
+            _ if self.min_reached && self.runs.iter().any(|r| r.withheld.is_some()) => {
+                let grids: Vec<&str> = self
+                    .runs
+                    .iter()
+                    .filter(|r| r.withheld.is_some())
+                    .map(|r| r.grid.as_str())
+                    .collect();
+                s += &format!(
+                    "NO ADHESIVE FORCE: the {} run reached the force minimum, but the answer is \
+                     withheld: the height map is too coarse for the contact there (see the \
+                     WARNING below)\n",
+                    grids.join(", ")
+                );
+            }
             _ if self.indenter.is_some() && self.min_reached => {
                 s += &self.indenter_text();
             }
@@ -211,8 +225,9 @@ impl Summary {
                     None => "no state was recorded".to_string(),
                 };
                 let why = if self.complete {
-                    "the run stopped at its final approach: lower --final-d (or leave it out) to \
-                     pass the minimum"
+                    "the run ran to its final approach without the force turning (given by \
+                     --final-d, or by default where the closed form puts the end of contact): \
+                     a lower --final-d passes the minimum"
                 } else {
                     "the run stopped early (see INCOMPLETE below)"
                 };

@@ -224,7 +224,10 @@ fn run_one(backend: &BackendRequest, mut job: Job, watch: &dyn Watch) -> Result<
         super::provenance::backend_json(backend, &summary.runs),
     ));
     summary.write_json(&json).map_err(write_error("--out"))?;
-    let rows = contour_rows(&job.model, &capture.into_snapshots());
+    let rows = contour_rows(
+        &job.model,
+        &capture.into_snapshots(run.outcome.min_reached()),
+    );
     crate::output::file::write_csv(&contours, None, rows.clone()).map_err(write_error("--out"))?;
     let error = run
         .outcome

@@ -550,7 +550,7 @@ pub fn reference(req: &ReferenceRequest, watch: &dyn Watch) -> Result<ReferenceD
     }
     req.backend.check()?;
     // Every ratio's ladder, checked before any work.
-    let available = crate::plan::available_memory();
+    let available = crate::plan::available_memory().map_err(input)?;
     let ladders = req
         .ratios
         .iter()

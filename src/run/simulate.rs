@@ -9,7 +9,7 @@ use super::pulloff::{pulloff, Pulloff, StatesFile};
 use super::{failed, input, provenance, RunError, Watch};
 use crate::analysis::capture::MaskObserver;
 use crate::analysis::estimate::{self, AdhesiveResult};
-use crate::analysis::fields::{FieldChoice, FieldPicks, StateFields};
+use crate::analysis::fields::{FieldChoice, FieldPicks, StateFields, LOWEST_NOT_MINIMUM};
 use crate::model::{Measure, Model, ModelOptions, Onsets};
 use crate::output::provenance::Provenance;
 use crate::output::summary::Summary;
@@ -143,7 +143,7 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
         Mode::Single => "--grid",
         _ => "--extrapolate-grids",
     };
-    plan::check_memory(&refs, 1, flag).map_err(input)?;
+    plan::check_memory_with_fields(&refs, 1, flag, &req.fields).map_err(input)?;
     let (outs, _claimed) = match &req.sink {
         Sink::Files { out, summary } => {
             let outs = output_paths(req, out, &models)?;
@@ -216,14 +216,22 @@ fn write_fields(
             return (written, Some(e.with_flag("--out").to_string()));
         }
         written.push(npz);
+        let lowest = |f: &&StateFields| f.label.contains(LOWEST_NOT_MINIMUM);
+        let minimum = |f: &&StateFields| f.label.contains("force minimum");
         if let Some(min) = run
             .fields
             .iter()
-            .find(|f| f.label.contains("force minimum"))
+            .find(minimum)
+            .or_else(|| run.fields.iter().find(lowest))
         {
             let chart = names::pressure_chart(out);
+            let what = if minimum(&min) {
+                "the force minimum"
+            } else {
+                "the lowest force recorded (not the minimum: the run did not reach it)"
+            };
             let title = format!(
-                "p at the force minimum (state {}): F̄ = {:.4}, c̄ = {:.3}, {}×{}",
+                "p at {what} (state {}): F̄ = {:.4}, c̄ = {:.3}, {}×{}",
                 min.index, min.state.f_bar, min.state.c_bar, run.grid.0, run.grid.1
             );
             if let Err(e) = pressure_chart::write_pressure_svg(&chart, min, &title) {
@@ -333,7 +341,19 @@ fn run_grids(
         )?;
         run.report.device = Some(any.device_summary());
         let mut fields = Vec::new();
-        for f in super::fields::rebuild(&model, picks.into_picks()) {
+        let unrecorded = picks.unrecorded();
+        if !unrecorded.is_empty() {
+            let list: Vec<String> = unrecorded.iter().map(|i| i.to_string()).collect();
+            watch.warning(&format!(
+                "--fields: no fields for state(s) {}: the {}×{} run recorded {} states \
+                 (numbered from 0)",
+                list.join(", "),
+                model.nx,
+                model.ny,
+                run.outcome.states.len()
+            ));
+        }
+        for f in super::fields::rebuild(&model, picks.into_picks(run.outcome.min_reached())) {
             match f {
                 Ok(f) => fields.push(f),
                 Err(e) => watch.warning(&e.to_string()),

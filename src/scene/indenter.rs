@@ -19,8 +19,11 @@ pub const MAX_EXPONENT: f64 = 64.0;
 /// infinite pressure at its tip and no finite peak pressure to check scales with.
 pub const MIN_EXPONENT: f64 = 1.25;
 
-/// Height of the flat punch's walls above its face, in punch radii (dimensionless): far
-/// beyond any gap the half-space can close, so that nothing outside the face ever touches.
+/// Height of the flat punch's walls above its face, in the larger of its radius and Kendall's
+/// approach at pull-off (dimensionless): far beyond any gap the half-space can close (the
+/// surface outside the face never rises above the approach, and no run presses beyond a few
+/// Kendall approaches), so that nothing outside the face ever touches. In radii alone it was
+/// not: a punch of radius 1e-7 with E* = Δγ = 1 is pressed 4000 radii deep.
 const PUNCH_WALL: f64 = 1e3;
 
 /// A rigid indenter; lengths in the user's unit L.
@@ -196,6 +199,14 @@ impl Indenter {
         }
     }
 
+    /// The node spacing of a height map (length); `None` for the other shapes.
+    pub fn map_spacing(&self) -> Option<f64> {
+        match *self {
+            Indenter::HeightMap(ref m) => Some(m.map.spacing()),
+            _ => None,
+        }
+    }
+
     /// Whether the shape's height is known over the rectangle |x| ≤ `half_x`, |y| ≤ `half_y`
     /// (length) about the apex, in its own axes: everywhere but for a height map.
     pub fn covers(&self, half_x: f64, half_y: f64) -> bool {
@@ -206,8 +217,10 @@ impl Indenter {
     }
 
     /// Height h (length) at (x, y) (length) from the apex, in the shape's own axes (+∞
-    /// outside a height map: [`Indenter::covers`] keeps a model inside it).
-    pub fn height(&self, x: f64, y: f64) -> f64 {
+    /// outside a height map: [`Indenter::covers`] keeps a model inside it), pressed into a
+    /// half-space of E* (force/length²) with Δγ (force/length), which set how high the flat
+    /// punch's walls must stand.
+    pub fn height(&self, x: f64, y: f64, e_star: f64, work_of_adhesion: f64) -> f64 {
         match *self {
             Indenter::HeightMap(ref m) => m.height(x, y).unwrap_or(f64::INFINITY),
             Indenter::Ellipsoid { r1, r2 } => x * x / (2.0 * r1) + y * y / (2.0 * r2),
@@ -216,7 +229,7 @@ impl Indenter {
                 if x * x + y * y < radius * radius {
                     0.0
                 } else {
-                    PUNCH_WALL * radius
+                    PUNCH_WALL * radius.max(kendall_approach(radius, e_star, work_of_adhesion))
                 }
             }
         }
@@ -381,7 +394,7 @@ mod tests {
             scale: 1.0 / (2.0 * r),
         };
         for (x, y) in [(0.3, -0.2), (1.0, 2.0), (0.0, 0.0)] {
-            let (a, b) = (sphere.height(x, y), law.height(x, y));
+            let (a, b) = (sphere.height(x, y, 2.0, 0.1), law.height(x, y, 2.0, 0.1));
             assert!((a - b).abs() <= 1e-14 * (1.0 + a), "{a} vs {b}");
         }
         let (s, l) = (sphere.scales(2.0, 0.1), law.scales(2.0, 0.1));
@@ -424,8 +437,13 @@ mod tests {
         assert_eq!(s.length, 2.0);
         assert!((s.force - (8.0 * PI * 3.0 * 0.5 * 8.0f64).sqrt()).abs() < 1e-12);
         assert!((s.approach - s.force / (2.0 * 3.0 * 2.0)).abs() < 1e-12);
-        assert_eq!(p.height(1.9, 0.0), 0.0);
-        assert!(p.height(2.1, 0.0) > 100.0);
+        assert_eq!(p.height(1.9, 0.0, 3.0, 0.5), 0.0);
+        assert!(p.height(2.1, 0.0, 3.0, 0.5) > 100.0);
+        // A tiny punch is pressed far deeper than its radius: its wall clears the approach.
+        let tiny = Indenter::FlatPunch { radius: 1e-7 };
+        let d = tiny.scales(1.0, 1.0).approach;
+        assert!(d > 1e3 * 1e-7, "{d}");
+        assert!(tiny.height(2e-7, 0.0, 1.0, 1.0) >= 1e3 * d);
     }
 
     #[test]

@@ -210,7 +210,8 @@ impl Scene {
 
     /// Indenter height h(x, y) (length) at (x, y) (length) from the apex, in its own axes.
     pub fn profile(&self, x: f64, y: f64) -> f64 {
-        self.indenter.height(x, y)
+        self.indenter
+            .height(x, y, self.e_star, self.work_of_adhesion)
     }
 
     /// The normalisation scales of physics §2 (see [`Indenter::scales`]).

@@ -74,6 +74,18 @@ pub enum SolverError {
         /// Elements attached in the last sweep.
         attached: usize,
     },
+    /// The first press touched nothing: the indenter as sampled on the grid does not reach
+    /// the half-space where its closed form puts the first contact.
+    #[error(
+        "no element came into contact at the first press (d̄ = {d_bar:.5}): the indenter as \
+         sampled at the elements' centres does not reach the half-space there (a height map \
+         too coarse for its contact, or a shape narrower than an element); nothing can be \
+         computed from this run"
+    )]
+    NoFirstContact {
+        /// Approach of the first press (dimensionless).
+        d_bar: f64,
+    },
     /// The run was stopped from outside (the observer of its states asked to stop).
     #[error("interrupted: the run was asked to stop")]
     Interrupted,

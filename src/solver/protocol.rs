@@ -467,6 +467,9 @@ fn run_inner<B: Backend>(
         model.load.d0,
         &eq,
     )?;
+    if state.n_contact == 0 {
+        return Err(SolverError::NoFirstContact { d_bar: state.d_bar });
+    }
     let held = state.clone();
     out.emit(backend, &fields.c, state, &mut eq, false)?;
     let mut run = Progress {

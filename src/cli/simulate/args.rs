@@ -17,17 +17,17 @@ pub struct Args {
     /// The indenter (--indenter and its shape's parameters).
     #[command(flatten)]
     pub shape: IndenterArgs,
-    /// Axis ratio R1/R2 of the ellipsoid, in [1, 1000] (1 is a sphere). Ignored if --r1 is
-    /// given.
-    #[arg(long, default_value_t = 5.0)]
-    pub ratio: f64,
+    /// Axis ratio R1/R2 of the ellipsoid, in [1, 1000] (1 is a sphere) [default: 5]. Not
+    /// with --r1, which sets it.
+    #[arg(long)]
+    pub ratio: Option<f64>,
     /// Radius of curvature along x, the major axis (length L, in [1e-30, 1e30], R2 ≤ R1 ≤
     /// 1000 R2). Overrides --ratio.
     #[arg(long)]
     pub r1: Option<f64>,
-    /// Radius of curvature along y, the minor axis (length L, in [1e-30, 1e30]).
-    #[arg(long, default_value_t = 1.0)]
-    pub r2: f64,
+    /// Radius of curvature along y, the minor axis (length L, in [1e-30, 1e30]) [default: 1].
+    #[arg(long)]
+    pub r2: Option<f64>,
     /// Effective modulus E* = E/(1−ν²) of the half-space (force/length², F/L², in
     /// [1e-30, 1e30]).
     #[arg(long, default_value_t = 1.0)]
@@ -49,9 +49,10 @@ pub struct Args {
     #[arg(long)]
     pub grid_y: Option<usize>,
     /// Mean radius c̄0 of the initial non-adhesive contact (in c_r, in [1, 20]): the JKR
-    /// branch is traced for all c̄ ≤ c̄0.
-    #[arg(long, default_value_t = 1.5)]
-    pub start_radius: f64,
+    /// branch is traced for all c̄ ≤ c̄0 [default: 1.5]. Not for the flat punch, whose first
+    /// contact is its face.
+    #[arg(long)]
+    pub start_radius: Option<f64>,
     /// Load steps from the initial approach d̄0 to the expected end of contact (1 to 100000)
     /// [default: 200; 20 with --measure adhesive-force without --regrid, whose answer does not
     /// depend on them: the steps that can hold the minimum are searched for their onsets].

@@ -24,17 +24,28 @@ pub const DEFAULT_GRID: usize = 256;
 impl Args {
     /// The scene of these arguments.
     pub fn scene(&self) -> Result<Scene, CliError> {
+        use IndenterKind::*;
         let (e, w) = (self.e_star, self.work_of_adhesion);
+        self.shape.refuse_foreign(&[
+            ("--ratio", self.ratio.is_some(), &[Ellipsoid]),
+            ("--r1", self.r1.is_some(), &[Ellipsoid]),
+            ("--r2", self.r2.is_some(), &[Ellipsoid]),
+            (
+                "--start-radius",
+                self.start_radius.is_some(),
+                &[Ellipsoid, PowerLaw, HeightMap],
+            ),
+        ])?;
+        if let (Some(_), Some(_)) = (self.ratio, self.r1) {
+            return Err(super::input(
+                "--ratio and --r1 both set R1/R2: give one (--r1 with --r2, or --ratio)",
+            ));
+        }
+        let r2 = self.r2.unwrap_or(1.0);
         match (self.shape.other_shape()?, self.r1) {
-            (None, Some(r1)) => Scene::new(r1, self.r2, e, w),
-            (None, None) => Scene::from_ratio(self.ratio, self.r2, e, w),
-            (Some(shape), Some(_)) => {
-                return Err(super::input(format!(
-                    "--r1 is for --indenter ellipsoid, not {}",
-                    shape.name()
-                )))
-            }
-            (Some(shape), None) => Scene::with_indenter(shape, e, w),
+            (None, Some(r1)) => Scene::new(r1, r2, e, w),
+            (None, None) => Scene::from_ratio(self.ratio.unwrap_or(5.0), r2, e, w),
+            (Some(shape), _) => Scene::with_indenter(shape, e, w),
         }
         .map_err(super::input)
     }
@@ -86,7 +97,7 @@ impl Args {
         ModelOptions {
             nx: self.grid.unwrap_or(DEFAULT_GRID),
             ny: self.grid_y,
-            start_radius_bar: self.start_radius,
+            start_radius_bar: self.start_radius.unwrap_or(1.5),
             steps: self.steps.unwrap_or(jkrbem::model::default_steps(
                 self.measure.unwrap_or(Measure::Curve),
                 self.onsets.unwrap_or(Onsets::NearMinimum),

@@ -157,6 +157,21 @@ pub enum HeightMapError {
         /// 1-based line number of the first data row.
         first_line: usize,
     },
+    /// A text row that looks written with decimal commas ("1,5 2,5"): its values would be
+    /// read as twice as many columns.
+    TextDecimalComma {
+        /// Where the map came from.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+        /// The first value that holds a comma between digits (shortened if very long).
+        token: String,
+    },
+    /// The file is a zip archive (NumPy's `.npz`), not one array.
+    Archive {
+        /// Where the map came from.
+        file: String,
+    },
     /// A text value is not a number.
     TextBadValue {
         /// Where the map came from.
@@ -178,7 +193,7 @@ impl fmt::Display for Origin<'_> {
         if self.0.is_empty() {
             f.write_str("height map")
         } else {
-            write!(f, "height map '{}'", self.0)
+            write!(f, "height map '{}'", crate::text::printable(self.0, 200))
         }
     }
 }
@@ -242,10 +257,11 @@ impl fmt::Display for HeightMapError {
             ),
             Self::Spacing { file, spacing } => write!(
                 f,
-                "{}: the lattice spacing {spacing} cannot be used; it must be a finite \
+                "{}: the lattice spacing {} cannot be used; it must be a finite \
                  length between {MIN_SPACING:e} and {MAX_SPACING:e}, in the same unit as \
                  the heights",
-                Origin(file)
+                Origin(file),
+                crate::text::compact(*spacing)
             ),
             Self::NonFiniteHeight {
                 file,
@@ -355,6 +371,18 @@ impl fmt::Display for HeightMapError {
                  values",
                 Origin(file)
             ),
+            Self::TextDecimalComma { file, line, token } => write!(
+                f,
+                "{}: line {line}: '{token}' looks like a decimal comma (values are separated \
+                 by spaces or commas, so it would be read as two values): write decimal points",
+                Origin(file)
+            ),
+            Self::Archive { file } => write!(
+                f,
+                "{}: the file is a zip archive (a NumPy .npz), not one array: save the heights \
+                 with numpy.save as a .npy, or as a text grid",
+                Origin(file)
+            ),
             Self::TextBadValue {
                 file,
                 line,
@@ -371,11 +399,8 @@ impl fmt::Display for HeightMapError {
 
 impl std::error::Error for HeightMapError {}
 
-/// Shortens user text quoted in an error message to [`MAX_QUOTED_CHARS`].
+/// Shortens user text quoted in an error message to [`MAX_QUOTED_CHARS`], its control
+/// characters escaped ([`crate::text::printable`]).
 pub(super) fn quote_limited(text: &str) -> String {
-    let mut out: String = text.chars().take(MAX_QUOTED_CHARS).collect();
-    if text.chars().nth(MAX_QUOTED_CHARS).is_some() {
-        out.push_str("...");
-    }
-    out
+    crate::text::printable(text, MAX_QUOTED_CHARS)
 }

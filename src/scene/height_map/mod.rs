@@ -239,6 +239,12 @@ impl HeightMap {
         let is_npy = path
             .extension()
             .is_some_and(|ext| ext.eq_ignore_ascii_case("npy"));
+        let is_npz = path
+            .extension()
+            .is_some_and(|ext| ext.eq_ignore_ascii_case("npz"));
+        if is_npz || bytes.starts_with(b"PK\x03\x04") {
+            return Err(HeightMapError::Archive { file: name });
+        }
         if is_npy || bytes.starts_with(npy::NPY_MAGIC) {
             Self::from_npy_bytes(bytes, spacing, &name)
         } else {

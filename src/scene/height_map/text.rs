@@ -20,6 +20,7 @@ pub(super) fn parse(text: &str, name: &str) -> Result<Grid, HeightMapError> {
     for (index, raw_line) in text.lines().enumerate() {
         let line = index + 1;
         let content = raw_line.split('#').next().unwrap_or_default();
+        check_decimal_comma(content, line, name)?;
         let mut count = 0;
         for token in content
             .split(|c: char| c == ',' || c.is_whitespace())
@@ -35,6 +36,14 @@ pub(super) fn parse(text: &str, name: &str) -> Result<Grid, HeightMapError> {
                     token: quote_limited(token),
                 })?;
             heights.push(value);
+            if count > MAX_NODES {
+                // Refused as soon as a row is too long: a one-line file is not read whole.
+                return Err(HeightMapError::Dimensions {
+                    file: name.to_owned(),
+                    nx: count,
+                    ny: ny + 1,
+                });
+            }
         }
         if count == 0 {
             continue;
@@ -66,6 +75,29 @@ pub(super) fn parse(text: &str, name: &str) -> Result<Grid, HeightMapError> {
         });
     }
     Ok(Grid { nx, ny, heights })
+}
+
+/// Refuse a row written with decimal commas: values separated by whitespace of which one holds
+/// a comma between two digits ("1,5 2,5"). A row of commas alone ("1,2,3") or of commas and
+/// spaces ("1, 2, 3") is a list of values.
+fn check_decimal_comma(content: &str, line: usize, name: &str) -> Result<(), HeightMapError> {
+    let fields: Vec<&str> = content.split_whitespace().collect();
+    if fields.len() < 2 {
+        return Ok(());
+    }
+    let between_digits = |f: &&&str| {
+        let b = f.as_bytes();
+        (1..b.len().saturating_sub(1))
+            .any(|i| b[i] == b',' && b[i - 1].is_ascii_digit() && b[i + 1].is_ascii_digit())
+    };
+    match fields.iter().find(between_digits) {
+        Some(token) => Err(HeightMapError::TextDecimalComma {
+            file: name.to_owned(),
+            line,
+            token: quote_limited(token),
+        }),
+        None => Ok(()),
+    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,571 @@
+//! Hardening, round three (issue 41), the inputs: a height map is judged against the contact
+//! it must resolve (refused before any work where the closed form predicts too few map
+//! spacings across the contact at the force minimum); `--fields` counts in the memory check;
+//! the flat punch's walls clear any approach; fields of a run that never reached the force
+//! minimum are not called its; and the small cases: control characters, decimal commas and
+//! `.npz` archives in maps, long numbers echoed, states that do not exist, another indenter's
+//! flags, the smallest grid, and a memory limit that is not a number.
+
+use crate::common;
+
+use common::stderr;
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn run_in(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Output {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_jkrbem"));
+    c.env_remove("JKRBEM_MEMORY_LIMIT")
+        .args(args)
+        .current_dir(dir);
+    for (k, v) in env {
+        c.env(k, v);
+    }
+    c.output().expect("the binary runs")
+}
+
+/// The sphere h = (x² + y²)/2 on `n` × `n` nodes `spacing` apart (heights in the same unit),
+/// written as a text grid to `dir/name`.
+fn sphere_map(dir: &Path, name: &str, n: usize, spacing: f64) {
+    let c = (n - 1) as f64 / 2.0;
+    let mut text = String::new();
+    for j in 0..n {
+        let y = (j as f64 - c) * spacing;
+        let row: Vec<String> = (0..n)
+            .map(|i| {
+                let x = (i as f64 - c) * spacing;
+                format!("{:e}", 0.5 * (x * x + y * y))
+            })
+            .collect();
+        text += &row.join(" ");
+        text.push('\n');
+    }
+    std::fs::write(dir.join(name), text).unwrap();
+}
+
+/// Names in `dir` other than the inputs given.
+fn outputs(dir: &Path, inputs: &[&str]) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| !inputs.contains(&n.as_str()))
+        .collect()
+}
+
+fn summary(dir: &Path, name: &str) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join(name)).unwrap()).unwrap()
+}
+
+fn refused_naming(o: &Output, flag: &str) -> String {
+    let err = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains(flag), "{flag} not named: {err}");
+    err
+}
+
+#[test]
+fn a_map_too_coarse_for_its_contact_is_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    sphere_map(d, "m.txt", 129, 0.06);
+    // E* = 1e3, Δγ = 1e-3: the contact at the minimum is half a map spacing wide.
+    let o = run_in(
+        d,
+        &[
+            "simulate",
+            "--indenter",
+            "height-map",
+            "--height-map",
+            "m.txt",
+            "--spacing",
+            "0.06",
+            "--e-star",
+            "1e3",
+            "--work-of-adhesion",
+            "1e-3",
+            "--grid",
+            "64",
+            "--backend",
+            "cpu",
+            "--out",
+            "r.csv",
+        ],
+        &[],
+    );
+    let err = refused_naming(&o, "--height-map");
+    assert!(
+        err.contains("too coarse for the contact") && err.contains("0.5 map spacings"),
+        "{err}"
+    );
+    assert!(
+        err.contains("--spacing 0.0019"),
+        "the spacing that would do: {err}"
+    );
+    // The same map at --spacing 1e-6 (a contact of 1.3 spacings), and an 8 × 8-node map.
+    let o = run_in(
+        d,
+        &[
+            "simulate",
+            "--indenter",
+            "height-map",
+            "--height-map",
+            "m.txt",
+            "--spacing",
+            "1e-6",
+            "--grid",
+            "64",
+            "--backend",
+            "cpu",
+            "--out",
+            "r.csv",
+        ],
+        &[],
+    );
+    refused_naming(&o, "--height-map");
+    sphere_map(d, "m8.txt", 8, 1.2);
+    let o = run_in(
+        d,
+        &[
+            "simulate",
+            "--indenter",
+            "height-map",
+            "--height-map",
+            "m8.txt",
+            "--spacing",
+            "1.2",
+            "--grid",
+            "32",
+            "--backend",
+            "cpu",
+            "--out",
+            "r.csv",
+        ],
+        &[],
+    );
+    let err = refused_naming(&o, "--height-map");
+    assert!(err.contains("too coarse for the contact"), "{err}");
+    assert_eq!(outputs(d, &["m.txt", "m8.txt"]), Vec::<String>::new());
+}
+
+#[test]
+fn a_map_whose_contact_falls_inside_one_cell_is_refused_and_blames_no_flag_not_given() {
+    // 128 × 128 nodes (an even count: the apex between nodes) at 0.06, E* = 1e3, Δγ = 1e-3.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    sphere_map(d, "m.txt", 128, 0.06);
+    let o = run_in(
+        d,
+        &[
+            "simulate",
+            "--indenter",
+            "height-map",
+            "--height-map",
+            "m.txt",
+            "--spacing",
+            "0.06",
+            "--e-star",
+            "1e3",
+            "--work-of-adhesion",
+            "1e-3",
+            "--grid",
+            "64",
+            "--backend",
+            "cpu",
+            "--out",
+            "r.csv",
+        ],
+        &[],
+    );
+    let err = refused_naming(&o, "--height-map");
+    assert!(!err.contains("--final-d"), "{err}");
+    assert_eq!(outputs(d, &["m.txt"]), Vec::<String>::new());
+}
+
+#[test]
+fn a_resolved_map_gives_the_same_normalised_answer_at_any_scale() {
+    // (x² + y²)/2 with E* = Δγ = 1 at spacing 0.06, and the same problem scaled: E* = 1e3,
+    // Δγ = 1e-3 shrink c_r a hundredfold, so the map's lengths shrink by 100 (heights by 1e4).
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    sphere_map(d, "a.txt", 129, 0.06);
+    sphere_map(d, "b.txt", 129, 0.0006);
+    let common = [
+        "--indenter",
+        "height-map",
+        "--grid",
+        "32",
+        "--measure",
+        "adhesive-force",
+        "--backend",
+        "cpu",
+    ];
+    let run = |map: &str, spacing: &str, scale: &[&str], out: &str| {
+        let mut args = vec!["simulate", "--height-map", map, "--spacing", spacing];
+        args.extend(common);
+        args.extend(scale);
+        let json = format!("{out}.json");
+        args.extend(["--out", out, "--summary", &json]);
+        let o = run_in(d, &args, &[]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        summary(d, &format!("{out}.json"))["runs"][0]["f_ad_bar"]
+            .as_f64()
+            .expect("an answer")
+    };
+    let unit = run("a.txt", "0.06", &[], "a.csv");
+    let scaled = run(
+        "b.txt",
+        "0.0006",
+        &["--e-star", "1e3", "--work-of-adhesion", "1e-3"],
+        "b.csv",
+    );
+    assert!((unit / scaled - 1.0).abs() < 1e-6, "{unit} vs {scaled}");
+    assert!((unit - 0.55).abs() < 0.1, "a 32² sphere: {unit}");
+}
+
+#[test]
+fn the_memory_of_the_fields_kept_is_checked_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let o = run_in(
+        d,
+        &[
+            "simulate",
+            "--ratio",
+            "1",
+            "--grid",
+            "128",
+            "--steps",
+            "100000",
+            "--fields",
+            "every:1",
+            "--backend",
+            "cpu",
+            "--out",
+            "r.csv",
+        ],
+        &[("JKRBEM_MEMORY_LIMIT", "1e8")],
+    );
+    let err = refused_naming(&o, "--fields");
+    assert!(err.contains("GB") && err.contains("every:"), "{err}");
+    // A grid that fits alone but not with the fields of every state.
+    let o = run_in(
+        d,
+        &[
+            "simulate",
+            "--ratio",
+            "1",
+            "--grid",
+            "2048",
+            "--fields",
+            "every:1",
+            "--backend",
+            "cpu",
+            "--out",
+            "r.csv",
+        ],
+        &[("JKRBEM_MEMORY_LIMIT", "2e10")],
+    );
+    refused_naming(&o, "--fields");
+    assert_eq!(outputs(d, &[]), Vec::<String>::new());
+}
+
+#[test]
+fn the_memory_limit_must_be_a_number_of_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    for bad in ["garbage", "nan", "-1", "inf", ""] {
+        let o = run_in(
+            dir.path(),
+            &[
+                "simulate",
+                "--ratio",
+                "1",
+                "--grid",
+                "32",
+                "--backend",
+                "cpu",
+                "--out",
+                "r.csv",
+            ],
+            &[("JKRBEM_MEMORY_LIMIT", bad)],
+        );
+        refused_naming(&o, "JKRBEM_MEMORY_LIMIT");
+    }
+    assert_eq!(outputs(dir.path(), &[]), Vec::<String>::new());
+}
+
+#[test]
+fn a_map_file_too_large_for_memory_is_refused_before_it_is_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    sphere_map(d, "m.txt", 257, 0.03);
+    let size = std::fs::metadata(d.join("m.txt")).unwrap().len();
+    let limit = (3 * size).to_string();
+    let o = run_in(
+        d,
+        &[
+            "simulate",
+            "--indenter",
+            "height-map",
+            "--height-map",
+            "m.txt",
+            "--spacing",
+            "0.03",
+            "--grid",
+            "32",
+            "--backend",
+            "cpu",
+            "--out",
+            "r.csv",
+        ],
+        &[("JKRBEM_MEMORY_LIMIT", &limit)],
+    );
+    let err = refused_naming(&o, "--height-map");
+    assert!(err.contains("memory") && !err.contains("--grid"), "{err}");
+    // One line longer than any map may be is refused at its 16385th value.
+    let line: Vec<&str> = vec!["1"; 20_000];
+    std::fs::write(d.join("line.txt"), line.join(" ")).unwrap();
+    let o = run_in(
+        d,
+        &[
+            "simulate",
+            "--indenter",
+            "height-map",
+            "--height-map",
+            "line.txt",
+            "--spacing",
+            "1",
+            "--backend",
+            "cpu",
+            "--out",
+            "r.csv",
+        ],
+        &[],
+    );
+    let err = refused_naming(&o, "--height-map");
+    assert!(err.contains("16385"), "{err}");
+}
+
+#[test]
+fn a_tiny_flat_punch_runs_like_any_other() {
+    // Radius 1e-7 with E* = Δγ = 1 is pressed 4000 radii deep: its walls must clear that.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let mut answers = Vec::new();
+    for (radius, out) in [("1e-7", "tiny.csv"), ("1", "unit.csv")] {
+        let o = run_in(
+            d,
+            &[
+                "simulate",
+                "--indenter",
+                "flat-punch",
+                "--radius",
+                radius,
+                "--grid",
+                "64",
+                "--backend",
+                "cpu",
+                "--out",
+                out,
+                "--summary",
+                &format!("{out}.json"),
+            ],
+            &[],
+        );
+        assert!(o.status.success(), "radius {radius}: {}", stderr(&o));
+        answers.push(
+            summary(d, &format!("{out}.json"))["runs"][0]["f_ad_bar"]
+                .as_f64()
+                .unwrap(),
+        );
+    }
+    assert!((answers[0] / answers[1] - 1.0).abs() < 1e-6, "{answers:?}");
+}
+
+#[test]
+fn fields_of_a_run_that_never_reached_the_minimum_are_not_called_its() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let o = run_in(
+        d,
+        &[
+            "simulate",
+            "--ratio",
+            "1",
+            "--grid",
+            "32",
+            "--final-d",
+            "0",
+            "--fields",
+            "minimum",
+            "--backend",
+            "cpu",
+            "--out",
+            "f.csv",
+            "--summary",
+            "f.json",
+        ],
+        &[],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(summary(d, "f.json")["min_reached"], false);
+    let file = std::fs::File::open(d.join("f.fields.npz")).unwrap();
+    let mut npz = ndarray_npy::NpzReader::new(file).unwrap();
+    let bytes: ndarray::Array1<u8> = npz.by_name("metadata").unwrap();
+    let meta: serde_json::Value = serde_json::from_slice(bytes.as_slice().unwrap()).unwrap();
+    let labels = meta["labels"].to_string();
+    assert!(labels.contains("lowest force recorded"), "{labels}");
+    assert!(!labels.contains("force minimum"), "{labels}");
+    let svg = std::fs::read_to_string(d.join("f.pressure.svg")).unwrap();
+    assert!(svg.contains("lowest force recorded") && !svg.contains("at the force minimum"));
+}
+
+#[test]
+fn map_files_are_echoed_safely_and_their_format_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let map = |name: &str, spacing: &str| {
+        run_in(
+            d,
+            &[
+                "simulate",
+                "--indenter",
+                "height-map",
+                "--height-map",
+                name,
+                "--spacing",
+                spacing,
+                "--backend",
+                "cpu",
+                "--out",
+                "r.csv",
+            ],
+            &[],
+        )
+    };
+    // Control characters from the file reach the terminal escaped, never raw.
+    std::fs::write(
+        d.join("ctl.txt"),
+        "1 2 3 4\n1 2 \x1b]0;title\x07\x1b[2J\0 4\n",
+    )
+    .unwrap();
+    let o = map("ctl.txt", "1");
+    let err = refused_naming(&o, "--height-map");
+    assert!(
+        !o.stderr.iter().any(|&b| b == 0x1b || b == 0x07 || b == 0),
+        "{err:?}"
+    );
+    assert!(err.contains("\\u{1b}]0;title"), "{err}");
+    // Decimal commas are named as such, not read as twice the columns.
+    std::fs::write(d.join("comma.txt"), "1,5 2,5 3,5 4,5\n".repeat(8)).unwrap();
+    let err = refused_naming(&map("comma.txt", "1"), "--height-map");
+    assert!(
+        err.contains("decimal comma") && err.contains("'1,5'"),
+        "{err}"
+    );
+    // Comma-separated values are a list, as before.
+    std::fs::write(d.join("csv.txt"), "1,2,3,4\n".repeat(4)).unwrap();
+    let err = stderr(&map("csv.txt", "1"));
+    assert!(!err.contains("decimal comma"), "{err}");
+    // A NumPy .npz (a zip archive) is named, not read as text.
+    std::fs::write(d.join("m.npz"), b"PK\x03\x04rest of a zip").unwrap();
+    let err = refused_naming(&map("m.npz", "1"), "--height-map");
+    assert!(
+        err.contains(".npz") && !err.contains("not a number"),
+        "{err}"
+    );
+    // A long number is echoed short, and the spacing's error names --spacing.
+    sphere_map(d, "m.txt", 33, 0.2);
+    let err = refused_naming(&map("m.txt", "1e300"), "--spacing");
+    assert!(
+        err.contains("1e300") && !err.contains("0000000000"),
+        "{err}"
+    );
+}
+
+#[test]
+fn states_that_the_run_never_recorded_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run_in(
+        dir.path(),
+        &[
+            "simulate",
+            "--ratio",
+            "1",
+            "--grid",
+            "32",
+            "--fields",
+            "states:3,999999",
+            "--backend",
+            "cpu",
+            "--out",
+            "f.csv",
+        ],
+        &[],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("no fields for state(s) 999999"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn another_indenter_s_flags_are_refused_not_ignored() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    sphere_map(d, "m.txt", 129, 0.06);
+    let cases: [(&[&str], &str); 6] = [
+        (
+            &[
+                "--indenter",
+                "height-map",
+                "--height-map",
+                "m.txt",
+                "--spacing",
+                "0.06",
+                "--ratio",
+                "7",
+            ],
+            "--ratio",
+        ),
+        (&["--spacing", "-1"], "--spacing"),
+        (&["--height-map", "m.txt"], "--height-map"),
+        (
+            &["--indenter", "flat-punch", "--start-radius", "2"],
+            "--start-radius",
+        ),
+        (&["--indenter", "power-law", "--radius", "2"], "--radius"),
+        (&["--ratio", "2", "--r1", "3"], "--r1"),
+    ];
+    for (flags, flag) in cases {
+        let mut args = vec!["simulate", "--backend", "cpu", "--out", "r.csv"];
+        args.extend(flags);
+        let err = refused_naming(&run_in(d, &args, &[]), flag);
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    assert_eq!(outputs(d, &["m.txt"]), Vec::<String>::new());
+}
+
+#[test]
+fn the_smallest_grid_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    for shape in [
+        &["--ratio", "1"][..],
+        &["--indenter", "flat-punch"][..],
+        &["--indenter", "power-law"][..],
+    ] {
+        let mut args = vec![
+            "simulate",
+            "--grid",
+            "16",
+            "--backend",
+            "cpu",
+            "--out",
+            "g.csv",
+        ];
+        args.extend(shape);
+        let o = run_in(dir.path(), &args, &[]);
+        assert!(o.status.success(), "{shape:?}: {}", stderr(&o));
+        std::fs::remove_file(dir.path().join("g.csv")).unwrap();
+    }
+}
