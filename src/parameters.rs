@@ -61,6 +61,11 @@ pub const PARAMETERS: &[Parameter] = &[
     ),
     p("--height-map", "height_map", "the measured surface's file"),
     p(
+        "--spacing",
+        "spacing",
+        "the measured surface's node spacing (length)",
+    ),
+    p(
         "--young",
         "young",
         "the cylinders' Young's modulus (force/length²)",
@@ -81,6 +86,7 @@ pub const PARAMETERS: &[Parameter] = &[
         "the angles between crossed cylinders (degrees)",
     ),
     p("--grid", "grid", "elements along x (a power of two)"),
+    p("--fields", "fields", "the states whose fields are kept"),
     p("--grid-y", "grid_y", "elements along y (a power of two)"),
     p(
         "--start-radius",

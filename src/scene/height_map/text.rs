@@ -77,32 +77,45 @@ pub(super) fn parse(text: &str, name: &str) -> Result<Grid, HeightMapError> {
     Ok(Grid { nx, ny, heights })
 }
 
-/// Refuse a row written with decimal commas: values separated by whitespace of which one holds
-/// a comma between two digits ("1,5 2,5"). A row of commas alone ("1,2,3") or of commas and
-/// spaces ("1, 2, 3") is a list of values.
+/// Refuse a row written with decimal commas: two or more values separated by whitespace, each
+/// of them digits, one comma and digits ("1,5 2,5", "-0,25 3,0e-2"). A row of commas alone
+/// ("1,2,3"), of commas and spaces ("1, 2, 3") or of both mixed ("5 6,7 8") is a list of values.
 fn check_decimal_comma(content: &str, line: usize, name: &str) -> Result<(), HeightMapError> {
     let fields: Vec<&str> = content.split_whitespace().collect();
-    if fields.len() < 2 {
+    let decimal_comma = |f: &str| match f.split_once(',') {
+        Some((int, frac)) => {
+            let int = int.strip_prefix(['-', '+']).unwrap_or(int);
+            !int.is_empty()
+                && int.bytes().all(|b| b.is_ascii_digit())
+                && frac.starts_with(|c: char| c.is_ascii_digit())
+                && !frac.contains(',')
+        }
+        None => false,
+    };
+    if fields.len() < 2 || !fields.iter().all(|f| decimal_comma(f)) {
         return Ok(());
     }
-    let between_digits = |f: &&&str| {
-        let b = f.as_bytes();
-        (1..b.len().saturating_sub(1))
-            .any(|i| b[i] == b',' && b[i - 1].is_ascii_digit() && b[i + 1].is_ascii_digit())
-    };
-    match fields.iter().find(between_digits) {
-        Some(token) => Err(HeightMapError::TextDecimalComma {
-            file: name.to_owned(),
-            line,
-            token: quote_limited(token),
-        }),
-        None => Ok(()),
-    }
+    Err(HeightMapError::TextDecimalComma {
+        file: name.to_owned(),
+        line,
+        token: quote_limited(fields[0]),
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::super::{HeightMap, HeightMapError};
+
+    #[test]
+    fn decimal_commas_are_named_and_lists_are_not() {
+        let e = HeightMap::from_text("1,5 2,5 3,5 4,5\n", 1.0, "m.txt").unwrap_err();
+        assert!(e.to_string().contains("decimal comma"), "{e}");
+        for list in ["1,2,3,4\n", "1, 2, 3, 4\n", "1 2,3 4\n", "1,5\t2\n"] {
+            if let Err(e) = HeightMap::from_text(list, 1.0, "m.txt") {
+                assert!(!e.to_string().contains("decimal comma"), "{list:?}: {e}");
+            }
+        }
+    }
 
     #[test]
     fn text_with_comments_commas_and_blank_lines() {
