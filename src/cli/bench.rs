@@ -37,11 +37,10 @@ pub struct Args {
     /// Mean radius c̄0 of the initial non-adhesive contact (in c_r), as in `simulate`.
     #[arg(long, default_value_t = 1.5)]
     pub start_radius: f64,
-    /// Free margin around the initial contact, relative to its half-axes, as in `simulate`.
-    /// On a 16² grid the default leaves less than one element: the pull-off reaches the edge
-    /// of the domain there unless this is about 0.2 or more.
-    #[arg(long, default_value_t = 0.08)]
-    pub margin: f64,
+    /// Free margin around the initial contact, relative to its half-axes, as in `simulate`
+    /// [default: 0.08, or at least one element on each side: 0.143 on a 16-element grid].
+    #[arg(long)]
+    pub margin: Option<f64>,
     /// Also profile the GPU's kernels with timestamp queries (where the adapter has them):
     /// per kernel, its time, bytes and achieved bandwidth per CG iteration, printed and
     /// written to profile.csv.

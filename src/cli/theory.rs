@@ -27,7 +27,7 @@ pub struct Args {
     #[arg(long, default_value_t = 1.0)]
     pub ratio: f64,
     /// Number of points on the curve, 2 to 1000000.
-    #[arg(long, default_value_t = 400, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(2..=1_000_000))]
+    #[arg(long, default_value_t = 400, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(2..=jkrbem::theory::MAX_CURVE_POINTS as u64))]
     pub points: usize,
     /// Output CSV with columns c_bar,f_bar,d_bar,a_bar,b_bar [default:
     /// jkrbem-out/theory-<model>-r<ratio>.csv].

@@ -52,9 +52,22 @@ pub const MAX_MESH_ANGLE: f64 = 360.0;
 /// for the sphere, so anything far below only means "run to the end").
 pub const MIN_FINAL_D_BAR: f64 = -1000.0;
 
-/// Fewest whole elements the domain leaves free on each side of the first contact along x:
-/// the margin is raised to this where `--margin` leaves less (grids of 16 and 32 elements).
+/// The free margin around the first contact, relative to its half-axes, where none is given
+/// (dimensionless; [`default_margin`] raises it on the smallest grids).
+pub const DEFAULT_MARGIN: f64 = 0.08;
+
+/// Fewest whole elements the default margin leaves free on each side of the first contact
+/// along x.
 pub const MIN_FREE_ELEMENTS: usize = 1;
+
+/// The margin a grid of `nx` elements along x takes where none is given: [`DEFAULT_MARGIN`],
+/// or more where that leaves fewer than [`MIN_FREE_ELEMENTS`] whole elements free (on 16
+/// elements it leaves 0.6, and the adhesive first contact, wider than Hertz's, reaches the
+/// domain's edge: 2/14 = 0.143 there; from 32 elements up it is 0.08).
+pub fn default_margin(nx: usize) -> f64 {
+    let free = MIN_FREE_ELEMENTS as f64;
+    DEFAULT_MARGIN.max(2.0 * free / (nx as f64 - 2.0 * free))
+}
 
 /// Fewest elements the first (Hertz) contact may span across its minor axis.
 pub const MIN_ELEMENTS_FIRST_CONTACT: f64 = 8.0;

@@ -151,13 +151,9 @@ impl Model {
             .indenter
             .first_contact(c0_len, scene.e_star, scene.work_of_adhesion)
             .map_err(|e| invalid("--indenter", scene.indenter.describe(), e))?;
-        // The box around the (rotated) initial contact, plus the margin: at least
-        // [`MIN_FREE_ELEMENTS`] whole elements on each side along x (on the smallest grids the
-        // default margin is less than one element, and the adhesive first contact, larger than
-        // Hertz's, reaches the domain's edge).
+        // The box around the (rotated) initial contact, plus the margin.
         let (box_x, box_y) = mesh.bounding_half_widths(initial.a, initial.b);
-        let free = MIN_FREE_ELEMENTS as f64;
-        let margin = opt.margin.max(2.0 * free / (opt.nx as f64 - 2.0 * free));
+        let margin = opt.margin;
         let half_x = box_x * (1.0 + margin);
         let dx = 2.0 * half_x / opt.nx as f64;
         // Elements the initial contact and its margin span along y (the 1e-9 absorbs round-off

@@ -104,7 +104,7 @@ impl Default for ModelOptions {
             start_radius_bar: 1.5,
             steps: 200,
             final_d_bar: None,
-            margin: 0.08,
+            margin: super::limits::DEFAULT_MARGIN,
             cg_tolerance: 1e-8,
             cg_max_iterations: 5000,
             cg_accept: 1e-5,

@@ -34,8 +34,9 @@ pub struct BenchRequest {
     pub ratio: f64,
     /// c̄0 of the initial contact.
     pub start_radius: f64,
-    /// Free margin around the initial contact.
-    pub margin: f64,
+    /// Free margin around the initial contact (relative; `None`: each grid's
+    /// [`crate::model::default_margin`]).
+    pub margin: Option<f64>,
     /// Also profile the GPU's kernels.
     pub profile: bool,
     /// Folder for bench.csv, bench.svg (and profile.csv).
@@ -182,7 +183,7 @@ fn bench_models(args: &BenchRequest, grids: &[usize]) -> Result<(Scene, Vec<Mode
             let opt = ModelOptions {
                 nx,
                 start_radius_bar: args.start_radius,
-                margin: args.margin,
+                margin: args.margin.unwrap_or(crate::model::default_margin(nx)),
                 ..ModelOptions::default()
             };
             Model::build(&scene, &opt).map_err(input)

@@ -301,7 +301,8 @@ fn run_grids(
     outs: &[Option<PathBuf>],
     watch: &dyn Watch,
 ) -> Result<Ran, RunError> {
-    let deadline = req.time_limit.map(|t| Instant::now() + t);
+    // A limit past what a clock holds (centuries) is no limit.
+    let deadline = req.time_limit.and_then(|t| Instant::now().checked_add(t));
     let mut runs = Vec::new();
     let mut kept = Vec::new();
     let mut failure = None;

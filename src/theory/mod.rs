@@ -127,10 +127,10 @@ fn require(
 /// Checks `ratio` = R1/R2 (dimensionless): finite and ≥ 1, and exactly 1 if `sphere`.
 fn check_ratio(ratio: f64, sphere: bool) -> Result<(), TheoryError> {
     require(
-        ratio.is_finite() && ratio >= 1.0,
+        ratio.is_finite() && (1.0..=crate::scene::MAX_RATIO).contains(&ratio),
         "ratio",
         ratio,
-        "finite and ≥ 1 (R1/R2, R1 ≥ R2)",
+        "in [1, 1000] (R1/R2, R1 ≥ R2), as every command takes it",
     )?;
     require(
         !sphere || ratio == 1.0,
@@ -140,11 +140,19 @@ fn check_ratio(ratio: f64, sphere: bool) -> Result<(), TheoryError> {
     )
 }
 
-/// `n` ≥ 2 points of the closed-form curve for `ratio` = R1/R2 (dimensionless, finite, ≥ 1),
-/// evenly spaced in c̄ and ordered by decreasing c̄: from 3 to 0 (Hertz) or to 0.05 (Jkr, Jg).
+/// The most points a closed-form curve is evaluated at (a count).
+pub const MAX_CURVE_POINTS: usize = 1_000_000;
+
+/// `n` points (2 to [`MAX_CURVE_POINTS`]) of the closed-form curve for `ratio` = R1/R2
+/// (dimensionless, in [1, 1000]), evenly spaced in c̄ and ordered by decreasing c̄: from 3 to 0 (Hertz) or to 0.05 (Jkr, Jg).
 pub fn curve(model: TheoryModel, ratio: f64, n: usize) -> Result<Vec<TheoryPoint>, TheoryError> {
     check_ratio(ratio, model == TheoryModel::Jkr)?;
-    require(n >= 2, "n", n as f64, "at least 2")?;
+    require(
+        (2..=MAX_CURVE_POINTS).contains(&n),
+        "points",
+        n as f64,
+        "from 2 to 1000000",
+    )?;
     let c_min = if model == TheoryModel::Hertz {
         0.0
     } else {
@@ -250,7 +258,12 @@ mod tests {
         assert!(curve(TheoryModel::Jg, 0.5, 10)
             .unwrap_err()
             .to_string()
-            .contains("≥ 1"));
+            .contains("in [1, 1000]"));
+        // The commands' range: a ratio above 1000 and a count of points beyond a million are
+        // refused (they answered, or tried to allocate a billion points).
+        assert!(curve(TheoryModel::Jg, 1e300, 10).is_err());
+        let e = curve(TheoryModel::Jg, 2.0, 1_000_000_000).unwrap_err();
+        assert!(e.to_string().contains("points"), "{e}");
         assert!(
             curve(TheoryModel::Jg, f64::NAN, 10).is_err()
                 && curve(TheoryModel::Jg, 2.0, 1).is_err()

@@ -105,8 +105,8 @@ fn a_quick_cpu_bench_writes_one_row_per_grid_and_a_chart() {
 
 #[test]
 fn a_pulloff_that_fails_leaves_its_cells_empty_and_exits_1() {
-    // On 16² the default margin leaves less than an element free: the contact reaches the
-    // domain's edge. The timings are still written; the pull-off's cells stay empty.
+    // On 16² with no margin the contact reaches the domain's edge. The timings are still
+    // written; the pull-off's cells stay empty.
     let dir = tempfile::tempdir().unwrap();
     let o = jkrbem(
         &[
@@ -119,6 +119,8 @@ fn a_pulloff_that_fails_leaves_its_cells_empty_and_exits_1() {
             "1",
             "--pulloff-max-grid",
             "16",
+            "--margin",
+            "0",
             "--out",
             "b",
         ],

@@ -80,9 +80,10 @@ pub struct Args {
     /// force (`min_reached: false`).
     #[arg(long)]
     pub final_d: Option<f64>,
-    /// Free margin around the initial contact, relative to its half-axes (in [0, 10]).
-    #[arg(long, default_value_t = 0.08)]
-    pub margin: f64,
+    /// Free margin around the initial contact, relative to its half-axes (in [0, 10])
+    /// [default: 0.08, or at least one element on each side: 0.143 on a 16-element grid].
+    #[arg(long)]
+    pub margin: Option<f64>,
     /// Angle between the ellipsoid's major axis and the grid's x axis (degrees). The domain
     /// is the box around the turned initial contact (square at 45°), and ā, b̄ are measured
     /// along the turned axes. Use it to check results where crack fronts run along grid

@@ -94,8 +94,9 @@ impl Args {
 
     /// The model options of these arguments.
     pub fn options(&self) -> ModelOptions {
+        let nx = self.grid.unwrap_or(DEFAULT_GRID);
         ModelOptions {
-            nx: self.grid.unwrap_or(DEFAULT_GRID),
+            nx,
             ny: self.grid_y,
             start_radius_bar: self.start_radius.unwrap_or(1.5),
             steps: self.steps.unwrap_or(jkrbem::model::default_steps(
@@ -104,7 +105,7 @@ impl Args {
                 self.regrid,
             )),
             final_d_bar: self.final_d,
-            margin: self.margin,
+            margin: self.margin.unwrap_or(jkrbem::model::default_margin(nx)),
             mesh_angle_deg: self.mesh_angle,
             // Two values, checked by the model ([0, 1) each); a wrong count gives NaN there.
             apex_offset: match self.apex_offset[..] {
