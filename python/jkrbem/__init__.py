@@ -22,7 +22,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _jkrbem
+from . import _check, _jkrbem
 from ._jkrbem import InputError, SolveError
 
 __version__ = _jkrbem.__version__
@@ -171,22 +171,23 @@ def _fields(raw: List[Dict[str, Any]]) -> List[Fields]:
     return out
 
 
+_FIELDS = 'None, "minimum", ("every", k) or a list of state indices (integers ≥ 0)'
+
+
 def _field_choice(fields: Union[None, str, Tuple[str, int], Sequence[int]]) -> str:
     """The keyword ``fields`` in the solver's words."""
-    if fields is None or fields == "none":
+    if fields is None:
         return "none"
-    if fields == "minimum":
-        return "minimum"
-    if isinstance(fields, tuple) and len(fields) == 2 and fields[0] == "every":
-        return f"every:{int(fields[1])}"
     if isinstance(fields, str):
-        return fields
-    try:
-        return "states:" + ",".join(str(int(i)) for i in fields)
-    except TypeError:
-        raise InputError(
-            f"fields = {fields!r} is invalid: None, \"minimum\", (\"every\", k) or a list of state indices"
-        )
+        return fields  # "none", "minimum", "every:K", "states:I,J": the library checks it
+    values = _check.items("fields", fields, _FIELDS)
+    if len(values) == 2 and isinstance(values[0], str) and values[0] == "every":
+        k = _check.integer("fields", values[1], 1, 2**63 - 1, 'k of ("every", k), an integer ≥ 1')
+        return f"every:{k}"
+    if not values:
+        raise InputError(f"fields = {_check.shown(fields)} is invalid: {_FIELDS}, at least one")
+    picked = (_check.integer("fields", i, 0, 2**63 - 1, "a state index (an integer ≥ 0)") for i in values)
+    return "states:" + ",".join(str(i) for i in picked)
 
 
 @dataclass
@@ -249,6 +250,8 @@ class Result:
 
     def force_in(self, radius_e: float, work_of_adhesion: float) -> Optional[float]:
         """The adhesive force in the user's force unit: |min F̄|·3π Re Δγ (Re in L, Δγ in F/L)."""
+        radius_e = _check.real("radius_e", radius_e, "a radius (length)")
+        work_of_adhesion = _check.real("work_of_adhesion", work_of_adhesion, "a work of adhesion (force/length)")
         if self.adhesive_force is None:
             return None
         return self.adhesive_force * 3.0 * math.pi * radius_e * work_of_adhesion
@@ -278,25 +281,36 @@ class Result:
         return f"<jkrbem.Result |min F̄| = {f}{u} ({self.estimate}), {len(self.runs)} run(s)>"
 
 
+_ACCURACY = "a fraction (0.02) or a percentage ('2%')"
+
+
 def _percent(value: Union[str, float, None], name: str) -> Optional[float]:
-    """'2%' or 0.02 as 0.02."""
+    """'2%' or 0.02 as 0.02 (finite; the library checks the range)."""
     if value is None:
         return None
-    if isinstance(value, str):
-        text = value.strip()
-        try:
-            return float(text[:-1]) / 100.0 if text.endswith("%") else float(text)
-        except ValueError:
-            raise InputError(f"{name} = {value!r} is invalid: a fraction (0.02) or a percentage ('2%')")
-    return float(value)
+    if not isinstance(value, str):
+        return _check.real(name, value, _ACCURACY)
+    text = value.strip()
+    try:
+        x = float(text[:-1]) / 100.0 if text.endswith("%") else float(text)
+    except ValueError:
+        x = math.nan
+    if not math.isfinite(x):
+        raise InputError(f"{name} = {_check.shown(value)} is invalid: {_ACCURACY}")
+    return x
+
+
+_PROGRESS = "None, True or False (a tqdm bar), or a callable taking an event dict"
 
 
 def _progress(progress: Union[None, bool, Callable[[dict], Any]]) -> Optional[Callable[[dict], Any]]:
     """The callable that sees a run's events: the user's, a tqdm bar (True), or none."""
-    if progress is None or progress is False:
+    if progress is None:
         return None
     if callable(progress):
         return progress
+    if not _check.flag("progress", progress, _PROGRESS):
+        return None
     try:
         from tqdm.auto import tqdm
     except ImportError:
@@ -315,14 +329,36 @@ def _progress(progress: Union[None, bool, Callable[[dict], Any]]) -> Optional[Ca
             b = bars["bar"]
             b.update(max(0, event["step"] - b.n))
             b.set_postfix(F=f"{event['f_bar']:.4f}", c=f"{event['c_bar']:.3f}")
+        elif event["event"] == "end" and "bar" in bars:
+            bars.pop("bar").close()
         elif event["event"] in ("note", "warning"):
             tqdm.write(f"jkrbem: {event['text']}")
 
     return bar
 
 
+#: R1/R2 where neither ``ratio`` nor ``r1`` is given.
+DEFAULT_RATIO = 5.0
+
+#: The keywords of each indenter's shape; given with another indenter they are refused.
+_SHAPE_KEYWORDS = {"ellipsoid": ("ratio", "r1"), "flat_punch": ("radius",), "power_law": ("exponent", "scale")}
+
+#: The keyword an indenter cannot do without.
+_SHAPE_NEEDS = {"flat_punch": "radius", "power_law": "exponent"}
+
+_GRIDS = "True, False or a list of grids (e.g. [64, 128, 256])"
+
+
+def _extrapolate(extrapolate: Union[bool, Sequence[int]]) -> Tuple[bool, Optional[List[int]]]:
+    """``extrapolate``: whether, and on which grids (None: those that fit)."""
+    if isinstance(extrapolate, (bool, np.bool_)):
+        return bool(extrapolate), None
+    grids = _check.items("extrapolate", extrapolate, _GRIDS)
+    return True, [_check.grid_side("extrapolate", g) for g in grids]
+
+
 def _request(
-    ratio: float,
+    ratio: Optional[float],
     r1: Optional[float],
     r2: float,
     e_star: float,
@@ -346,47 +382,54 @@ def _request(
     time_limit: Optional[float],
     fields: Union[None, str, Tuple[str, int], Sequence[int]] = None,
 ) -> str:
-    numbers = {
-        "ratio": ratio, "r1": r1, "r2": r2, "e_star": e_star, "work_of_adhesion": work_of_adhesion,
-        "radius": radius, "exponent": exponent, "scale": scale, "mesh_angle": mesh_angle,
-        "margin": margin, "start_radius": start_radius, "time_limit": time_limit,
+    """The JSON request of these keywords, each checked for its type (and what only Python
+    can see: a conflict, a keyword of another indenter); the library checks the ranges."""
+    indenter = _check.text("indenter", indenter, '"ellipsoid", "flat_punch" or "power_law"')
+    shape = {"ratio": ratio, "r1": r1, "radius": radius, "exponent": exponent, "scale": scale}
+    needed = _SHAPE_NEEDS.get(indenter)
+    if needed is not None and shape[needed] is None:
+        raise InputError(f"{needed} is needed with indenter = {indenter!r}")
+    if indenter != "ellipsoid" and isinstance(ratio, (int, float)) and ratio == 1:
+        shape["ratio"] = None  # the axisymmetric indenters' R1/R2 is 1
+    for name, value in shape.items():
+        if value is not None and indenter in _SHAPE_KEYWORDS and name not in _SHAPE_KEYWORDS[indenter]:
+            raise InputError(
+                f"{name} does not apply to indenter = {indenter!r}: leave it out (it shapes "
+                f"the {next(k for k, v in _SHAPE_KEYWORDS.items() if name in v)!r} indenter)"
+            )
+    _check.conflict([("ratio", ratio is not None), ("r1", r1 is not None)],
+                    "the ellipsoid is R1 = ratio·r2, or r1 and r2")
+    real = _check.real
+    do_extrapolate, grids = _extrapolate(extrapolate)
+    request = {
+        "ratio": real("ratio", DEFAULT_RATIO if ratio is None else ratio, "an axis ratio R1/R2"),
+        "r1": _check.optional_real("r1", r1, "a radius R1 (length)"),
+        "r2": real("r2", r2, "a radius R2 (length)"),
+        "e_star": real("e_star", e_star, "a modulus E* (force/length²)"),
+        "work_of_adhesion": real("work_of_adhesion", work_of_adhesion, "a work of adhesion Δγ (force/length)"),
+        "indenter": indenter,
+        "radius": _check.optional_real("radius", radius, "a radius (length)"),
+        "exponent": _check.optional_real("exponent", exponent, "an exponent n"),
+        "scale": _check.optional_real("scale", scale, "a factor s of h = s·rⁿ"),
+        "grid": None if grid is None else _check.grid_side("grid", grid),
+        "grid_y": None if grid_y is None else _check.grid_side("grid_y", grid_y),
+        "accuracy": _percent(accuracy, "accuracy"),
+        "extrapolate": do_extrapolate,
+        "extrapolate_grids": grids,
+        "mesh_angle": real("mesh_angle", mesh_angle, "an angle in degrees"),
+        "apex_offset": list(_check.pair("apex_offset", apex_offset,
+                                        "two fractions of an element, along x and y: e.g. (0.25, 0.5)")),
+        "margin": real("margin", margin, "a relative margin"),
+        "start_radius": real("start_radius", start_radius, "a mean radius c̄0"),
+        "steps": _check.optional_integer("steps", steps, 1, _check.LIMITS["max_steps"],
+                                         f"from 1 to {_check.LIMITS['max_steps']} load steps"),
+        "measure": _check.optional_text("measure", measure, '"curve" or "adhesive_force"'),
+        "onsets": _check.optional_text("onsets", onsets, '"near_minimum", "all" or "none"'),
+        "backend": _check.text("backend", backend, '"auto", "cpu" or "gpu"'),
+        "time_limit": _check.optional_real("time_limit", time_limit, "a number of seconds"),
+        "fields": _field_choice(fields),
     }
-    for name, value in numbers.items():
-        if value is not None and not math.isfinite(float(value)):
-            raise InputError(f"{name} = {value} is invalid: a finite number is needed")
-    grids = None
-    if not isinstance(extrapolate, bool):
-        grids = [int(g) for g in extrapolate]
-    if len(tuple(apex_offset)) != 2:
-        raise InputError("apex_offset takes two fractions of an element, along x and y: e.g. (0.25, 0.5)")
-    return json.dumps(
-        {
-            "ratio": float(ratio),
-            "r1": None if r1 is None else float(r1),
-            "r2": float(r2),
-            "e_star": float(e_star),
-            "work_of_adhesion": float(work_of_adhesion),
-            "indenter": indenter,
-            "radius": radius,
-            "exponent": exponent,
-            "scale": scale,
-            "grid": grid,
-            "grid_y": grid_y,
-            "accuracy": _percent(accuracy, "accuracy"),
-            "extrapolate": bool(extrapolate) if grids is None else True,
-            "extrapolate_grids": grids,
-            "mesh_angle": float(mesh_angle),
-            "apex_offset": [float(a) for a in apex_offset],
-            "margin": float(margin),
-            "start_radius": float(start_radius),
-            "steps": steps,
-            "measure": measure,
-            "onsets": onsets,
-            "backend": backend,
-            "time_limit": time_limit,
-            "fields": _field_choice(fields),
-        }
-    )
+    return json.dumps(request, allow_nan=False)
 
 
 def _result(answer: Dict[str, Any], fields: List[Fields]) -> Result:
@@ -416,7 +459,7 @@ def _result(answer: Dict[str, Any], fields: List[Fields]) -> Result:
 
 
 def simulate(
-    ratio: float = 5.0,
+    ratio: Optional[float] = None,
     *,
     r1: Optional[float] = None,
     r2: float = 1.0,
@@ -444,27 +487,37 @@ def simulate(
 ) -> Result:
     """Simulate the adhesive pull-off of one scene and estimate its adhesive force.
 
-    The scene: an ellipsoid h = x²/(2 R1) + y²/(2 R2) given by ``ratio`` = R1/R2 and ``r2``
-    (length), or by ``r1`` and ``r2``; or ``indenter="flat_punch"`` (``radius``, length) or
-    ``"power_law"`` (h = ``scale``·rⁿ, ``exponent`` n). ``e_star`` is E* (F/L²),
-    ``work_of_adhesion`` Δγ (F/L).
+    The scene: an ellipsoid h = x²/(2 R1) + y²/(2 R2) given by ``ratio`` = R1/R2 (default 5)
+    and ``r2`` (length), or by ``r1`` and ``r2``; or ``indenter="flat_punch"`` (``radius``,
+    length) or ``"power_law"`` (h = ``scale``·rⁿ, ``exponent`` n; ``scale`` s defaults to 0.5,
+    as in the CLI: s = 1/(2R), so n = 2 is the sphere of R = 1). ``e_star`` is E* (F/L²),
+    ``work_of_adhesion`` Δγ (F/L). A shape keyword of another indenter is refused.
 
     What runs: ``accuracy`` ("2%" or 0.02) plans the grids that reach it; ``grid`` (a power of
     two) runs one grid; ``extrapolate`` (True, or a list of grids) runs several and
-    extrapolates to Δx → 0. With none of them the run aims at 2 %. ``backend`` is "auto",
-    "cpu" (f64) or "gpu" (f32). ``time_limit`` (s) bounds an accuracy run.
+    extrapolates to Δx → 0. With none of them the run aims at 2 %. ``accuracy`` with ``grid``,
+    ``grid_y``, ``steps``, ``onsets``, ``measure`` or ``extrapolate``, and ``extrapolate`` with
+    ``grid`` or ``grid_y``, are refused (one would override the other). ``backend`` is "auto",
+    "cpu" (f64) or "gpu" (f32). ``time_limit`` (s, at most 30 days) bounds an accuracy run.
+
+    Numbers may be Python's or numpy's (``np.int64(64)``, ``np.float32(2)``); integers
+    (``grid``, ``steps``, state indices) must be integers (32.0 is refused), and no bool is
+    taken for a number.
 
     ``fields``: the states whose fields (pressure, gap, contact set as 2-D arrays, with x
     and y) are kept in :attr:`Result.fields`: None (the default), "minimum" (the force
     minimum), ("every", k) or a list of state indices (each also keeps the minimum).
 
     ``progress``: a callable receiving event dicts (``event`` = "note", "start", "state",
-    "warning"; a "state" with ``held`` True was found but is recorded later, once the search
-    for the force minimum has gone back to the steps before it), or True for a tqdm bar where
-    tqdm is installed. Ctrl-C stops the run, also while it searches: the result then holds the
+    "end" (a grid's pull-off ended), "warning"; a "state" with ``held`` True was found but is
+    recorded later, once the search for the force minimum has gone back to the steps before
+    it), or True for a tqdm bar where tqdm is installed. Every event but "state" is
+    delivered; of the states, the latest at most every 0.2 s, less often where the callback is
+    slow (it may take about a tenth of the run), and each grid's last before its "end". Ctrl-C stops the run, also while it searches: the result then holds the
     states recorded so far, with ``interrupted`` True (and a warning).
 
-    Raises :class:`InputError` (a ValueError) for a bad parameter, naming the keyword, and
+    Raises :class:`InputError` (a ValueError) for a bad parameter and :class:`TypeError`
+    for one of the wrong type, each naming the keyword, and
     :class:`SolveError` (a RuntimeError) when no run reached the force minimum; its
     ``result`` attribute holds the partial states.
     """
@@ -490,7 +543,7 @@ def simulate(
 
 
 def pulloff(
-    ratio: float = 5.0,
+    ratio: Optional[float] = None,
     *,
     grid: int = 128,
     measure: str = "curve",
@@ -514,9 +567,17 @@ def sweep(
     return _table(sweep_results(ratios, **kwargs))
 
 
+def _ratios(ratios: Sequence[float]) -> List[float]:
+    """``ratios``: a non-empty list of axis ratios, each checked before any runs."""
+    values = _check.items("ratios", ratios, "a list of axis ratios R1/R2 (e.g. [1, 2, 5])")
+    if not values:
+        raise InputError("ratios = [] is invalid: at least one axis ratio R1/R2")
+    return [_check.ratio("ratios", q) for q in values]
+
+
 def sweep_results(ratios: Sequence[float] = (1, 2, 3, 5, 10, 15, 20, 25), **kwargs: Any) -> List[Result]:
     """The :class:`Result` of :func:`simulate` for each ratio, in order."""
-    return [simulate(float(q), **kwargs) for q in ratios]
+    return [simulate(q, **kwargs) for q in _ratios(ratios)]
 
 
 def _table(results: List[Result]) -> np.ndarray:
@@ -546,15 +607,25 @@ def crossed(
     Poisson's ratio ``poisson``, crossed at each of ``angles`` (degrees; 90 is sphere-like),
     with ``work_of_adhesion`` (J/m²): the adhesive force in newtons with its uncertainty, beside
     Johnson–Greenwood's (a comparison). Other keywords as :func:`simulate` (e.g. ``accuracy``)."""
+    values = _check.items("angles", angles, "a list of crossing angles in degrees (e.g. [90, 45])")
+    if not values:
+        raise InputError("angles = [] is invalid: at least one crossing angle in degrees")
+    values = [_check.real("angles", a, "a crossing angle in degrees") for a in values]
+    material = (
+        _check.real("radius", radius, "a radius (m)"),
+        _check.real("young", young, "a Young's modulus (Pa)"),
+        _check.real("poisson", poisson, "a Poisson's ratio"),
+        _check.real("work_of_adhesion", work_of_adhesion, "a work of adhesion (J/m²)"),
+    )
+    # Every angle's scene first, so that a bad one is refused before any runs.
+    scenes = [(angle, json.loads(_jkrbem.crossed_scene(*material, angle))) for angle in values]
     rows = []
-    for angle in angles:
-        eq = json.loads(_jkrbem.crossed_scene(float(radius), float(young), float(poisson),
-                                              float(work_of_adhesion), float(angle)))
+    for angle, eq in scenes:
         r = simulate(r1=eq["r1"], r2=eq["r2"], e_star=eq["e_star"],
-                     work_of_adhesion=work_of_adhesion, **kwargs)
+                     work_of_adhesion=material[3], **kwargs)
         f = eq["force_scale"]
         nan = lambda v: math.nan if v is None else v
-        rows.append((float(angle), eq["ratio"], nan(r.adhesive_force) * f, nan(r.uncertainty) * f,
+        rows.append((angle, eq["ratio"], nan(r.adhesive_force) * f, nan(r.uncertainty) * f,
                      nan(r.jg) * f, nan(r.deviation_from_jg)))
     dtype = [("angle_deg", "f8"), ("ratio", "f8"), ("force_n", "f8"), ("force_n_uncertainty", "f8"),
              ("jg_force_n", "f8"), ("jg_deviation", "f8")]
@@ -562,7 +633,7 @@ def crossed(
 
 
 def plan(
-    ratio: float = 5.0,
+    ratio: Optional[float] = None,
     *,
     accuracy: Union[str, float] = "2%",
     r1: Optional[float] = None,
@@ -583,22 +654,35 @@ def plan(
     return json.loads(_jkrbem.plan(request))
 
 
+_MODELS = '"hertz", "jkr" or "jg"'
+
+
 class _Theory:
-    """Closed forms, normalised: Hertz, JKR (sphere) and Johnson–Greenwood (ellipse)."""
+    """Closed forms, normalised: Hertz, JKR (sphere) and Johnson–Greenwood (ellipse), for
+    R1/R2 in [1, 1000] as in the CLI."""
 
     def curve(self, model: str = "jg", ratio: float = 1.0, points: int = 200) -> np.ndarray:
-        """``points`` points of the closed-form curve, a structured array (c_bar, f_bar, d_bar,
-        a_bar, b_bar), by decreasing c̄. ``model``: "hertz", "jkr" (ratio 1) or "jg"."""
-        pts = json.loads(_jkrbem.theory_curve(model, float(ratio), int(points)))
+        """``points`` points (2 to 1000000) of the closed-form curve, a structured array
+        (c_bar, f_bar, d_bar, a_bar, b_bar), by decreasing c̄. ``model``: "hertz", "jkr"
+        (ratio 1) or "jg"."""
+        most = _check.LIMITS["max_theory_points"]
+        pts = json.loads(_jkrbem.theory_curve(
+            _check.text("model", model, _MODELS),
+            _check.real("ratio", ratio, "an axis ratio R1/R2"),
+            _check.integer("points", points, 2, most, f"from 2 to {most} points"),
+        ))
         dtype = np.dtype([(k, "f8") for k in ("c_bar", "f_bar", "d_bar", "a_bar", "b_bar")])
         return np.array([tuple(p[k] for k in dtype.names) for p in pts], dtype=dtype)
 
     def pull_off(self, model: str = "jg", ratio: float = 1.0) -> Dict[str, Dict[str, float]]:
         """The force minimum (``force_min``) and the end of contact (``end_of_contact``)."""
-        return json.loads(_jkrbem.theory_pull_off(model, float(ratio)))
+        return json.loads(_jkrbem.theory_pull_off(
+            _check.text("model", model, _MODELS), _check.real("ratio", ratio, "an axis ratio R1/R2")
+        ))
 
     def adhesive_force(self, ratio: float = 1.0) -> float:
         """|min F̄| of JKR (ratio 1, exactly 1/2) or Johnson–Greenwood."""
+        ratio = _check.real("ratio", ratio, "an axis ratio R1/R2")
         model = "jkr" if ratio == 1 else "jg"
         return -self.pull_off(model, ratio)["force_min"]["f_bar"]
 

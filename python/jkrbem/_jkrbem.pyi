@@ -35,3 +35,10 @@ def devices() -> str:
 
 def crossed_scene(radius: float, young: float, poisson: float, work_of_adhesion: float, angle: float) -> str:
     """The equivalent ellipsoid of crossed cylinders (R1, R2, E*, force scale) as JSON."""
+
+def limits() -> str:
+    """The library's ranges the package checks its keywords against (grid sides, load steps,
+    R1/R2, closed-form points, time limit in s), as JSON."""
+
+def _panic_for_tests() -> None:
+    """Panics on purpose inside the guard every function has: raises SolveError (tests only)."""

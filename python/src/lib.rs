@@ -21,8 +21,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use serde::Deserialize;
 use serde_json::{json, Value};
+use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Mutex;
+use std::sync::{Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
 create_exception!(
@@ -37,6 +38,20 @@ create_exception!(
     PyRuntimeError,
     "A run failed after it started; the partial states are kept on the exception."
 );
+
+/// Longest `time_limit` accepted (s): 30 days, as the CLI's `--time-limit`. Anything longer
+/// is no limit in practice, and far longer ones overflow a `Duration` or an `Instant`.
+const MAX_TIME_LIMIT_S: f64 = 30.0 * 86400.0;
+
+/// Most points of a closed-form curve, as the CLI's `theory --points`.
+const MAX_THEORY_POINTS: usize = 1_000_000;
+
+/// The power law's default factor s of h = s·rⁿ (length^(1−n)), as the CLI's `--scale`:
+/// s = 1/(2R) = 0.5 is the sphere of R = 1 at n = 2.
+const DEFAULT_SCALE: f64 = 0.5;
+
+/// Longest part of a refused text that a message repeats (characters).
+const SHOWN_CHARS: usize = 40;
 
 /// A simulation's request, as the Python package sends it (its keywords, in the user's units).
 #[derive(Debug, Deserialize)]
@@ -58,7 +73,7 @@ struct Request {
     radius: Option<f64>,
     /// The power law's exponent n.
     exponent: Option<f64>,
-    /// The power law's height at r = 1 (length).
+    /// The power law's factor s of h = s·rⁿ (length^(1−n)); `None`: [`DEFAULT_SCALE`].
     scale: Option<f64>,
     /// Elements along x, for one grid.
     grid: Option<usize>,
@@ -80,7 +95,7 @@ struct Request {
     onsets: Option<String>,
     /// "auto", "cpu" or "gpu".
     backend: String,
-    /// Seconds an accuracy run may take.
+    /// Seconds an accuracy run may take, in (0, [`MAX_TIME_LIMIT_S`]].
     time_limit: Option<f64>,
     /// Which states' fields to keep: "none", "minimum", "every:K", "states:I,J".
     fields: String,
@@ -89,6 +104,47 @@ struct Request {
 /// A refusal naming Python keywords.
 fn input_error(message: impl std::fmt::Display) -> PyErr {
     InputError::new_err(as_keywords(&message.to_string()))
+}
+
+/// `text` quoted for a message, cut to [`SHOWN_CHARS`] characters.
+fn shown(text: &str) -> String {
+    match text.char_indices().nth(SHOWN_CHARS) {
+        Some((at, _)) => format!("{:?}…", &text[..at]),
+        None => format!("{text:?}"),
+    }
+}
+
+/// A run's refusal naming Python keywords: the library names `--extrapolate-grids`, which
+/// Python gives as `extrapolate=[…]`.
+fn run_input_error(message: &str) -> PyErr {
+    input_error(message.replace("--extrapolate-grids", "extrapolate"))
+}
+
+/// The message a panic carried.
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "(no message)".into())
+}
+
+/// Runs `f`, turning a panic into a [`SolveError`] that says it is a bug. Every input is
+/// checked before it reaches the library, so this is the last line of defence only: a
+/// `PanicException` derives from `BaseException`, which `except Exception` misses.
+fn guarded<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+    catch_unwind(AssertUnwindSafe(f)).unwrap_or_else(|payload| {
+        Err(SolveError::new_err(format!(
+            "internal error in jkrbem (a bug; please report it with the call that raised it): \
+             {}",
+            panic_message(payload.as_ref())
+        )))
+    })
+}
+
+/// `m` locked, also after a panic elsewhere poisoned it (its data stays usable here).
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
 /// Parse the package's JSON request.
@@ -102,8 +158,8 @@ impl Request {
         let need = |v: Option<f64>, name: &str| {
             v.ok_or_else(|| {
                 input_error(format!(
-                    "{name} is needed with indenter={:?}",
-                    self.indenter
+                    "{name} is needed with indenter = {}",
+                    shown(&self.indenter)
                 ))
             })
         };
@@ -119,14 +175,15 @@ impl Request {
             .and_then(|i| Scene::with_indenter(i, e, w)),
             "power_law" => Indenter::PowerLaw {
                 n: need(self.exponent, "exponent")?,
-                scale: self.scale.unwrap_or(1.0),
+                scale: self.scale.unwrap_or(DEFAULT_SCALE),
             }
             .checked()
             .and_then(|i| Scene::with_indenter(i, e, w)),
             other => {
                 return Err(input_error(format!(
-                "indenter = {other:?} is invalid: \"ellipsoid\", \"flat_punch\" or \"power_law\""
-            )))
+                    "indenter = {} is invalid: \"ellipsoid\", \"flat_punch\" or \"power_law\"",
+                    shown(other)
+                )))
             }
         };
         scene.map_err(input_error)
@@ -140,7 +197,8 @@ impl Request {
             Some("none") => Onsets::None,
             Some(o) => {
                 return Err(input_error(format!(
-                    "onsets = {o:?} is invalid: \"near_minimum\", \"all\" or \"none\""
+                    "onsets = {} is invalid: \"near_minimum\", \"all\" or \"none\"",
+                    shown(o)
                 )))
             }
         };
@@ -149,7 +207,8 @@ impl Request {
             Some("adhesive_force") => Measure::AdhesiveForce,
             Some(m) => {
                 return Err(input_error(format!(
-                    "measure = {m:?} is invalid: \"curve\" or \"adhesive_force\""
+                    "measure = {} is invalid: \"curve\" or \"adhesive_force\"",
+                    shown(m)
                 )))
             }
         };
@@ -177,7 +236,8 @@ impl Request {
             "gpu" => BackendKind::Gpu,
             b => {
                 return Err(input_error(format!(
-                    "backend = {b:?} is invalid: \"auto\", \"cpu\" or \"gpu\""
+                    "backend = {} is invalid: \"auto\", \"cpu\" or \"gpu\"",
+                    shown(b)
                 )))
             }
         };
@@ -187,13 +247,47 @@ impl Request {
         })
     }
 
+    /// The keywords given that only a single grid takes, by name.
+    fn one_grid_keywords(&self) -> Vec<&'static str> {
+        [
+            ("grid", self.grid.is_some()),
+            ("grid_y", self.grid_y.is_some()),
+            ("steps", self.steps.is_some()),
+            ("onsets", self.onsets.is_some()),
+            ("measure", self.measure.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(name, given)| given.then_some(name))
+        .collect()
+    }
+
+    /// One grid, several or an accuracy, as the CLI chooses; keywords the choice would drop
+    /// silently (the CLI documents that `--accuracy` overrides them) are refused instead.
     fn mode(&self) -> PyResult<Mode> {
-        let one_grid = self.indenter != "ellipsoid"
-            || self.grid.is_some()
-            || self.grid_y.is_some()
-            || self.steps.is_some()
-            || self.onsets.is_some()
-            || self.measure.is_some();
+        let one_grid = self.one_grid_keywords();
+        if self.accuracy.is_some() {
+            let dropped: Vec<&str> = one_grid
+                .iter()
+                .copied()
+                .chain(self.extrapolate.then_some("extrapolate"))
+                .collect();
+            if let Some(first) = dropped.first() {
+                return Err(input_error(format!(
+                    "accuracy and {first} cannot be given together: a run to an accuracy \
+                     chooses its grids, load steps and measure itself (leave out {})",
+                    dropped.join(", ")
+                )));
+            }
+        }
+        if self.extrapolate {
+            if let Some(g) = one_grid.iter().find(|g| g.starts_with("grid")) {
+                return Err(input_error(format!(
+                    "extrapolate and {g} cannot be given together: an extrapolation runs its \
+                     own grids (give them as extrapolate=[64, 128, 256])"
+                )));
+            }
+        }
+        let one_grid = self.indenter != "ellipsoid" || !one_grid.is_empty();
         let extrapolate = self.extrapolate.then(|| self.extrapolate_grids.clone());
         let mode = Mode::choose(self.accuracy, extrapolate, one_grid);
         if self.time_limit.is_some() && !matches!(mode, Mode::Accuracy(_)) {
@@ -205,40 +299,118 @@ impl Request {
         Ok(mode)
     }
 
-    fn simulate_request(&self) -> PyResult<SimulateRequest> {
-        let time_limit = match self.time_limit {
-            Some(t) if !(t.is_finite() && t > 0.0) => {
-                return Err(input_error(format!(
-                    "time_limit = {t} is invalid: a positive number of seconds"
-                )))
-            }
-            t => t.map(Duration::from_secs_f64),
+    /// `time_limit` as a duration: in (0, [`MAX_TIME_LIMIT_S`]] seconds.
+    fn time_limit(&self) -> PyResult<Option<Duration>> {
+        let Some(t) = self.time_limit else {
+            return Ok(None);
         };
+        let bad = || {
+            input_error(format!(
+                "time_limit = {} is invalid: a positive number of seconds, at most \
+                 {MAX_TIME_LIMIT_S} (30 days)",
+                jkrbem::text::compact(t)
+            ))
+        };
+        if !(t > 0.0 && t <= MAX_TIME_LIMIT_S) {
+            return Err(bad());
+        }
+        Duration::try_from_secs_f64(t).map(Some).map_err(|_| bad())
+    }
+
+    /// `fields` as the library reads it; a refusal repeats at most [`SHOWN_CHARS`] of it.
+    fn fields(&self) -> PyResult<FieldChoice> {
+        FieldChoice::parse(&self.fields).map_err(|e| {
+            let long = format!("{:?}", self.fields);
+            input_error(format!(
+                "fields = {}",
+                e.replacen(&long, &shown(&self.fields), 1)
+            ))
+        })
+    }
+
+    fn simulate_request(&self) -> PyResult<SimulateRequest> {
         Ok(SimulateRequest {
             scene: self.scene()?,
             options: self.options()?,
             backend: self.backend()?,
             mode: self.mode()?,
             sink: Sink::Memory,
-            fields: FieldChoice::parse(&self.fields)
-                .map_err(|e| input_error(format!("fields = {e}")))?,
-            time_limit,
+            fields: self.fields()?,
+            time_limit: self.time_limit()?,
         })
     }
 }
 
-/// What the Python side watches a run with: its progress callback (a callable taking a dict,
-/// called at most every 0.2 s and at every note), and Ctrl-C (SIGINT), which stops the run.
+/// Shortest wall time between two "state" events a progress callback sees.
+const STATE_EVERY: Duration = Duration::from_millis(200);
+
+/// Largest share of a run's wall time its progress callback may take: after a callback that
+/// took t, "state" events wait at least t·(1 − share)/share before the next one.
+const CALLBACK_SHARE: f64 = 0.1;
+
+/// A "state" event, kept until it can be delivered.
+#[derive(Debug, Clone, Copy)]
+struct StateEvent {
+    grid: (usize, usize),
+    step: usize,
+    expected_steps: usize,
+    held: bool,
+    d_bar: f64,
+    f_bar: f64,
+    c_bar: f64,
+}
+
+impl StateEvent {
+    fn json(&self) -> Value {
+        json!({"event": "state", "grid": [self.grid.0, self.grid.1], "step": self.step,
+               "expected_steps": self.expected_steps, "held": self.held,
+               "d_bar": self.d_bar, "f_bar": self.f_bar, "c_bar": self.c_bar})
+    }
+}
+
+/// When the next "state" event may reach the callback, and the latest one held back.
+#[derive(Debug, Default)]
+struct Throttle {
+    next: Option<Instant>,
+    pending: Option<StateEvent>,
+    grid: (usize, usize),
+}
+
+/// What the Python side watches a run with: its progress callback (a callable taking a dict)
+/// and Ctrl-C (SIGINT), which stops the run. The callback sees every "note", "start",
+/// "warning" and "end", and of the "state" events the latest one at most every
+/// [`STATE_EVERY`], less often where the callback itself is slow (it may take at most
+/// [`CALLBACK_SHARE`] of the run), and the last state of each grid before its "end".
 struct PyWatch {
     progress: Option<Py<PyAny>>,
-    last: Mutex<Option<Instant>>,
+    throttle: Mutex<Throttle>,
     interrupted: AtomicBool,
     callback_error: Mutex<Option<PyErr>>,
 }
 
 impl PyWatch {
-    fn call(&self, event: Value) {
+    fn new(progress: Option<Py<PyAny>>) -> Self {
+        PyWatch {
+            progress,
+            throttle: Mutex::new(Throttle::default()),
+            interrupted: AtomicBool::new(false),
+            callback_error: Mutex::new(None),
+        }
+    }
+
+    /// Whether the run is being stopped (Ctrl-C, or the callback raised).
+    fn stopping(&self) -> bool {
+        self.interrupted.load(Ordering::SeqCst) || lock(&self.callback_error).is_some()
+    }
+
+    /// Hands `event` to the callback (unless the run is stopping), and sets when the next
+    /// state event may follow: after `floor` at least, later where the callback was slow.
+    fn call(&self, event: Value, floor: Duration) {
         let Some(cb) = &self.progress else { return };
+        if self.stopping() {
+            return;
+        }
+        let started = Instant::now();
         Python::attach(|py| {
             let text = event.to_string();
             let result = py
@@ -251,36 +423,60 @@ impl PyWatch {
                     self.interrupted.store(true, Ordering::SeqCst)
                 }
                 Err(e) => {
-                    self.callback_error.lock().unwrap().get_or_insert(e);
+                    lock(&self.callback_error).get_or_insert(e);
                 }
                 Ok(_) => {}
             }
         });
+        let took = started.elapsed();
+        let rest = took.mul_f64((1.0 - CALLBACK_SHARE) / CALLBACK_SHARE);
+        lock(&self.throttle).next = Some(Instant::now() + rest.max(floor));
     }
 
-    /// A "state" event, at most every 0.2 s; `held`: found but held back while the search
-    /// for the force minimum may still go back to earlier steps (it is recorded later).
+    /// A "state" event: delivered if its time has come, else kept as the latest.
+    /// `held`: found but held back while the search for the force minimum may still go back
+    /// to earlier steps (it is recorded later).
     fn state_event(&self, model: &Model, s: &State, held: bool) {
-        let mut last = self.last.lock().unwrap();
-        if last.is_some_and(|t| t.elapsed() < Duration::from_millis(200)) {
+        if self.progress.is_none() {
             return;
         }
-        *last = Some(Instant::now());
-        drop(last);
-        self.call(
-            json!({"event": "state", "grid": [model.nx, model.ny], "step": s.step,
-                         "expected_steps": model.expected_steps(), "held": held,
-                         "d_bar": s.d_bar, "f_bar": s.f_bar, "c_bar": s.c_bar}),
-        );
+        let event = StateEvent {
+            grid: (model.nx, model.ny),
+            step: s.step,
+            expected_steps: model.expected_steps(),
+            held,
+            d_bar: s.d_bar,
+            f_bar: s.f_bar,
+            c_bar: s.c_bar,
+        };
+        let mut t = lock(&self.throttle);
+        if t.next.is_some_and(|next| Instant::now() < next) {
+            t.pending = Some(event);
+            return;
+        }
+        t.pending = None;
+        drop(t);
+        self.call(event.json(), STATE_EVERY);
+    }
+
+    /// An event other than a state: always delivered; it holds the next state back only as
+    /// long as the callback's share needs.
+    fn event(&self, event: Value) {
+        self.call(event, Duration::ZERO);
     }
 }
 
 impl Watch for PyWatch {
     fn note(&self, line: &str) {
-        self.call(json!({"event": "note", "text": as_keywords(line)}));
+        self.event(json!({"event": "note", "text": as_keywords(line)}));
     }
     fn pulloff_started(&self, model: &Model) {
-        self.call(json!({"event": "start", "grid": [model.nx, model.ny],
+        {
+            let mut t = lock(&self.throttle);
+            t.grid = (model.nx, model.ny);
+            t.pending = None;
+        }
+        self.event(json!({"event": "start", "grid": [model.nx, model.ny],
                          "expected_steps": model.expected_steps()}));
     }
     fn state(&self, model: &Model, s: &State) {
@@ -289,12 +485,21 @@ impl Watch for PyWatch {
     fn state_held(&self, model: &Model, s: &State) {
         self.state_event(model, s, true);
     }
+    fn pulloff_ended(&self) {
+        let (pending, grid) = {
+            let mut t = lock(&self.throttle);
+            (t.pending.take(), t.grid)
+        };
+        if let Some(last) = pending {
+            self.event(last.json());
+        }
+        self.event(json!({"event": "end", "grid": [grid.0, grid.1]}));
+    }
     fn warning(&self, line: &str) {
-        self.call(json!({"event": "warning", "text": as_keywords(line)}));
+        self.event(json!({"event": "warning", "text": as_keywords(line)}));
     }
     fn keep_going(&self) -> bool {
-        if self.interrupted.load(Ordering::SeqCst) || self.callback_error.lock().unwrap().is_some()
-        {
+        if self.stopping() {
             return false;
         }
         let signalled = Python::attach(|py| py.check_signals().is_err());
@@ -359,60 +564,72 @@ fn simulate<'py>(
     request: &str,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<(String, Vec<Bound<'py, PyDict>>)> {
-    let req: Request = parse(request)?;
-    let sim = req.simulate_request()?;
-    let watch = PyWatch {
-        progress,
-        last: Mutex::new(None),
-        interrupted: AtomicBool::new(false),
-        callback_error: Mutex::new(None),
-    };
-    let done = py.detach(|| run_simulate(&sim, &watch));
-    if let Some(e) = watch.callback_error.lock().unwrap().take() {
-        return Err(e);
-    }
-    let done = done.map_err(|e| match e {
-        RunError::Input(m) => input_error(m),
-        other => SolveError::new_err(as_keywords(&other.to_string())),
-    })?;
-    let fields = fields_out(py, &done)?;
-    Ok((
-        answer(&done, watch.interrupted.load(Ordering::SeqCst)).to_string(),
-        fields,
-    ))
+    guarded(|| {
+        let req: Request = parse(request)?;
+        let sim = req.simulate_request()?;
+        let watch = PyWatch::new(progress);
+        let done = py.detach(|| run_simulate(&sim, &watch));
+        if let Some(e) = lock(&watch.callback_error).take() {
+            return Err(e);
+        }
+        let done = done.map_err(|e| match e {
+            RunError::Input(m) => run_input_error(&m),
+            other => SolveError::new_err(as_keywords(&other.to_string())),
+        })?;
+        let fields = fields_out(py, &done)?;
+        Ok((
+            answer(&done, watch.interrupted.load(Ordering::SeqCst)).to_string(),
+            fields,
+        ))
+    })
 }
 
 /// What a run to `accuracy` would do (the grids, the domain and the uncertainty it predicts),
 /// without running it; the request as JSON, the plan as JSON.
 #[pyfunction]
 fn plan(request: &str) -> PyResult<String> {
-    let req: Request = parse(request)?;
-    let scene = req.scene()?;
-    let target = req.accuracy.unwrap_or(DEFAULT_ACCURACY);
-    let p = jkrbem::plan::for_accuracy(&scene, target, &req.options()?).map_err(input_error)?;
-    Ok(json!({
-        "grids": p.grids,
-        "extrapolates": p.extrapolates(),
-        "margin": p.options.margin,
-        "measure": if p.options.measure == Measure::AdhesiveForce { "adhesive_force" } else { "curve" },
-        "n_d": p.n_d,
-        "predicted_uncertainty": p.predicted_uncertainty,
-        "target": p.target,
-        "description": as_keywords(&p.describe(scene.ratio())),
+    guarded(|| {
+        let req: Request = parse(request)?;
+        let scene = req.scene()?;
+        let target = req.accuracy.unwrap_or(DEFAULT_ACCURACY);
+        let p = jkrbem::plan::for_accuracy(&scene, target, &req.options()?)
+            .map_err(|e| run_input_error(&e.to_string()))?;
+        let measure = match p.options.measure {
+            Measure::AdhesiveForce => "adhesive_force",
+            Measure::Curve => "curve",
+        };
+        Ok(json!({
+            "grids": p.grids,
+            "extrapolates": p.extrapolates(),
+            "margin": p.options.margin,
+            "measure": measure,
+            "n_d": p.n_d,
+            "predicted_uncertainty": p.predicted_uncertainty,
+            "target": p.target,
+            "description": as_keywords(&p.describe(scene.ratio())),
+        })
+        .to_string())
     })
-    .to_string())
 }
 
-/// The theory named `model` ("hertz", "jkr", "jg") for R1/R2 = `ratio`.
+/// The theory named `model` ("hertz", "jkr", "jg").
 fn theory_model(model: &str) -> PyResult<TheoryModel> {
     match model {
         "hertz" => Ok(TheoryModel::Hertz),
         "jkr" => Ok(TheoryModel::Jkr),
         "jg" => Ok(TheoryModel::Jg),
         m => Err(input_error(format!(
-            "model = {m:?} is invalid: \"hertz\", \"jkr\" or \"jg\""
+            "model = {} is invalid: \"hertz\", \"jkr\" or \"jg\"",
+            shown(m)
         ))),
     }
+}
+
+/// Checks `ratio` = R1/R2 as the CLI's `theory --ratio` does: in [1, 1000].
+fn theory_ratio(ratio: f64) -> PyResult<()> {
+    Scene::from_ratio(ratio, 1.0, 1.0, 1.0)
+        .map(|_| ())
+        .map_err(input_error)
 }
 
 /// A closed-form point as JSON.
@@ -420,45 +637,70 @@ fn point(p: &theory::TheoryPoint) -> Value {
     json!({"c_bar": p.c_bar, "f_bar": p.f_bar, "d_bar": p.d_bar, "a_bar": p.a_bar, "b_bar": p.b_bar})
 }
 
-/// `points` points of a closed-form curve, normalised (c̄, F̄, d̄, ā, b̄), as JSON.
+/// `points` points (2 to [`MAX_THEORY_POINTS`]) of a closed-form curve for R1/R2 = `ratio`,
+/// normalised (c̄, F̄, d̄, ā, b̄), as JSON.
 #[pyfunction]
 fn theory_curve(model: &str, ratio: f64, points: usize) -> PyResult<String> {
-    let curve = theory::curve(theory_model(model)?, ratio, points).map_err(input_error)?;
-    Ok(Value::from(curve.iter().map(point).collect::<Vec<_>>()).to_string())
+    guarded(|| {
+        let model = theory_model(model)?;
+        theory_ratio(ratio)?;
+        if !(2..=MAX_THEORY_POINTS).contains(&points) {
+            return Err(input_error(format!(
+                "points = {points} is invalid: from 2 to {MAX_THEORY_POINTS} points"
+            )));
+        }
+        let curve = theory::curve(model, ratio, points).map_err(input_error)?;
+        Ok(Value::from(curve.iter().map(point).collect::<Vec<_>>()).to_string())
+    })
 }
 
-/// The closed form's force minimum and end of contact, normalised, as JSON.
+/// The closed form's force minimum and end of contact for R1/R2 = `ratio`, normalised, as
+/// JSON.
 #[pyfunction]
 fn theory_pull_off(model: &str, ratio: f64) -> PyResult<String> {
-    let p = theory::pull_off(theory_model(model)?, ratio).map_err(input_error)?;
-    Ok(
-        json!({"force_min": point(&p.force_min), "end_of_contact": point(&p.end_of_contact)})
-            .to_string(),
-    )
+    guarded(|| {
+        let model = theory_model(model)?;
+        if model == TheoryModel::Hertz {
+            return Err(input_error(
+                "model = \"hertz\" has no pull-off (Hertz's contact has no adhesion): use \
+                 \"jkr\" or \"jg\"",
+            ));
+        }
+        theory_ratio(ratio)?;
+        let p = theory::pull_off(model, ratio).map_err(input_error)?;
+        Ok(
+            json!({"force_min": point(&p.force_min), "end_of_contact": point(&p.end_of_contact)})
+                .to_string(),
+        )
+    })
 }
 
 /// The reference table of converged adhesive forces, as its CSV text.
 #[pyfunction]
-fn reference_table_csv() -> &'static str {
-    jkrbem::analysis::convergence::reference_table_csv()
+fn reference_table_csv() -> PyResult<&'static str> {
+    guarded(|| Ok(jkrbem::analysis::convergence::reference_table_csv()))
 }
 
 /// The GPU adapters wgpu sees, best first, as JSON.
 #[pyfunction]
-fn devices() -> String {
-    let adapters: Vec<Value> = jkrbem::backend::gpu::list_adapters()
-        .iter()
-        .map(|a| {
-            json!({"name": a.name, "device_type": a.device_type, "api": a.backend,
-                   "largest_grid": a.largest_grid, "max_buffer_size": a.max_buffer_size})
-        })
-        .collect();
-    Value::from(adapters).to_string()
+fn devices(py: Python<'_>) -> PyResult<String> {
+    guarded(|| {
+        let adapters = py.detach(jkrbem::backend::gpu::list_adapters);
+        let adapters: Vec<Value> = adapters
+            .iter()
+            .map(|a| {
+                json!({"name": a.name, "device_type": a.device_type, "api": a.backend,
+                       "largest_grid": a.largest_grid, "max_buffer_size": a.max_buffer_size})
+            })
+            .collect();
+        Ok(Value::from(adapters).to_string())
+    })
 }
 
 /// The equivalent ellipsoid of two identical cylinders of `radius` (length), Young's modulus
 /// `young` (force/length²) and Poisson's ratio `poisson` crossed at `angle` (degrees), with
 /// `work_of_adhesion` (force/length): R1, R2, E* and the force scale 3π Re Δγ, as JSON.
+/// Errors name `angles`, the Python keyword that gives the angle.
 #[pyfunction]
 fn crossed_scene(
     radius: f64,
@@ -467,20 +709,48 @@ fn crossed_scene(
     work_of_adhesion: f64,
     angle: f64,
 ) -> PyResult<String> {
-    let c = jkrbem::analysis::crossed::CrossedCylinders {
-        radius,
-        angle_deg: angle,
-        young,
-        poisson,
-        work_of_adhesion,
-    };
-    c.validate().map_err(input_error)?;
-    let (r1, r2) = c.radii().map_err(input_error)?;
-    Ok(
-        json!({"r1": r1, "r2": r2, "e_star": c.e_star().map_err(input_error)?,
-              "force_scale": c.force_scale().map_err(input_error)?, "ratio": r1 / r2})
-        .to_string(),
-    )
+    guarded(|| {
+        let c = jkrbem::analysis::crossed::CrossedCylinders {
+            radius,
+            angle_deg: angle,
+            young,
+            poisson,
+            work_of_adhesion,
+        };
+        let refused = |e: jkrbem::scene::SceneError| {
+            input_error(e.renamed(&|flag| if flag == "--angle" { "--angles" } else { flag }))
+        };
+        c.validate().map_err(refused)?;
+        let (r1, r2) = c.radii().map_err(refused)?;
+        Ok(
+            json!({"r1": r1, "r2": r2, "e_star": c.e_star().map_err(refused)?,
+                  "force_scale": c.force_scale().map_err(refused)?, "ratio": r1 / r2})
+            .to_string(),
+        )
+    })
+}
+
+/// The library's ranges the Python package checks its keywords against, as JSON: grid
+/// sides, load steps, R1/R2, closed-form points, `time_limit` (s), the inputs' range.
+#[pyfunction]
+fn limits() -> String {
+    json!({
+        "min_grid": jkrbem::model::MIN_GRID,
+        "max_grid": jkrbem::model::MAX_GRID,
+        "max_steps": jkrbem::model::MAX_STEPS,
+        "max_ratio": jkrbem::scene::MAX_RATIO,
+        "max_theory_points": MAX_THEORY_POINTS,
+        "max_time_limit_s": MAX_TIME_LIMIT_S,
+        "default_scale": DEFAULT_SCALE,
+    })
+    .to_string()
+}
+
+/// Panics on purpose, inside [`guarded`]: lets the tests check that a panic (a bug) reaches
+/// Python as a [`SolveError`], never as a `PanicException`.
+#[pyfunction]
+fn _panic_for_tests() -> PyResult<()> {
+    guarded(|| panic!("a deliberate panic (jkrbem's own test of its last line of defence)"))
 }
 
 /// The compiled module.
@@ -496,5 +766,7 @@ fn _jkrbem(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(reference_table_csv, m)?)?;
     m.add_function(wrap_pyfunction!(devices, m)?)?;
     m.add_function(wrap_pyfunction!(crossed_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(limits, m)?)?;
+    m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
     Ok(())
 }
