@@ -9,5 +9,6 @@ mod bench;
 mod cli;
 mod cli_fuzz;
 mod hardening_collect;
+mod hardening_files;
 mod hardening_reference;
 mod robustness;
