@@ -1,16 +1,25 @@
 //! The one way jkrbem writes a file.
 //!
 //! - [`write_atomic`]: the content goes to a unique temporary file in the target's folder
-//!   (`.<name>.<random>.tmp`), is flushed and synced, and only then renamed over the target.
-//!   An existing target is never deleted or truncated before that, so it is either the old
-//!   file or the whole new one, whatever happens on the way (an error, a full disk, a signal).
+//!   (`.<name>.<pid>.<random>.tmp`), is flushed and synced, and only then renamed over the
+//!   target. An existing target is never deleted or truncated before that, so it is either the
+//!   old file or the whole new one, whatever happens on the way (an error, a full disk, a
+//!   signal). Temporaries a killed run left are removed by the next run that locks the target
+//!   (see the `temporary` submodule).
 //! - [`PartialFile`]: a file written while a run goes on (the states CSV). It is written under
 //!   a name that says it is partial and is unique per run, `<stem>.incomplete-<pid>.<ext>`, and
 //!   renamed to the target only when the run completes; otherwise it stays, marked.
 //! - [`OutputLock`]: a lock file `.<name>.lock` beside a target, holding the process id, so that
 //!   a second run aimed at the same output is refused while the first one holds it. The lock is
 //!   an advisory OS lock on that file, so it is released when its process dies, however it
-//!   dies; a lock file left by a killed run is taken over.
+//!   dies; a lock file left by a killed run is taken over (a file there that holds anything
+//!   but a process id is refused, not taken). While it is held, the target is *claimed*:
+//!   what it resolved to then is kept, and a write that finds it changed since (a symbolic
+//!   link put there during the run) fails instead of following it, after the work, with exit
+//!   status 1 and the result kept where it is said to be.
+//! - [`file_id`] and [`note_input`]: which file a path names, however spelled or linked, and the
+//!   files this run reads; an output that is one of them is refused (see
+//!   [`crate::run::claim`]), and never written.
 //! - [`check_target`]: a target that exists and is not a regular file (a device, a FIFO, a
 //!   folder) is refused.
 //! - [`read_regular`]: the one way jkrbem reads a file a user may have put in its way (a shard,
@@ -19,9 +28,14 @@
 //! Temporary files and lock files are registered while they exist, so that a signal handler
 //! can remove them ([`remove_registered`]) before the process exits.
 
+mod identity;
+mod temporary;
+
+pub use identity::{canonical, file_id, input_at, note_input, FileId, Input, InputKind};
+
 use super::OutputError;
 use std::fs::{self, File, OpenOptions};
-use std::io::{self, BufWriter, Read, Write};
+use std::io::{self, BufWriter, Read, Seek, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -125,9 +139,21 @@ fn check_link_owner(path: &Path, uid: u32) -> Result<(), OutputError> {
 pub const MAX_NAME_BYTES: usize = 225;
 
 /// Refuse a name that ends in `/` (or `/.`, `/..`): it names a folder, and the write would
-/// only fail after the work; and a file name too long for the names written beside it.
+/// only fail after the work; a file name too long for the names written beside it; and a
+/// name with a control character (a newline, a tab, an escape), which would break every
+/// message and listing that names it (the message shows it escaped).
 fn check_file_name(path: &Path) -> Result<(), OutputError> {
     let text = path.to_string_lossy();
+    if let Some(c) = text.chars().find(|c| c.is_control()) {
+        return Err(OutputError::Refused {
+            path: format!("{text:?}"),
+            flag: None,
+            reason: format!(
+                "the name holds a control character ({c:?}), which would break the messages \
+                 and listings that name the file: choose a name without one"
+            ),
+        });
+    }
     let folder_like = text.ends_with('/')
         || text.ends_with("/.")
         || text.ends_with("/..")
@@ -217,10 +243,104 @@ fn resolved(path: &Path) -> PathBuf {
     }
 }
 
-/// Create the folder of `path` if needed.
+/// The lock file a claim of `target` takes: beside the file a write to `target` replaces
+/// (through a symbolic link there).
+pub fn lock_of(target: &Path) -> PathBuf {
+    lock_path(&resolved(target))
+}
+
+/// `path` as one name, not followed through a symbolic link at its end: its folder
+/// [`canonical`], and its file name.
+fn name_id(path: &Path) -> PathBuf {
+    match path.file_name() {
+        Some(name) => canonical(&folder(path)).join(name),
+        None => canonical(path),
+    }
+}
+
+/// The outputs this process holds the lock of: each name (see [`name_id`]) and the file it
+/// resolved to when its lock was taken.
+static CLAIMED: Mutex<Vec<(PathBuf, PathBuf)>> = Mutex::new(Vec::new());
+
+/// What `path` resolved to when this process locked it, if it holds its lock.
+fn claimed(path: &Path) -> Option<PathBuf> {
+    let name = name_id(path);
+    CLAIMED
+        .lock()
+        .ok()?
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, resolved)| resolved.clone())
+}
+
+/// A refusal found while writing, after the run's work: a failure (exit status 1), since
+/// the work was done, that says nothing was written under the name.
+fn after_work(e: OutputError, kept: Option<&Path>) -> OutputError {
+    let kept = kept.map_or_else(String::new, |p| {
+        format!("; the complete result is kept in {}", p.display())
+    });
+    match e {
+        OutputError::Refused { path, flag, reason } => OutputError::Io {
+            path,
+            flag,
+            source: io::Error::other(format!(
+                "{reason} (found when writing, after the run's work: it changed during the \
+                 run), so nothing was written under this name{kept}"
+            )),
+        },
+        OutputError::Io { path, flag, source } if !kept.is_empty() => OutputError::Io {
+            path,
+            flag,
+            source: io::Error::new(source.kind(), format!("{source}{kept}")),
+        },
+        other => other,
+    }
+}
+
+/// Refuse to write `target` (the file a write to `path` replaces) where it changed since
+/// the claim: now a symbolic link, or resolving elsewhere than it did then (a link put there
+/// or changed during the run); or where it is a file this run reads.
+fn check_unchanged(path: &Path, target: &Path) -> Result<(), OutputError> {
+    if let Some(at_claim) = claimed(path) {
+        let now_link = fs::symlink_metadata(&at_claim).is_ok_and(|m| m.file_type().is_symlink());
+        if now_link || name_id(&at_claim) != name_id(target) {
+            return Err(refused(
+                path,
+                "a symbolic link was put at it (or changed) during the run; a link that was \
+                 not there when the run claimed the file is neither followed nor replaced",
+            ));
+        }
+    }
+    if let Some(input) = input_at(&file_id(target)) {
+        return Err(refused(
+            path,
+            format!("it is now the same file as {}", input.describe()),
+        ));
+    }
+    Ok(())
+}
+
+/// Create the folder of `path` if needed. A folder on the way that is a symbolic link to
+/// nothing is refused, naming it (the system says only "File exists").
 pub fn create_folder(path: &Path) -> Result<(), OutputError> {
     let dir = folder(path);
-    fs::create_dir_all(&dir).map_err(|e| OutputError::io(&dir, e))
+    fs::create_dir_all(&dir).map_err(|e| {
+        let dangling = dir.ancestors().find(|a| {
+            fs::symlink_metadata(a).is_ok_and(|m| m.file_type().is_symlink())
+                && fs::metadata(a).is_err()
+        });
+        match dangling {
+            Some(link) => refused(
+                link,
+                format!(
+                    "its folder is a symbolic link to nothing ({}), so nothing can be written \
+                     in it: create the folder it points to, or remove the link",
+                    fs::read_link(link).unwrap_or_default().display()
+                ),
+            ),
+            None => OutputError::io(&dir, e),
+        }
+    })
 }
 
 /// Open a new file with the usual permissions (0666 less the umask), or the target's if it
@@ -239,13 +359,23 @@ pub fn write_atomic<F>(path: &Path, write: F) -> Result<(), OutputError>
 where
     F: FnOnce(&mut BufWriter<&File>) -> io::Result<()>,
 {
-    check_target(path)?;
-    let target = resolved(path);
+    // After the claim (this process holds the lock), a refusal is a failure of the work.
+    let late = claimed(path).is_some();
+    let checked = || -> Result<PathBuf, OutputError> {
+        check_target(path)?;
+        let target = resolved(path);
+        check_unchanged(path, &target)?;
+        Ok(target)
+    };
+    let target = checked().map_err(|e| if late { after_work(e, None) } else { e })?;
     create_folder(&target)?;
     let dir = folder(&target);
     let mut builder = tempfile::Builder::new();
-    let prefix = format!(".{}.", file_name(&target));
-    builder.prefix(&prefix).suffix(".tmp");
+    let prefix = temporary::prefix(&file_name(&target));
+    builder
+        .prefix(&prefix)
+        .rand_bytes(temporary::RANDOM_CHARS)
+        .suffix(temporary::SUFFIX);
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
@@ -265,7 +395,14 @@ where
         }
         tmp.as_file().sync_all().map_err(err)?;
         permissions_like(tmp.as_file(), &target);
-        check_target(path)?;
+        check_target(path).map_err(|e| after_work(e, None))?;
+        if resolved(path) != target {
+            return Err(after_work(
+                refused(path, "a symbolic link was put at it while it was written"),
+                None,
+            ));
+        }
+        check_unchanged(path, &target).map_err(|e| after_work(e, None))?;
         Ok(())
     })();
     let outcome = match result {
@@ -460,9 +597,29 @@ impl PartialFile {
             .map_err(|e| OutputError::io(&self.partial, e))?;
         permissions_like(&file, &self.target);
         drop(file);
-        check_target(&self.target)?;
-        fs::rename(&self.partial, &self.target).map_err(|e| OutputError::io(&self.target, e))?;
+        // The work is done: whatever is found now is a failure, and the result stays under
+        // its partial name, said in the message.
+        let kept = Some(self.partial.as_path());
+        check_no_link_put_at(&self.target)
+            .and_then(|()| check_target(&self.target))
+            .and_then(|()| check_unchanged(&self.target, &self.target))
+            .map_err(|e| after_work(e, kept))?;
+        fs::rename(&self.partial, &self.target)
+            .map_err(|e| after_work(OutputError::io(&self.target, e), kept))?;
         Ok(self.target)
+    }
+}
+
+/// Refuse a symbolic link at a partial file's target: [`PartialFile::create`] resolved any
+/// link there, so a link there now was put there during the run (it is not followed, which
+/// would write where nothing was checked, nor replaced).
+fn check_no_link_put_at(target: &Path) -> Result<(), OutputError> {
+    match fs::symlink_metadata(target) {
+        Ok(m) if m.file_type().is_symlink() => Err(refused(
+            target,
+            "a symbolic link was put at it during the run; it is neither followed nor replaced",
+        )),
+        _ => Ok(()),
     }
 }
 
@@ -487,6 +644,8 @@ pub fn lock_path(target: &Path) -> PathBuf {
 pub struct OutputLock {
     path: PathBuf,
     file: Option<File>,
+    /// The claimed name (see [`name_id`]), in [`CLAIMED`] while the lock is held.
+    name: PathBuf,
 }
 
 #[cfg(unix)]
@@ -551,6 +710,27 @@ fn open_lock_file(path: &Path) -> Result<File, OutputError> {
     Ok(file)
 }
 
+/// The most bytes a lock file holds: a process id and a newline.
+const MAX_LOCK_BYTES: u64 = 24;
+
+/// Refuse to take over a file at a lock's name that holds anything but a process id (or
+/// nothing): it is some other file that happens to have that name, and taking the lock would
+/// truncate it and remove it at the end.
+fn check_lock_content(file: &mut File, path: &Path) -> Result<(), OutputError> {
+    let mut text = String::new();
+    let read = file.take(MAX_LOCK_BYTES + 1).read_to_string(&mut text);
+    let is_pid = |t: &str| t.trim().bytes().all(|b| b.is_ascii_digit());
+    let lock_like = read.is_ok() && text.len() as u64 <= MAX_LOCK_BYTES && is_pid(&text);
+    if lock_like {
+        return Ok(());
+    }
+    Err(refused(
+        path,
+        "a file of that name exists and is not a jkrbem lock file (it holds something other \
+         than a process id): it is never truncated or removed; rename it or remove it",
+    ))
+}
+
 /// Whether opening `path` failed because it is a symbolic link (`O_NOFOLLOW`).
 fn is_link_error(e: &io::Error, path: &Path) -> bool {
     #[cfg(unix)]
@@ -565,6 +745,7 @@ impl OutputLock {
     /// Lock `target` for this process (creating its folder). Refused, naming the process that
     /// holds it, while another process holds it.
     pub fn acquire(target: &Path) -> Result<Self, OutputError> {
+        let name = name_id(target);
         let target = resolved(target);
         create_folder(&target)?;
         let path = lock_path(&target);
@@ -577,9 +758,11 @@ impl OutputLock {
                     if !same_file(&file, &path) {
                         continue;
                     }
+                    check_lock_content(&mut file, &path)?;
                     register(&path);
                     let written = file
                         .set_len(0)
+                        .and_then(|_| file.rewind())
                         .and_then(|_| writeln!(file, "{}", std::process::id()))
                         .and_then(|_| file.flush());
                     if let Err(e) = written {
@@ -588,19 +771,38 @@ impl OutputLock {
                         unregister(&path);
                         return Err(OutputError::io(&path, e));
                     }
+                    if let Ok(mut claimed) = CLAIMED.lock() {
+                        claimed.push((name.clone(), target.clone()));
+                    }
+                    // No other live process writes the target now: its temporaries whose
+                    // writer is gone were left by a killed run.
+                    temporary::remove_stale(&folder(&target), &file_name(&target));
                     return Ok(OutputLock {
                         path,
                         file: Some(file),
+                        name,
                     });
                 }
                 Err(fs::TryLockError::WouldBlock) => {
                     let mut text = String::new();
-                    let _ = file.read_to_string(&mut text);
+                    let _ = (&mut file).take(64).read_to_string(&mut text);
+                    let pid: Option<u32> = text.trim().parse().ok();
+                    if pid == Some(std::process::id()) {
+                        return Err(refused(
+                            &target,
+                            format!(
+                                "its lock file {} is held by this same run: another of its \
+                                 outputs is this file (under another name or through a link); \
+                                 give the outputs different files",
+                                path.display()
+                            ),
+                        ));
+                    }
                     return Err(OutputError::Locked {
                         path: target.display().to_string(),
                         flag: None,
                         lock: path.display().to_string(),
-                        pid: text.trim().parse().ok(),
+                        pid,
                     });
                 }
                 Err(fs::TryLockError::Error(e)) => return Err(OutputError::io(&path, e)),
@@ -623,6 +825,11 @@ impl Drop for OutputLock {
         // Remove the file while still holding the lock, then release it.
         let _ = fs::remove_file(&self.path);
         unregister(&self.path);
+        if let Ok(mut claimed) = CLAIMED.lock() {
+            if let Some(k) = claimed.iter().rposition(|(n, _)| *n == self.name) {
+                claimed.swap_remove(k);
+            }
+        }
         drop(self.file.take());
     }
 }
@@ -701,6 +908,92 @@ mod tests {
         assert_eq!(fs::read_to_string(&kept).unwrap(), "a\n");
         assert_eq!(b.finish(true).unwrap(), target);
         assert_eq!(fs::read_to_string(&target).unwrap(), "b\n");
+    }
+
+    #[test]
+    fn a_temporary_is_named_with_its_process_id() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("t.csv");
+        let mut seen = Vec::new();
+        write_atomic(&target, |w| {
+            seen = fs::read_dir(dir.path())
+                .unwrap()
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect();
+            w.write_all(b"x")
+        })
+        .unwrap();
+        assert_eq!(seen.len(), 1, "{seen:?}");
+        assert_eq!(
+            temporary::writer_of(&seen[0], "t.csv"),
+            Some(std::process::id())
+        );
+    }
+
+    #[test]
+    fn a_file_at_a_lock_name_that_is_no_lock_is_never_taken() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("out.csv");
+        fs::write(lock_path(&target), "precious\n").unwrap();
+        let e = OutputLock::acquire(&target).unwrap_err();
+        assert!(
+            e.is_refusal() && e.to_string().contains("not a jkrbem lock"),
+            "{e}"
+        );
+        assert_eq!(
+            fs::read_to_string(lock_path(&target)).unwrap(),
+            "precious\n"
+        );
+        // A killed run's lock (its process id) is taken over.
+        fs::write(lock_path(&target), "4194303\n").unwrap();
+        drop(OutputLock::acquire(&target).unwrap());
+        assert!(!lock_path(&target).exists());
+    }
+
+    #[test]
+    fn one_process_claiming_one_file_twice_is_not_told_of_another_run() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("twice.csv");
+        let held = OutputLock::acquire(&target).unwrap();
+        let e = OutputLock::acquire(&dir.path().join("./twice.csv")).unwrap_err();
+        assert!(matches!(e, OutputError::Refused { .. }), "{e}");
+        assert!(e.to_string().contains("this same run"), "{e}");
+        drop(held);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_link_put_at_a_partial_file_s_target_is_neither_followed_nor_replaced() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("s.csv");
+        let held = OutputLock::acquire(&target).unwrap();
+        let mut p = PartialFile::create(&target).unwrap();
+        p.write_all(b"all of it\n").unwrap();
+        let partial = p.partial_path().to_path_buf();
+        std::os::unix::fs::symlink("victim.csv", &target).unwrap();
+        let e = p.finish(true).unwrap_err();
+        assert!(!e.is_refusal(), "{e}");
+        let text = e.to_string();
+        assert!(text.contains("symbolic link"), "{text}");
+        assert!(text.contains(&partial.display().to_string()), "{text}");
+        assert_eq!(fs::read_to_string(&partial).unwrap(), "all of it\n");
+        assert!(fs::symlink_metadata(&target).unwrap().is_symlink());
+        assert!(!dir.path().join("victim.csv").exists());
+        // A summary written after the claim is not written through a link put there since.
+        let summary = dir.path().join("s.json");
+        let claim = OutputLock::acquire(&summary).unwrap();
+        fs::write(dir.path().join("victim.json"), "KEEP").unwrap();
+        std::os::unix::fs::symlink("victim.json", &summary).unwrap();
+        let e = write_bytes(&summary, b"{}").unwrap_err();
+        assert!(
+            !e.is_refusal() && e.to_string().contains("symbolic link"),
+            "{e}"
+        );
+        assert_eq!(
+            fs::read_to_string(dir.path().join("victim.json")).unwrap(),
+            "KEEP"
+        );
+        drop((held, claim));
     }
 
     #[test]

@@ -1,11 +1,13 @@
 //! The files a request will write, claimed once every input has been checked and before any
-//! work: two outputs that are the same file (`--out o.csv --summary o.csv`) are refused, as is
-//! a target that is not a regular file, and each target is locked against other runs
-//! ([`OutputLock`]) until the claim is dropped. The writing itself goes through
-//! [`crate::output::file`].
+//! work: two outputs that are the same file (`--out o.csv --summary o.csv`, or two names of
+//! one file) are refused, as is a target that is not a regular file and one that is a file
+//! the run reads, and each target is locked against other runs ([`OutputLock`]) until the
+//! claim is dropped. The writing itself goes through [`crate::output::file`].
 
 use super::{failed, input, RunError};
-use crate::output::file::{check_target, lock_path, OutputLock};
+use crate::output::file::{
+    canonical, check_target, file_id, input_at, lock_of, FileId, OutputLock,
+};
 use crate::output::OutputError;
 use std::path::{Path, PathBuf};
 
@@ -19,29 +21,6 @@ pub fn write_error(flag: &str) -> impl Fn(OutputError) -> RunError + '_ {
         } else {
             failed(e)
         }
-    }
-}
-
-/// A path as one file, whatever way it was written: absolute, `.` and `..` resolved, and the
-/// folder's symbolic links followed where it exists.
-fn identity(path: &Path) -> PathBuf {
-    let abs = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
-    let mut clean = PathBuf::new();
-    for c in abs.components() {
-        match c {
-            std::path::Component::ParentDir => {
-                clean.pop();
-            }
-            std::path::Component::CurDir => {}
-            other => clean.push(other),
-        }
-    }
-    match (clean.parent(), clean.file_name()) {
-        (Some(dir), Some(name)) => match std::fs::canonicalize(dir) {
-            Ok(dir) => dir.join(name),
-            Err(_) => clean,
-        },
-        _ => clean,
     }
 }
 
@@ -59,24 +38,51 @@ impl Outputs {
     pub fn claim(targets: &[(PathBuf, String)]) -> Result<Outputs, RunError> {
         Self::check(targets)?;
         let mut outputs = Outputs::default();
+        let mut taken: Vec<(PathBuf, &Path, &str)> = Vec::new();
         for (path, flag) in targets {
+            // Two of this run's own outputs on one lock (a link changed since the check) are
+            // said to be so, not blamed on another run.
+            let lock = canonical(&lock_of(path));
+            if let Some((_, other, other_flag)) = taken.iter().find(|(l, _, _)| *l == lock) {
+                return Err(input(format!(
+                    "{flag} {} is the same file as {other_flag} {} (they share the lock file \
+                     {}): give them different names",
+                    path.display(),
+                    other.display(),
+                    lock_of(path).display()
+                )));
+            }
             // Nothing has been computed yet: a lock that cannot be taken (held by another
             // run, a read-only or full folder, a name too long, a file where a folder should
             // be) is a refusal of the request, exit code 2.
-            let lock = OutputLock::acquire(path).map_err(|e| input(e.with_flag(flag)))?;
-            outputs.locks.push(lock);
+            let held = OutputLock::acquire(path).map_err(|e| input(e.with_flag(flag)))?;
+            outputs.locks.push(held);
+            taken.push((lock, path, flag));
         }
         Ok(outputs)
     }
 
-    /// The checks of [`Outputs::claim`] that create nothing: no two outputs the same file,
-    /// none that exists and is not a regular file.
+    /// The checks of [`Outputs::claim`] that create nothing: no output that exists and is not
+    /// a regular file; no two outputs that are one file, however spelled or linked (hard
+    /// links and symbolic links included: see [`file_id`]) or that share a lock file; none
+    /// named as another's lock file; and none that is, or whose lock file is, a file this run
+    /// reads ([`note_input`](crate::output::file::note_input): `--height-map`, the shards of
+    /// `collect`), the program itself or a standard stream redirected to a file.
     pub fn check(targets: &[(PathBuf, String)]) -> Result<(), RunError> {
-        let mut seen: Vec<(PathBuf, &Path, &str)> = Vec::new();
+        let mut seen: Vec<Claimed> = Vec::new();
         for (path, flag) in targets {
-            let id = identity(path);
-            if let Some((_, other, other_flag)) = seen.iter().find(|(i, _, _)| *i == id) {
-                return Err(input(if other_flag == flag {
+            check_target(path).map_err(write_error(flag))?;
+            let claimed = Claimed {
+                id: file_id(path),
+                lock: file_id(&lock_of(path)),
+                path,
+                flag,
+            };
+            if let Some(other) = seen
+                .iter()
+                .find(|o| o.id == claimed.id || o.lock == claimed.lock)
+            {
+                return Err(input(if other.flag == flag.as_str() {
                     format!(
                         "{flag}: two outputs of this command would be the same file {} \
                          (check for repeated values)",
@@ -84,31 +90,54 @@ impl Outputs {
                     )
                 } else {
                     format!(
-                        "{flag} {} is the same file as {other_flag} {}: give them different names",
+                        "{flag} {} is the same file as {} {}: give them different names",
                         path.display(),
-                        other.display()
+                        other.flag,
+                        other.path.display()
                     )
                 }));
             }
-            check_target(path).map_err(write_error(flag))?;
-            seen.push((id, path, flag));
+            if let Some(read) = input_at(&claimed.id) {
+                return Err(input(format!(
+                    "{flag} {} is the same file as {}: an output never replaces it; give \
+                     another name",
+                    path.display(),
+                    read.describe()
+                )));
+            }
+            if let Some(read) = input_at(&claimed.lock) {
+                return Err(input(format!(
+                    "{flag} {}: its lock file {} is the same file as {}: the lock would \
+                     overwrite it; give another name",
+                    path.display(),
+                    lock_of(path).display(),
+                    read.describe()
+                )));
+            }
+            seen.push(claimed);
         }
         // An output named as another's lock file would be removed with the lock at the end.
-        let locks: std::collections::HashMap<PathBuf, (&Path, &str)> = seen
-            .iter()
-            .map(|(_, other, other_flag)| (identity(&lock_path(other)), (*other, *other_flag)))
-            .collect();
-        for (id, path, flag) in &seen {
-            if let Some((other, other_flag)) = locks.get(id) {
+        for s in &seen {
+            if let Some(other) = seen.iter().find(|o| o.lock == s.id) {
                 return Err(input(format!(
-                    "{flag} {} is the lock file of {other_flag} {}: give it another name",
-                    path.display(),
-                    other.display()
+                    "{} {} is the lock file of {} {}: give it another name",
+                    s.flag,
+                    s.path.display(),
+                    other.flag,
+                    other.path.display()
                 )));
             }
         }
         Ok(())
     }
+}
+
+/// An output being checked: its identity, its lock file's, and how it was named.
+struct Claimed<'a> {
+    id: FileId,
+    lock: FileId,
+    path: &'a Path,
+    flag: &'a str,
 }
 
 /// `(path, flag)` pairs for [`Outputs::claim`].

@@ -151,8 +151,8 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
                 outs.iter().map(|p| (p.clone(), "--out".into())).collect();
             if !req.fields.is_none() {
                 for o in &outs {
-                    targets.push((names::fields_npz(o), "--out".into()));
-                    targets.push((names::pressure_chart(o), "--out".into()));
+                    targets.push((names::fields_npz(o), "--fields".into()));
+                    targets.push((names::pressure_chart(o), "--fields".into()));
                 }
             }
             if let Some(p) = summary {
@@ -171,8 +171,9 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
         provenance::options_json(&req.options, mode_json(req)),
         provenance::backend_json(&req.backend, &reports),
     );
-    let (field_files, field_error) = write_fields(&ran.kept, &outs, &provenance);
-    if let Some(e) = field_error {
+    let (field_files, unwritten) = write_fields(&ran.kept, &outs, &provenance);
+    if !unwritten.is_empty() {
+        let e = unwritten.join("\n  ");
         ran.failure = Some(match ran.failure.take() {
             Some(f) => format!("{f}\n  {e}"),
             None => e,
@@ -187,6 +188,7 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
             fallback,
             planned_runs,
             provenance,
+            unwritten,
         },
     );
     done.field_files = field_files;
@@ -195,13 +197,14 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
 
 /// Write each run's fields beside its states file (where it has a file and fields): the
 /// `.npz` archive, and the pressure at the force minimum as a picture. Returns the files
-/// written and why one could not be, if one could not.
+/// written and why each one that could not be was not (the others are still written).
 fn write_fields(
     runs: &[GridRun],
     outs: &[Option<PathBuf>],
     provenance: &Provenance,
-) -> (Vec<PathBuf>, Option<String>) {
+) -> (Vec<PathBuf>, Vec<String>) {
     let mut written = Vec::new();
+    let mut unwritten = Vec::new();
     for (run, out) in runs.iter().zip(outs) {
         let (Some(out), false) = (out, run.fields.is_empty()) else {
             continue;
@@ -212,10 +215,10 @@ fn write_fields(
             "provenance": provenance,
         });
         let npz = names::fields_npz(out);
-        if let Err(e) = fields_npz::write_npz(&npz, &run.fields, about) {
-            return (written, Some(e.with_flag("--out").to_string()));
+        match fields_npz::write_npz(&npz, &run.fields, about) {
+            Ok(()) => written.push(npz),
+            Err(e) => unwritten.push(e.with_flag("--fields").to_string()),
         }
-        written.push(npz);
         let lowest = |f: &&StateFields| f.label.contains(LOWEST_NOT_MINIMUM);
         let minimum = |f: &&StateFields| f.label.contains("force minimum");
         if let Some(min) = run
@@ -234,13 +237,13 @@ fn write_fields(
                 "p at {what} (state {}): F̄ = {:.4}, c̄ = {:.3}, {}×{}",
                 min.index, min.state.f_bar, min.state.c_bar, run.grid.0, run.grid.1
             );
-            if let Err(e) = pressure_chart::write_pressure_svg(&chart, min, &title) {
-                return (written, Some(e.with_flag("--out").to_string()));
+            match pressure_chart::write_pressure_svg(&chart, min, &title) {
+                Ok(()) => written.push(chart),
+                Err(e) => unwritten.push(e.with_flag("--fields").to_string()),
             }
-            written.push(chart);
         }
     }
-    (written, None)
+    (written, unwritten)
 }
 
 /// The states files of the request's models: `--out` itself for one grid (asked for, or the
@@ -436,6 +439,8 @@ struct Concluding {
     fallback: usize,
     planned_runs: usize,
     provenance: Provenance,
+    /// Why each output asked for that was not written (the fields) was not.
+    unwritten: Vec<String>,
 }
 
 /// The answer from the runs that finished: the estimate, its summary (written where asked)
@@ -454,6 +459,7 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
         fallback,
         planned_runs,
         provenance,
+        unwritten,
     } = plan;
     let states: Vec<PathBuf> = runs.iter().filter_map(|r| r.states.clone()).collect();
     let mut reports: Vec<_> = runs.into_iter().map(|r| r.report).collect();
@@ -502,6 +508,10 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
             "--time-limit {} reached: {why}; the answer is from the grids that finished",
             crate::text::duration(limit)
         ));
+    }
+    // Not every output asked for exists: the summary says so, naming each.
+    for why in unwritten {
+        summary.warnings.push(format!("outputs incomplete: {why}"));
     }
     if let Sink::Files {
         summary: Some(p), ..

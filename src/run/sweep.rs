@@ -225,6 +225,34 @@ fn check_rows(dir: &Path, c: &sweep_csv::Collected) -> Result<Vec<(f64, PathBuf)
     Ok(unchecked)
 }
 
+/// Note every file `collect` reads in `dir` as an input of the run (the shards, and each
+/// row's summary and states, complete or partial, as the checks and the curves read them),
+/// so that no output of it is one of them ([`crate::output::file::note_input`]).
+fn note_read_files(dir: &Path, c: &sweep_csv::Collected) {
+    use crate::output::file::{is_partial_of, note_input};
+    let mut read: Vec<PathBuf> = (1..=c.shards)
+        .map(|k| crate::output::names::shard(dir, (k, c.shards)))
+        .collect();
+    let mut states_names = Vec::new();
+    for row in &c.rows {
+        let states = states_path(dir, row.ratio, row.grid);
+        read.push(states.with_extension("json"));
+        if let Some(name) = states.file_name() {
+            states_names.push(name.to_string_lossy().into_owned());
+        }
+        read.push(states);
+    }
+    for entry in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if states_names.iter().any(|s| is_partial_of(&name, s)) {
+            read.push(entry.path());
+        }
+    }
+    for path in read.iter().filter(|p| p.exists()) {
+        note_input(path, "DIR");
+    }
+}
+
 /// Ratios as text: "2, 25".
 fn listed(ratios: &[f64]) -> String {
     ratios
@@ -279,6 +307,7 @@ pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunErro
     let charts = chart_files(dir);
     let mut targets = vec![path.clone()];
     targets.extend(charts.iter().cloned());
+    note_read_files(dir, &c);
     let _claimed = Outputs::claim(&named("DIR", &targets))?;
     sweep_csv::write_rows(&path, &c.rows).map_err(write_error("DIR"))?;
     let mut warnings = Vec::new();

@@ -9,6 +9,7 @@ mod bench;
 mod cli;
 mod cli_fuzz;
 mod hardening_collect;
+mod hardening_files;
 mod hardening_inputs;
 mod hardening_reference;
 mod robustness;

@@ -127,6 +127,10 @@ impl Args {
 
 /// Run `jkrbem simulate`.
 pub fn run(args: Args) -> Result<(), CliError> {
+    // The height map is read: no output may be that file (checked when they are claimed).
+    if let (IndenterKind::HeightMap, Some(map)) = (args.shape.indenter, &args.shape.height_map) {
+        jkrbem::output::file::note_input(map, "--height-map");
+    }
     let request = args.request()?;
     let progress = Progress::new();
     let done = simulate(&request, &progress).map_err(run_error)?;
