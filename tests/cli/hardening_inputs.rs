@@ -8,20 +8,9 @@
 
 use crate::common;
 
-use common::stderr;
+use common::{run_in, stderr};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn run_in(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_jkrbem"));
-    c.env_remove("JKRBEM_MEMORY_LIMIT")
-        .args(args)
-        .current_dir(dir);
-    for (k, v) in env {
-        c.env(k, v);
-    }
-    c.output().expect("the binary runs")
-}
+use std::process::Output;
 
 /// The sphere h = (x² + y²)/2 on `n` × `n` nodes `spacing` apart (heights in the same unit),
 /// written as a text grid to `dir/name`.
@@ -40,6 +29,26 @@ fn sphere_map(dir: &Path, name: &str, n: usize, spacing: f64) {
         text.push('\n');
     }
     std::fs::write(dir.join(name), text).unwrap();
+}
+
+/// `simulate` on the height map `dir/map` of node spacing `spacing`, on the CPU, into
+/// `r.csv`, with `extra` flags.
+fn map_run(dir: &Path, map: &str, spacing: &str, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "simulate",
+        "--indenter",
+        "height-map",
+        "--height-map",
+        map,
+        "--spacing",
+        spacing,
+        "--backend",
+        "cpu",
+        "--out",
+        "r.csv",
+    ];
+    args.extend(extra);
+    run_in(dir, &args, &[])
 }
 
 /// Names in `dir` other than the inputs given.
@@ -68,28 +77,18 @@ fn a_map_too_coarse_for_its_contact_is_refused_before_any_work() {
     let d = dir.path();
     sphere_map(d, "m.txt", 129, 0.06);
     // E* = 1e3, Δγ = 1e-3: the contact at the minimum is half a map spacing wide.
-    let o = run_in(
+    let o = map_run(
         d,
+        "m.txt",
+        "0.06",
         &[
-            "simulate",
-            "--indenter",
-            "height-map",
-            "--height-map",
-            "m.txt",
-            "--spacing",
-            "0.06",
             "--e-star",
             "1e3",
             "--work-of-adhesion",
             "1e-3",
             "--grid",
             "64",
-            "--backend",
-            "cpu",
-            "--out",
-            "r.csv",
         ],
-        &[],
     );
     let err = refused_naming(&o, "--height-map");
     assert!(
@@ -101,46 +100,10 @@ fn a_map_too_coarse_for_its_contact_is_refused_before_any_work() {
         "the spacing that would do: {err}"
     );
     // The same map at --spacing 1e-6 (a contact of 1.3 spacings), and an 8 × 8-node map.
-    let o = run_in(
-        d,
-        &[
-            "simulate",
-            "--indenter",
-            "height-map",
-            "--height-map",
-            "m.txt",
-            "--spacing",
-            "1e-6",
-            "--grid",
-            "64",
-            "--backend",
-            "cpu",
-            "--out",
-            "r.csv",
-        ],
-        &[],
-    );
+    let o = map_run(d, "m.txt", "1e-6", &["--grid", "64"]);
     refused_naming(&o, "--height-map");
     sphere_map(d, "m8.txt", 8, 1.2);
-    let o = run_in(
-        d,
-        &[
-            "simulate",
-            "--indenter",
-            "height-map",
-            "--height-map",
-            "m8.txt",
-            "--spacing",
-            "1.2",
-            "--grid",
-            "32",
-            "--backend",
-            "cpu",
-            "--out",
-            "r.csv",
-        ],
-        &[],
-    );
+    let o = map_run(d, "m8.txt", "1.2", &["--grid", "32"]);
     let err = refused_naming(&o, "--height-map");
     assert!(err.contains("too coarse for the contact"), "{err}");
     assert_eq!(outputs(d, &["m.txt", "m8.txt"]), Vec::<String>::new());
@@ -152,28 +115,18 @@ fn a_map_whose_contact_falls_inside_one_cell_is_refused_and_blames_no_flag_not_g
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     sphere_map(d, "m.txt", 128, 0.06);
-    let o = run_in(
+    let o = map_run(
         d,
+        "m.txt",
+        "0.06",
         &[
-            "simulate",
-            "--indenter",
-            "height-map",
-            "--height-map",
-            "m.txt",
-            "--spacing",
-            "0.06",
             "--e-star",
             "1e3",
             "--work-of-adhesion",
             "1e-3",
             "--grid",
             "64",
-            "--backend",
-            "cpu",
-            "--out",
-            "r.csv",
         ],
-        &[],
     );
     let err = refused_naming(&o, "--height-map");
     assert!(!err.contains("--final-d"), "{err}");
@@ -422,25 +375,7 @@ fn fields_of_a_run_that_never_reached_the_minimum_are_not_called_its() {
 fn map_files_are_echoed_safely_and_their_format_named() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let map = |name: &str, spacing: &str| {
-        run_in(
-            d,
-            &[
-                "simulate",
-                "--indenter",
-                "height-map",
-                "--height-map",
-                name,
-                "--spacing",
-                spacing,
-                "--backend",
-                "cpu",
-                "--out",
-                "r.csv",
-            ],
-            &[],
-        )
-    };
+    let map = |name: &str, spacing: &str| map_run(d, name, spacing, &[]);
     // Control characters from the file reach the terminal escaped, never raw.
     std::fs::write(
         d.join("ctl.txt"),

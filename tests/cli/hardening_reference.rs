@@ -7,22 +7,9 @@
 
 use crate::common;
 
-use common::stderr;
+use common::{run_in, stderr};
 use std::path::Path;
-use std::process::{Command, Output};
-
-/// Run the binary in `dir` with `args` (and `env`), the memory limit of the caller's
-/// environment removed.
-fn run_in(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_jkrbem"));
-    c.env_remove("JKRBEM_MEMORY_LIMIT")
-        .args(args)
-        .current_dir(dir);
-    for (k, v) in env {
-        c.env(k, v);
-    }
-    c.output().expect("the binary runs")
-}
+use std::process::Output;
 
 /// Whether `dir` is empty.
 fn empty(dir: &Path) -> bool {

@@ -84,6 +84,19 @@ pub fn jkrbem(args: &[&str], dir: &std::path::Path) -> std::process::Output {
         .expect("the binary runs")
 }
 
+/// Run the binary in `dir` with `args` and the environment variables `env`, the memory
+/// limit of the caller's environment removed.
+pub fn run_in(dir: &std::path::Path, args: &[&str], env: &[(&str, &str)]) -> std::process::Output {
+    let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"));
+    c.env_remove("JKRBEM_MEMORY_LIMIT")
+        .args(args)
+        .current_dir(dir);
+    for (k, v) in env {
+        c.env(k, v);
+    }
+    c.output().expect("the binary runs")
+}
+
 /// A process's standard error as text.
 pub fn stderr(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
