@@ -9,7 +9,6 @@ use crate::common;
 
 use common::{run_in, stderr};
 use std::path::Path;
-use std::process::Output;
 
 /// Whether `dir` is empty.
 fn empty(dir: &Path) -> bool {
