@@ -224,6 +224,20 @@ pulloff() {
 }
 pulloff_header() { python3 -c 'import sys; sys.path.insert(0, sys.argv[1]); import device_report; print(device_report.ROW_HEADER)' "$ROOT/benches" >>"$BODY"; }
 
+# One pull-off on the GPU as a step of its own: NOMINAL_LIMIT TITLE LABEL FLAGS... (its section,
+# skipped with a line where the session has under 30 s left).
+gpu_pulloff_step() {
+  local nominal=$1 title=$2 label=$3 lim
+  shift 3
+  lim=$(budget "$nominal" 30)
+  say "## $title (limit ${lim} s)"
+  say ""
+  if [ "$lim" = 0 ]; then skipped "$label" 30; return; fi
+  pulloff_header
+  pulloff "$label" "$lim" "$@" --backend gpu
+  say ""
+}
+
 # One `jkrbem bench` into $OUT/<name>.csv (and <name>-profile.csv), its text into the body.
 bench() {
   local name=$1 limit=$2
@@ -252,22 +266,12 @@ for step in "${STEPS[@]}"; do
     say ""
     ;;
   measure)
-    lim=$(budget "$MEASURE_LIMIT_S" 30)
-    say "## ${MEASURE_GRID} grid, R1/R2 = ${MEASURE_RATIO}, adhesive force (limit ${lim} s)"
-    say ""
-    if [ "$lim" = 0 ]; then skipped measure 30; continue; fi
-    pulloff_header
-    pulloff "gpu-${MEASURE_GRID}-measure" "$lim" --ratio "$MEASURE_RATIO" --grid "$MEASURE_GRID" --backend gpu --measure adhesive-force
-    say ""
+    gpu_pulloff_step "$MEASURE_LIMIT_S" "${MEASURE_GRID} grid, R1/R2 = ${MEASURE_RATIO}, adhesive force" \
+      "gpu-${MEASURE_GRID}-measure" --ratio "$MEASURE_RATIO" --grid "$MEASURE_GRID" --measure adhesive-force
     ;;
   curve)
-    lim=$(budget "$CURVE_LIMIT_S" 30)
-    say "## ${CURVE_GRID} grid, R1/R2 = ${MEASURE_RATIO}, whole curve (limit ${lim} s)"
-    say ""
-    if [ "$lim" = 0 ]; then skipped curve 30; continue; fi
-    pulloff_header
-    pulloff "gpu-${CURVE_GRID}-curve" "$lim" --ratio "$MEASURE_RATIO" --grid "$CURVE_GRID" --backend gpu
-    say ""
+    gpu_pulloff_step "$CURVE_LIMIT_S" "${CURVE_GRID} grid, R1/R2 = ${MEASURE_RATIO}, whole curve" \
+      "gpu-${CURVE_GRID}-curve" --ratio "$MEASURE_RATIO" --grid "$CURVE_GRID"
     ;;
   bench)
     lim=$(budget "$BENCH_LIMIT_S" 20)

@@ -39,16 +39,11 @@ create_exception!(
     "A run failed after it started; the partial states are kept on the exception."
 );
 
-/// Longest `time_limit` accepted (s): 30 days, as the CLI's `--time-limit`. Anything longer
-/// is no limit in practice, and far longer ones overflow a `Duration` or an `Instant`.
-const MAX_TIME_LIMIT_S: f64 = 30.0 * 86400.0;
-
-/// Most points of a closed-form curve, as the CLI's `theory --points`.
-const MAX_THEORY_POINTS: usize = 1_000_000;
-
-/// The power law's default factor s of h = s·rⁿ (length^(1−n)), as the CLI's `--scale`:
-/// s = 1/(2R) = 0.5 is the sphere of R = 1 at n = 2.
-const DEFAULT_SCALE: f64 = 0.5;
+// The library's limits and defaults, as the CLI's: the longest `time_limit` (s), the most
+// points of a closed-form curve and the power law's default factor s of h = s·rⁿ.
+use jkrbem::run::simulate::MAX_TIME_LIMIT_S;
+use jkrbem::scene::DEFAULT_POWER_LAW_SCALE as DEFAULT_SCALE;
+use jkrbem::theory::MAX_CURVE_POINTS as MAX_THEORY_POINTS;
 
 /// Longest part of a refused text that a message repeats (characters).
 const SHOWN_CHARS: usize = 40;
@@ -625,13 +620,6 @@ fn theory_model(model: &str) -> PyResult<TheoryModel> {
     }
 }
 
-/// Checks `ratio` = R1/R2 as the CLI's `theory --ratio` does: in [1, 1000].
-fn theory_ratio(ratio: f64) -> PyResult<()> {
-    Scene::from_ratio(ratio, 1.0, 1.0, 1.0)
-        .map(|_| ())
-        .map_err(input_error)
-}
-
 /// A closed-form point as JSON.
 fn point(p: &theory::TheoryPoint) -> Value {
     json!({"c_bar": p.c_bar, "f_bar": p.f_bar, "d_bar": p.d_bar, "a_bar": p.a_bar, "b_bar": p.b_bar})
@@ -642,13 +630,8 @@ fn point(p: &theory::TheoryPoint) -> Value {
 #[pyfunction]
 fn theory_curve(model: &str, ratio: f64, points: usize) -> PyResult<String> {
     guarded(|| {
+        // The closed forms check R1/R2 and the count of points, naming them.
         let model = theory_model(model)?;
-        theory_ratio(ratio)?;
-        if !(2..=MAX_THEORY_POINTS).contains(&points) {
-            return Err(input_error(format!(
-                "points = {points} is invalid: from 2 to {MAX_THEORY_POINTS} points"
-            )));
-        }
         let curve = theory::curve(model, ratio, points).map_err(input_error)?;
         Ok(Value::from(curve.iter().map(point).collect::<Vec<_>>()).to_string())
     })
@@ -666,7 +649,6 @@ fn theory_pull_off(model: &str, ratio: f64) -> PyResult<String> {
                  \"jkr\" or \"jg\"",
             ));
         }
-        theory_ratio(ratio)?;
         let p = theory::pull_off(model, ratio).map_err(input_error)?;
         Ok(
             json!({"force_min": point(&p.force_min), "end_of_contact": point(&p.end_of_contact)})

@@ -41,7 +41,7 @@ pub fn duration(text: &str) -> Result<Duration, String> {
         .parse()
         .map_err(|_| format!("{text:?} is not a duration (e.g. 90s, 20min or 2h)"))?;
     let seconds = v * unit;
-    if (1.0..=30.0 * 86400.0).contains(&seconds) {
+    if (1.0..=jkrbem::run::simulate::MAX_TIME_LIMIT_S).contains(&seconds) {
         Ok(Duration::from_secs_f64(seconds))
     } else {
         Err(format!(

@@ -153,12 +153,11 @@ impl Model {
             .map_err(|e| invalid("--indenter", scene.indenter.describe(), e))?;
         // The box around the (rotated) initial contact, plus the margin.
         let (box_x, box_y) = mesh.bounding_half_widths(initial.a, initial.b);
-        let margin = opt.margin;
-        let half_x = box_x * (1.0 + margin);
+        let half_x = box_x * (1.0 + opt.margin);
         let dx = 2.0 * half_x / opt.nx as f64;
         // Elements the initial contact and its margin span along y (the 1e-9 absorbs round-off
         // when the box is square and this equals nx).
-        let need_y = (2.0 * box_y * (1.0 + margin) / dx - 1e-9).ceil() as usize;
+        let need_y = (2.0 * box_y * (1.0 + opt.margin) / dx - 1e-9).ceil() as usize;
         let ny = match opt.ny {
             Some(ny) if ny < need_y => {
                 return Err(invalid(
@@ -195,7 +194,7 @@ impl Model {
             },
             preconditioner: opt.preconditioner,
             max_sweeps: opt.max_sweeps,
-            margin,
+            margin: opt.margin,
             onsets: opt.onsets,
             loose_rounds: opt.loose_rounds,
             spread_detached: opt.loose_rounds,
@@ -379,8 +378,6 @@ impl Model {
     }
 }
 
-/// Refuse a domain that reaches beyond the indenter's known heights (a height map's edge),
-/// naming `--height-map` and what would fit.
 /// Refuse a height map whose spacing is too coarse for the contact at the force minimum
 /// (fewer than [`MIN_MAP_SPACINGS_AT_MINIMUM`] spacings across its minor axis, from the
 /// closed form's b̄ there); other shapes pass.
@@ -403,6 +400,8 @@ fn check_map_resolution(scene: &Scene, hint: PullOffHint) -> Result<(), ModelErr
     })
 }
 
+/// Refuse a domain that reaches beyond the indenter's known heights (a height map's edge),
+/// naming `--height-map` and what would fit.
 fn check_covered(
     scene: &Scene,
     mesh: &MeshAngle,

@@ -9,7 +9,9 @@ use super::pulloff::{pulloff, Pulloff, StatesFile};
 use super::{failed, input, provenance, RunError, Watch};
 use crate::analysis::capture::MaskObserver;
 use crate::analysis::estimate::{self, AdhesiveResult};
-use crate::analysis::fields::{FieldChoice, FieldPicks, StateFields, LOWEST_NOT_MINIMUM};
+use crate::analysis::fields::{
+    minimum_label, FieldChoice, FieldPicks, StateFields, LOWEST_NOT_MINIMUM,
+};
 use crate::model::{Measure, Model, ModelOptions, Onsets};
 use crate::output::provenance::Provenance;
 use crate::output::summary::Summary;
@@ -32,6 +34,10 @@ pub enum Mode {
     /// needs (e.g. 0.02 for 2 %).
     Accuracy(f64),
 }
+
+/// The longest time limit an accuracy run takes (s): 30 days. Longer ones are no limit in
+/// practice, and far longer ones overflow a clock.
+pub const MAX_TIME_LIMIT_S: f64 = 30.0 * 86400.0;
 
 /// The accuracy a simulation aims at when neither a grid nor an accuracy is asked for (2 %).
 pub const DEFAULT_ACCURACY: f64 = 0.02;
@@ -219,19 +225,16 @@ fn write_fields(
             Ok(()) => written.push(npz),
             Err(e) => unwritten.push(e.with_flag("--fields").to_string()),
         }
-        let lowest = |f: &&StateFields| f.label.contains(LOWEST_NOT_MINIMUM);
-        let minimum = |f: &&StateFields| f.label.contains("force minimum");
-        if let Some(min) = run
-            .fields
-            .iter()
-            .find(minimum)
-            .or_else(|| run.fields.iter().find(lowest))
-        {
+        // The run's lowest state: its force minimum, or only the lowest force it recorded.
+        let lowest = |f: &&StateFields| {
+            f.label.contains(minimum_label(true)) || f.label.contains(LOWEST_NOT_MINIMUM)
+        };
+        if let Some(min) = run.fields.iter().find(lowest) {
             let chart = names::pressure_chart(out);
-            let what = if minimum(&min) {
-                "the force minimum"
-            } else {
+            let what = if min.label.contains(LOWEST_NOT_MINIMUM) {
                 "the lowest force recorded (not the minimum: the run did not reach it)"
+            } else {
+                "the force minimum"
             };
             let title = format!(
                 "p at {what} (state {}): F̄ = {:.4}, c̄ = {:.3}, {}×{}",

@@ -15,6 +15,10 @@ use std::sync::Arc;
 /// for every grid (use [`Indenter::FlatPunch`]).
 pub const MAX_EXPONENT: f64 = 64.0;
 
+/// The power law's factor s of h = s·rⁿ where none is given (length^(1−n)): with n = 2,
+/// s = 1/(2R) = 0.5 is the sphere of radius 1.
+pub const DEFAULT_POWER_LAW_SCALE: f64 = 0.5;
+
 /// Smallest power-law exponent n accepted (dimensionless): n ≤ 1 (a cone or sharper) has an
 /// infinite pressure at its tip and no finite peak pressure to check scales with.
 pub const MIN_EXPONENT: f64 = 1.25;

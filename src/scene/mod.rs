@@ -5,7 +5,9 @@ pub mod height_map;
 mod indenter;
 mod measured;
 
-pub use indenter::{FirstContact, Indenter, PullOffHint, MAX_EXPONENT, MIN_EXPONENT};
+pub use indenter::{
+    FirstContact, Indenter, PullOffHint, DEFAULT_POWER_LAW_SCALE, MAX_EXPONENT, MIN_EXPONENT,
+};
 pub use measured::MeasuredSurface;
 
 use crate::text::compact;

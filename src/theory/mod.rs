@@ -40,7 +40,11 @@ impl fmt::Display for TheoryError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::OutOfRange { name, value, valid } => {
-                write!(f, "{name} = {value} is out of range: it must be {valid}")
+                write!(
+                    f,
+                    "{name} = {} is out of range: it must be {valid}",
+                    crate::text::compact(*value)
+                )
             }
             Self::NoAdhesion => {
                 write!(

@@ -9,11 +9,11 @@
 
 use crate::common;
 
-use common::stderr;
+use common::{names_in, stderr, wait_for};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 fn bin() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_jkrbem"));
@@ -54,27 +54,6 @@ fn snapshot(dir: &Path) -> BTreeSet<(PathBuf, String)> {
     out
 }
 
-/// Files in `dir` whose name matches `pred`.
-fn names_in(dir: &Path, pred: impl Fn(&str) -> bool) -> Vec<String> {
-    std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| pred(n))
-        .collect()
-}
-
-/// Wait until `f` holds (polling), at most `limit`.
-fn wait_for(limit: Duration, mut f: impl FnMut() -> bool) -> bool {
-    let start = Instant::now();
-    while start.elapsed() < limit {
-        if f() {
-            return true;
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    false
-}
-
 /// The outcome must be a refusal before any work: exit status 2, every one of `words` in the
 /// message, no "another jkrbem run", and nothing in `dir` created or changed.
 fn assert_refused(o: &Output, words: &[&str], dir: &Path, before: &BTreeSet<(PathBuf, String)>) {
@@ -100,21 +79,10 @@ const SHORT: &[&str] = &[
     "cpu",
 ];
 
-/// A sampled sphere of radius 1 (spacing 0.05) as a text grid, for `--indenter height-map`.
+/// A sampled sphere of radius 1 (161 × 161 nodes, spacing 0.05) as a text grid, for
+/// `--indenter height-map`.
 fn sphere_map() -> String {
-    let (n, s) = (161, 0.05);
-    let mut text = String::from("# a sphere of radius 1, spacing 0.05\n");
-    for j in 0..n {
-        let row: Vec<String> = (0..n)
-            .map(|i| {
-                let (x, y) = ((i as f64 - 80.0) * s, (j as f64 - 80.0) * s);
-                format!("{}", 0.5 * (x * x + y * y) + 2.0)
-            })
-            .collect();
-        text += &row.join(" ");
-        text += "\n";
-    }
-    text
+    common::sphere_map_text(161, 0.05, 2.0)
 }
 
 /// `simulate` of the height map `map` (as given), with `extra` naming its outputs.

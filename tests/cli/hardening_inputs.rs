@@ -15,20 +15,7 @@ use std::process::Output;
 /// The sphere h = (x² + y²)/2 on `n` × `n` nodes `spacing` apart (heights in the same unit),
 /// written as a text grid to `dir/name`.
 fn sphere_map(dir: &Path, name: &str, n: usize, spacing: f64) {
-    let c = (n - 1) as f64 / 2.0;
-    let mut text = String::new();
-    for j in 0..n {
-        let y = (j as f64 - c) * spacing;
-        let row: Vec<String> = (0..n)
-            .map(|i| {
-                let x = (i as f64 - c) * spacing;
-                format!("{:e}", 0.5 * (x * x + y * y))
-            })
-            .collect();
-        text += &row.join(" ");
-        text.push('\n');
-    }
-    std::fs::write(dir.join(name), text).unwrap();
+    std::fs::write(dir.join(name), common::sphere_map_text(n, spacing, 0.0)).unwrap();
 }
 
 /// `simulate` on the height map `dir/map` of node spacing `spacing`, on the CPU, into
@@ -53,16 +40,23 @@ fn map_run(dir: &Path, map: &str, spacing: &str, extra: &[&str]) -> Output {
 
 /// Names in `dir` other than the inputs given.
 fn outputs(dir: &Path, inputs: &[&str]) -> Vec<String> {
-    std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| !inputs.contains(&n.as_str()))
-        .collect()
+    common::names_in(dir, |n| !inputs.contains(&n))
 }
 
 fn summary(dir: &Path, name: &str) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(dir.join(name)).unwrap()).unwrap()
 }
+
+/// E* = 1e3 and Δγ = 1e-3 on a 64 grid: the sphere's contact a hundred times smaller than
+/// with E* = Δγ = 1.
+const TINY_CONTACT: &[&str] = &[
+    "--e-star",
+    "1e3",
+    "--work-of-adhesion",
+    "1e-3",
+    "--grid",
+    "64",
+];
 
 fn refused_naming(o: &Output, flag: &str) -> String {
     let err = stderr(o);
@@ -77,19 +71,7 @@ fn a_map_too_coarse_for_its_contact_is_refused_before_any_work() {
     let d = dir.path();
     sphere_map(d, "m.txt", 129, 0.06);
     // E* = 1e3, Δγ = 1e-3: the contact at the minimum is half a map spacing wide.
-    let o = map_run(
-        d,
-        "m.txt",
-        "0.06",
-        &[
-            "--e-star",
-            "1e3",
-            "--work-of-adhesion",
-            "1e-3",
-            "--grid",
-            "64",
-        ],
-    );
+    let o = map_run(d, "m.txt", "0.06", TINY_CONTACT);
     let err = refused_naming(&o, "--height-map");
     assert!(
         err.contains("too coarse for the contact") && err.contains("0.5 map spacings"),
@@ -115,19 +97,7 @@ fn a_map_whose_contact_falls_inside_one_cell_is_refused_and_blames_no_flag_not_g
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     sphere_map(d, "m.txt", 128, 0.06);
-    let o = map_run(
-        d,
-        "m.txt",
-        "0.06",
-        &[
-            "--e-star",
-            "1e3",
-            "--work-of-adhesion",
-            "1e-3",
-            "--grid",
-            "64",
-        ],
-    );
+    let o = map_run(d, "m.txt", "0.06", TINY_CONTACT);
     let err = refused_naming(&o, "--height-map");
     assert!(!err.contains("--final-d"), "{err}");
     assert_eq!(outputs(d, &["m.txt"]), Vec::<String>::new());

@@ -8,11 +8,11 @@
 
 use crate::common;
 
-use common::stderr;
+use common::{names_in, stderr, wait_for};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 fn bin() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_jkrbem"));
@@ -409,27 +409,6 @@ fn bad_invocations_of_every_subcommand_are_refused_naming_the_flag_and_creating_
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     println!("{} bad invocations refused", CASES.len());
-}
-
-/// Files in `dir` whose name matches `pred`.
-fn names_in(dir: &Path, pred: impl Fn(&str) -> bool) -> Vec<String> {
-    std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| pred(n))
-        .collect()
-}
-
-/// Wait until `f` holds (polling), at most `limit`.
-fn wait_for(limit: Duration, mut f: impl FnMut() -> bool) -> bool {
-    let start = Instant::now();
-    while start.elapsed() < limit {
-        if f() {
-            return true;
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    false
 }
 
 fn signal(child: &Child, name: &str) {

@@ -97,6 +97,46 @@ pub fn run_in(dir: &std::path::Path, args: &[&str], env: &[(&str, &str)]) -> std
     c.output().expect("the binary runs")
 }
 
+/// Files in `dir` whose name matches `pred`.
+pub fn names_in(dir: &std::path::Path, pred: impl Fn(&str) -> bool) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| pred(n))
+        .collect()
+}
+
+/// Wait until `f` holds (polling), at most `limit`.
+pub fn wait_for(limit: std::time::Duration, mut f: impl FnMut() -> bool) -> bool {
+    let start = std::time::Instant::now();
+    while start.elapsed() < limit {
+        if f() {
+            return true;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    false
+}
+
+/// The sphere h = (x² + y²)/2 + `offset` on `n` × `n` nodes `spacing` apart, centred on the
+/// map's middle (heights in the spacing's unit), as a text grid for `--height-map`.
+pub fn sphere_map_text(n: usize, spacing: f64, offset: f64) -> String {
+    let c = (n - 1) as f64 / 2.0;
+    let mut text = String::new();
+    for j in 0..n {
+        let y = (j as f64 - c) * spacing;
+        let row: Vec<String> = (0..n)
+            .map(|i| {
+                let x = (i as f64 - c) * spacing;
+                format!("{:e}", 0.5 * (x * x + y * y) + offset)
+            })
+            .collect();
+        text += &row.join(" ");
+        text.push('\n');
+    }
+    text
+}
+
 /// A process's standard error as text.
 pub fn stderr(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()

@@ -96,7 +96,7 @@ impl IndenterArgs {
             },
             IndenterKind::PowerLaw => Indenter::PowerLaw {
                 n: self.exponent.unwrap_or(2.0),
-                scale: self.scale.unwrap_or(0.5),
+                scale: self.scale.unwrap_or(jkrbem::scene::DEFAULT_POWER_LAW_SCALE),
             },
             IndenterKind::HeightMap => self.height_map()?,
         }))

@@ -98,7 +98,9 @@ impl Args {
         ModelOptions {
             nx,
             ny: self.grid_y,
-            start_radius_bar: self.start_radius.unwrap_or(1.5),
+            start_radius_bar: self
+                .start_radius
+                .unwrap_or(ModelOptions::default().start_radius_bar),
             steps: self.steps.unwrap_or(jkrbem::model::default_steps(
                 self.measure.unwrap_or(Measure::Curve),
                 self.onsets.unwrap_or(Onsets::NearMinimum),
