@@ -20,7 +20,10 @@ pub struct GridSetup {
 }
 
 /// How the elastic operator's inverse is approximated for preconditioning.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
 pub enum Preconditioner {
     /// No preconditioning: z = r.
     None,

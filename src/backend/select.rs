@@ -7,7 +7,18 @@ use super::gpu::{AdapterPreference, GpuBackend, GpuContext};
 use super::{BackendError, GridSetup};
 
 /// Which backend to open.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    clap::ValueEnum,
+    serde::Serialize,
+    serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
 pub enum BackendKind {
     /// A hardware GPU if there is one, else the CPU.
     #[default]

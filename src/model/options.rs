@@ -7,7 +7,18 @@ use crate::setup::Preconditioner;
 /// Which detachment onsets (the local minima of the sawtooth F(d)) a pull-off locates. The
 /// contact set at the end of every load step does not depend on this: the detachment rule is
 /// monotone, so a step ends on the greatest stable subset of the set it started from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    clap::ValueEnum,
+    serde::Serialize,
+    serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
 pub enum Onsets {
     /// Whole load steps; the onsets of a step are located only where they can hold the force
     /// minimum: where the step's lower bound (its unchanged contact set solved at the step's
@@ -34,7 +45,18 @@ impl Onsets {
 }
 
 /// What a run is for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    clap::ValueEnum,
+    serde::Serialize,
+    serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
 pub enum Measure {
     /// The whole pull-off curve, to the end of contact.
     #[default]

@@ -18,6 +18,8 @@ pub mod open;
 pub mod provenance;
 pub mod pulloff;
 pub mod reference;
+pub mod request;
+pub mod schema;
 pub mod simulate;
 pub mod study;
 pub mod sweep;

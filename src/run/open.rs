@@ -9,7 +9,18 @@ use crate::backend::BackendError;
 use crate::model::Model;
 
 /// How the displacements u = K ∗ p are convolved.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    clap::ValueEnum,
+    serde::Serialize,
+    serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
 pub enum Convolution {
     /// Zero-padded to 2Nx × 2Ny: the exact non-periodic sum (physics §4).
     #[default]

@@ -1,0 +1,389 @@
+//! A simulation as a typed value: every parameter of [`schema::SPECS`] as a field, defaults
+//! filled from the schema, checked once, round-tripping through JSON. Both front ends (and a
+//! batch's table) build one from the values they were given ([`Request::from_values`]) and
+//! turn it into the session's [`SimulateRequest`] ([`Request::simulate_request`]): the choice of
+//! one grid, several or an accuracy, the scene, the model options and the height map's reading
+//! happen here, once.
+
+use super::open::{BackendRequest, Convolution};
+use super::schema::{self, values, Fallback, Spec, SPECS};
+use super::schema::{
+    ACCURACY, EXTRAPOLATE, EXTRAPOLATE_GRIDS, FINAL_D, GRID, GRID_Y, HEIGHT_MAP, INDENTER, MEASURE,
+    ONSETS, R1, RATIO, REGRID, SPACING, START_RADIUS, STEPS, TIME_LIMIT,
+};
+use super::simulate::{Mode, SimulateRequest, Sink};
+use super::{input, RunError};
+use crate::analysis::fields::FieldChoice;
+use crate::backend::select::BackendKind;
+use crate::model::{Measure, ModelOptions, Onsets};
+use crate::scene::height_map::HeightMap;
+use crate::scene::{Indenter, MeasuredSurface, Scene};
+use crate::setup::Preconditioner;
+use serde::{Deserialize, Serialize};
+use serde_json::{Map, Value};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Duration;
+
+mod map_file;
+
+/// The indenter shapes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Shape {
+    /// h = x²/(2 R1) + y²/(2 R2).
+    Ellipsoid,
+    /// A flat cylindrical punch.
+    FlatPunch,
+    /// A measured (or generated) topography.
+    HeightMap,
+    /// Axisymmetric h = s·rⁿ.
+    PowerLaw,
+}
+
+impl Shape {
+    /// The name the schema gives it ("flat-punch").
+    pub fn name(self) -> &'static str {
+        match self {
+            Shape::Ellipsoid => "ellipsoid",
+            Shape::FlatPunch => "flat-punch",
+            Shape::HeightMap => "height-map",
+            Shape::PowerLaw => "power-law",
+        }
+    }
+}
+
+/// One simulation's request: each field is the parameter of the same name in
+/// [`schema::SPECS`] (its unit, range and default are there). `None`: chosen for the scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)]
+pub struct Request {
+    pub indenter: Shape,
+    pub ratio: Option<f64>,
+    pub r1: Option<f64>,
+    pub r2: Option<f64>,
+    pub e_star: f64,
+    pub work_of_adhesion: f64,
+    pub radius: Option<f64>,
+    pub exponent: Option<f64>,
+    pub scale: Option<f64>,
+    pub height_map: Option<PathBuf>,
+    pub spacing: Option<f64>,
+    pub grid: Option<usize>,
+    pub grid_y: Option<usize>,
+    pub start_radius: Option<f64>,
+    pub steps: Option<usize>,
+    pub onsets: Option<Onsets>,
+    pub measure: Option<Measure>,
+    pub regrid: bool,
+    pub final_d: Option<f64>,
+    pub margin: Option<f64>,
+    pub mesh_angle: f64,
+    pub apex_offset: [f64; 2],
+    pub cg_tolerance: f64,
+    pub cg_max_iterations: usize,
+    pub cg_accept: f64,
+    pub cg_check_every: Option<usize>,
+    pub preconditioner: Preconditioner,
+    pub exact_cascade: bool,
+    pub backend: BackendKind,
+    pub convolution: Convolution,
+    pub extrapolate: bool,
+    pub extrapolate_grids: Option<Vec<usize>>,
+    pub accuracy: Option<f64>,
+    /// Seconds.
+    pub time_limit: Option<f64>,
+    pub fields: String,
+    pub out: Option<PathBuf>,
+    pub summary: Option<PathBuf>,
+}
+
+/// Nx of a one-grid run that names no grid.
+pub const DEFAULT_GRID: usize = 256;
+
+/// The parameters given that only a single grid takes (with whether each was given).
+fn one_grid_parameters(r: &Request) -> Vec<&'static Spec> {
+    [
+        (GRID, r.grid.is_some()),
+        (GRID_Y, r.grid_y.is_some()),
+        (STEPS, r.steps.is_some()),
+        (ONSETS, r.onsets.is_some()),
+        (MEASURE, r.measure.is_some()),
+        (REGRID, r.regrid),
+        (FINAL_D, r.final_d.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(spec, given)| given.then_some(spec))
+    .collect()
+}
+
+impl Request {
+    /// The request of these checked values (from [`values::checked`]), each parameter not
+    /// given taking its schema default.
+    pub fn from_values(mut given: Map<String, Value>) -> Result<Request, RunError> {
+        for spec in SPECS {
+            if given.contains_key(spec.name) {
+                continue;
+            }
+            let v = match spec.fallback {
+                Fallback::Value(text) => values::from_text(spec, text).map_err(input)?,
+                Fallback::Chosen(_) => Value::Null,
+            };
+            given.insert(spec.name.to_string(), v);
+        }
+        serde_json::from_value(Value::Object(given))
+            .map_err(|e| input(format!("the request does not fit its schema (a bug): {e}")))
+    }
+
+    /// The request of `given` texts by parameter name (a batch's row), checked.
+    pub fn from_texts<'a>(
+        given: impl IntoIterator<Item = (&'a str, &'a str)>,
+    ) -> Result<Request, RunError> {
+        let map = values::checked(SPECS, given, |s, t| values::from_text(s, t)).map_err(input)?;
+        Request::from_values(map)
+    }
+
+    /// The request of `given` JSON values by parameter name (Python, a request file), checked.
+    pub fn from_json<'a>(
+        given: impl IntoIterator<Item = (&'a str, &'a Value)>,
+    ) -> Result<Request, RunError> {
+        let map = values::checked(SPECS, given, |s, v| values::from_json(s, v)).map_err(input)?;
+        Request::from_values(map)
+    }
+
+    /// The request as JSON (every parameter, defaults included): what provenance records.
+    pub fn to_json(&self) -> Value {
+        serde_json::to_value(self).unwrap_or(Value::Null)
+    }
+
+    /// Refuse a shape's parameter given with another indenter (it would be ignored).
+    fn refuse_foreign(&self, map_given: bool) -> Result<(), RunError> {
+        use schema::{EXPONENT, R2, RADIUS, SCALE};
+        use Shape::*;
+        let given: [(&Spec, bool, &[Shape]); 9] = [
+            (RATIO, self.ratio.is_some(), &[Ellipsoid]),
+            (R1, self.r1.is_some(), &[Ellipsoid]),
+            (R2, self.r2.is_some(), &[Ellipsoid]),
+            (
+                START_RADIUS,
+                self.start_radius.is_some(),
+                &[Ellipsoid, PowerLaw, HeightMap],
+            ),
+            (RADIUS, self.radius.is_some(), &[FlatPunch]),
+            (EXPONENT, self.exponent.is_some(), &[PowerLaw]),
+            (SCALE, self.scale.is_some(), &[PowerLaw]),
+            (
+                HEIGHT_MAP,
+                self.height_map.is_some() || map_given,
+                &[HeightMap],
+            ),
+            (SPACING, self.spacing.is_some(), &[HeightMap]),
+        ];
+        for (spec, given, shapes) in given {
+            if given && !shapes.contains(&self.indenter) {
+                let names: Vec<&str> = shapes.iter().map(|s| s.name()).collect();
+                return Err(input(format!(
+                    "{spec} is for {INDENTER} {}, not {} (it would be ignored): leave it out, \
+                     or give the indenter it is for",
+                    names.join(" or "),
+                    self.indenter.name()
+                )));
+            }
+        }
+        if self.ratio.is_some() && self.r1.is_some() {
+            return Err(input(format!(
+                "{RATIO} and {R1} both set R1/R2: give one ({R1} with {}, or {RATIO})",
+                schema::R2
+            )));
+        }
+        Ok(())
+    }
+
+    /// The scene: the indenter and the materials. A height map is read from its file, or is
+    /// `map` where the caller holds it in memory (Python's array).
+    pub fn scene(&self, map: Option<HeightMap>) -> Result<Scene, RunError> {
+        self.refuse_foreign(map.is_some())?;
+        let (e, w) = (self.e_star, self.work_of_adhesion);
+        let r2 = self.r2.unwrap_or(1.0);
+        let shape = match self.indenter {
+            Shape::Ellipsoid => {
+                return match self.r1 {
+                    Some(r1) => Scene::new(r1, r2, e, w),
+                    None => Scene::from_ratio(self.ratio.unwrap_or(5.0), r2, e, w),
+                }
+                .map_err(input)
+            }
+            Shape::FlatPunch => Indenter::FlatPunch {
+                radius: self.radius.unwrap_or(1.0),
+            },
+            Shape::PowerLaw => Indenter::PowerLaw {
+                n: self.exponent.unwrap_or(2.0),
+                scale: self.scale.unwrap_or(crate::scene::DEFAULT_POWER_LAW_SCALE),
+            },
+            Shape::HeightMap => self.height_map_indenter(map)?,
+        };
+        Scene::with_indenter(shape, e, w).map_err(input)
+    }
+
+    /// The measured surface: `map` if given, else read from [`Request::height_map`].
+    fn height_map_indenter(&self, map: Option<HeightMap>) -> Result<Indenter, RunError> {
+        let (map, name) = match (map, &self.height_map) {
+            (Some(map), _) => (map, "the array given".to_string()),
+            (None, Some(path)) => {
+                let Some(spacing) = self.spacing else {
+                    return Err(input(format!(
+                        "{INDENTER} height-map needs {HEIGHT_MAP} and {SPACING} (the nodes' \
+                         spacing, length)"
+                    )));
+                };
+                let name = crate::text::printable(&path.display().to_string(), 200);
+                (map_file::read(path, &name, spacing)?, name)
+            }
+            (None, None) => {
+                return Err(input(format!(
+                    "{INDENTER} height-map needs {HEIGHT_MAP} and {SPACING} (the nodes' \
+                     spacing, length)"
+                )))
+            }
+        };
+        let surface = MeasuredSurface::new(map, &name).map_err(input)?;
+        Ok(Indenter::HeightMap(Arc::new(surface)))
+    }
+
+    /// The model options (the grid of a single run).
+    pub fn options(&self) -> ModelOptions {
+        let nx = self.grid.unwrap_or(DEFAULT_GRID);
+        let measure = self.measure.unwrap_or(Measure::Curve);
+        let onsets = self.onsets.unwrap_or(Onsets::NearMinimum);
+        ModelOptions {
+            nx,
+            ny: self.grid_y,
+            start_radius_bar: self
+                .start_radius
+                .unwrap_or(ModelOptions::default().start_radius_bar),
+            steps: self
+                .steps
+                .unwrap_or(crate::model::default_steps(measure, onsets, self.regrid)),
+            final_d_bar: self.final_d,
+            margin: self.margin.unwrap_or(crate::model::default_margin(nx)),
+            mesh_angle_deg: self.mesh_angle,
+            apex_offset: (self.apex_offset[0], self.apex_offset[1]),
+            cg_tolerance: self.cg_tolerance,
+            cg_max_iterations: self.cg_max_iterations,
+            cg_accept: self.cg_accept,
+            preconditioner: self.preconditioner,
+            onsets,
+            loose_rounds: !self.exact_cascade,
+            measure,
+            regrid: self.regrid,
+            ..ModelOptions::default()
+        }
+    }
+
+    /// One grid, several or an accuracy. Parameters the choice would drop are refused: an
+    /// accuracy chooses its grids, steps and measure itself, an extrapolation its grids.
+    pub fn mode(&self) -> Result<Mode, RunError> {
+        let one_grid = one_grid_parameters(self);
+        let names = |specs: &[&Spec]| {
+            specs
+                .iter()
+                .map(|s| s.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        if self.accuracy.is_some() {
+            let mut dropped = one_grid.clone();
+            if self.extrapolate {
+                dropped.push(EXTRAPOLATE);
+            }
+            if !dropped.is_empty() {
+                return Err(input(format!(
+                    "{ACCURACY} and {} cannot be given together: a run to an accuracy chooses \
+                     its grids, load steps and measure itself (leave out {})",
+                    dropped[0],
+                    names(&dropped)
+                )));
+            }
+        }
+        if self.extrapolate {
+            if let Some(g) = one_grid.iter().find(|s| [GRID, GRID_Y].contains(s)) {
+                return Err(input(format!(
+                    "{EXTRAPOLATE} and {g} cannot be given together: an extrapolation runs its \
+                     own grids (give them as {EXTRAPOLATE_GRIDS})"
+                )));
+            }
+        } else if self.extrapolate_grids.is_some() {
+            return Err(input(format!(
+                "{EXTRAPOLATE_GRIDS} is for {EXTRAPOLATE}: give both, or leave it out"
+            )));
+        }
+        // Only the ellipsoid has a convergence law: the other shapes run one grid.
+        let one = self.indenter != Shape::Ellipsoid || !one_grid.is_empty();
+        let extrapolate = self.extrapolate.then(|| self.extrapolate_grids.clone());
+        let mode = Mode::choose(self.accuracy, extrapolate, one);
+        if self.time_limit.is_some() && !matches!(mode, Mode::Accuracy(_)) {
+            return Err(input(format!(
+                "{TIME_LIMIT} applies to a run to an accuracy ({ACCURACY} given, or none of \
+                 {}, which run one grid)",
+                names(&[GRID, GRID_Y, STEPS, ONSETS, MEASURE, REGRID, FINAL_D])
+            )));
+        }
+        Ok(mode)
+    }
+
+    /// The backend asked for.
+    pub fn backend(&self) -> BackendRequest {
+        BackendRequest {
+            kind: self.backend,
+            convolution: self.convolution,
+            check_every: self.cg_check_every,
+        }
+    }
+
+    /// The session's request: `sink` says whether the states and the summary go to files (the
+    /// CLI's [`Request::out`] and [`Request::summary`]) or stay in memory; `map` is a height
+    /// map the caller holds in memory.
+    pub fn simulate_request(
+        &self,
+        files: bool,
+        map: Option<HeightMap>,
+    ) -> Result<SimulateRequest, RunError> {
+        let mode = self.mode()?;
+        let fields = FieldChoice::parse(&self.fields).map_err(|_| {
+            input(format!(
+                "{} = {} is invalid",
+                schema::FIELDS,
+                values::shown(&self.fields)
+            ))
+        })?;
+        let time_limit = match self.time_limit {
+            Some(t) => Some(Duration::try_from_secs_f64(t).map_err(|_| {
+                input(format!(
+                    "{TIME_LIMIT} = {} is invalid",
+                    crate::text::compact(t)
+                ))
+            })?),
+            None => None,
+        };
+        Ok(SimulateRequest {
+            scene: self.scene(map)?,
+            options: self.options(),
+            backend: self.backend(),
+            mode,
+            sink: if files {
+                Sink::Files {
+                    out: self.out.clone(),
+                    summary: self.summary.clone(),
+                }
+            } else {
+                Sink::Memory
+            },
+            fields,
+            time_limit,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,53 @@
+//! A height map read from its file (`.npy` or text), refused before reading where it would not
+//! fit in memory.
+
+use super::super::schema::{HEIGHT_MAP, SPACING};
+use super::super::{input, RunError};
+use crate::output::file::{read_regular, ReadError};
+use crate::scene::height_map::{HeightMap, HeightMapError};
+use std::path::Path;
+
+/// The largest height-map file read (bytes): the largest map, 16384², as text of up to 32
+/// characters a value.
+const MAX_MAP_BYTES: u64 = 16384 * 16384 * 32;
+
+/// Memory reading a height map may take per byte of its file (dimensionless): the file's
+/// bytes, the heights parsed from them (8 bytes for a text value of 2 characters or more, and
+/// the list they grow in) and the map built from them.
+const MAP_READ_BYTES_PER_BYTE: u64 = 6;
+
+/// Refuse, before reading it, a map file whose reading would need more memory than the machine
+/// has ([`crate::plan::available_memory`]).
+fn check_map_memory(path: &Path, name: &str) -> Result<(), RunError> {
+    let Ok(meta) = std::fs::metadata(path) else {
+        return Ok(()); // read_regular says why it cannot be read
+    };
+    let available = crate::plan::available_memory().map_err(input)?;
+    let need = meta.len().saturating_mul(MAP_READ_BYTES_PER_BYTE);
+    match available {
+        Some(a) if meta.is_file() && need > a => Err(input(format!(
+            "{HEIGHT_MAP} {name}: reading this {} file needs up to {} of memory, more than the \
+             {} this machine has available (free memory, control group and process limits): \
+             save it as a .npy of float32 (4 bytes a height), or crop or subsample it",
+            crate::plan::bytes_text(meta.len()),
+            crate::plan::bytes_text(need),
+            crate::plan::bytes_text(a)
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// The map of the file at `path` (shown as `name`) with nodes `spacing` apart (length). The
+/// file is noted as this run's input, so that no output of the run may be it.
+pub fn read(path: &Path, name: &str, spacing: f64) -> Result<HeightMap, RunError> {
+    crate::output::file::note_input(path, &HEIGHT_MAP.to_string());
+    check_map_memory(path, name)?;
+    let bytes = read_regular(path, MAX_MAP_BYTES).map_err(|e| match e {
+        ReadError::Absent => input(format!("{HEIGHT_MAP} {name}: no such file")),
+        ReadError::Refused(why) => input(format!("{HEIGHT_MAP} {name}: {why}")),
+    })?;
+    HeightMap::from_file_bytes(path, &bytes, spacing).map_err(|e| match e {
+        HeightMapError::Spacing { .. } => input(format!("{SPACING}: {e}")),
+        e => input(format!("{HEIGHT_MAP}: {e}")),
+    })
+}

@@ -1,0 +1,58 @@
+use super::*;
+use serde_json::json;
+
+#[test]
+fn the_default_request_names_every_parameter_and_round_trips() {
+    let r = Request::from_values(Map::new()).unwrap();
+    let v = r.to_json();
+    let keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+    let mut names: Vec<&str> = SPECS.iter().map(|s| s.name).collect();
+    let mut sorted = keys.clone();
+    sorted.sort();
+    names.sort();
+    assert_eq!(sorted, names);
+    let back: Request = serde_json::from_value(v).unwrap();
+    assert_eq!(back, r);
+}
+
+#[test]
+fn text_and_json_requests_agree() {
+    let a = Request::from_texts([("ratio", "2"), ("grid", "64"), ("onsets", "all")]).unwrap();
+    let b = Request::from_json([
+        ("ratio", &json!(2.0)),
+        ("grid", &json!(64)),
+        ("onsets", &json!("all")),
+    ])
+    .unwrap();
+    assert_eq!(a, b);
+    assert!(matches!(a.mode().unwrap(), Mode::Single));
+}
+
+#[test]
+fn a_bare_request_runs_to_two_per_cent() {
+    let r = Request::from_values(Map::new()).unwrap();
+    assert!(matches!(r.mode().unwrap(), Mode::Accuracy(a) if a == 0.02));
+}
+
+#[test]
+fn conflicting_parameters_are_refused_naming_them() {
+    for (given, named) in [
+        (vec![("accuracy", "1%"), ("grid", "64")], "accuracy"),
+        (vec![("extrapolate", "true"), ("grid", "64")], "extrapolate"),
+        (vec![("time_limit", "1min"), ("grid", "64")], "time_limit"),
+        (vec![("ratio", "2"), ("r1", "3")], "ratio"),
+        (vec![("radius", "2")], "radius"),
+    ] {
+        let r = Request::from_texts(given.clone()).unwrap();
+        let e = r.simulate_request(false, None).unwrap_err().to_string();
+        assert!(e.starts_with(&format!("⟨{named}⟩")), "{given:?}: {e}");
+    }
+}
+
+#[test]
+fn an_unknown_name_is_refused_with_the_closest() {
+    let e = Request::from_texts([("mesh_angel", "3")])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("⟨mesh_angle⟩"), "{e}");
+}

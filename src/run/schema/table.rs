@@ -1,0 +1,506 @@
+//! The table of parameters: one `const` [`Spec`] each (a message names one as `{MARGIN}`), and
+//! [`SPECS`], every one of them in the order `--help` shows them.
+
+use super::{Fallback, Fronts, Group, Kind, Range, Spec};
+use crate::model::{
+    MAX_CG_ITERATIONS, MAX_GRID, MAX_MARGIN, MAX_MESH_ANGLE, MAX_STEPS, MIN_FINAL_D_BAR, MIN_GRID,
+    START_RADIUS_RANGE,
+};
+use crate::scene::{MAX_EXPONENT, MIN_EXPONENT};
+use crate::scene::{MAX_INPUT, MAX_RATIO, MIN_INPUT};
+
+/// A dimensional input's range (R1, R2, E*, Δγ, a, s, the map's spacing).
+const INPUT: Kind = Kind::Real(Range::closed(MIN_INPUT, MAX_INPUT));
+/// A grid side's range.
+const GRID_SIDE: Kind = Kind::PowerOfTwo(MIN_GRID as u64, MAX_GRID as u64);
+
+/// A parameter that both front ends take.
+const fn spec(
+    name: &'static str,
+    flag: &'static str,
+    group: Group,
+    unit: &'static str,
+    kind: Kind,
+    fallback: Fallback,
+    help: &'static str,
+) -> Spec {
+    Spec {
+        name,
+        flag,
+        unit,
+        kind,
+        fallback,
+        group,
+        fronts: Fronts::Both,
+        help,
+    }
+}
+
+/// A parameter that only the command line takes (a file it writes).
+const fn cli_only(spec: Spec) -> Spec {
+    Spec {
+        fronts: Fronts::Cli,
+        ..spec
+    }
+}
+
+use Fallback::{Chosen, Value};
+use Group::*;
+
+/// The indenter's shape.
+pub const INDENTER: &Spec = &spec(
+    "indenter",
+    "--indenter",
+    Scene,
+    "",
+    Kind::Choice(&["ellipsoid", "flat-punch", "height-map", "power-law"]),
+    Value("ellipsoid"),
+    "The indenter's shape: `ellipsoid` (ratio or r1, r2), `flat-punch` (radius), `power-law` \
+     (h = s·rⁿ: exponent, scale) or `height-map` (height_map, spacing). The ellipsoid has a \
+     convergence law (accuracy, extrapolate); the others run one grid, set beside the closed \
+     form of their Δx → 0 limit where one exists (Kendall; the power law's JKR solution).",
+);
+/// R1/R2 of the ellipsoid.
+pub const RATIO: &Spec = &spec(
+    "ratio",
+    "--ratio",
+    Scene,
+    "",
+    Kind::Real(Range::closed(1.0, MAX_RATIO)),
+    Chosen("5, where r1 is not given"),
+    "Axis ratio R1/R2 of the ellipsoid (1 is a sphere). Not with r1, which sets it.",
+);
+/// The ellipsoid's R1.
+pub const R1: &Spec = &spec(
+    "r1",
+    "--r1",
+    Scene,
+    "length",
+    INPUT,
+    Chosen("ratio × r2"),
+    "Radius of curvature along x, the major axis (R2 ≤ R1 ≤ 1000 R2).",
+);
+/// The ellipsoid's R2.
+pub const R2: &Spec = &spec(
+    "r2",
+    "--r2",
+    Scene,
+    "length",
+    INPUT,
+    Chosen("1"),
+    "Radius of curvature along y, the minor axis.",
+);
+/// E*.
+pub const E_STAR: &Spec = &spec(
+    "e_star",
+    "--e-star",
+    Scene,
+    "force/length²",
+    INPUT,
+    Value("1"),
+    "Effective modulus E* = E/(1−ν²) of the half-space.",
+);
+/// Δγ.
+pub const WORK_OF_ADHESION: &Spec = &spec(
+    "work_of_adhesion",
+    "--work-of-adhesion",
+    Scene,
+    "force/length",
+    INPUT,
+    Value("1"),
+    "Work of adhesion Δγ (energy per area).",
+);
+/// The flat punch's radius.
+pub const RADIUS: &Spec = &spec(
+    "radius",
+    "--radius",
+    Scene,
+    "length",
+    INPUT,
+    Chosen("1"),
+    "Flat punch: the face's radius a. Forces are normalised by Kendall's pull-off force \
+     √(8π E* Δγ a³), lengths by a.",
+);
+/// The power law's exponent.
+pub const EXPONENT: &Spec = &spec(
+    "exponent",
+    "--exponent",
+    Scene,
+    "",
+    Kind::Real(Range::closed(MIN_EXPONENT, MAX_EXPONENT)),
+    Chosen("2"),
+    "Power law h = s·rⁿ: the exponent n (2 is the sphere of radius 1/(2s)).",
+);
+/// The power law's factor.
+pub const SCALE: &Spec = &spec(
+    "scale",
+    "--scale",
+    Scene,
+    "length^(1−n)",
+    INPUT,
+    Chosen("0.5: with n = 2, the sphere of radius 1"),
+    "Power law h = s·rⁿ: the factor s.",
+);
+/// The height map.
+pub const HEIGHT_MAP: &Spec = &spec(
+    "height_map",
+    "--height-map",
+    Scene,
+    "length",
+    Kind::File,
+    Chosen("none"),
+    "Height map: the heights (larger is further from the half-space), a NumPy .npy of \
+     float64/float32 or a text grid (one row per line, values separated by spaces or commas, \
+     # comments), rows along y; from Python also a 2-D array. Its apex (where a quadratic \
+     fitted around the lowest node is lowest) is placed at the domain's centre; the fit's \
+     principal radii size the domain and normalise the results like an ellipsoid's.",
+);
+/// The height map's spacing.
+pub const SPACING: &Spec = &spec(
+    "spacing",
+    "--spacing",
+    Scene,
+    "length",
+    INPUT,
+    Chosen("none: required with a height map"),
+    "Height map: the spacing of its nodes.",
+);
+/// Nx.
+pub const GRID: &Spec = &spec(
+    "grid",
+    "--grid",
+    Model,
+    "elements",
+    GRID_SIDE,
+    Chosen("256 with a one-grid parameter; without any, accuracy 2%"),
+    "Elements along x, Nx (within the machine's memory). The domain is the initial contact \
+     plus the margin, so Δx = 2·a0·(1 + margin)/Nx. A grid that leaves fewer than 8 elements \
+     across the first contact's minor axis (or an expected 4 at the force minimum) is refused \
+     with the grid that resolves it. Giving it (or grid_y, steps, onsets, measure, regrid, \
+     final_d) runs that one grid, whose estimate states its expected bias.",
+);
+/// Ny.
+pub const GRID_Y: &Spec = &spec(
+    "grid_y",
+    "--grid-y",
+    Model,
+    "elements",
+    GRID_SIDE,
+    Chosen("fitted to the contact's aspect"),
+    "Elements along y, Ny.",
+);
+/// c̄0.
+pub const START_RADIUS: &Spec = &spec(
+    "start_radius",
+    "--start-radius",
+    Model,
+    "c_r",
+    Kind::Real(Range::closed(START_RADIUS_RANGE.0, START_RADIUS_RANGE.1)),
+    Chosen("1.5"),
+    "Mean radius c̄0 of the initial non-adhesive contact: the JKR branch is traced for all \
+     c̄ ≤ c̄0. Not for the flat punch, whose first contact is its face.",
+);
+/// Load steps.
+pub const STEPS: &Spec = &spec(
+    "steps",
+    "--steps",
+    Model,
+    "",
+    Kind::Count(1, MAX_STEPS as u64),
+    Chosen("200; 20 with measure adhesive-force without regrid"),
+    "Load steps from the initial approach d̄0 to the expected end of contact.",
+);
+/// Which onsets.
+pub const ONSETS: &Spec = &spec(
+    "onsets",
+    "--onsets",
+    Model,
+    "",
+    Kind::Choice(&["near-minimum", "all", "none"]),
+    Chosen("near-minimum"),
+    "Which detachment onsets (the sawtooth's local minima) to locate and record. Every step's \
+     end state is the same whichever is chosen. `near-minimum`: only the onsets of the steps \
+     that can hold the force minimum (the same force minimum as `all`; the cheapest); `all`: \
+     every onset of every step; `none`: whole steps only (the force minimum then depends on \
+     steps).",
+);
+/// What a run is for.
+pub const MEASURE: &Spec = &spec(
+    "measure",
+    "--measure",
+    Model,
+    "",
+    Kind::Choice(&["curve", "adhesive-force"]),
+    Chosen("curve"),
+    "What to compute: the whole `curve`, or only the `adhesive-force` (stops once the force \
+     minimum is confirmed; cheaper).",
+);
+/// Re-gridding.
+pub const REGRID: &Spec = &spec(
+    "regrid",
+    "--regrid",
+    Model,
+    "",
+    Kind::Switch,
+    Value("false"),
+    "Re-grid as the contact shrinks: once the contact and its margin fit in 80 % of the \
+     domain, the same Nx × Ny is laid over a domain fitted to it (finer Δx).",
+);
+/// The final approach.
+pub const FINAL_D: &Spec = &spec(
+    "final_d",
+    "--final-d",
+    Model,
+    "",
+    Kind::Real(Range::closed(MIN_FINAL_D_BAR, 1000.0)),
+    Chosen("none: to the end of contact"),
+    "Stop at this approach d̄ if the contact has not vanished by then (below d̄0). A run \
+     stopped before the force minimum says so and reports no adhesive force.",
+);
+/// The margin.
+pub const MARGIN: &Spec = &spec(
+    "margin",
+    "--margin",
+    Model,
+    "relative",
+    Kind::Real(Range::closed(0.0, MAX_MARGIN)),
+    Chosen("0.08, or at least one element on each side: 0.143 on a 16-element grid"),
+    "Free margin around the initial contact, relative to its half-axes.",
+);
+/// The mesh angle.
+pub const MESH_ANGLE: &Spec = &spec(
+    "mesh_angle",
+    "--mesh-angle",
+    Model,
+    "degrees",
+    Kind::Real(Range::closed(-MAX_MESH_ANGLE, MAX_MESH_ANGLE)),
+    Value("0"),
+    "Angle between the ellipsoid's major axis and the grid's x axis. The domain is the box \
+     around the turned initial contact. Use it to check results where crack fronts run along \
+     grid lines (e.g. 45).",
+);
+/// The apex's offset.
+pub const APEX_OFFSET: &Spec = &spec(
+    "apex_offset",
+    "--apex-offset",
+    Model,
+    "elements",
+    Kind::Pair(Range::closed(-0.5, 0.5)),
+    Value("0,0"),
+    "Where the apex lies within the element grid, along x and y: 0,0 on the corner between \
+     the four middle elements, 0.5,0.5 on the centre of one. It moves where the contact's edge \
+     falls between element centres (the grid phase).",
+);
+/// CG's tolerance.
+pub const CG_TOLERANCE: &Spec = &spec(
+    "cg_tolerance",
+    "--cg-tolerance",
+    Solver,
+    "",
+    Kind::Real(Range::open(0.0, 1.0)),
+    Value("1e-8"),
+    "CG stops when its relative residual ‖(d − h − K p)_C‖/‖(d − h)_C‖ reaches this. A solve \
+     that stagnates, diverges or reaches cg_max_iterations is retried once in a safer mode; \
+     f32 (the GPU backend) cannot bring the true residual much below 1e-7.",
+);
+/// CG's iteration limit.
+pub const CG_MAX_ITERATIONS: &Spec = &spec(
+    "cg_max_iterations",
+    "--cg-max-iterations",
+    Solver,
+    "",
+    Kind::Count(1, MAX_CG_ITERATIONS as u64),
+    Value("5000"),
+    "CG iteration limit per solve (its safer retry gets as many again).",
+);
+/// The residual a failed solve is accepted at.
+pub const CG_ACCEPT: &Spec = &spec(
+    "cg_accept",
+    "--cg-accept",
+    Solver,
+    "",
+    Kind::Real(Range::open(0.0, 1.0)),
+    Value("1e-5"),
+    "Relative residual up to which a CG solve that missed cg_tolerance even in the safer \
+     retry is accepted: the run goes on, warns and records the residual. Above it the run \
+     stops with an error.",
+);
+/// How often CG's residual is read.
+pub const CG_CHECK_EVERY: &Spec = &spec(
+    "cg_check_every",
+    "--cg-check-every",
+    Solver,
+    "iterations",
+    Kind::Count(1, 100_000),
+    Chosen("the backend's own: 1 on the CPU, 8 on the GPU"),
+    "Read CG's residual back to the host every this many iterations.",
+);
+/// The preconditioner.
+pub const PRECONDITIONER: &Spec = &spec(
+    "preconditioner",
+    "--preconditioner",
+    Solver,
+    "",
+    Kind::Choice(&["stiffness", "none"]),
+    Value("stiffness"),
+    "CG preconditioner: the half-space stiffness in Fourier space, or none.",
+);
+/// Exact cascades.
+pub const EXACT_CASCADE: &Spec = &spec(
+    "exact_cascade",
+    "--exact-cascade",
+    Solver,
+    "",
+    Kind::Switch,
+    Value("false"),
+    "Solve every round of a detachment cascade to cg_tolerance. By default the rounds between \
+     are solved only as far as needed to tell which elements are over σ_c, and the last round \
+     is exact: the same states at a fraction of the CG iterations.",
+);
+/// The backend.
+pub const BACKEND: &Spec = &spec(
+    "backend",
+    "--backend",
+    Solver,
+    "",
+    Kind::Choice(&["auto", "cpu", "gpu"]),
+    Value("auto"),
+    "Backend: `cpu` (f64, rustfft), `gpu` (f32, wgpu; the best adapter, a software one such as \
+     lavapipe included) or `auto` (a hardware GPU if present, else the CPU).",
+);
+/// The convolution.
+pub const CONVOLUTION: &Spec = &spec(
+    "convolution",
+    "--convolution",
+    Solver,
+    "",
+    Kind::Choice(&["padded", "periodic"]),
+    Value("padded"),
+    "Convolution: `padded` (exact) or `periodic` (no padding, so the contact feels its periodic \
+     images: only to see the error padding removes; CPU only).",
+);
+/// Extrapolation.
+pub const EXTRAPOLATE: &Spec = &spec(
+    "extrapolate",
+    "--extrapolate",
+    Plan,
+    "",
+    Kind::Switch,
+    Value("false"),
+    "Run the scene on the grids of extrapolate_grids (instead of grid) and fit |min F̄|, c̄ and \
+     d̄ at the minimum together to their Δx → 0 limits, each with its stated uncertainty.",
+);
+/// The extrapolation's grids.
+pub const EXTRAPOLATE_GRIDS: &Spec = &spec(
+    "extrapolate_grids",
+    "--extrapolate-grids",
+    Plan,
+    "elements",
+    Kind::Grids(MIN_GRID as u64, MAX_GRID as u64),
+    Chosen(
+        "the coarsest grid that resolves the contact at the force minimum and its two doublings",
+    ),
+    "Grids Nx for extrapolate, coarse to fine.",
+);
+/// The accuracy aimed at.
+pub const ACCURACY: &Spec = &spec(
+    "accuracy",
+    "--accuracy",
+    Plan,
+    "",
+    Kind::Fraction(0.001, 0.5),
+    Chosen("2% unless one grid or extrapolate is asked for"),
+    "Reach this relative accuracy of the adhesive force |min F̄| at Δx → 0 at the least cost: \
+     chooses the grids, the domain, the load steps and what to compute, says what it chose, and \
+     overrides grid, grid_y, steps, onsets, measure, regrid and extrapolate. The CLI writes a \
+     percentage with its unit (`1%`), Python a fraction (0.01).",
+);
+/// The time limit.
+pub const TIME_LIMIT: &Spec = &spec(
+    "time_limit",
+    "--time-limit",
+    Plan,
+    "s",
+    Kind::Seconds(1.0, crate::run::simulate::MAX_TIME_LIMIT_S),
+    Chosen("none"),
+    "Wall-clock time a run to an accuracy may take (the CLI writes it with its unit: `90s`, \
+     `20min`, `2h`; Python in seconds). The coarsest grid that resolves the contact runs first; \
+     a grid still running at the limit is stopped and the answer comes from the grids that \
+     finished, with target_met false if that misses the target.",
+);
+/// The fields kept.
+pub const FIELDS: &Spec = &spec(
+    "fields",
+    "--fields",
+    Output,
+    "",
+    Kind::States,
+    Value("none"),
+    "The states whose fields (pressure, gap, contact set) are kept: `minimum` (the force \
+     minimum), `every:K` (every K-th state and the minimum) or `states:I,J` (those states, \
+     counted from 0, and the minimum). The CLI writes them to <out>.fields.npz and the pressure \
+     at the minimum to <out>.pressure.svg. Each is the state's contact set solved again on the \
+     CPU (f64).",
+);
+/// The states CSV.
+pub const OUT: &Spec = &cli_only(spec(
+    "out",
+    "--out",
+    Output,
+    "",
+    Kind::File,
+    Chosen("jkrbem-out/simulate-r<ratio>-n<grid>.csv"),
+    "States CSV. While running the states go to <stem>.incomplete-<pid>.csv beside it; only a \
+     complete run renames that to this name, and an existing file here is untouched until then.",
+));
+/// The summary JSON.
+pub const SUMMARY: &Spec = &cli_only(spec(
+    "summary",
+    "--summary",
+    Output,
+    "",
+    Kind::File,
+    Chosen("none"),
+    "Also write the summary as JSON to this file (not the out file).",
+));
+
+/// Every parameter of a simulation, in the order `--help` shows them.
+pub const SPECS: &[&Spec] = &[
+    INDENTER,
+    RATIO,
+    R1,
+    R2,
+    E_STAR,
+    WORK_OF_ADHESION,
+    RADIUS,
+    EXPONENT,
+    SCALE,
+    HEIGHT_MAP,
+    SPACING,
+    GRID,
+    GRID_Y,
+    START_RADIUS,
+    STEPS,
+    ONSETS,
+    MEASURE,
+    REGRID,
+    FINAL_D,
+    MARGIN,
+    MESH_ANGLE,
+    APEX_OFFSET,
+    CG_TOLERANCE,
+    CG_MAX_ITERATIONS,
+    CG_ACCEPT,
+    CG_CHECK_EVERY,
+    PRECONDITIONER,
+    EXACT_CASCADE,
+    BACKEND,
+    CONVOLUTION,
+    EXTRAPOLATE,
+    EXTRAPOLATE_GRIDS,
+    ACCURACY,
+    TIME_LIMIT,
+    FIELDS,
+    OUT,
+    SUMMARY,
+];

@@ -1,0 +1,286 @@
+//! A parameter's value checked against its [`Spec`]: from text (the command line, a batch's
+//! table) or from JSON (Python, a request file), into one canonical JSON value. Every refusal
+//! names the parameter by its marker and says what it takes.
+
+use super::{Kind, Range, Spec};
+use crate::text::compact;
+use serde_json::{Map, Value};
+
+/// Longest part of a refused text that a message repeats (characters).
+const SHOWN_CHARS: usize = 40;
+
+/// `text` quoted for a message, cut to [`SHOWN_CHARS`] characters and made printable.
+pub fn shown(text: &str) -> String {
+    let printable = crate::text::printable(text, SHOWN_CHARS);
+    format!("\"{printable}\"")
+}
+
+/// "⟨name⟩ = value is invalid: what it takes".
+fn invalid(spec: &Spec, value: &str, expected: &str) -> String {
+    format!("{spec} = {value} is invalid: {expected}")
+}
+
+/// What a parameter takes, in words (its unit, range and form).
+pub fn expected(spec: &Spec) -> String {
+    let unit = if spec.unit.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", spec.unit)
+    };
+    match spec.kind {
+        Kind::Real(r) => format!("a number in {r}{unit}"),
+        Kind::Count(lo, hi) => format!("a whole number from {lo} to {hi}"),
+        Kind::PowerOfTwo(lo, hi) => format!("a power of two from {lo} to {hi}"),
+        Kind::Switch => "true or false".to_string(),
+        Kind::Choice(names) => format!("one of {}", names.join(", ")),
+        Kind::File => "a file's path".to_string(),
+        Kind::Fraction(lo, hi) => format!(
+            "a percentage in [{}, {}] (e.g. 2% on the command line, 0.02 from Python)",
+            compact(lo * 100.0),
+            compact(hi * 100.0)
+        ),
+        Kind::Seconds(..) => {
+            "a duration from 1 s to 30 days (e.g. 90s, 20min or 2h on the command line; \
+             seconds from Python)"
+                .to_string()
+        }
+        Kind::Pair(r) => format!("two numbers, each in {r}{unit}, e.g. 0.25,-0.5"),
+        Kind::Grids(lo, hi) => {
+            format!("2 to 8 increasing powers of two from {lo} to {hi}, e.g. 64,128,256")
+        }
+        Kind::States => {
+            "\"none\", \"minimum\", \"every:K\" (every K-th state, K ≥ 1) or \"states:I,J\" \
+             (those states, counted from 0)"
+                .to_string()
+        }
+    }
+}
+
+/// A real number in `r`, or why not.
+fn real_in(spec: &Spec, v: f64, r: Range, shown_as: &str) -> Result<Value, String> {
+    if r.contains(v) {
+        Ok(Value::from(v))
+    } else {
+        Err(invalid(spec, shown_as, &expected(spec)))
+    }
+}
+
+/// A whole number in [lo, hi] (and a power of two where asked), or why not.
+fn whole_in(
+    spec: &Spec,
+    v: f64,
+    lo: u64,
+    hi: u64,
+    power: bool,
+    shown_as: &str,
+) -> Result<Value, String> {
+    let ok = v.fract() == 0.0 && v >= lo as f64 && v <= hi as f64;
+    let n = v as u64;
+    if ok && (!power || n.is_power_of_two()) {
+        Ok(Value::from(n))
+    } else {
+        Err(invalid(spec, shown_as, &expected(spec)))
+    }
+}
+
+/// Powers of two, 2 to 8 of them, increasing.
+fn grids_in(
+    spec: &Spec,
+    values: &[f64],
+    lo: u64,
+    hi: u64,
+    shown_as: &str,
+) -> Result<Value, String> {
+    let bad = || invalid(spec, shown_as, &expected(spec));
+    if !(2..=8).contains(&values.len()) {
+        return Err(bad());
+    }
+    let mut out: Vec<u64> = Vec::new();
+    for &v in values {
+        let n = whole_in(spec, v, lo, hi, true, shown_as)?;
+        let n = n.as_u64().ok_or_else(bad)?;
+        if out.last().is_some_and(|&last| n <= last) {
+            return Err(bad());
+        }
+        out.push(n);
+    }
+    Ok(Value::from(out))
+}
+
+/// A choice's name as the library spells it (hyphens), if it is one of `names`.
+fn choice(names: &[&str], given: &str) -> Option<String> {
+    let canonical = given.trim().replace('_', "-");
+    names
+        .iter()
+        .find(|n| **n == canonical)
+        .map(|n| n.to_string())
+}
+
+/// A number written as text, or `None`.
+fn number(text: &str) -> Option<f64> {
+    text.trim().parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
+/// Parse the text the command line (or a batch's table) gives for `spec`.
+pub fn from_text(spec: &Spec, text: &str) -> Result<Value, String> {
+    let s = shown(text);
+    let bad = || invalid(spec, &s, &expected(spec));
+    match spec.kind {
+        Kind::Real(r) => real_in(spec, number(text).ok_or_else(bad)?, r, &s),
+        Kind::Count(lo, hi) => whole_in(spec, number(text).ok_or_else(bad)?, lo, hi, false, &s),
+        Kind::PowerOfTwo(lo, hi) => whole_in(spec, number(text).ok_or_else(bad)?, lo, hi, true, &s),
+        Kind::Switch => match text.trim().to_ascii_lowercase().as_str() {
+            "true" | "yes" | "1" | "on" => Ok(Value::Bool(true)),
+            "false" | "no" | "0" | "off" | "" => Ok(Value::Bool(false)),
+            _ => Err(bad()),
+        },
+        Kind::Choice(names) => choice(names, text).map(Value::from).ok_or_else(bad),
+        Kind::File => {
+            if text.is_empty() {
+                Err(bad())
+            } else {
+                Ok(Value::from(text))
+            }
+        }
+        Kind::Fraction(lo, hi) => {
+            let Some(p) = text.trim().strip_suffix('%') else {
+                return Err(format!(
+                    "{spec} = {s} is invalid: write the unit, e.g. 5% or 1% (a bare number \
+                     could mean a fraction or a per cent)"
+                ));
+            };
+            let v = number(p).ok_or_else(bad)? / 100.0;
+            real_in(spec, v, Range::closed(lo, hi), &s)
+        }
+        Kind::Seconds(lo, hi) => {
+            let t = text.trim();
+            let (n, scale) = [("min", 60.0), ("h", 3600.0), ("s", 1.0)]
+                .iter()
+                .find_map(|&(u, scale)| t.strip_suffix(u).map(|n| (n, scale)))
+                .ok_or_else(|| {
+                    format!("{spec} = {s} is invalid: write the unit, e.g. 90s, 20min or 2h")
+                })?;
+            let v = number(n).ok_or_else(bad)? * scale;
+            real_in(spec, v, Range::closed(lo, hi), &s)
+        }
+        Kind::Pair(r) => {
+            let parts: Vec<Option<f64>> = text.split(',').map(number).collect();
+            match parts[..] {
+                [Some(x), Some(y)] if r.contains(x) && r.contains(y) => Ok(Value::from(vec![x, y])),
+                _ => Err(bad()),
+            }
+        }
+        Kind::Grids(lo, hi) => {
+            let parts: Option<Vec<f64>> = text.split(',').map(number).collect();
+            grids_in(spec, &parts.ok_or_else(bad)?, lo, hi, &s)
+        }
+        Kind::States => crate::analysis::fields::FieldChoice::parse(text)
+            .map(|_| Value::from(text.trim()))
+            .map_err(|_| bad()),
+    }
+}
+
+/// `value` (from JSON) shown in a message: a string quoted and cut, anything else compact.
+fn shown_json(value: &Value) -> String {
+    match value {
+        Value::String(s) => shown(s),
+        Value::Number(n) => n.as_f64().map(compact).unwrap_or_else(|| n.to_string()),
+        other => {
+            let text = other.to_string();
+            crate::text::printable(&text, SHOWN_CHARS)
+        }
+    }
+}
+
+/// Check the JSON value a Python caller (or a request file) gives for `spec`. Numbers where
+/// numbers are asked, `true`/`false` for a switch, a fraction for an accuracy, seconds for a
+/// duration, a list for a pair or grids; a string in the command line's form is also taken
+/// for an accuracy ("2%") and a duration ("90s").
+pub fn from_json(spec: &Spec, value: &Value) -> Result<Value, String> {
+    let s = shown_json(value);
+    let bad = || invalid(spec, &s, &expected(spec));
+    let num = |v: &Value| v.as_f64().filter(|x| x.is_finite());
+    let list = |v: &Value| -> Option<Vec<f64>> { v.as_array()?.iter().map(num).collect() };
+    match (spec.kind, value) {
+        (Kind::Real(r), v) => real_in(spec, num(v).ok_or_else(bad)?, r, &s),
+        (Kind::Count(lo, hi), v) => whole_in(spec, num(v).ok_or_else(bad)?, lo, hi, false, &s),
+        (Kind::PowerOfTwo(lo, hi), v) => whole_in(spec, num(v).ok_or_else(bad)?, lo, hi, true, &s),
+        (Kind::Switch, Value::Bool(b)) => Ok(Value::Bool(*b)),
+        (Kind::Choice(names), Value::String(t)) => {
+            choice(names, t).map(Value::from).ok_or_else(bad)
+        }
+        (Kind::File, Value::String(t)) if !t.is_empty() => Ok(Value::from(t.as_str())),
+        (Kind::Fraction(..) | Kind::Seconds(..), Value::String(t)) => from_text(spec, t),
+        (Kind::Fraction(lo, hi), v) => {
+            real_in(spec, num(v).ok_or_else(bad)?, Range::closed(lo, hi), &s)
+        }
+        (Kind::Seconds(lo, hi), v) => {
+            real_in(spec, num(v).ok_or_else(bad)?, Range::closed(lo, hi), &s)
+        }
+        (Kind::Pair(r), v) => match list(v).as_deref() {
+            Some(&[x, y]) if r.contains(x) && r.contains(y) => Ok(Value::from(vec![x, y])),
+            _ => Err(bad()),
+        },
+        (Kind::Grids(lo, hi), v) => grids_in(spec, &list(v).ok_or_else(bad)?, lo, hi, &s),
+        (Kind::States, Value::String(t)) => from_text(spec, t),
+        _ => Err(bad()),
+    }
+}
+
+/// A request's values, checked: every name a parameter of `specs` (else the names it could
+/// be), every value of its kind and range. `from` reads one value for its spec.
+pub fn checked<'a, T: 'a>(
+    specs: &[&'static Spec],
+    given: impl IntoIterator<Item = (&'a str, T)>,
+    from: impl Fn(&Spec, T) -> Result<Value, String>,
+) -> Result<Map<String, Value>, String> {
+    let mut out = Map::new();
+    for (name, raw) in given {
+        let Some(spec) = specs.iter().copied().find(|s| s.name == name) else {
+            return Err(unknown(specs, name));
+        };
+        let v = from(spec, raw)?;
+        if out.insert(spec.name.to_string(), v).is_some() {
+            return Err(format!("{spec} is given more than once"));
+        }
+    }
+    Ok(out)
+}
+
+/// The refusal of a name that is no parameter, with the closest names.
+pub fn unknown(specs: &[&'static Spec], name: &str) -> String {
+    let canonical = name.trim_start_matches('-').replace('-', "_");
+    let mut near: Vec<&Spec> = specs
+        .iter()
+        .copied()
+        .filter(|s| {
+            s.name.contains(canonical.as_str())
+                || canonical.contains(s.name)
+                || edit_distance(s.name, &canonical) <= 2
+        })
+        .collect();
+    near.truncate(3);
+    let hint = if near.is_empty() {
+        String::new()
+    } else {
+        let names: Vec<String> = near.iter().map(|s| s.to_string()).collect();
+        format!(" (did you mean {}?)", names.join(" or "))
+    };
+    format!("{} is not a parameter{hint}", shown(name))
+}
+
+/// Levenshtein distance of two short names.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let cur = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != cb)).min(row[j] + 1).min(cur + 1);
+            prev = cur;
+        }
+    }
+    row[b.len()]
+}
