@@ -22,7 +22,8 @@ use std::sync::Mutex;
 /// The first error standard output gave, if any; once set, nothing more is written there.
 static STDOUT_ERROR: Mutex<Option<io::Error>> = Mutex::new(None);
 
-/// Write to standard output without ever panicking (the `out!`/`outln!` macros). A reader that
+/// Write to standard output without ever panicking (the `out!`/`outln!` macros), each
+/// parameter a message names worded as its flag. A reader that
 /// went away (a closed pipe: `jkrbem … | head -1`) ends the output quietly while the run goes
 /// on and writes its files; any other error (`> /dev/full`) is kept and reported at the exit
 /// ([`finish_stdout`]), with exit code 1.
@@ -31,7 +32,8 @@ pub fn write_stdout(args: fmt::Arguments) {
         return;
     };
     if failed.is_none() {
-        if let Err(e) = io::stdout().lock().write_fmt(args) {
+        let text = jkrbem::run::schema::words::flags(&args.to_string());
+        if let Err(e) = io::stdout().lock().write_all(text.as_bytes()) {
             *failed = Some(e);
         }
     }

@@ -77,11 +77,22 @@ pub fn gpu_backend(setup: &jkrbem::backend::GridSetup) -> Option<jkrbem::backend
 
 /// Run the `jkrbem` binary with `args` in `dir` and wait for it.
 pub fn jkrbem(args: &[&str], dir: &std::path::Path) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"))
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"))
         .args(args)
         .current_dir(dir)
         .output()
-        .expect("the binary runs")
+        .expect("the binary runs");
+    worded(&o);
+    o
+}
+
+/// Check that the binary worded every parameter it names as a flag: no library marker
+/// (`⟨name⟩`) reaches a user.
+pub fn worded(o: &std::process::Output) {
+    for text in [&o.stdout, &o.stderr] {
+        let text = String::from_utf8_lossy(text);
+        assert!(!text.contains('⟨'), "a parameter left unworded:\n{text}");
+    }
 }
 
 /// Run the binary in `dir` with `args` and the environment variables `env`, the memory
@@ -94,7 +105,9 @@ pub fn run_in(dir: &std::path::Path, args: &[&str], env: &[(&str, &str)]) -> std
     for (k, v) in env {
         c.env(k, v);
     }
-    c.output().expect("the binary runs")
+    let o = c.output().expect("the binary runs");
+    worded(&o);
+    o
 }
 
 /// Files in `dir` whose name matches `pred`.
