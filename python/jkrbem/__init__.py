@@ -14,6 +14,7 @@ c̄ = c/c_r, F̄ = F/(3π Re Δγ), d̄ = d·Re/c_r². For a sphere JKR gives |m
 
 from __future__ import annotations
 
+import inspect
 import json
 import math
 import warnings
@@ -22,7 +23,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _check, _jkrbem
+from . import _check, _jkrbem, _request
 from ._jkrbem import InputError, SolveError
 
 __version__ = _jkrbem.__version__
@@ -171,25 +172,6 @@ def _fields(raw: List[Dict[str, Any]]) -> List[Fields]:
     return out
 
 
-_FIELDS = 'None, "minimum", ("every", k) or a list of state indices (integers ≥ 0)'
-
-
-def _field_choice(fields: Union[None, str, Tuple[str, int], Sequence[int]]) -> str:
-    """The keyword ``fields`` in the solver's words."""
-    if fields is None:
-        return "none"
-    if isinstance(fields, str):
-        return fields  # "none", "minimum", "every:K", "states:I,J": the library checks it
-    values = _check.items("fields", fields, _FIELDS)
-    if len(values) == 2 and isinstance(values[0], str) and values[0] == "every":
-        k = _check.integer("fields", values[1], 1, 2**63 - 1, 'k of ("every", k), an integer ≥ 1')
-        return f"every:{k}"
-    if not values:
-        raise InputError(f"fields = {_check.shown(fields)} is invalid: {_FIELDS}, at least one")
-    picked = (_check.integer("fields", i, 0, 2**63 - 1, "a state index (an integer ≥ 0)") for i in values)
-    return "states:" + ",".join(str(i) for i in picked)
-
-
 @dataclass
 class Result:
     """A simulation's answer.
@@ -281,25 +263,6 @@ class Result:
         return f"<jkrbem.Result |min F̄| = {f}{u} ({self.estimate}), {len(self.runs)} run(s)>"
 
 
-_ACCURACY = "a fraction (0.02) or a percentage ('2%')"
-
-
-def _percent(value: Union[str, float, None], name: str) -> Optional[float]:
-    """'2%' or 0.02 as 0.02 (finite; the library checks the range)."""
-    if value is None:
-        return None
-    if not isinstance(value, str):
-        return _check.real(name, value, _ACCURACY)
-    text = value.strip()
-    try:
-        x = float(text[:-1]) / 100.0 if text.endswith("%") else float(text)
-    except ValueError:
-        x = math.nan
-    if not math.isfinite(x):
-        raise InputError(f"{name} = {_check.shown(value)} is invalid: {_ACCURACY}")
-    return x
-
-
 _PROGRESS = "None, True or False (a tqdm bar), or a callable taking an event dict"
 
 
@@ -337,101 +300,6 @@ def _progress(progress: Union[None, bool, Callable[[dict], Any]]) -> Optional[Ca
     return bar
 
 
-#: R1/R2 where neither ``ratio`` nor ``r1`` is given.
-DEFAULT_RATIO = 5.0
-
-#: The keywords of each indenter's shape; given with another indenter they are refused.
-_SHAPE_KEYWORDS = {"ellipsoid": ("ratio", "r1"), "flat_punch": ("radius",), "power_law": ("exponent", "scale")}
-
-#: The keyword an indenter cannot do without.
-_SHAPE_NEEDS = {"flat_punch": "radius", "power_law": "exponent"}
-
-_GRIDS = "True, False or a list of grids (e.g. [64, 128, 256])"
-
-
-def _extrapolate(extrapolate: Union[bool, Sequence[int]]) -> Tuple[bool, Optional[List[int]]]:
-    """``extrapolate``: whether, and on which grids (None: those that fit)."""
-    if isinstance(extrapolate, (bool, np.bool_)):
-        return bool(extrapolate), None
-    grids = _check.items("extrapolate", extrapolate, _GRIDS)
-    return True, [_check.grid_side("extrapolate", g) for g in grids]
-
-
-def _request(
-    ratio: Optional[float],
-    r1: Optional[float],
-    r2: float,
-    e_star: float,
-    work_of_adhesion: float,
-    indenter: str,
-    radius: Optional[float],
-    exponent: Optional[float],
-    scale: Optional[float],
-    accuracy: Union[str, float, None],
-    grid: Optional[int],
-    grid_y: Optional[int],
-    extrapolate: Union[bool, Sequence[int]],
-    mesh_angle: float,
-    apex_offset: Tuple[float, float],
-    margin: float,
-    start_radius: float,
-    steps: Optional[int],
-    measure: Optional[str],
-    onsets: Optional[str],
-    backend: str,
-    time_limit: Optional[float],
-    fields: Union[None, str, Tuple[str, int], Sequence[int]] = None,
-) -> str:
-    """The JSON request of these keywords, each checked for its type (and what only Python
-    can see: a conflict, a keyword of another indenter); the library checks the ranges."""
-    indenter = _check.text("indenter", indenter, '"ellipsoid", "flat_punch" or "power_law"')
-    shape = {"ratio": ratio, "r1": r1, "radius": radius, "exponent": exponent, "scale": scale}
-    needed = _SHAPE_NEEDS.get(indenter)
-    if needed is not None and shape[needed] is None:
-        raise InputError(f"{needed} is needed with indenter = {indenter!r}")
-    if indenter != "ellipsoid" and isinstance(ratio, (int, float)) and ratio == 1:
-        shape["ratio"] = None  # the axisymmetric indenters' R1/R2 is 1
-    for name, value in shape.items():
-        if value is not None and indenter in _SHAPE_KEYWORDS and name not in _SHAPE_KEYWORDS[indenter]:
-            raise InputError(
-                f"{name} does not apply to indenter = {indenter!r}: leave it out (it shapes "
-                f"the {next(k for k, v in _SHAPE_KEYWORDS.items() if name in v)!r} indenter)"
-            )
-    _check.conflict([("ratio", ratio is not None), ("r1", r1 is not None)],
-                    "the ellipsoid is R1 = ratio·r2, or r1 and r2")
-    real = _check.real
-    do_extrapolate, grids = _extrapolate(extrapolate)
-    request = {
-        "ratio": real("ratio", DEFAULT_RATIO if ratio is None else ratio, "an axis ratio R1/R2"),
-        "r1": _check.optional_real("r1", r1, "a radius R1 (length)"),
-        "r2": real("r2", r2, "a radius R2 (length)"),
-        "e_star": real("e_star", e_star, "a modulus E* (force/length²)"),
-        "work_of_adhesion": real("work_of_adhesion", work_of_adhesion, "a work of adhesion Δγ (force/length)"),
-        "indenter": indenter,
-        "radius": _check.optional_real("radius", radius, "a radius (length)"),
-        "exponent": _check.optional_real("exponent", exponent, "an exponent n"),
-        "scale": _check.optional_real("scale", scale, "a factor s of h = s·rⁿ"),
-        "grid": None if grid is None else _check.grid_side("grid", grid),
-        "grid_y": None if grid_y is None else _check.grid_side("grid_y", grid_y),
-        "accuracy": _percent(accuracy, "accuracy"),
-        "extrapolate": do_extrapolate,
-        "extrapolate_grids": grids,
-        "mesh_angle": real("mesh_angle", mesh_angle, "an angle in degrees"),
-        "apex_offset": list(_check.pair("apex_offset", apex_offset,
-                                        "two fractions of an element, along x and y: e.g. (0.25, 0.5)")),
-        "margin": real("margin", margin, "a relative margin"),
-        "start_radius": real("start_radius", start_radius, "a mean radius c̄0"),
-        "steps": _check.optional_integer("steps", steps, 1, _check.LIMITS["max_steps"],
-                                         f"from 1 to {_check.LIMITS['max_steps']} load steps"),
-        "measure": _check.optional_text("measure", measure, '"curve" or "adhesive_force"'),
-        "onsets": _check.optional_text("onsets", onsets, '"near_minimum", "all" or "none"'),
-        "backend": _check.text("backend", backend, '"auto", "cpu" or "gpu"'),
-        "time_limit": _check.optional_real("time_limit", time_limit, "a number of seconds"),
-        "fields": _field_choice(fields),
-    }
-    return json.dumps(request, allow_nan=False)
-
-
 def _result(answer: Dict[str, Any], fields: List[Fields]) -> Result:
     s = answer["summary"]
     runs = [
@@ -461,29 +329,8 @@ def _result(answer: Dict[str, Any], fields: List[Fields]) -> Result:
 def simulate(
     ratio: Optional[float] = None,
     *,
-    r1: Optional[float] = None,
-    r2: float = 1.0,
-    e_star: float = 1.0,
-    work_of_adhesion: float = 1.0,
-    indenter: str = "ellipsoid",
-    radius: Optional[float] = None,
-    exponent: Optional[float] = None,
-    scale: Optional[float] = None,
-    accuracy: Union[str, float, None] = None,
-    grid: Optional[int] = None,
-    grid_y: Optional[int] = None,
-    extrapolate: Union[bool, Sequence[int]] = False,
-    mesh_angle: float = 0.0,
-    apex_offset: Tuple[float, float] = (0.0, 0.0),
-    margin: float = 0.08,
-    start_radius: float = 1.5,
-    steps: Optional[int] = None,
-    measure: Optional[str] = None,
-    onsets: Optional[str] = None,
-    backend: str = "auto",
-    time_limit: Optional[float] = None,
-    fields: Union[None, str, Tuple[str, int], Sequence[int]] = None,
     progress: Union[None, bool, Callable[[dict], Any]] = None,
+    **params: Any,
 ) -> Result:
     """Simulate the adhesive pull-off of one scene and estimate its adhesive force.
 
@@ -521,12 +368,9 @@ def simulate(
     :class:`SolveError` (a RuntimeError) when no run reached the force minimum; its
     ``result`` attribute holds the partial states.
     """
-    request = _request(
-        ratio, r1, r2, e_star, work_of_adhesion, indenter, radius, exponent, scale, accuracy,
-        grid, grid_y, extrapolate, mesh_angle, apex_offset, margin, start_radius, steps,
-        measure, onsets, backend, time_limit, fields,
-    )
-    text, raw_fields = _jkrbem.simulate(request, _progress(progress))
+    params["ratio"] = ratio
+    request, heights = _request.request(params)
+    text, raw_fields = _jkrbem.simulate(request, _progress(progress), heights)
     result = _result(json.loads(text), _fields(raw_fields))
     if result.interrupted:
         warnings.warn(
@@ -632,26 +476,13 @@ def crossed(
     return np.array(rows, dtype=dtype)
 
 
-def plan(
-    ratio: Optional[float] = None,
-    *,
-    accuracy: Union[str, float] = "2%",
-    r1: Optional[float] = None,
-    r2: float = 1.0,
-    e_star: float = 1.0,
-    work_of_adhesion: float = 1.0,
-    mesh_angle: float = 0.0,
-    apex_offset: Tuple[float, float] = (0.0, 0.0),
-    margin: float = 0.08,
-) -> Dict[str, Any]:
+def plan(ratio: Optional[float] = None, *, accuracy: Union[str, float] = "2%", **params: Any) -> Dict[str, Any]:
     """What :func:`simulate` with ``accuracy`` would run, without running it: the grids, the
     margin, the measure, the elements across the minor axis at the minimum (``n_d``) and the
-    uncertainty it predicts (relative), with a description."""
-    request = _request(
-        ratio, r1, r2, e_star, work_of_adhesion, "ellipsoid", None, None, None, accuracy,
-        None, None, False, mesh_angle, apex_offset, margin, 1.5, None, None, None, "cpu", None,
-    )
-    return json.loads(_jkrbem.plan(request))
+    uncertainty it predicts (relative), with a description. Keywords as :func:`simulate`."""
+    params.update(ratio=ratio, accuracy=accuracy)
+    request, heights = _request.request(params)
+    return json.loads(_jkrbem.plan(request, heights))
 
 
 _MODELS = '"hertz", "jkr" or "jg"'
@@ -726,3 +557,9 @@ def reference_table() -> np.ndarray:
 def devices() -> List[Dict[str, Any]]:
     """The GPU adapters wgpu sees, best first (name, device type, API, largest grid)."""
     return json.loads(_jkrbem.devices())
+
+
+simulate.__signature__ = _request.signature(  # type: ignore[attr-defined]
+    extra=(inspect.Parameter("progress", inspect.Parameter.KEYWORD_ONLY, default=None),)
+)
+simulate.__doc__ = (simulate.__doc__ or "") + "\n" + _request.keyword_docs()

@@ -3,16 +3,12 @@
 //! session layer in memory with the GIL released, and answers in JSON, which the Python side
 //! turns into numpy arrays. Errors name the Python keyword, never a CLI flag.
 
-use jkrbem::analysis::fields::FieldChoice;
-use jkrbem::backend::select::BackendKind;
-use jkrbem::model::{Measure, Model, ModelOptions, Onsets};
-use jkrbem::parameters::as_keywords;
-use jkrbem::run::open::BackendRequest;
-use jkrbem::run::simulate::{
-    simulate as run_simulate, Mode, SimulateRequest, Simulated, Sink, DEFAULT_ACCURACY,
-};
+use jkrbem::model::{Measure, Model};
+use jkrbem::run::request::Request;
+use jkrbem::run::schema::{self, words::keywords};
+use jkrbem::run::simulate::{simulate as run_simulate, Simulated, DEFAULT_ACCURACY};
 use jkrbem::run::{RunError, Watch};
-use jkrbem::scene::{Indenter, Scene};
+use jkrbem::scene::height_map::HeightMap;
 use jkrbem::solver::State;
 use jkrbem::theory::{self, TheoryModel};
 use pyo3::create_exception;
@@ -48,57 +44,9 @@ use jkrbem::theory::MAX_CURVE_POINTS as MAX_THEORY_POINTS;
 /// Longest part of a refused text that a message repeats (characters).
 const SHOWN_CHARS: usize = 40;
 
-/// A simulation's request, as the Python package sends it (its keywords, in the user's units).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Request {
-    /// R1/R2 (dimensionless), where `r1` is not given.
-    ratio: f64,
-    /// R1 (length), or `None` for `ratio`·`r2`.
-    r1: Option<f64>,
-    /// R2 (length).
-    r2: f64,
-    /// E* (force/length²).
-    e_star: f64,
-    /// Δγ (force/length).
-    work_of_adhesion: f64,
-    /// "ellipsoid", "flat_punch" or "power_law".
-    indenter: String,
-    /// The flat punch's radius (length).
-    radius: Option<f64>,
-    /// The power law's exponent n.
-    exponent: Option<f64>,
-    /// The power law's factor s of h = s·rⁿ (length^(1−n)); `None`: [`DEFAULT_SCALE`].
-    scale: Option<f64>,
-    /// Elements along x, for one grid.
-    grid: Option<usize>,
-    /// Elements along y.
-    grid_y: Option<usize>,
-    /// The relative accuracy aimed at (0.02 for 2 %).
-    accuracy: Option<f64>,
-    /// Extrapolate from several grids (`extrapolate_grids`, or those that fit).
-    extrapolate: bool,
-    extrapolate_grids: Option<Vec<usize>>,
-    mesh_angle: f64,
-    apex_offset: [f64; 2],
-    margin: f64,
-    start_radius: f64,
-    steps: Option<usize>,
-    /// "curve" or "adhesive_force".
-    measure: Option<String>,
-    /// "near_minimum", "all" or "none".
-    onsets: Option<String>,
-    /// "auto", "cpu" or "gpu".
-    backend: String,
-    /// Seconds an accuracy run may take, in (0, [`MAX_TIME_LIMIT_S`]].
-    time_limit: Option<f64>,
-    /// Which states' fields to keep: "none", "minimum", "every:K", "states:I,J".
-    fields: String,
-}
-
 /// A refusal naming Python keywords.
 fn input_error(message: impl std::fmt::Display) -> PyErr {
-    InputError::new_err(as_keywords(&message.to_string()))
+    InputError::new_err(keywords(&message.to_string()))
 }
 
 /// `text` quoted for a message, cut to [`SHOWN_CHARS`] characters.
@@ -109,10 +57,9 @@ fn shown(text: &str) -> String {
     }
 }
 
-/// A run's refusal naming Python keywords: the library names `--extrapolate-grids`, which
-/// Python gives as `extrapolate=[…]`.
-fn run_input_error(message: &str) -> PyErr {
-    input_error(message.replace("--extrapolate-grids", "extrapolate"))
+/// A run's refusal naming Python keywords.
+fn run_input_error(e: RunError) -> PyErr {
+    input_error(e)
 }
 
 /// The message a panic carried.
@@ -147,193 +94,34 @@ fn parse<T: for<'de> Deserialize<'de>>(json: &str) -> PyResult<T> {
     serde_json::from_str(json).map_err(|e| input_error(format!("bad request: {e}")))
 }
 
-impl Request {
-    fn scene(&self) -> PyResult<Scene> {
-        let (e, w) = (self.e_star, self.work_of_adhesion);
-        let need = |v: Option<f64>, name: &str| {
-            v.ok_or_else(|| {
-                input_error(format!(
-                    "{name} is needed with indenter = {}",
-                    shown(&self.indenter)
-                ))
-            })
-        };
-        let scene = match self.indenter.as_str() {
-            "ellipsoid" => match self.r1 {
-                Some(r1) => Scene::new(r1, self.r2, e, w),
-                None => Scene::from_ratio(self.ratio, self.r2, e, w),
-            },
-            "flat_punch" => Indenter::FlatPunch {
-                radius: need(self.radius, "radius")?,
-            }
-            .checked()
-            .and_then(|i| Scene::with_indenter(i, e, w)),
-            "power_law" => Indenter::PowerLaw {
-                n: need(self.exponent, "exponent")?,
-                scale: self.scale.unwrap_or(DEFAULT_SCALE),
-            }
-            .checked()
-            .and_then(|i| Scene::with_indenter(i, e, w)),
-            other => {
-                return Err(input_error(format!(
-                    "indenter = {} is invalid: \"ellipsoid\", \"flat_punch\" or \"power_law\"",
-                    shown(other)
-                )))
-            }
-        };
-        scene.map_err(input_error)
-    }
+/// The request of the keywords given (a JSON object: keyword → value), checked against the
+/// schema; every keyword not given takes the schema's default.
+fn request(json: &str) -> PyResult<Request> {
+    let given: serde_json::Map<String, Value> = parse(json)?;
+    Request::from_json(given.iter().map(|(k, v)| (k.as_str(), v))).map_err(run_input_error)
+}
 
-    fn options(&self) -> PyResult<ModelOptions> {
-        let base = ModelOptions::default();
-        let onsets = match self.onsets.as_deref() {
-            None | Some("near_minimum") => Onsets::NearMinimum,
-            Some("all") => Onsets::All,
-            Some("none") => Onsets::None,
-            Some(o) => {
-                return Err(input_error(format!(
-                    "onsets = {} is invalid: \"near_minimum\", \"all\" or \"none\"",
-                    shown(o)
-                )))
-            }
-        };
-        let measure = match self.measure.as_deref() {
-            None | Some("curve") => Measure::Curve,
-            Some("adhesive_force") => Measure::AdhesiveForce,
-            Some(m) => {
-                return Err(input_error(format!(
-                    "measure = {} is invalid: \"curve\" or \"adhesive_force\"",
-                    shown(m)
-                )))
-            }
-        };
-        Ok(ModelOptions {
-            nx: self.grid.unwrap_or(256),
-            ny: self.grid_y,
-            start_radius_bar: self.start_radius,
-            // As the CLI: the steps the measure and onsets need, unless given.
-            steps: self
-                .steps
-                .unwrap_or(jkrbem::model::default_steps(measure, onsets, base.regrid)),
-            margin: self.margin,
-            mesh_angle_deg: self.mesh_angle,
-            apex_offset: (self.apex_offset[0], self.apex_offset[1]),
-            onsets,
-            measure,
-            ..base
-        })
-    }
+/// A height map given as an array: its heights (native-endian f64, rows along y) and shape.
+type Heights<'py> = (Bound<'py, PyBytes>, usize, usize);
 
-    fn backend(&self) -> PyResult<BackendRequest> {
-        let kind = match self.backend.as_str() {
-            "auto" => BackendKind::Auto,
-            "cpu" => BackendKind::Cpu,
-            "gpu" => BackendKind::Gpu,
-            b => {
-                return Err(input_error(format!(
-                    "backend = {} is invalid: \"auto\", \"cpu\" or \"gpu\"",
-                    shown(b)
-                )))
-            }
-        };
-        Ok(BackendRequest {
-            kind,
-            ..BackendRequest::default()
-        })
-    }
-
-    /// The keywords given that only a single grid takes, by name.
-    fn one_grid_keywords(&self) -> Vec<&'static str> {
-        [
-            ("grid", self.grid.is_some()),
-            ("grid_y", self.grid_y.is_some()),
-            ("steps", self.steps.is_some()),
-            ("onsets", self.onsets.is_some()),
-            ("measure", self.measure.is_some()),
-        ]
-        .into_iter()
-        .filter_map(|(name, given)| given.then_some(name))
-        .collect()
-    }
-
-    /// One grid, several or an accuracy, as the CLI chooses; keywords the choice would drop
-    /// silently (the CLI documents that `--accuracy` overrides them) are refused instead.
-    fn mode(&self) -> PyResult<Mode> {
-        let one_grid = self.one_grid_keywords();
-        if self.accuracy.is_some() {
-            let dropped: Vec<&str> = one_grid
-                .iter()
-                .copied()
-                .chain(self.extrapolate.then_some("extrapolate"))
-                .collect();
-            if let Some(first) = dropped.first() {
-                return Err(input_error(format!(
-                    "accuracy and {first} cannot be given together: a run to an accuracy \
-                     chooses its grids, load steps and measure itself (leave out {})",
-                    dropped.join(", ")
-                )));
-            }
-        }
-        if self.extrapolate {
-            if let Some(g) = one_grid.iter().find(|g| g.starts_with("grid")) {
-                return Err(input_error(format!(
-                    "extrapolate and {g} cannot be given together: an extrapolation runs its \
-                     own grids (give them as extrapolate=[64, 128, 256])"
-                )));
-            }
-        }
-        let one_grid = self.indenter != "ellipsoid" || !one_grid.is_empty();
-        let extrapolate = self.extrapolate.then(|| self.extrapolate_grids.clone());
-        let mode = Mode::choose(self.accuracy, extrapolate, one_grid);
-        if self.time_limit.is_some() && !matches!(mode, Mode::Accuracy(_)) {
-            return Err(input_error(
-                "time_limit applies to a run to an accuracy (accuracy given, or neither grid nor \
-                 the other one-grid keywords)",
-            ));
-        }
-        Ok(mode)
-    }
-
-    /// `time_limit` as a duration: in (0, [`MAX_TIME_LIMIT_S`]] seconds.
-    fn time_limit(&self) -> PyResult<Option<Duration>> {
-        let Some(t) = self.time_limit else {
-            return Ok(None);
-        };
-        let bad = || {
-            input_error(format!(
-                "time_limit = {} is invalid: a positive number of seconds, at most \
-                 {MAX_TIME_LIMIT_S} (30 days)",
-                jkrbem::text::compact(t)
-            ))
-        };
-        if !(t > 0.0 && t <= MAX_TIME_LIMIT_S) {
-            return Err(bad());
-        }
-        Duration::try_from_secs_f64(t).map(Some).map_err(|_| bad())
-    }
-
-    /// `fields` as the library reads it; a refusal repeats at most [`SHOWN_CHARS`] of it.
-    fn fields(&self) -> PyResult<FieldChoice> {
-        FieldChoice::parse(&self.fields).map_err(|e| {
-            let long = format!("{:?}", self.fields);
-            input_error(format!(
-                "fields = {}",
-                e.replacen(&long, &shown(&self.fields), 1)
-            ))
-        })
-    }
-
-    fn simulate_request(&self) -> PyResult<SimulateRequest> {
-        Ok(SimulateRequest {
-            scene: self.scene()?,
-            options: self.options()?,
-            backend: self.backend()?,
-            mode: self.mode()?,
-            sink: Sink::Memory,
-            fields: self.fields()?,
-            time_limit: self.time_limit()?,
-        })
-    }
+/// The map of an array given as `height_map`, with the request's `spacing`.
+fn array_map(req: &Request, heights: Option<Heights<'_>>) -> PyResult<Option<HeightMap>> {
+    let Some((bytes, ny, nx)) = heights else {
+        return Ok(None);
+    };
+    let Some(spacing) = req.spacing else {
+        return Err(input_error(
+            "a height_map array needs spacing (the nodes' spacing, length)",
+        ));
+    };
+    let values: Vec<f64> = bytes
+        .as_bytes()
+        .chunks_exact(8)
+        .map(|c| f64::from_ne_bytes(c.try_into().unwrap_or([0; 8])))
+        .collect();
+    HeightMap::new(nx, ny, spacing, values)
+        .map(Some)
+        .map_err(|e| input_error(format!("height_map: {e}")))
 }
 
 /// Shortest wall time between two "state" events a progress callback sees.
@@ -463,7 +251,7 @@ impl PyWatch {
 
 impl Watch for PyWatch {
     fn note(&self, line: &str) {
-        self.event(json!({"event": "note", "text": as_keywords(line)}));
+        self.event(json!({"event": "note", "text": keywords(line)}));
     }
     fn pulloff_started(&self, model: &Model) {
         {
@@ -491,7 +279,7 @@ impl Watch for PyWatch {
         self.event(json!({"event": "end", "grid": [grid.0, grid.1]}));
     }
     fn warning(&self, line: &str) {
-        self.event(json!({"event": "warning", "text": as_keywords(line)}));
+        self.event(json!({"event": "warning", "text": keywords(line)}));
     }
     fn keep_going(&self) -> bool {
         if self.stopping() {
@@ -528,8 +316,19 @@ fn fields_out<'py>(py: Python<'py>, done: &Simulated) -> PyResult<Vec<Bound<'py,
     Ok(all)
 }
 
-/// The answer as JSON: the summary, the plan, why it fell short, and every grid's states.
-fn answer(done: &Simulated, interrupted: bool) -> Value {
+/// `v` with every parameter its strings name worded as a Python keyword.
+fn worded(v: Value) -> Value {
+    match v {
+        Value::String(s) => Value::String(keywords(&s)),
+        Value::Array(a) => Value::Array(a.into_iter().map(worded).collect()),
+        Value::Object(o) => Value::Object(o.into_iter().map(|(k, v)| (k, worded(v))).collect()),
+        other => other,
+    }
+}
+
+/// The answer as JSON: the summary, the plan, why it fell short, every grid's states, and the
+/// request as the schema completed it; every parameter named in Python's words.
+fn answer(done: &Simulated, req: &Request, interrupted: bool) -> Value {
     let runs: Vec<Value> = done
         .runs
         .iter()
@@ -538,57 +337,85 @@ fn answer(done: &Simulated, interrupted: bool) -> Value {
                    "states": r.states})
         })
         .collect();
-    json!({
+    worded(json!({
         "summary": done.summary,
-        "plan": done.plan.as_deref().map(as_keywords),
-        "failure": done.failure.as_deref().map(as_keywords),
+        "plan": done.plan,
+        "failure": done.failure,
+        "warnings": done.summary.warnings,
         "stopped": done.stopped,
         "interrupted": interrupted,
         "runs": runs,
+        "request": req.to_json(),
         "version": env!("CARGO_PKG_VERSION"),
-    })
+    }))
 }
 
-/// Run a simulation (the request as JSON); returns the answer as JSON and the fields (a list
-/// of dicts of bytes). The GIL is released while the solver runs; `progress` (a callable, or
+/// A rayon pool of this process: a process forked from one that ran jkrbem gets a pool of its
+/// own (the parent's worker threads do not survive `fork`, and its global pool would wait on
+/// them forever).
+fn process_pool() -> PyResult<std::sync::Arc<rayon::ThreadPool>> {
+    static POOL: Mutex<Option<(u32, std::sync::Arc<rayon::ThreadPool>)>> = Mutex::new(None);
+    let pid = std::process::id();
+    let mut pool = lock(&POOL);
+    if let Some((owner, p)) = pool.as_ref() {
+        if *owner == pid {
+            return Ok(p.clone());
+        }
+    }
+    let fresh = rayon::ThreadPoolBuilder::new()
+        .build()
+        .map(std::sync::Arc::new)
+        .map_err(|e| SolveError::new_err(format!("cannot start jkrbem's threads: {e}")))?;
+    *pool = Some((pid, fresh.clone()));
+    Ok(fresh)
+}
+
+/// Run a simulation: `request` is a JSON object of the keywords given (every other keyword
+/// takes the schema's default), `height_map` an array's heights (native-endian f64 bytes, ny,
+/// nx) where one is given in memory. Returns the answer as JSON and the fields (a list of
+/// dicts of bytes). The GIL is released while the solver runs; `progress` (a callable, or
 /// None) sees the run's events.
 #[pyfunction]
-#[pyo3(signature = (request, progress=None))]
+#[pyo3(signature = (request, progress=None, height_map=None))]
 fn simulate<'py>(
     py: Python<'py>,
     request: &str,
     progress: Option<Py<PyAny>>,
+    height_map: Option<Heights<'py>>,
 ) -> PyResult<(String, Vec<Bound<'py, PyDict>>)> {
     guarded(|| {
-        let req: Request = parse(request)?;
-        let sim = req.simulate_request()?;
+        let req = self::request(request)?;
+        let map = array_map(&req, height_map)?;
+        let sim = req.simulate_request(false, map).map_err(run_input_error)?;
         let watch = PyWatch::new(progress);
-        let done = py.detach(|| run_simulate(&sim, &watch));
+        let pool = process_pool()?;
+        let done = py.detach(|| pool.install(|| run_simulate(&sim, &watch)));
         if let Some(e) = lock(&watch.callback_error).take() {
             return Err(e);
         }
         let done = done.map_err(|e| match e {
-            RunError::Input(m) => run_input_error(&m),
-            other => SolveError::new_err(as_keywords(&other.to_string())),
+            e @ RunError::Input(_) => run_input_error(e),
+            other => SolveError::new_err(keywords(&other.to_string())),
         })?;
         let fields = fields_out(py, &done)?;
         Ok((
-            answer(&done, watch.interrupted.load(Ordering::SeqCst)).to_string(),
+            answer(&done, &req, watch.interrupted.load(Ordering::SeqCst)).to_string(),
             fields,
         ))
     })
 }
 
 /// What a run to `accuracy` would do (the grids, the domain and the uncertainty it predicts),
-/// without running it; the request as JSON, the plan as JSON.
+/// without running it; the request as JSON (as for [`simulate`]), the plan as JSON.
 #[pyfunction]
-fn plan(request: &str) -> PyResult<String> {
+#[pyo3(signature = (request, height_map=None))]
+fn plan(request: &str, height_map: Option<Heights<'_>>) -> PyResult<String> {
     guarded(|| {
-        let req: Request = parse(request)?;
-        let scene = req.scene()?;
+        let req = self::request(request)?;
+        let scene = req.scene(array_map(&req, height_map)?).map_err(run_input_error)?;
         let target = req.accuracy.unwrap_or(DEFAULT_ACCURACY);
-        let p = jkrbem::plan::for_accuracy(&scene, target, &req.options()?)
-            .map_err(|e| run_input_error(&e.to_string()))?;
+        let p = jkrbem::plan::for_accuracy(&scene, target, &req.options())
+            .map_err(|e| input_error(e.to_string()))?;
         let measure = match p.options.measure {
             Measure::AdhesiveForce => "adhesive_force",
             Measure::Curve => "curve",
@@ -601,10 +428,32 @@ fn plan(request: &str) -> PyResult<String> {
             "n_d": p.n_d,
             "predicted_uncertainty": p.predicted_uncertainty,
             "target": p.target,
-            "description": as_keywords(&p.describe(scene.ratio())),
+            "description": keywords(&p.describe(scene.ratio())),
         })
         .to_string())
     })
+}
+
+/// The request schema: every keyword of a simulation with its unit, kind and range, default
+/// and help (in Python's words), as JSON.
+#[pyfunction]
+#[pyo3(name = "schema")]
+fn schema_json() -> String {
+    let specs: Vec<Value> = schema::SPECS
+        .iter()
+        .filter(|s| s.fronts == schema::Fronts::Both)
+        .map(|s| {
+            let default = match s.fallback {
+                schema::Fallback::Value(text) => schema::values::from_text(s, text).ok(),
+                schema::Fallback::Chosen(_) => None,
+            };
+            json!({"name": s.name, "unit": s.unit, "kind": format!("{:?}", s.kind),
+                   "default": default, "terms": keywords(&s.terms()),
+                   "cli_terms": schema::words::flags(&s.terms()),
+                   "help": keywords(s.help), "cli_flag": s.flag})
+        })
+        .collect();
+    Value::from(specs).to_string()
 }
 
 /// The theory named `model` ("hertz", "jkr", "jg").
@@ -743,6 +592,7 @@ fn _jkrbem(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(plan, m)?)?;
+    m.add_function(wrap_pyfunction!(schema_json, m)?)?;
     m.add_function(wrap_pyfunction!(theory_curve, m)?)?;
     m.add_function(wrap_pyfunction!(theory_pull_off, m)?)?;
     m.add_function(wrap_pyfunction!(reference_table_csv, m)?)?;

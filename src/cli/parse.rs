@@ -1,7 +1,4 @@
-//! Values the commands share: percentages (`2%`) and durations (`90s`, `20min`, `2h`), each
-//! with its unit required and its range checked.
-
-use std::time::Duration;
+//! Values the commands share: percentages (`2%`), with the unit required and the range checked.
 
 /// A percentage such as `5%` as a fraction (0.05). The `%` is required: a bare `0.05` could
 /// mean 5 % or 0.05 %.
@@ -26,50 +23,9 @@ pub fn percentage(text: &str) -> Result<f64, String> {
     }
 }
 
-/// A duration such as `90s`, `20min` or `2h`. The unit is required (s, min, h); the value
-/// lies in [1 s, 30 days].
-pub fn duration(text: &str) -> Result<Duration, String> {
-    let t = text.trim();
-    let (number, unit) = [("min", 60.0), ("h", 3600.0), ("s", 1.0)]
-        .iter()
-        .find_map(|&(u, scale)| t.strip_suffix(u).map(|n| (n, scale)))
-        .ok_or_else(|| {
-            format!("{text:?} is not a duration: write the unit, e.g. 90s, 20min or 2h")
-        })?;
-    let v: f64 = number
-        .trim()
-        .parse()
-        .map_err(|_| format!("{text:?} is not a duration (e.g. 90s, 20min or 2h)"))?;
-    let seconds = v * unit;
-    if (1.0..=jkrbem::run::simulate::MAX_TIME_LIMIT_S).contains(&seconds) {
-        Ok(Duration::from_secs_f64(seconds))
-    } else {
-        Err(format!(
-            "{}: give a duration in [1 s, 30 days], e.g. 90s, 20min or 2h",
-            jkrbem::text::compact(v)
-        ))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn durations_need_a_unit_and_are_bounded() {
-        assert_eq!(duration("90s"), Ok(Duration::from_secs(90)));
-        assert_eq!(duration("20min"), Ok(Duration::from_secs(1200)));
-        assert_eq!(duration("1.5h"), Ok(Duration::from_secs(5400)));
-        assert!(duration("90").unwrap_err().contains("write the unit"));
-        for bad in ["0s", "0.5s", "31h0", "-5min", "NaNs", "1e300h", "800h"] {
-            let e = duration(bad).unwrap_err();
-            assert!(
-                e.contains("[1 s, 30 days]") || e.contains("not a duration"),
-                "{bad}: {e}"
-            );
-            assert!(e.len() < 100, "{e}");
-        }
-    }
 
     #[test]
     fn percentages_are_bounded() {

@@ -55,9 +55,9 @@ pub const INDENTER: &Spec = &spec(
     "",
     Kind::Choice(&["ellipsoid", "flat-punch", "height-map", "power-law"]),
     Value("ellipsoid"),
-    "The indenter's shape: `ellipsoid` (ratio or r1, r2), `flat-punch` (radius), `power-law` \
-     (h = s·rⁿ: exponent, scale) or `height-map` (height_map, spacing). The ellipsoid has a \
-     convergence law (accuracy, extrapolate); the others run one grid, set beside the closed \
+    "The indenter's shape: `ellipsoid` (⟨ratio⟩ or ⟨r1⟩, ⟨r2⟩), `flat-punch` (⟨radius⟩), \
+     `power-law` (h = s·rⁿ: ⟨exponent⟩, ⟨scale⟩) or `height-map` (⟨height_map⟩, ⟨spacing⟩). The \
+     ellipsoid has a convergence law (⟨accuracy⟩, ⟨extrapolate⟩); the others run one grid, set beside the closed \
      form of their Δx → 0 limit where one exists (Kendall; the power law's JKR solution).",
 );
 /// R1/R2 of the ellipsoid.
@@ -67,8 +67,8 @@ pub const RATIO: &Spec = &spec(
     Scene,
     "",
     Kind::Real(Range::closed(1.0, MAX_RATIO)),
-    Chosen("5, where r1 is not given"),
-    "Axis ratio R1/R2 of the ellipsoid (1 is a sphere). Not with r1, which sets it.",
+    Chosen("5, where ⟨r1⟩ is not given"),
+    "Axis ratio R1/R2 of the ellipsoid (1 is a sphere). Not with ⟨r1⟩, which sets it.",
 );
 /// The ellipsoid's R1.
 pub const R1: &Spec = &spec(
@@ -77,7 +77,7 @@ pub const R1: &Spec = &spec(
     Scene,
     "length",
     INPUT,
-    Chosen("ratio × r2"),
+    Chosen("⟨ratio⟩ × ⟨r2⟩"),
     "Radius of curvature along x, the major axis (R2 ≤ R1 ≤ 1000 R2).",
 );
 /// The ellipsoid's R2.
@@ -172,12 +172,12 @@ pub const GRID: &Spec = &spec(
     Model,
     "elements",
     GRID_SIDE,
-    Chosen("256 with a one-grid parameter; without any, accuracy 2%"),
+    Chosen("256 with a one-grid parameter; without any, ⟨accuracy⟩ 2%"),
     "Elements along x, Nx (within the machine's memory). The domain is the initial contact \
      plus the margin, so Δx = 2·a0·(1 + margin)/Nx. A grid that leaves fewer than 8 elements \
      across the first contact's minor axis (or an expected 4 at the force minimum) is refused \
-     with the grid that resolves it. Giving it (or grid_y, steps, onsets, measure, regrid, \
-     final_d) runs that one grid, whose estimate states its expected bias.",
+     with the grid that resolves it. Giving it (or ⟨grid_y⟩, ⟨steps⟩, ⟨onsets⟩, ⟨measure⟩, \
+     ⟨regrid⟩, ⟨final_d⟩) runs that one grid, whose estimate states its expected bias.",
 );
 /// Ny.
 pub const GRID_Y: &Spec = &spec(
@@ -207,7 +207,7 @@ pub const STEPS: &Spec = &spec(
     Model,
     "",
     Kind::Count(1, MAX_STEPS as u64),
-    Chosen("200; 20 with measure adhesive-force without regrid"),
+    Chosen("200; 20 with ⟨measure⟩ adhesive-force without ⟨regrid⟩"),
     "Load steps from the initial approach d̄0 to the expected end of contact.",
 );
 /// Which onsets.
@@ -222,7 +222,7 @@ pub const ONSETS: &Spec = &spec(
      end state is the same whichever is chosen. `near-minimum`: only the onsets of the steps \
      that can hold the force minimum (the same force minimum as `all`; the cheapest); `all`: \
      every onset of every step; `none`: whole steps only (the force minimum then depends on \
-     steps).",
+     ⟨steps⟩).",
 );
 /// What a run is for.
 pub const MEASURE: &Spec = &spec(
@@ -300,7 +300,7 @@ pub const CG_TOLERANCE: &Spec = &spec(
     Kind::Real(Range::open(0.0, 1.0)),
     Value("1e-8"),
     "CG stops when its relative residual ‖(d − h − K p)_C‖/‖(d − h)_C‖ reaches this. A solve \
-     that stagnates, diverges or reaches cg_max_iterations is retried once in a safer mode; \
+     that stagnates, diverges or reaches ⟨cg_max_iterations⟩ is retried once in a safer mode; \
      f32 (the GPU backend) cannot bring the true residual much below 1e-7.",
 );
 /// CG's iteration limit.
@@ -321,7 +321,7 @@ pub const CG_ACCEPT: &Spec = &spec(
     "",
     Kind::Real(Range::open(0.0, 1.0)),
     Value("1e-5"),
-    "Relative residual up to which a CG solve that missed cg_tolerance even in the safer \
+    "Relative residual up to which a CG solve that missed ⟨cg_tolerance⟩ even in the safer \
      retry is accepted: the run goes on, warns and records the residual. Above it the run \
      stops with an error.",
 );
@@ -353,7 +353,7 @@ pub const EXACT_CASCADE: &Spec = &spec(
     "",
     Kind::Switch,
     Value("false"),
-    "Solve every round of a detachment cascade to cg_tolerance. By default the rounds between \
+    "Solve every round of a detachment cascade to ⟨cg_tolerance⟩. By default the rounds between \
      are solved only as far as needed to tell which elements are over σ_c, and the last round \
      is exact: the same states at a fraction of the CG iterations.",
 );
@@ -387,7 +387,7 @@ pub const EXTRAPOLATE: &Spec = &spec(
     "",
     Kind::Switch,
     Value("false"),
-    "Run the scene on the grids of extrapolate_grids (instead of grid) and fit |min F̄|, c̄ and \
+    "Run the scene on the grids of ⟨extrapolate_grids⟩ (instead of ⟨grid⟩) and fit |min F̄|, c̄ and \
      d̄ at the minimum together to their Δx → 0 limits, each with its stated uncertainty.",
 );
 /// The extrapolation's grids.
@@ -400,7 +400,7 @@ pub const EXTRAPOLATE_GRIDS: &Spec = &spec(
     Chosen(
         "the coarsest grid that resolves the contact at the force minimum and its two doublings",
     ),
-    "Grids Nx for extrapolate, coarse to fine.",
+    "Grids Nx for ⟨extrapolate⟩, coarse to fine.",
 );
 /// The accuracy aimed at.
 pub const ACCURACY: &Spec = &spec(
@@ -409,10 +409,11 @@ pub const ACCURACY: &Spec = &spec(
     Plan,
     "",
     Kind::Fraction(0.001, 0.5),
-    Chosen("2% unless one grid or extrapolate is asked for"),
+    Chosen("2% unless one grid or ⟨extrapolate⟩ is asked for"),
     "Reach this relative accuracy of the adhesive force |min F̄| at Δx → 0 at the least cost: \
-     chooses the grids, the domain, the load steps and what to compute, says what it chose, and \
-     overrides grid, grid_y, steps, onsets, measure, regrid and extrapolate. The CLI writes a \
+     chooses the grids, the domain, the load steps and what to compute, and says what it chose \
+     (⟨grid⟩, ⟨grid_y⟩, ⟨steps⟩, ⟨onsets⟩, ⟨measure⟩, ⟨regrid⟩, ⟨final_d⟩ and ⟨extrapolate⟩ are \
+     refused beside it). The CLI writes a \
      percentage with its unit (`1%`), Python a fraction (0.01).",
 );
 /// The time limit.
@@ -426,7 +427,7 @@ pub const TIME_LIMIT: &Spec = &spec(
     "Wall-clock time a run to an accuracy may take (the CLI writes it with its unit: `90s`, \
      `20min`, `2h`; Python in seconds). The coarsest grid that resolves the contact runs first; \
      a grid still running at the limit is stopped and the answer comes from the grids that \
-     finished, with target_met false if that misses the target.",
+     finished, with `target_met` false if that misses the target.",
 );
 /// The fields kept.
 pub const FIELDS: &Spec = &spec(
@@ -438,7 +439,7 @@ pub const FIELDS: &Spec = &spec(
     Value("none"),
     "The states whose fields (pressure, gap, contact set) are kept: `minimum` (the force \
      minimum), `every:K` (every K-th state and the minimum) or `states:I,J` (those states, \
-     counted from 0, and the minimum). The CLI writes them to <out>.fields.npz and the pressure \
+     counted from 0, and the minimum). The CLI writes them to <⟨out⟩>.fields.npz and the pressure \
      at the minimum to <out>.pressure.svg. Each is the state's contact set solved again on the \
      CPU (f64).",
 );
@@ -461,7 +462,7 @@ pub const SUMMARY: &Spec = &cli_only(spec(
     "",
     Kind::File,
     Chosen("none"),
-    "Also write the summary as JSON to this file (not the out file).",
+    "Also write the summary as JSON to this file (not the ⟨out⟩ file).",
 ));
 
 /// Every parameter of a simulation, in the order `--help` shows them.

@@ -200,6 +200,8 @@ pub fn from_json(spec: &Spec, value: &Value) -> Result<Value, String> {
     let s = shown_json(value);
     let bad = || invalid(spec, &s, &expected(spec));
     let num = |v: &Value| v.as_f64().filter(|x| x.is_finite());
+    // A whole number must be written as one (32, not 32.0).
+    let whole = |v: &Value| v.is_i64() || v.is_u64();
     let list = |v: &Value| -> Option<Vec<f64>> { v.as_array()?.iter().map(num).collect() };
     match (spec.kind, value) {
         (Kind::Real(r), v) => real_in(spec, num(v).ok_or_else(bad)?, r, &s),
@@ -221,7 +223,9 @@ pub fn from_json(spec: &Spec, value: &Value) -> Result<Value, String> {
             Some(&[x, y]) if r.contains(x) && r.contains(y) => Ok(Value::from(vec![x, y])),
             _ => Err(bad()),
         },
-        (Kind::Grids(lo, hi), v) => grids_in(spec, &list(v).ok_or_else(bad)?, lo, hi, &s),
+        (Kind::Grids(lo, hi), Value::Array(a)) if a.iter().all(whole) => {
+            grids_in(spec, &list(value).ok_or_else(bad)?, lo, hi, &s)
+        }
         (Kind::States, Value::String(t)) => from_text(spec, t),
         _ => Err(bad()),
     }

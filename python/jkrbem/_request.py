@@ -1,0 +1,108 @@
+"""A simulation's request from Python keywords: the keywords given, as JSON, for the library to
+check against its one schema (``_jkrbem.schema()``: every keyword's unit, range, default and
+help) and to complete with its defaults. Only what is Python's own is done here: numpy values
+as plain numbers, a height map given as an array, ``fields`` and ``extrapolate`` in their
+Python forms."""
+
+from __future__ import annotations
+
+import inspect
+import json
+import math
+import os
+from typing import Any, Dict, List, Optional, Tuple
+
+import numpy as np
+
+from . import _jkrbem
+from ._jkrbem import InputError
+
+#: Every keyword of a simulation, as the library's schema declares it (name, unit, kind,
+#: default, terms, help).
+SCHEMA: List[Dict[str, Any]] = json.loads(_jkrbem.schema())
+
+#: The schema by keyword.
+BY_NAME: Dict[str, Dict[str, Any]] = {s["name"]: s for s in SCHEMA}
+
+_FIELDS = 'None, "minimum", ("every", k) or a list of state indices'
+
+
+def _plain(name: str, value: Any) -> Any:
+    """`value` as JSON can carry it: numpy scalars and arrays as Python numbers and lists,
+    tuples as lists, paths as strings; anything else JSON cannot carry is a TypeError."""
+    if isinstance(value, np.generic):
+        return _plain(name, value.item())
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, (tuple, list)):
+        return [_plain(name, v) for v in value]
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    if isinstance(value, float) and not math.isfinite(value):
+        return repr(value)  # JSON has no NaN: the library refuses the text, naming the keyword
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return value
+    raise TypeError(f"{name} = {type(value).__name__} is invalid: a number, a string or a list is expected")
+
+
+def _fields(value: Any) -> Optional[str]:
+    """``fields`` in the library's words: "minimum", "every:K" or "states:I,J"."""
+    if value is None or isinstance(value, str):
+        return value
+    items = _plain("fields", value)
+    if not isinstance(items, list) or not items:
+        raise InputError(f"fields = {value!r} is invalid: {_FIELDS}")
+    if len(items) == 2 and items[0] == "every":
+        return f"every:{items[1]}"
+    if all(isinstance(i, int) and not isinstance(i, bool) for i in items):
+        return "states:" + ",".join(str(i) for i in items)
+    raise InputError(f"fields = {value!r} is invalid: {_FIELDS}")
+
+
+def _heights(value: Any) -> Optional[Tuple[bytes, int, int]]:
+    """A height map given as a 2-D array: its heights as f64 bytes, and its shape."""
+    if not isinstance(value, np.ndarray):
+        return None
+    if value.ndim != 2:
+        raise InputError(f"height_map is invalid: a 2-D array of heights (rows along y), not {value.ndim}-D")
+    a = np.ascontiguousarray(value, dtype=np.float64)
+    return a.tobytes(), a.shape[0], a.shape[1]
+
+
+def request(params: Dict[str, Any]) -> Tuple[str, Optional[Tuple[bytes, int, int]]]:
+    """The JSON request of the keywords given (None: not given) and a height map's array."""
+    given: Dict[str, Any] = {}
+    heights = None
+    for name, value in params.items():
+        if value is None:
+            continue
+        if name == "height_map" and isinstance(value, np.ndarray):
+            heights = _heights(value)
+            continue
+        if name == "fields":
+            value = _fields(value)
+        elif name == "extrapolate" and not isinstance(value, (bool, np.bool_)):
+            given["extrapolate_grids"] = _plain(name, value)
+            value = True
+        given[name] = _plain(name, value)
+    return json.dumps(given, allow_nan=False), heights
+
+
+def signature(first: Tuple[str, ...] = ("ratio",), extra: Tuple[inspect.Parameter, ...] = ()) -> inspect.Signature:
+    """A signature of every schema keyword with its default (None where the library chooses),
+    the names in `first` positional, then `extra`."""
+    P = inspect.Parameter
+    params = [P(n, P.POSITIONAL_OR_KEYWORD, default=None) for n in first]
+    for s in SCHEMA:
+        if s["name"] not in first:
+            params.append(P(s["name"], P.KEYWORD_ONLY, default=s["default"]))
+    return inspect.Signature(params + list(extra))
+
+
+def keyword_docs() -> str:
+    """Every keyword with its unit, range, default and help, for a docstring."""
+    lines = ["Keywords (from the library's schema):", ""]
+    for s in SCHEMA:
+        lines.append(f"``{s['name']}``: {s['help']} [{s['terms']}]" if s["terms"] else f"``{s['name']}``: {s['help']}")
+        lines.append("")
+    return "\n".join(lines)

@@ -1,0 +1,67 @@
+//! The shared table of bad inputs (tests/data/bad_inputs.txt), through the command line: each
+//! case is refused (exit 2) before any work, naming its parameter by its flag. The Python
+//! package's tests run the same table through its keywords (python/tests/test_schema.py).
+
+use crate::common::run_in;
+
+/// The table's cases: the parameter to be named, and (name, text) given.
+pub fn cases() -> Vec<(String, Vec<(String, String)>)> {
+    include_str!("../data/bad_inputs.txt")
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
+        .map(|l| {
+            let mut words = l.split_whitespace();
+            let named = words.next().unwrap().to_string();
+            let given = words
+                .map(|w| {
+                    let (n, v) = w.split_once('=').expect("name=value");
+                    (n.to_string(), v.to_string())
+                })
+                .collect();
+            (named, given)
+        })
+        .collect()
+}
+
+/// Whether `text` names `flag` as a whole word (not `--grid` inside `--grid-y`).
+fn names(text: &str, flag: &str) -> bool {
+    text.match_indices(flag).any(|(at, _)| {
+        !text[at + flag.len()..].starts_with(|c: char| c.is_ascii_alphanumeric() || c == '-')
+    })
+}
+
+#[test]
+fn every_bad_input_of_the_shared_table_is_refused_naming_its_flag() {
+    let cases = cases();
+    assert!(cases.len() >= 60, "{} cases", cases.len());
+    let dir = tempfile::tempdir().unwrap();
+    let mut wrong = Vec::new();
+    for (named, given) in &cases {
+        let mut args: Vec<String> = vec!["simulate".into()];
+        for (name, value) in given {
+            let spec = jkrbem::run::schema::by_name(name).expect("a parameter of the schema");
+            args.push(spec.flag.to_string());
+            if !matches!(spec.kind, jkrbem::run::schema::Kind::Switch) {
+                args.push(value.clone());
+            }
+        }
+        if !given.iter().any(|(n, _)| n == "backend") {
+            args.extend(["--backend".into(), "cpu".into()]);
+        }
+        args.extend(["--out".into(), "bad.csv".into()]);
+        let refs: Vec<&str> = args.iter().map(|s| s.as_str()).collect();
+        let o = run_in(dir.path(), &refs, &[]);
+        let err = String::from_utf8_lossy(&o.stderr).to_string();
+        let flag = jkrbem::run::schema::by_name(named).unwrap().flag;
+        if o.status.code() != Some(2) || !names(&err, flag) {
+            wrong.push(format!("{args:?}: exit {:?}, {err}", o.status.code()));
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "{} wrong:\n{}",
+        wrong.len(),
+        wrong.join("\n")
+    );
+    assert!(!dir.path().join("bad.csv").exists());
+}
