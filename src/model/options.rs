@@ -66,8 +66,9 @@ pub enum Measure {
     AdhesiveForce,
 }
 
-/// The user's choices that shape a model; `None` means "choose for the scene".
-#[derive(Debug, Clone, PartialEq)]
+/// The user's choices that shape a model; `None` means "choose for the scene". Serialised as
+/// provenance and the reuse check record it (every field but the planner's hint).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ModelOptions {
     /// Elements along x (power of two).
     pub nx: usize,
@@ -115,6 +116,7 @@ pub struct ModelOptions {
     /// Where a planner expects the pull-off to end and how small the contact gets at the
     /// force minimum: the load path and the resolution check are sized from it. `None`: the
     /// scene's own closed form (the sphere's values where the indenter has none).
+    #[serde(skip)]
     pub hint: Option<PullOffHint>,
 }
 

@@ -42,42 +42,10 @@ pub struct RunSettings {
     pub e_star: f64,
     /// Δγ (force/length).
     pub work_of_adhesion: f64,
-    /// Elements along x.
-    pub nx: usize,
-    /// Elements along y, if asked (else fitted to the contact).
-    pub ny: Option<usize>,
-    /// c̄0 (dimensionless).
-    pub start_radius_bar: f64,
-    /// Load steps.
-    pub steps: usize,
-    /// Final approach d̄, if any (dimensionless).
-    pub final_d_bar: Option<f64>,
-    /// Domain margin (relative to the initial contact's half-axes).
-    pub margin: f64,
-    /// CG tolerance (relative).
-    pub cg_tolerance: f64,
-    /// CG iteration limit per solve.
-    pub cg_max_iterations: usize,
-    /// Relative residual accepted after the safer retry.
-    pub cg_accept: f64,
-    /// The model's CG check interval.
-    pub cg_check_every: usize,
-    /// Preconditioner.
-    pub preconditioner: String,
-    /// Detachment/attachment sweeps per step at most.
-    pub max_sweeps: usize,
-    /// Which onsets are located.
-    pub onsets: String,
-    /// Whether cascade rounds are solved loosely.
-    pub loose_rounds: bool,
-    /// What the run is for.
-    pub measure: String,
-    /// Whether it re-grids.
-    pub regrid: bool,
-    /// Mesh angle (degrees).
-    pub mesh_angle_deg: f64,
-    /// Apex offset (elements along x, y).
-    pub apex_offset: [f64; 2],
+    /// The model options asked for (grid, domain, load path, CG, protocol), as
+    /// [`ModelOptions`] serialises them.
+    #[serde(flatten)]
+    pub options: ModelOptions,
     /// The backend asked for ("auto", "cpu", "gpu"); the one that ran is in the report.
     pub backend: String,
     /// The convolution ("padded", "periodic").
@@ -102,24 +70,7 @@ impl RunSettings {
             indenter: (!scene.is_ellipsoid()).then(|| scene.indenter.describe()),
             e_star: scene.e_star,
             work_of_adhesion: scene.work_of_adhesion,
-            nx: options.nx,
-            ny: options.ny,
-            start_radius_bar: options.start_radius_bar,
-            steps: options.steps,
-            final_d_bar: options.final_d_bar,
-            margin: options.margin,
-            cg_tolerance: options.cg_tolerance,
-            cg_max_iterations: options.cg_max_iterations,
-            cg_accept: options.cg_accept,
-            cg_check_every: options.cg_check_every,
-            preconditioner: name_of(options.preconditioner),
-            max_sweeps: options.max_sweeps,
-            onsets: options.onsets.name().to_string(),
-            loose_rounds: options.loose_rounds,
-            measure: name_of(options.measure),
-            regrid: options.regrid,
-            mesh_angle_deg: options.mesh_angle_deg,
-            apex_offset: [options.apex_offset.0, options.apex_offset.1],
+            options: options.clone(),
             backend: name_of(backend.kind),
             convolution: name_of(backend.convolution),
             check_every: backend.check_every,
@@ -199,7 +150,7 @@ fn report_differences(run: &RunReport, asked: &RunSettings, kind: BackendKind) -
             name_of(kind)
         ));
     }
-    if run.nx != asked.nx || asked.ny.is_some_and(|ny| ny != run.ny) {
+    if run.nx != asked.options.nx || asked.options.ny.is_some_and(|ny| ny != run.ny) {
         why.push(format!("its report's grid is {}", run.grid));
     }
     let ratio = match (asked.r1, asked.r2) {
@@ -208,20 +159,32 @@ fn report_differences(run: &RunReport, asked: &RunSettings, kind: BackendKind) -
     };
     for (what, got, want) in [
         ("ratio", run.ratio, ratio),
-        ("margin", run.margin, asked.margin),
-        ("mesh angle", run.mesh_angle_deg, asked.mesh_angle_deg),
-        ("apex offset x", run.apex_offset[0], asked.apex_offset[0]),
-        ("apex offset y", run.apex_offset[1], asked.apex_offset[1]),
+        ("margin", run.margin, asked.options.margin),
+        (
+            "mesh angle",
+            run.mesh_angle_deg,
+            asked.options.mesh_angle_deg,
+        ),
+        (
+            "apex offset x",
+            run.apex_offset[0],
+            asked.options.apex_offset.0,
+        ),
+        (
+            "apex offset y",
+            run.apex_offset[1],
+            asked.options.apex_offset.1,
+        ),
     ] {
         if !close(Some(got), Some(want), SAME) && got != want {
             why.push(format!("its report's {what} is {got}, asked {want}"));
         }
     }
-    if run.onsets.as_deref() != Some(asked.onsets.as_str()) {
+    if run.onsets.as_deref() != Some(asked.options.onsets.name()) {
         why.push(format!(
             "its report's onsets are {}, asked {}",
             run.onsets.as_deref().unwrap_or("not recorded"),
-            asked.onsets
+            asked.options.onsets.name()
         ));
     }
     why
