@@ -17,14 +17,17 @@ from __future__ import annotations
 import inspect
 import json
 import math
-import warnings
-from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _check, _jkrbem, _request
+from . import _check, _jkrbem, _progress, _request, _results
 from ._jkrbem import InputError, SolveError
+from ._load import load
+from ._results import STATE_COLUMNS, Fields, Result, Run
+from ._results import fields_from_raw as _fields
+from ._results import states_array as _states_array
+from ._warnings import JkrbemWarning, warn_all
 
 __version__ = _jkrbem.__version__
 
@@ -38,291 +41,32 @@ __all__ = [
     "theory",
     "reference_table",
     "devices",
+    "load",
     "Result",
+    "Run",
     "Fields",
     "InputError",
     "SolveError",
+    "JkrbemWarning",
     "STATE_COLUMNS",
 ]
 
-#: The columns of :attr:`Result.states`, as in the CLI's states CSV (without ``onsets``).
-STATE_COLUMNS: Tuple[Tuple[str, str], ...] = (
-    ("step", "i8"),
-    ("phase", "U8"),
-    ("d", "f8"),
-    ("force", "f8"),
-    ("area", "f8"),
-    ("mean_radius", "f8"),
-    ("a_axis", "f8"),
-    ("b_axis", "f8"),
-    ("n_contact", "i8"),
-    ("cg_iterations", "i8"),
-    ("detach_sweeps", "i8"),
-    ("d_bar", "f8"),
-    ("f_bar", "f8"),
-    ("c_bar", "f8"),
-    ("a_bar", "f8"),
-    ("b_bar", "f8"),
-    ("cg_residual", "f8"),
-    ("dx", "f8"),
-)
-
-
-def _states_array(states: List[Dict[str, Any]]) -> np.ndarray:
-    """The states (dicts from the solver) as a numpy structured array."""
-    dtype = np.dtype(list(STATE_COLUMNS))
-    rows = [
-        tuple(
-            (s[name].lower() if isinstance(s[name], str) else s[name])
-            if s.get(name) is not None
-            else (math.nan if kind == "f8" else -1)
-            for name, kind in STATE_COLUMNS
-        )
-        for s in states
-    ]
-    return np.array(rows, dtype=dtype)
-
-
-@dataclass
-class Run:
-    """One grid's pull-off: its grid, element side and states."""
-
-    #: Elements along x and y.
-    grid: Tuple[int, int]
-    #: Element side Δx at the start (length).
-    dx: float
-    #: Whether it reached its end (or its confirmed force minimum).
-    complete: bool
-    #: Every recorded state, a structured array with :data:`STATE_COLUMNS`.
-    states: np.ndarray
-
-
-@dataclass
-class Fields:
-    """The fields of one state on its grid. 2-D arrays have shape (ny, nx): ``a[j, i]`` is
-    the element at ``x[i]``, ``y[j]``. Each field is the state's contact set solved again on
-    the CPU (f64) at its approach."""
-
-    #: Which run (0: the first grid run) and which of its states (0: the first press).
-    run: int
-    index: int
-    #: Why it was kept ("force minimum", "state 12").
-    label: str
-    #: The state (a dict with the states' columns).
-    state: Dict[str, Any]
-    #: Element centres from the apex (length).
-    x: np.ndarray
-    y: np.ndarray
-    #: Contact pressure p (force/length², compressive positive; 0 off the contact).
-    pressure: np.ndarray
-    #: Gap g = h − d + u (length; 0 on the contact).
-    gap: np.ndarray
-    #: The contact set.
-    contact: np.ndarray
-    #: Element side (length) and detachment stress σ_c (force/length²).
-    dx: float
-    sigma_c: float
-
-    @property
-    def force(self) -> float:
-        """Σ p Δx² (force): the state's force."""
-        return float(self.pressure.sum() * self.dx * self.dx)
-
-    def plot(self, ax=None):
-        """The pressure as a heat map with the contact's outline (needs matplotlib)."""
-        import matplotlib.pyplot as plt
-
-        if ax is None:
-            _, ax = plt.subplots()
-        h = 0.5 * self.dx
-        extent = (self.x[0] - h, self.x[-1] + h, self.y[0] - h, self.y[-1] + h)
-        scale = float(np.abs(self.pressure).max()) or 1.0
-        im = ax.imshow(self.pressure, origin="lower", extent=extent, cmap="bwr",
-                       vmin=-scale, vmax=scale)
-        ax.contour(self.x, self.y, self.contact.astype(float), levels=[0.5], colors="k", linewidths=0.8)
-        ax.set_xlabel("x (length)")
-        ax.set_ylabel("y (length)")
-        ax.set_aspect("equal")
-        ax.figure.colorbar(im, ax=ax, label="p (force/length²)")
-        ax.set_title(f"p, {self.label} (state {self.index})")
-        return ax
-
-
-def _fields(raw: List[Dict[str, Any]]) -> List[Fields]:
-    out = []
-    for d in raw:
-        meta = json.loads(d["meta"])
-        nx, ny = meta["nx"], meta["ny"]
-        grid = lambda key: np.frombuffer(d[key], dtype=np.float64).reshape(ny, nx).copy()
-        out.append(
-            Fields(
-                run=meta["run"],
-                index=meta["index"],
-                label=meta["label"],
-                state=meta["state"],
-                x=np.frombuffer(d["x"], dtype=np.float64).copy(),
-                y=np.frombuffer(d["y"], dtype=np.float64).copy(),
-                pressure=grid("pressure"),
-                gap=grid("gap"),
-                contact=np.frombuffer(d["contact"], dtype=np.uint8).reshape(ny, nx).astype(bool),
-                dx=meta["dx"],
-                sigma_c=meta["sigma_c"],
-            )
-        )
-    return out
-
-
-@dataclass
-class Result:
-    """A simulation's answer.
-
-    ``adhesive_force`` is |min F̄| (dimensionless; F = F̄·3π Re Δγ) with its ``uncertainty``
-    (absolute, same units) where the estimate states one; ``jg`` is Johnson–Greenwood's value
-    beside it, a comparison and never the reference (``deviation_from_jg`` is relative).
-    """
-
-    #: |min F̄| of the estimate (dimensionless), or None where no run reached the minimum.
-    adhesive_force: Optional[float]
-    #: Its stated half-width (absolute, dimensionless), where it has one.
-    uncertainty: Optional[float]
-    #: The estimate's kind ("single-grid", "extrapolated", …).
-    estimate: Optional[str]
-    #: Johnson–Greenwood's (JKR's for a sphere) |min F̄|, for comparison.
-    jg: Optional[float]
-    #: (adhesive_force − jg)/jg.
-    deviation_from_jg: Optional[float]
-    #: c̄ and d̄ at the force minimum (dimensionless).
-    c_bar_at_min: Optional[float]
-    d_bar_at_min: Optional[float]
-    #: Every grid's run, in the order run.
-    runs: List[Run]
-    #: The summary, the same dict as the CLI's ``--summary`` JSON.
-    summary: Dict[str, Any]
-    #: What an accuracy plan chose, in words.
-    plan: Optional[str] = None
-    #: Why the request fell short, if it did.
-    failure: Optional[str] = None
-    #: Whether Ctrl-C (KeyboardInterrupt) stopped a run; its partial states are kept.
-    interrupted: bool = False
-    #: Warnings about the answer.
-    warnings: List[str] = field(default_factory=list)
-    #: The fields kept (``fields=`` of :func:`simulate`), of every run.
-    fields: List[Fields] = field(default_factory=list)
-
-    @property
-    def field_at_minimum(self) -> Optional[Fields]:
-        """The fields of the last run's force minimum, if they were kept."""
-        last = len(self.runs) - 1
-        for f in self.fields:
-            if f.run == last and "force minimum" in f.label:
-                return f
-        return None
-
-    @property
-    def states(self) -> np.ndarray:
-        """The states of the run the answer rests on most (the finest grid run)."""
-        if not self.runs:
-            return _states_array([])
-        return self.runs[-1].states
-
-    @property
-    def complete(self) -> bool:
-        """Whether every run reached its end and nothing fell short."""
-        return self.failure is None and all(r.complete for r in self.runs)
-
-    def force_in(self, radius_e: float, work_of_adhesion: float) -> Optional[float]:
-        """The adhesive force in the user's force unit: |min F̄|·3π Re Δγ (Re in L, Δγ in F/L)."""
-        radius_e = _check.real("radius_e", radius_e, "a radius (length)")
-        work_of_adhesion = _check.real("work_of_adhesion", work_of_adhesion, "a work of adhesion (force/length)")
-        if self.adhesive_force is None:
-            return None
-        return self.adhesive_force * 3.0 * math.pi * radius_e * work_of_adhesion
-
-    def plot(self, ax=None):
-        """The pull-off curve F̄(d̄) with the force minimum marked (needs matplotlib)."""
-        try:
-            import matplotlib.pyplot as plt
-        except ImportError as e:  # pragma: no cover - depends on the environment
-            raise ImportError("Result.plot needs matplotlib: pip install matplotlib") from e
-        if ax is None:
-            _, ax = plt.subplots()
-        s = self.states
-        s = s[s["phase"] != "approach"]
-        ax.plot(s["d_bar"], s["f_bar"], lw=1, label="jkrbem")
-        if self.adhesive_force is not None:
-            ax.axhline(-self.adhesive_force, ls=":", c="k", lw=0.8, label="|min F̄|")
-        ax.set_xlabel("d̄ = d·Re/c_r²")
-        ax.set_ylabel("F̄ = F/(3π Re Δγ)")
-        ax.invert_xaxis()
-        ax.legend()
-        return ax
-
-    def __repr__(self) -> str:
-        f = "—" if self.adhesive_force is None else f"{self.adhesive_force:.5f}"
-        u = "" if self.uncertainty is None else f" ± {self.uncertainty:.5f}"
-        return f"<jkrbem.Result |min F̄| = {f}{u} ({self.estimate}), {len(self.runs)} run(s)>"
-
-
-_PROGRESS = "None, True or False (a tqdm bar), or a callable taking an event dict"
-
-
-def _progress(progress: Union[None, bool, Callable[[dict], Any]]) -> Optional[Callable[[dict], Any]]:
-    """The callable that sees a run's events: the user's, a tqdm bar (True), or none."""
-    if progress is None:
-        return None
-    if callable(progress):
-        return progress
-    if not _check.flag("progress", progress, _PROGRESS):
-        return None
-    try:
-        from tqdm.auto import tqdm
-    except ImportError:
-        def show(event: dict) -> None:
-            if event["event"] in ("note", "warning"):
-                print(f"jkrbem: {event['text']}")
-        return show
-    bars: Dict[str, Any] = {}
-
-    def bar(event: dict) -> None:
-        if event["event"] == "start":
-            if "bar" in bars:
-                bars["bar"].close()
-            bars["bar"] = tqdm(total=event["expected_steps"], desc=f"grid {event['grid'][0]}×{event['grid'][1]}")
-        elif event["event"] == "state" and "bar" in bars:
-            b = bars["bar"]
-            b.update(max(0, event["step"] - b.n))
-            b.set_postfix(F=f"{event['f_bar']:.4f}", c=f"{event['c_bar']:.3f}")
-        elif event["event"] == "end" and "bar" in bars:
-            bars.pop("bar").close()
-        elif event["event"] in ("note", "warning"):
-            tqdm.write(f"jkrbem: {event['text']}")
-
-    return bar
 
 
 def _result(answer: Dict[str, Any], fields: List[Fields]) -> Result:
+    """The :class:`Result` of the compiled module's answer (JSON, parsed)."""
     s = answer["summary"]
+    reports = s.get("runs") or []
     runs = [
-        Run(grid=tuple(r["grid"]), dx=r["dx"], complete=r["complete"], states=_states_array(r["states"]))
-        for r in answer["runs"]
+        Run(grid=tuple(r["grid"]), dx=r["dx"], complete=r["complete"], states=_states_array(r["states"]),
+            onsets=reports[i].get("onsets") if i < len(reports) else None)
+        for i, r in enumerate(answer["runs"])
     ]
-    jg = s.get("jg_f_ad_bar")
-    f = s.get("f_ad_bar")
-    return Result(
-        adhesive_force=f,
-        uncertainty=s.get("f_ad_bar_uncertainty"),
-        estimate=s.get("estimate"),
-        jg=jg,
-        deviation_from_jg=s.get("jg_deviation"),
-        c_bar_at_min=s.get("c_bar_at_min"),
-        d_bar_at_min=s.get("d_bar_at_min"),
-        runs=runs,
-        summary=s,
+    return _results.result_from(
+        s, runs, fields,
         plan=answer.get("plan"),
         failure=answer.get("failure"),
         interrupted=answer.get("interrupted", False),
-        warnings=list(s.get("warnings", [])),
-        fields=fields,
     )
 
 
@@ -358,10 +102,18 @@ def simulate(
     ``progress``: a callable receiving event dicts (``event`` = "note", "start", "state",
     "end" (a grid's pull-off ended), "warning"; a "state" with ``held`` True was found but is
     recorded later, once the search for the force minimum has gone back to the steps before
-    it), or True for a tqdm bar where tqdm is installed. Every event but "state" is
-    delivered; of the states, the latest at most every 0.2 s, less often where the callback is
-    slow (it may take about a tenth of the run), and each grid's last before its "end". Ctrl-C stops the run, also while it searches: the result then holds the
-    states recorded so far, with ``interrupted`` True (and a warning).
+    it), or True for a progress display: a tqdm bar where tqdm is installed
+    (``pip install 'jkrbem[progress]'``), else a short line on stderr at most every 5 s. Every
+    event but "state" is delivered; of the states, the latest at most every 0.2 s, less often
+    where the callback is slow (it may take about a tenth of the run), and each grid's last
+    before its "end". Ctrl-C stops the run, also while it searches: the result then holds the
+    states recorded so far, with ``interrupted`` True (and a RuntimeWarning).
+
+    Each of the result's :attr:`Result.warnings` (too coarse a grid, load steps too large …)
+    is also issued once through :func:`warnings.warn` as a :class:`JkrbemWarning` pointing at
+    the caller's line, so ``warnings.simplefilter("error", jkrbem.JkrbemWarning)`` makes them
+    errors and ``"ignore"`` silences them (a :class:`SolveError`'s result keeps its warnings
+    in ``.result.warnings`` without issuing them).
 
     Raises :class:`InputError` (a ValueError) for a bad parameter and :class:`TypeError`
     for one of the wrong type, each naming the keyword, and
@@ -370,19 +122,16 @@ def simulate(
     """
     params["ratio"] = ratio
     request, heights = _request.request(params)
-    text, raw_fields = _jkrbem.simulate(request, _progress(progress), heights)
+    text, raw_fields = _jkrbem.simulate(request, _progress.display(progress), heights)
     result = _result(json.loads(text), _fields(raw_fields))
     if result.interrupted:
-        warnings.warn(
-            "jkrbem: the run was interrupted; the result holds the states computed so far",
-            RuntimeWarning,
-            stacklevel=2,
-        )
-        return result
-    if result.adhesive_force is None and result.failure is not None:
+        warn_all(["jkrbem: the run was interrupted; the result holds the states computed so far"],
+                 RuntimeWarning)
+    elif result.adhesive_force is None and result.failure is not None:
         error = SolveError(result.failure)
         error.result = result
         raise error
+    warn_all(result.warnings)
     return result
 
 
