@@ -39,7 +39,16 @@ def _plain(name: str, value: Any) -> Any:
     if isinstance(value, os.PathLike):
         return os.fspath(value)
     if isinstance(value, float) and not math.isfinite(value):
-        return repr(value)  # JSON has no NaN: the library refuses the text, naming the keyword
+        # JSON carries no NaN or infinity: refused here, as the library would refuse it.
+        raise InputError(f"{name} = {value} is invalid: a finite number is expected")
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 63:
+        # Beyond a 64-bit integer: as a float where JSON can carry it (the library refuses
+        # it as out of range), else refused here.
+        as_float = float(value) if value.bit_length() < 1024 else math.inf
+        if not math.isfinite(as_float):
+            digits = int(value.bit_length() * math.log10(2)) + 1
+            raise InputError(f"{name} = an integer of about {digits} digits is invalid: out of range")
+        return as_float
     if value is None or isinstance(value, (bool, int, float, str)):
         return value
     raise TypeError(f"{name} = {type(value).__name__} is invalid: a number, a string or a list is expected")
@@ -49,14 +58,17 @@ def _fields(value: Any) -> Optional[str]:
     """``fields`` in the library's words: "minimum", "every:K" or "states:I,J"."""
     if value is None or isinstance(value, str):
         return value
-    items = _plain("fields", value)
-    if not isinstance(items, list) or not items:
-        raise InputError(f"fields = {value!r} is invalid: {_FIELDS}")
-    if len(items) == 2 and items[0] == "every":
-        return f"every:{items[1]}"
-    if all(isinstance(i, int) and not isinstance(i, bool) for i in items):
-        return "states:" + ",".join(str(i) for i in items)
-    raise InputError(f"fields = {value!r} is invalid: {_FIELDS}")
+    if not isinstance(value, (list, tuple, np.ndarray)):
+        raise TypeError(f"fields = {type(value).__name__} is invalid: {_FIELDS} is expected")
+    items = [v.item() if isinstance(v, np.generic) else v for v in value]
+    if not items:
+        raise InputError(f"fields = [] is invalid: {_FIELDS}, at least one")
+    indices = items[1:] if len(items) == 2 and items[0] == "every" else items
+    if not all(isinstance(i, int) and not isinstance(i, bool) for i in indices):
+        raise TypeError(f"fields = {value!r} is invalid: state indices and k are integers")
+    if indices is not items:
+        return f"every:{indices[0]}"
+    return "states:" + ",".join(str(i) for i in items)
 
 
 def _heights(value: Any) -> Optional[Tuple[bytes, int, int]]:

@@ -98,7 +98,14 @@ fn parse<T: for<'de> Deserialize<'de>>(json: &str) -> PyResult<T> {
 /// schema; every keyword not given takes the schema's default.
 fn request(json: &str) -> PyResult<Request> {
     let given: serde_json::Map<String, Value> = parse(json)?;
-    Request::from_json(given.iter().map(|(k, v)| (k.as_str(), v))).map_err(run_input_error)
+    let values = Request::check_json(given.iter().map(|(k, v)| (k.as_str(), v))).map_err(|r| {
+        if r.wrong_type {
+            pyo3::exceptions::PyTypeError::new_err(keywords(&r.message))
+        } else {
+            input_error(r.message)
+        }
+    })?;
+    Request::from_values(values).map_err(run_input_error)
 }
 
 /// A height map given as an array: its heights (native-endian f64, rows along y) and shape.

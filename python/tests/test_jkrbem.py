@@ -87,13 +87,14 @@ def test_plan_says_what_an_accuracy_run_would_do():
         ({"accuracy": "two percent"}, "accuracy"),
         ({"grid": 64, "backend": "tpu"}, "backend"),
         ({"indenter": "cone"}, "indenter"),
-        ({"indenter": "flat_punch"}, "radius"),
+        ({"indenter": "flat_punch", "radius": 0.0}, "radius"),
         ({"grid": 64, "time_limit": 5}, "time_limit"),
     ],
 )
 def test_bad_inputs_raise_input_errors_that_name_the_keyword(kwargs, keyword):
     with pytest.raises(jkrbem.InputError) as e:
-        jkrbem.simulate(1, backend=kwargs.pop("backend", "cpu"), **kwargs)
+        ratio = None if "indenter" in kwargs else 1  # the other indenters take no ratio
+        jkrbem.simulate(ratio, backend=kwargs.pop("backend", "cpu"), **kwargs)
     message = str(e.value)
     assert keyword in message, message
     assert "--" not in message, f"a CLI flag in a Python error: {message}"
@@ -127,7 +128,7 @@ def test_an_interrupted_run_returns_its_partial_states():
 
 def test_a_run_that_reaches_no_minimum_raises_solve_error_with_its_states():
     with pytest.raises(jkrbem.SolveError) as e:
-        jkrbem.simulate(ratio=1, accuracy="1%", backend="cpu", time_limit=1e-3)
+        jkrbem.simulate(ratio=25, accuracy="0.5%", backend="cpu", time_limit=1)
     assert "time_limit" in str(e.value)
     assert isinstance(e.value, RuntimeError)
     assert e.value.result.adhesive_force is None

@@ -148,8 +148,15 @@ impl Request {
     pub fn from_json<'a>(
         given: impl IntoIterator<Item = (&'a str, &'a Value)>,
     ) -> Result<Request, RunError> {
-        let map = values::checked(SPECS, given, |s, v| values::from_json(s, v)).map_err(input)?;
-        Request::from_values(map)
+        Request::from_values(Request::check_json(given).map_err(input)?)
+    }
+
+    /// The checked values of `given` JSON values by parameter name, or the refusal (which says
+    /// whether a value was of the wrong type: Python raises a TypeError for it).
+    pub fn check_json<'a>(
+        given: impl IntoIterator<Item = (&'a str, &'a Value)>,
+    ) -> Result<Map<String, Value>, values::Refusal> {
+        values::checked(SPECS, given, values::from_json)
     }
 
     /// The request as JSON (every parameter, defaults included): what provenance records.

@@ -54,6 +54,7 @@ fn text_and_json_give_the_same_canonical_values() {
     for (spec, text, value) in cases {
         let a = from_text(spec, text).unwrap();
         let b = from_json(spec, value).unwrap();
+        assert!(from_json(spec, &json!({"a": 1})).unwrap_err().wrong_type);
         assert_eq!(a, b, "{}", spec.name);
     }
 }

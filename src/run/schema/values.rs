@@ -192,60 +192,114 @@ fn shown_json(value: &Value) -> String {
     }
 }
 
+/// A value refused: the message (naming the parameter by its marker), and whether the value
+/// was of the wrong type (a string where a number is meant, 32.0 where a whole number is, a
+/// bool where a number is …) rather than out of range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Refusal {
+    /// What is wrong, naming the parameter.
+    pub message: String,
+    /// Whether the value was of the wrong type.
+    pub wrong_type: bool,
+}
+
+impl From<String> for Refusal {
+    fn from(message: String) -> Self {
+        Refusal {
+            message,
+            wrong_type: false,
+        }
+    }
+}
+
+impl std::fmt::Display for Refusal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+/// The JSON type of `value`, in words.
+fn json_type(value: &Value) -> &'static str {
+    match value {
+        Value::Null => "null",
+        Value::Bool(_) => "a bool",
+        Value::Number(n) if n.is_f64() => "a float",
+        Value::Number(_) => "an integer",
+        Value::String(_) => "a string",
+        Value::Array(_) => "a list",
+        Value::Object(_) => "a dict",
+    }
+}
+
 /// Check the JSON value a Python caller (or a request file) gives for `spec`. Numbers where
-/// numbers are asked, `true`/`false` for a switch, a fraction for an accuracy, seconds for a
-/// duration, a list for a pair or grids; a string in the command line's form is also taken
-/// for an accuracy ("2%") and a duration ("90s").
-pub fn from_json(spec: &Spec, value: &Value) -> Result<Value, String> {
+/// numbers are asked (whole numbers written as such: 32, not 32.0), `true`/`false` for a
+/// switch, a fraction for an accuracy, seconds for a duration, a list for a pair or grids; a
+/// string in the command line's form is also taken for an accuracy ("2%") and a duration
+/// ("90s").
+pub fn from_json(spec: &Spec, value: &Value) -> Result<Value, Refusal> {
     let s = shown_json(value);
-    let bad = || invalid(spec, &s, &expected(spec));
-    let num = |v: &Value| v.as_f64().filter(|x| x.is_finite());
-    // A whole number must be written as one (32, not 32.0).
-    let whole = |v: &Value| v.is_i64() || v.is_u64();
-    let list = |v: &Value| -> Option<Vec<f64>> { v.as_array()?.iter().map(num).collect() };
-    match (spec.kind, value) {
-        (Kind::Real(r), v) => real_in(spec, num(v).ok_or_else(bad)?, r, &s),
-        (Kind::Count(lo, hi), v) => whole_in(spec, num(v).ok_or_else(bad)?, lo, hi, false, &s),
-        (Kind::PowerOfTwo(lo, hi), v) => whole_in(spec, num(v).ok_or_else(bad)?, lo, hi, true, &s),
+    let wrong = || Refusal {
+        message: format!(
+            "{spec} = {s} is invalid: {} is expected, not {}",
+            expected(spec),
+            json_type(value)
+        ),
+        wrong_type: true,
+    };
+    let is_num = |v: &Value| v.is_number();
+    // A whole number must be written as one (32, not 32.0); one beyond 64 bits comes as a
+    // float (and is then out of range).
+    let whole = |v: &Value| {
+        v.is_i64() || v.is_u64() || v.as_f64().is_some_and(|x| x.abs() >= 9.2e18 && x.fract() == 0.0)
+    };
+    let num = |v: &Value| v.as_f64().unwrap_or(f64::NAN);
+    let nums = |a: &[Value]| a.iter().map(num).collect::<Vec<f64>>();
+    let out = match (spec.kind, value) {
+        (Kind::Real(r), v) if is_num(v) => real_in(spec, num(v), r, &s),
+        (Kind::Count(lo, hi), v) if whole(v) => whole_in(spec, num(v), lo, hi, false, &s),
+        (Kind::PowerOfTwo(lo, hi), v) if whole(v) => whole_in(spec, num(v), lo, hi, true, &s),
         (Kind::Switch, Value::Bool(b)) => Ok(Value::Bool(*b)),
-        (Kind::Choice(names), Value::String(t)) => {
-            choice(names, t).map(Value::from).ok_or_else(bad)
-        }
+        (Kind::Choice(names), Value::String(t)) => choice(names, t)
+            .map(Value::from)
+            .ok_or_else(|| invalid(spec, &s, &expected(spec))),
         (Kind::File, Value::String(t)) if !t.is_empty() => Ok(Value::from(t.as_str())),
-        (Kind::Fraction(..) | Kind::Seconds(..), Value::String(t)) => from_text(spec, t),
-        (Kind::Fraction(lo, hi), v) => {
-            real_in(spec, num(v).ok_or_else(bad)?, Range::closed(lo, hi), &s)
+        (Kind::File, Value::String(_)) => Err(invalid(spec, &s, &expected(spec))),
+        (Kind::Fraction(..) | Kind::Seconds(..) | Kind::States, Value::String(t)) => {
+            from_text(spec, t)
         }
-        (Kind::Seconds(lo, hi), v) => {
-            real_in(spec, num(v).ok_or_else(bad)?, Range::closed(lo, hi), &s)
+        (Kind::Fraction(lo, hi) | Kind::Seconds(lo, hi), v) if is_num(v) => {
+            real_in(spec, num(v), Range::closed(lo, hi), &s)
         }
-        (Kind::Pair(r), v) => match list(v).as_deref() {
-            Some(&[x, y]) if r.contains(x) && r.contains(y) => Ok(Value::from(vec![x, y])),
-            _ => Err(bad()),
+        (Kind::Pair(r), Value::Array(a)) if a.iter().all(is_num) => match nums(a)[..] {
+            [x, y] if r.contains(x) && r.contains(y) => Ok(Value::from(vec![x, y])),
+            _ => Err(invalid(spec, &s, &expected(spec))),
         },
         (Kind::Grids(lo, hi), Value::Array(a)) if a.iter().all(whole) => {
-            grids_in(spec, &list(value).ok_or_else(bad)?, lo, hi, &s)
+            grids_in(spec, &nums(a), lo, hi, &s)
         }
-        (Kind::States, Value::String(t)) => from_text(spec, t),
-        _ => Err(bad()),
-    }
+        _ => return Err(wrong()),
+    };
+    out.map_err(Refusal::from)
 }
 
 /// A request's values, checked: every name a parameter of `specs` (else the names it could
 /// be), every value of its kind and range. `from` reads one value for its spec.
-pub fn checked<'a, T: 'a>(
+pub fn checked<'a, T: 'a, E: Into<Refusal>>(
     specs: &[&'static Spec],
     given: impl IntoIterator<Item = (&'a str, T)>,
-    from: impl Fn(&Spec, T) -> Result<Value, String>,
-) -> Result<Map<String, Value>, String> {
+    from: impl Fn(&Spec, T) -> Result<Value, E>,
+) -> Result<Map<String, Value>, Refusal> {
     let mut out = Map::new();
     for (name, raw) in given {
         let Some(spec) = specs.iter().copied().find(|s| s.name == name) else {
-            return Err(unknown(specs, name));
+            return Err(Refusal {
+                message: unknown(specs, name),
+                wrong_type: true,
+            });
         };
-        let v = from(spec, raw)?;
+        let v = from(spec, raw).map_err(Into::into)?;
         if out.insert(spec.name.to_string(), v).is_some() {
-            return Err(format!("{spec} is given more than once"));
+            return Err(format!("{spec} is given more than once").into());
         }
     }
     Ok(out)
