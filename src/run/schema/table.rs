@@ -335,6 +335,17 @@ pub const CG_CHECK_EVERY: &Spec = &spec(
     Chosen("the backend's own: 1 on the CPU, 8 on the GPU"),
     "Read CG's residual back to the host every this many iterations.",
 );
+/// The limit on detachment/attachment sweeps per load step.
+pub const MAX_SWEEPS: &Spec = &spec(
+    "max_sweeps",
+    "--max-sweeps",
+    Solver,
+    "",
+    Kind::Count(1, 1_000_000),
+    Value("2000"),
+    "Limit on the detachment/attachment sweeps (cascade rounds) of one load step: a step that \
+     needs more stops the run with an error rather than loop.",
+);
 /// The preconditioner.
 pub const PRECONDITIONER: &Spec = &spec(
     "preconditioner",
@@ -493,6 +504,7 @@ pub const SPECS: &[&Spec] = &[
     CG_MAX_ITERATIONS,
     CG_ACCEPT,
     CG_CHECK_EVERY,
+    MAX_SWEEPS,
     PRECONDITIONER,
     EXACT_CASCADE,
     BACKEND,
