@@ -43,27 +43,28 @@ pub fn scene_json(scene: &Scene) -> Value {
     v
 }
 
-/// The options that shaped a run, with `mode` (what was run: one grid, several, an accuracy).
+/// The options that shaped a run, with `mode` (what was run: one grid, several, an accuracy):
+/// every field of [`ModelOptions`] as it serialises itself, a field that a parameter of the
+/// request schema sets under that parameter's name (`grid`, not `nx`).
 pub fn options_json(opt: &ModelOptions, mode: Value) -> Value {
-    json!({
-        "mode": mode,
-        "grid": opt.nx,
-        "grid_y": opt.ny,
-        "start_radius": opt.start_radius_bar,
-        "steps": opt.steps,
-        "final_d": opt.final_d_bar,
-        "margin": opt.margin,
-        "mesh_angle": opt.mesh_angle_deg,
-        "apex_offset": [opt.apex_offset.0, opt.apex_offset.1],
-        "cg_tolerance": opt.cg_tolerance,
-        "cg_max_iterations": opt.cg_max_iterations,
-        "cg_accept": opt.cg_accept,
-        "preconditioner": word(opt.preconditioner),
-        "onsets": opt.onsets.name(),
-        "loose_rounds": opt.loose_rounds,
-        "measure": word(opt.measure),
-        "regrid": opt.regrid,
-    })
+    /// The fields whose name is not the parameter's.
+    const RENAMED: [(&str, &str); 5] = [
+        ("nx", "grid"),
+        ("ny", "grid_y"),
+        ("start_radius_bar", "start_radius"),
+        ("final_d_bar", "final_d"),
+        ("mesh_angle_deg", "mesh_angle"),
+    ];
+    let mut v = serde_json::to_value(opt).unwrap_or(Value::Null);
+    if let Value::Object(map) = &mut v {
+        for (field, name) in RENAMED {
+            if let Some(x) = map.remove(field) {
+                map.insert(name.to_string(), x);
+            }
+        }
+        map.insert("mode".to_string(), mode);
+    }
+    v
 }
 
 /// The options a built model carries (what a batch job ran), with `mode`.
