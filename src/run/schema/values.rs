@@ -40,8 +40,8 @@ pub fn expected(spec: &Spec) -> String {
             compact(hi * 100.0)
         ),
         Kind::Seconds(..) => {
-            "a duration from 1 s to 30 days (e.g. 90s, 20min or 2h on the command line; \
-             seconds from Python)"
+            "a duration in [1 s, 30 days] (e.g. 90s, 20min or 2h on the command line; seconds \
+             from Python)"
                 .to_string()
         }
         Kind::Pair(r) => format!("two numbers, each in {r}{unit}, e.g. 0.25,-0.5"),
