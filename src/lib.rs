@@ -15,7 +15,6 @@ pub mod backend;
 pub mod bench;
 pub mod model;
 pub mod output;
-pub mod parameters;
 pub mod plan;
 pub mod run;
 pub mod scene;

@@ -256,18 +256,19 @@ fn main() -> ExitCode {
 mod tests {
     use super::*;
 
-    /// Every parameter the library's messages name is a flag of some subcommand (`crossed`
-    /// renames its cylinders' parameters to its own flags).
+    /// Every parameter the library's messages can name is a flag of some subcommand, or the
+    /// global `--force` (`crossed` renames its cylinders' parameters to its own flags).
     #[test]
     fn every_parameter_the_library_names_is_a_flag() {
         let command = Cli::command();
         let flags: Vec<String> = command
             .get_subcommands()
             .flat_map(|s| s.get_arguments())
+            .chain(command.get_arguments())
             .filter_map(|a| a.get_long().map(|l| format!("--{l}")))
             .collect();
-        for p in jkrbem::parameters::PARAMETERS {
-            let flag = cli::crossed::flag(p.flag);
+        for p in jkrbem::run::schema::all() {
+            let flag = cli::crossed::flag(p).flag;
             assert!(flags.iter().any(|f| f == flag), "{} is no flag", p.flag);
         }
     }

@@ -5,6 +5,9 @@
 use crate::analysis::fields::{FieldChoice, FIELD_BYTES_PER_ELEMENT};
 use crate::analysis::{convergence, estimate};
 use crate::model::{self, Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID};
+use crate::run::schema::{
+    Kind, Spec, ACCURACY, EXTRAPOLATE_GRIDS, FIELDS, JOBS, MARGIN, MEASURE, START_RADIUS,
+};
 use crate::scene::Scene;
 use crate::solver::protocol::REGRID_ABOVE_C_BAR;
 use crate::text::compact;
@@ -69,11 +72,11 @@ impl Plan {
             )
         };
         format!(
-            "--accuracy {:.3} %: R1/R2 = {ratio}: {how}; predicted uncertainty ± {:.2} %; about \
+            "{ACCURACY} {:.3} %: R1/R2 = {ratio}: {how}; predicted uncertainty ± {:.2} %; about \
              {:.0} elements across the minor axis at the minimum; domain: the initial contact \
              c̄0 = {} plus {} % margin, re-gridded to the shrinking contact (finer Δx, same \
              grid); load steps: {} whole, their onsets located where they can hold the \
-             minimum, stopped once it is confirmed (--measure adhesive-force); precision: the backend's (f32 on a GPU is 1e-6 \
+             minimum, stopped once it is confirmed ({MEASURE} adhesive-force); precision: the backend's (f32 on a GPU is 1e-6 \
              relative, far below the target)",
             100.0 * self.target,
             100.0 * self.predicted_uncertainty,
@@ -241,7 +244,7 @@ fn plan(
 ) -> Result<Plan, ModelError> {
     if !(target.is_finite() && target > 0.0 && target < 1.0) {
         return Err(ModelError::Invalid {
-            flag: "--accuracy",
+            param: ACCURACY,
             value: format!("{}", 100.0 * target),
             expected: "a percentage in (0, 100), e.g. 5% or 1%".into(),
         });
@@ -309,7 +312,7 @@ fn plan(
         nx *= 2;
     }
     Err(ModelError::Invalid {
-        flag: "--accuracy",
+        param: ACCURACY,
         value: format!("{}%", compact(100.0 * target)),
         expected: match finest {
             Some((nx, u)) => format!(
@@ -371,11 +374,11 @@ pub fn extrapolation_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usi
         nx *= 2;
     }
     Err(ModelError::Invalid {
-        flag: "--extrapolate-grids",
+        param: EXTRAPOLATE_GRIDS,
         value: "(not given)".into(),
         expected: format!(
             "grids that resolve R1/R2 = {}: no {EXTRAPOLATION_LEVELS} doubling grids up to {MAX_GRID} \
-             start fine enough; give --extrapolate-grids, or a smaller --margin or --start-radius",
+             start fine enough; give {EXTRAPOLATE_GRIDS}, or a smaller {MARGIN} or {START_RADIUS}",
             compact(scene.ratio())
         ),
     })
@@ -398,8 +401,8 @@ pub fn available_memory() -> Result<Option<u64>, ModelError> {
 fn memory_limit(text: &str) -> Result<u64, ModelError> {
     match text.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && v >= 0.0 => Ok(v.min(u64::MAX as f64) as u64),
-        _ => Err(ModelError::Invalid {
-            flag: "JKRBEM_MEMORY_LIMIT",
+        _ => Err(ModelError::Environment {
+            variable: "JKRBEM_MEMORY_LIMIT",
             value: format!("\"{}\"", crate::text::printable(text, 40)),
             expected: "the environment variable must be the memory a run may use, in bytes (a \
                        finite number ≥ 0, e.g. 8e9); unset it to use what the machine has"
@@ -485,10 +488,15 @@ pub fn bytes_text(b: u64) -> String {
 }
 
 /// Refuse runs whose memory estimate exceeds what the machine has ([`available_memory`]):
-/// `models` run `jobs` at a time, so the `jobs` largest must fit together. `flag` names the
-/// grid flag in the message, which gives the estimate and the largest grid that fits.
-pub fn check_memory(models: &[&Model], jobs: usize, flag: &'static str) -> Result<(), ModelError> {
-    check_memory_within(models, jobs, flag, &FieldChoice::None, available_memory()?)
+/// `models` run `jobs` at a time, so the `jobs` largest must fit together. `param` is the
+/// parameter that chose the grids, which the message names with the estimate and the largest
+/// grid that fits (as its value where it takes one grid, a power of two).
+pub fn check_memory(
+    models: &[&Model],
+    jobs: usize,
+    param: &'static Spec,
+) -> Result<(), ModelError> {
+    check_memory_within(models, jobs, param, &FieldChoice::None, available_memory()?)
 }
 
 /// [`check_memory`] for runs that also keep the fields of the states `fields` chooses
@@ -497,10 +505,10 @@ pub fn check_memory(models: &[&Model], jobs: usize, flag: &'static str) -> Resul
 pub fn check_memory_with_fields(
     models: &[&Model],
     jobs: usize,
-    flag: &'static str,
+    param: &'static Spec,
     fields: &FieldChoice,
 ) -> Result<(), ModelError> {
-    check_memory_within(models, jobs, flag, fields, available_memory()?)
+    check_memory_within(models, jobs, param, fields, available_memory()?)
 }
 
 /// The memory a model's run needs with the fields `fields` keeps (bytes), and the fields'
@@ -514,7 +522,7 @@ fn run_memory(model: &Model, fields: &FieldChoice) -> (u64, u64) {
 pub fn check_memory_within(
     models: &[&Model],
     jobs: usize,
-    flag: &'static str,
+    param: &'static Spec,
     fields: &FieldChoice,
     available: Option<u64>,
 ) -> Result<(), ModelError> {
@@ -531,7 +539,7 @@ pub fn check_memory_within(
     }
     let ((_, kept), big) = needs[0];
     let at_a_time = if jobs > 1 {
-        format!(" ({jobs} runs at a time with --jobs {jobs})")
+        format!(" ({jobs} runs at a time with {JOBS} {jobs})")
     } else {
         String::new()
     };
@@ -544,14 +552,14 @@ pub fn check_memory_within(
         let fit = room / per_state;
         let advice = match fields {
             FieldChoice::Every(_) if fit >= 3 => format!(
-                "keep fewer states: --fields every:{} or coarser, or --fields minimum",
+                "keep fewer states: {FIELDS} every:{} or coarser, or {FIELDS} minimum",
                 (states as u64).div_ceil(fit - 2).max(2)
             ),
-            _ if fit >= 1 => "keep fewer states, or --fields minimum".to_string(),
-            _ => "leave out --fields, or use a smaller grid".to_string(),
+            _ if fit >= 1 => format!("keep fewer states, or {FIELDS} minimum"),
+            _ => format!("leave out {FIELDS}, or use a smaller grid"),
         };
         return Err(ModelError::Invalid {
-            flag: "--fields",
+            param: FIELDS,
             value: fields.name(),
             expected: format!(
                 "the fields of about {} states (of about {states} the run records) on the {}×{} \
@@ -579,7 +587,7 @@ pub fn check_memory_within(
     }
     let with_fields = if kept > 0 {
         format!(
-            " ({} of it for the fields --fields {} keeps)",
+            " ({} of it for the fields {FIELDS} {} keeps)",
             bytes_text(kept),
             fields.name()
         )
@@ -587,7 +595,7 @@ pub fn check_memory_within(
         String::new()
     };
     Err(ModelError::Invalid {
-        flag,
+        param,
         value: format!("{}", big.nx),
         expected: format!(
             "a {}×{} grid needs about {}{with_fields}{at_a_time}, more than the {} this machine \
@@ -597,8 +605,8 @@ pub fn check_memory_within(
             bytes_text(total),
             bytes_text(available),
             match fits {
-                Some((n, _)) if flag.starts_with("--grid") => {
-                    format!("the largest grid that fits is {flag} {n}")
+                Some((n, _)) if matches!(param.kind, Kind::PowerOfTwo(..)) => {
+                    format!("the largest grid that fits is {param} {n}")
                 }
                 Some((n, ny)) => format!("the largest grid that fits is {n}×{ny}"),
                 None => "no grid fits".to_string(),
@@ -629,6 +637,7 @@ mod tests {
     }
 
     use super::*;
+    use crate::run::schema::{words::flags, GRID};
 
     fn sphere() -> Scene {
         Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap()
@@ -672,8 +681,8 @@ mod tests {
             &ModelOptions::default(),
             Some(100_000_000),
         )
-        .unwrap_err()
-        .to_string();
+        .unwrap_err();
+        let e = flags(&e.to_string());
         assert!(
             e.contains("--accuracy") && e.contains("the finest is about"),
             "{e}"
@@ -695,9 +704,9 @@ mod tests {
         )
         .unwrap();
         let available = 1_000_000_000;
-        let e = check_memory_within(&[&m], 1, "--grid", &FieldChoice::None, Some(available))
-            .unwrap_err()
-            .to_string();
+        let e =
+            check_memory_within(&[&m], 1, GRID, &FieldChoice::None, Some(available)).unwrap_err();
+        let e = flags(&e.to_string());
         assert!(e.contains("--grid") && e.contains("4096×4096"), "{e}");
         // 1024² needs 64 MiB + 320 B × 1024² + 21 kept states of 24 B per element = 931 MB;
         // 2048² 1.9 GB.
@@ -706,9 +715,7 @@ mod tests {
             "{e}"
         );
         assert!(e.contains("7 GB") && e.contains("1 GB"), "{e}");
-        assert!(
-            check_memory_within(&[&m], 1, "--grid", &FieldChoice::None, Some(u64::MAX)).is_ok()
-        );
+        assert!(check_memory_within(&[&m], 1, GRID, &FieldChoice::None, Some(u64::MAX)).is_ok());
         // Two at a time need twice as much.
         let small = Model::build(
             &sphere(),
@@ -719,23 +726,12 @@ mod tests {
         )
         .unwrap();
         let room = 1_200_000_000;
-        assert!(check_memory_within(
-            &[&small, &small],
-            1,
-            "--grid",
-            &FieldChoice::None,
-            Some(room)
-        )
-        .is_ok());
-        let e = check_memory_within(
-            &[&small, &small],
-            2,
-            "--grid",
-            &FieldChoice::None,
-            Some(room),
-        )
-        .unwrap_err();
-        assert!(e.to_string().contains("--jobs 2"), "{e}");
+        assert!(
+            check_memory_within(&[&small, &small], 1, GRID, &FieldChoice::None, Some(room)).is_ok()
+        );
+        let e = check_memory_within(&[&small, &small], 2, GRID, &FieldChoice::None, Some(room))
+            .unwrap_err();
+        assert!(flags(&e.to_string()).contains("--jobs 2"), "{e}");
     }
 
     #[test]
@@ -775,7 +771,10 @@ mod tests {
     fn bad_targets_are_refused() {
         for t in [0.0, -0.1, 1.5, f64::NAN] {
             let e = for_accuracy(&sphere(), t, &ModelOptions::default()).unwrap_err();
-            assert!(e.to_string().contains("--accuracy"), "{e}");
+            assert!(
+                matches!(e, ModelError::Invalid { param, .. } if param == ACCURACY),
+                "{e}"
+            );
         }
     }
 

@@ -4,6 +4,7 @@
 //! choose a grid for a requested accuracy.
 
 use super::line_fit::{fit_free_line, Point};
+use crate::run::schema::{ACCURACY, EXTRAPOLATE, GRID, REGRID};
 
 /// The reference table (`jkrbem reference`), compiled in: the law is fitted to it.
 const REFERENCE_TABLE: &str = include_str!("../../data/reference/adhesive-force.csv");
@@ -448,12 +449,20 @@ pub fn coarse_grid_warning(ratio: f64, n_d: f64) -> Option<String> {
         "{COARSE_WARNING}: only {n_d:.0} elements across the contact's minor axis at the force \
          minimum (at least {COARSE_N_D:.0} are needed for the first-order convergence the \
          estimate's correction and uncertainty rest on); the grid's own |min F̄| over-predicts \
-         by about +{:.0}…{:.0} % here (docs/physics.md §7); use a finer --grid (n_d ≥ {:.0} for \
-         10 % raw), --accuracy, --extrapolate, or --regrid",
+         by about +{:.0}…{:.0} % here (docs/physics.md §7){} (n_d ≥ {:.0} for 10 % raw), \
+         {ACCURACY}, {EXTRAPOLATE}, or {REGRID}",
         100.0 * lo,
         100.0 * hi,
+        coarse_grid_advice(),
         n_d_for(ratio, 0.10).ceil()
     ))
+}
+
+/// Where the advice of a too-coarse warning ([`coarse_grid_warning`]) begins: what a
+/// simulation can change. A command whose grids are fixed (the study) gives its own advice in
+/// place of what follows.
+pub fn coarse_grid_advice() -> String {
+    format!("; use a finer {GRID}")
 }
 
 #[cfg(test)]

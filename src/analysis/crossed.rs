@@ -1,6 +1,7 @@
 //! Two identical elastic cylinders crossed at an angle, as the equivalent ellipsoid scene
 //! (physics §1, §8.7).
 
+use crate::run::schema::{Spec, ANGLE, E_STAR, POISSON, RADIUS, RATIO, WORK_OF_ADHESION, YOUNG};
 use crate::scene::{self, Scene, SceneError, MAX_RATIO};
 use crate::text::compact;
 
@@ -25,9 +26,9 @@ pub struct CrossedCylinders {
     pub work_of_adhesion: f64,
 }
 
-fn invalid(flag: &'static str, value: f64, expected: impl ToString) -> SceneError {
+fn invalid(param: &'static Spec, value: f64, expected: impl ToString) -> SceneError {
     SceneError::Invalid {
-        flag,
+        param,
         value,
         expected: expected.to_string(),
     }
@@ -54,15 +55,15 @@ fn compact_angle(a: f64) -> String {
 }
 
 impl CrossedCylinders {
-    /// Checks every parameter, naming the offending one as `--radius`, `--angle`, `--young`,
-    /// `--poisson` or `--work-of-adhesion`.
+    /// Checks every parameter, naming the offending one: [`RADIUS`], [`ANGLE`], [`YOUNG`],
+    /// [`POISSON`] or [`WORK_OF_ADHESION`].
     pub fn validate(&self) -> Result<(), SceneError> {
-        let bounded = |flag, v: f64, what: &str| {
+        let bounded = |param, v: f64, what: &str| {
             if scene::input_in_range(v) {
                 Ok(())
             } else {
                 Err(invalid(
-                    flag,
+                    param,
                     v,
                     format!(
                         "{what} in [{}, {}] (any consistent units)",
@@ -72,22 +73,22 @@ impl CrossedCylinders {
                 ))
             }
         };
-        bounded("--radius", self.radius, "a radius")?;
+        bounded(RADIUS, self.radius, "a radius")?;
         let t = self.angle_deg;
         if !(t >= min_angle_deg() && t <= 90.0) {
-            return Err(invalid("--angle", t, angle_range()));
+            return Err(invalid(ANGLE, t, angle_range()));
         }
-        bounded("--young", self.young, "a Young's modulus")?;
+        bounded(YOUNG, self.young, "a Young's modulus")?;
         let nu = self.poisson;
         if !((MIN_POISSON..=0.5).contains(&nu)) {
             return Err(invalid(
-                "--poisson",
+                POISSON,
                 nu,
                 format!("a Poisson's ratio in [{MIN_POISSON}, 0.5] (0.5 is incompressible)"),
             ));
         }
         bounded(
-            "--work-of-adhesion",
+            WORK_OF_ADHESION,
             self.work_of_adhesion,
             "an energy per area",
         )
@@ -108,12 +109,13 @@ impl CrossedCylinders {
     }
 
     /// The equivalent rigid ellipsoid on an elastic half-space. An error names this pair's
-    /// parameters (`--radius`, `--young`, …), never the ellipsoid's (`--r1`, `--e-star`).
+    /// parameters ([`RADIUS`], [`YOUNG`], …), never the ellipsoid's ([`R1`](crate::run::schema::R1),
+    /// [`E_STAR`]).
     pub fn scene(&self) -> Result<Scene, SceneError> {
         let (r1, r2) = self.radii()?;
         Scene::new(r1, r2, self.e_star()?, self.work_of_adhesion).map_err(|e| {
             let SceneError::Invalid {
-                flag,
+                param,
                 value,
                 expected,
             } = e
@@ -121,13 +123,15 @@ impl CrossedCylinders {
                 // An ellipsoid's scene refuses only numbers.
                 return e;
             };
-            let (flag, value) = match flag {
-                "--e-star" => ("--young", self.young),
-                "--work-of-adhesion" => (flag, value),
-                _ => ("--radius", self.radius),
+            let (param, value) = if param == E_STAR {
+                (YOUNG, self.young)
+            } else if param == WORK_OF_ADHESION {
+                (param, value)
+            } else {
+                (RADIUS, self.radius)
             };
             invalid(
-                flag,
+                param,
                 value,
                 format!(
                     "{expected} (for the equivalent ellipsoid at {}°)",
@@ -146,11 +150,7 @@ impl CrossedCylinders {
 /// R1/R2 = cot²(θ/2) (dimensionless) of cylinders crossed at `angle_deg` (degrees, in (0, 90]).
 pub fn ratio_for_angle(angle_deg: f64) -> Result<f64, SceneError> {
     if !(angle_deg > 0.0 && angle_deg <= 90.0) {
-        return Err(invalid(
-            "--angle",
-            angle_deg,
-            "an angle in degrees in (0, 90]",
-        ));
+        return Err(invalid(ANGLE, angle_deg, "an angle in degrees in (0, 90]"));
     }
     Ok((0.5 * angle_deg).to_radians().tan().recip().powi(2))
 }
@@ -159,11 +159,7 @@ pub fn ratio_for_angle(angle_deg: f64) -> Result<f64, SceneError> {
 /// (dimensionless, finite, ≥ 1).
 pub fn angle_for_ratio(ratio: f64) -> Result<f64, SceneError> {
     if !(ratio.is_finite() && ratio >= 1.0) {
-        return Err(invalid(
-            "--ratio",
-            ratio,
-            "R1/R2 must be a finite number ≥ 1",
-        ));
+        return Err(invalid(RATIO, ratio, "R1/R2 must be a finite number ≥ 1"));
     }
     Ok(2.0 * ratio.recip().sqrt().atan().to_degrees())
 }
@@ -171,6 +167,7 @@ pub fn angle_for_ratio(ratio: f64) -> Result<f64, SceneError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::run::schema::R1;
     use std::f64::consts::PI;
 
     fn pair(angle_deg: f64) -> CrossedCylinders {
@@ -225,10 +222,8 @@ mod tests {
     }
 
     #[test]
-    fn bad_parameters_name_their_flag() {
-        let flag = |c: CrossedCylinders| match c.scene().unwrap_err() {
-            SceneError::Invalid { flag, .. } | SceneError::Refused { flag, .. } => flag,
-        };
+    fn bad_parameters_name_their_parameter() {
+        let param = |c: CrossedCylinders| c.scene().unwrap_err().param();
         let base = pair(45.0);
         for (c, want) in [
             (
@@ -236,53 +231,53 @@ mod tests {
                     radius: -1.0,
                     ..base
                 },
-                "--radius",
+                RADIUS,
             ),
             (
                 CrossedCylinders {
                     angle_deg: 0.0,
                     ..base
                 },
-                "--angle",
+                ANGLE,
             ),
             (
                 CrossedCylinders {
                     angle_deg: 120.0,
                     ..base
                 },
-                "--angle",
+                ANGLE,
             ),
             (
                 CrossedCylinders {
                     angle_deg: f64::NAN,
                     ..base
                 },
-                "--angle",
+                ANGLE,
             ),
-            (CrossedCylinders { young: 0.0, ..base }, "--young"),
+            (CrossedCylinders { young: 0.0, ..base }, YOUNG),
             (
                 CrossedCylinders {
                     poisson: -1.0,
                     ..base
                 },
-                "--poisson",
+                POISSON,
             ),
             (
                 CrossedCylinders {
                     poisson: 0.6,
                     ..base
                 },
-                "--poisson",
+                POISSON,
             ),
             (
                 CrossedCylinders {
                     work_of_adhesion: f64::INFINITY,
                     ..base
                 },
-                "--work-of-adhesion",
+                WORK_OF_ADHESION,
             ),
         ] {
-            assert_eq!(flag(c), want, "{c:?}");
+            assert_eq!(param(c), want, "{c:?}");
         }
         assert!(CrossedCylinders {
             poisson: 0.5,
@@ -298,8 +293,8 @@ mod tests {
         // Before: θ = 1e-10° gave R1 = inf and the message named --r1, a flag `crossed` lacks.
         for angle in [1e-10, 1.0, 3.6] {
             let e = pair(angle).scene().unwrap_err().to_string();
-            assert!(e.starts_with("--angle = "), "{e}");
-            assert!(!e.contains("--r1") && !e.contains("inf"), "{e}");
+            assert!(e.starts_with(&format!("{ANGLE} = ")), "{e}");
+            assert!(!e.contains(&R1.to_string()) && !e.contains("inf"), "{e}");
         }
         assert!(pair(3.63).scene().is_ok());
         // A modulus out of range after the pair's E* = E/(2(1 − ν²)) names --young.
@@ -311,6 +306,6 @@ mod tests {
         .scene()
         .unwrap_err()
         .to_string();
-        assert!(e.starts_with("--young"), "{e}");
+        assert!(e.starts_with(&YOUNG.to_string()), "{e}");
     }
 }

@@ -3,6 +3,7 @@
 
 use super::convergence;
 use crate::model::{Model, Onsets, MIN_MAP_SPACINGS_AT_MINIMUM};
+use crate::run::schema::{ONSETS, SPACING};
 use crate::solver::cost::CostAccount;
 use crate::solver::window::Refinement;
 use crate::solver::State;
@@ -230,7 +231,7 @@ fn map_too_coarse(model: &Model, at_min: &State) -> Option<String> {
              {across:.1} map spacings across its minor axis (2b = {}; at least \
              {MIN_MAP_SPACINGS_AT_MINIMUM} are needed), so the solver worked on the map's flat \
              facets instead of the surface's shape: the adhesive force is withheld; give a map \
-             of --spacing {} or finer over the same area",
+             of {SPACING} {} or finer over the same area",
             compact(width),
             compact(width / MIN_MAP_SPACINGS_AT_MINIMUM)
         )
@@ -262,9 +263,9 @@ fn step_warning(model: &Model, outcome: &Outcome) -> Option<String> {
     let f_min = states[k].f_bar.abs();
     (lost > 0).then(|| {
         format!(
-            "load steps too large to resolve the force minimum: with --onsets none, one step \
+            "load steps too large to resolve the force minimum: with {ONSETS} none, one step \
              (Δd̄ = {:.4}) around it detached {lost} elements and changed F̄ by {:.1} % of |min F̄|, \
-             so the minimum lies at an onset inside a step; use --onsets near-minimum (the \
+             so the minimum lies at an onset inside a step; use {ONSETS} near-minimum (the \
              default), which locates the onsets of every step that can hold the minimum",
             model.load.d_step / model.scene.scales().approach,
             100.0 * jump / f_min
@@ -310,7 +311,10 @@ mod tests {
             why.contains("10.0 map spacings") && why.contains("withheld"),
             "{why}"
         );
-        assert!(why.contains("--spacing 0.03125 or finer"), "{why}");
+        assert!(
+            why.contains(&format!("{SPACING} 0.03125 or finer")),
+            "{why}"
+        );
         // 2b = 1 spans 20: the answer stands.
         let wide = State {
             b_axis: 0.5,

@@ -61,11 +61,11 @@ pub fn open(kind: BackendKind, setup: &GridSetup) -> Result<Opened, BackendError
     match kind {
         BackendKind::Cpu => cpu("cpu (f64, rustfft)".into()),
         #[cfg(not(feature = "gpu"))]
-        BackendKind::Gpu => Err(BackendError::Unavailable(
-            "this jkrbem was built without the `gpu` feature: use --backend cpu, or rebuild \
-             with the default features"
-                .into(),
-        )),
+        BackendKind::Gpu => Err(BackendError::Unavailable(format!(
+            "this jkrbem was built without the `gpu` feature: use {} cpu, or rebuild with the \
+             default features",
+            crate::run::schema::BACKEND
+        ))),
         #[cfg(not(feature = "gpu"))]
         BackendKind::Auto => cpu("cpu (f64, rustfft) (auto: built without the gpu feature)".into()),
         #[cfg(feature = "gpu")]
@@ -73,7 +73,10 @@ pub fn open(kind: BackendKind, setup: &GridSetup) -> Result<Opened, BackendError
             let ctx = GpuContext::new(AdapterPreference::Best)?;
             let mut note = format!("gpu (f32, wgpu) on {}", ctx.adapter_summary());
             if !ctx.is_hardware() {
-                note.push_str(" — a software adapter: expect it to be slower than --backend cpu");
+                note.push_str(&format!(
+                    " — a software adapter: expect it to be slower than {} cpu",
+                    crate::run::schema::BACKEND
+                ));
             }
             let backend = GpuBackend::new(ctx, setup)?;
             Ok(Opened {

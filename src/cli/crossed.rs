@@ -7,6 +7,7 @@ use super::{count_in, no_repeats, run_error, CliError, MAX_JOBS};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::run::crossed::{crossed, CrossedRequest};
 use jkrbem::run::open::BackendRequest;
+use jkrbem::run::schema::{Spec, ANGLE, ANGLES, E, NU, POISSON, YOUNG};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem crossed`.
@@ -56,13 +57,17 @@ pub struct Args {
     pub out: PathBuf,
 }
 
-/// The flag of this command that sets each of the analysis layer's parameters.
-pub(crate) fn flag(parameter: &'static str) -> &'static str {
-    match parameter {
-        "--angle" => "--angles",
-        "--young" => "--e",
-        "--poisson" => "--nu",
-        other => other,
+/// The parameter of this command that sets each of the analysis layer's (its flag is the one
+/// a message names).
+pub(crate) fn flag(parameter: &'static Spec) -> &'static Spec {
+    if parameter == ANGLE {
+        ANGLES
+    } else if parameter == YOUNG {
+        E
+    } else if parameter == POISSON {
+        NU
+    } else {
+        parameter
     }
 }
 

@@ -3,6 +3,7 @@
 use super::{input, CliError};
 use clap::ValueEnum;
 use jkrbem::run::claim::{write_error, Outputs};
+use jkrbem::run::schema::OUT;
 use jkrbem::theory::{self, TheoryModel};
 use std::path::PathBuf;
 
@@ -52,7 +53,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let out = args
         .out
         .unwrap_or_else(|| jkrbem::output::names::theory_default(name, args.ratio));
-    let _claimed = Outputs::claim(&[(out.clone(), "--out".into())])?;
+    let _claimed = Outputs::claim(&[(out.clone(), OUT.into())])?;
     jkrbem::output::file::write_csv(
         &out,
         Some("c_bar,f_bar,d_bar,a_bar,b_bar"),
@@ -60,7 +61,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             .iter()
             .map(|p| (p.c_bar, p.f_bar, p.d_bar, p.a_bar, p.b_bar)),
     )
-    .map_err(write_error("--out"))?;
+    .map_err(write_error(OUT))?;
     outln!(
         "{} points of {} at R1/R2 = {} written to {}",
         curve.len(),

@@ -1,28 +1,30 @@
-//! An invalid model choice, named as the flag that sets it.
+//! An invalid model choice, named by the parameter that sets it.
 
 use super::limits::{
     MAX_GRID, MIN_ELEMENTS_AT_MINIMUM, MIN_ELEMENTS_FIRST_CONTACT, MIN_GRID,
     MIN_MAP_SPACINGS_AT_MINIMUM,
 };
+use crate::run::schema::{Spec, GRID, HEIGHT_MAP, SPACING};
 use crate::text::compact;
 use thiserror::Error;
 
-/// An invalid model choice, named as the flag that sets it.
+/// An invalid model choice, named by the parameter that sets it (its [`Spec`], which each
+/// front end words).
 #[derive(Debug, Error, PartialEq)]
 pub enum ModelError {
     /// A grid side that is not a power of two in [[`MIN_GRID`], [`MAX_GRID`]].
-    #[error("{flag} = {value} is invalid: the grid must be a power of two from {MIN_GRID} to {MAX_GRID} (e.g. 64, 128, 256, 512)")]
+    #[error("{param} = {value} is invalid: the grid must be a power of two from {MIN_GRID} to {MAX_GRID} (e.g. 64, 128, 256, 512)")]
     Grid {
-        /// The flag.
-        flag: &'static str,
+        /// The parameter.
+        param: &'static Spec,
         /// The value given.
         value: usize,
     },
     /// Any other out-of-range value.
-    #[error("{flag} = {value} is invalid: {expected}")]
+    #[error("{param} = {value} is invalid: {expected}")]
     Invalid {
-        /// The flag.
-        flag: &'static str,
+        /// The parameter.
+        param: &'static Spec,
         /// The value given, as text.
         value: String,
         /// What is accepted, and what to change.
@@ -30,7 +32,7 @@ pub enum ModelError {
     },
     /// The grid resolves the scene's contact by too few elements.
     #[error(
-        "--grid {nx} is too coarse for this scene ({scene}): the first contact spans \
+        "{GRID} {nx} is too coarse for this scene ({scene}): the first contact spans \
          {} elements across its minor axis (at least {MIN_ELEMENTS_FIRST_CONTACT} needed) and \
          the contact at the force minimum about {} (at least {MIN_ELEMENTS_AT_MINIMUM}); {advice}",
         compact_count(*first), compact_count(*at_minimum)
@@ -50,11 +52,11 @@ pub enum ModelError {
     /// A height map too coarse for the contact it must resolve: too few map spacings across
     /// the contact's minor axis at the force minimum.
     #[error(
-        "--height-map: the {map} is too coarse for the contact it must resolve: at the force \
+        "{HEIGHT_MAP}: the {map} is too coarse for the contact it must resolve: at the force \
          minimum the contact is expected to span {} map spacings across its minor axis \
          (2b ≈ {}; at least {MIN_MAP_SPACINGS_AT_MINIMUM} are needed, or the solver works on \
          the map's flat facets instead of the surface's shape and its answer is wrong); give a \
-         map of --spacing {} or finer over the same area, or a scene whose contact is larger \
+         map of {SPACING} {} or finer over the same area, or a scene whose contact is larger \
          (the contact scales as c_r = (9π Re² Δγ / (4E*))^(1/3), here {}: a larger Δγ / E*)",
         compact_count(*at_minimum), compact(*width), compact(*needed_spacing), compact(*c_r)
     )]
@@ -69,6 +71,16 @@ pub enum ModelError {
         needed_spacing: f64,
         /// The contact length scale c_r (length).
         c_r: f64,
+    },
+    /// An environment variable's value cannot be used (`JKRBEM_MEMORY_LIMIT`).
+    #[error("{variable} = {value} is invalid: {expected}")]
+    Environment {
+        /// The variable.
+        variable: &'static str,
+        /// The value given, as text.
+        value: String,
+        /// What is accepted, and what to change.
+        expected: String,
     },
     /// A scale of the problem is not a number the backend can hold.
     #[error(

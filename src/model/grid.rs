@@ -4,6 +4,7 @@
 use super::error::ModelError;
 use super::limits::*;
 use super::options::ModelOptions;
+use crate::run::schema::{Spec, GRID, GRID_Y, MARGIN, RATIO, START_RADIUS};
 use crate::scene::{PullOffHint, Scene};
 use crate::setup::ChordAxes;
 use std::f64::consts::PI;
@@ -136,10 +137,10 @@ pub(super) fn check_resolution(
     let needed = (opt.nx as f64 * factor).ceil();
     let mut others = Vec::new();
     if opt.start_radius_bar > 1.5 {
-        others.push("a smaller --start-radius (default 1.5)");
+        others.push(format!("a smaller {START_RADIUS} (default 1.5)"));
     }
     if opt.margin > 0.5 {
-        others.push("a smaller --margin (default 0.08)");
+        others.push(format!("a smaller {MARGIN} (default 0.08)"));
     }
     let others = if others.is_empty() {
         String::new()
@@ -152,14 +153,14 @@ pub(super) fn check_resolution(
             .ny
             .map(|ny| {
                 format!(
-                    " (and --grid-y {})",
+                    " (and {GRID_Y} {})",
                     ((ny as f64 * factor).ceil() as usize).next_power_of_two()
                 )
             })
             .unwrap_or_default();
-        format!("use --grid {nx}{ny} or finer{others}")
+        format!("use {GRID} {nx}{ny} or finer{others}")
     } else {
-        format!("no grid up to --grid {MAX_GRID} resolves it: use a smaller --ratio{others}")
+        format!("no grid up to {GRID} {MAX_GRID} resolves it: use a smaller {RATIO}{others}")
     };
     Err(ModelError::TooCoarse {
         scene: scene.headline(),
@@ -170,21 +171,21 @@ pub(super) fn check_resolution(
     })
 }
 
-pub(super) fn check_grid(flag: &'static str, n: usize) -> Result<(), ModelError> {
+pub(super) fn check_grid(param: &'static Spec, n: usize) -> Result<(), ModelError> {
     if (MIN_GRID..=MAX_GRID).contains(&n) && n.is_power_of_two() {
         Ok(())
     } else {
-        Err(ModelError::Grid { flag, value: n })
+        Err(ModelError::Grid { param, value: n })
     }
 }
 
 pub(super) fn invalid(
-    flag: &'static str,
+    param: &'static Spec,
     value: impl ToString,
     expected: impl ToString,
 ) -> ModelError {
     ModelError::Invalid {
-        flag,
+        param,
         value: value.to_string(),
         expected: expected.to_string(),
     }

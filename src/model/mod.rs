@@ -3,6 +3,10 @@
 //! a caller chooses), `grid` (the grid against the scene) and `steps` (the load path); this
 //! module builds the model.
 
+use crate::run::schema::{
+    APEX_OFFSET, BACKEND, CG_ACCEPT, CG_MAX_ITERATIONS, CG_TOLERANCE, E_STAR, GRID, GRID_Y,
+    HEIGHT_MAP, INDENTER, MARGIN, MESH_ANGLE, START_RADIUS, STEPS, WORK_OF_ADHESION,
+};
 use crate::scene::{FirstContact, PullOffHint, Scene};
 use crate::setup::Preconditioner;
 use crate::text::compact;
@@ -76,15 +80,15 @@ impl Model {
     /// Build the model: the initial Hertz contact of mean radius c̄0 sets the domain (plus
     /// the margin), nx sets Δx, and ny is fitted to the contact's aspect unless given.
     pub fn build(scene: &Scene, opt: &ModelOptions) -> Result<Self, ModelError> {
-        check_grid("--grid", opt.nx)?;
+        check_grid(GRID, opt.nx)?;
         if let Some(ny) = opt.ny {
-            check_grid("--grid-y", ny)?;
+            check_grid(GRID_Y, ny)?;
         }
         let c0 = opt.start_radius_bar;
         let (c_lo, c_hi) = START_RADIUS_RANGE;
         if !(c_lo..=c_hi).contains(&c0) {
             return Err(invalid(
-                "--start-radius",
+                START_RADIUS,
                 compact(c0),
                 format!(
                     "c̄0 must be in [{c_lo}, {c_hi}] (default 1.5): above the contact radius \
@@ -94,42 +98,42 @@ impl Model {
         }
         if !(1..=MAX_STEPS).contains(&opt.steps) {
             return Err(invalid(
-                "--steps",
+                STEPS,
                 opt.steps,
                 format!("from 1 to {MAX_STEPS} load steps (default 200)"),
             ));
         }
         if !(0.0..=MAX_MARGIN).contains(&opt.margin) {
             return Err(invalid(
-                "--margin",
+                MARGIN,
                 compact(opt.margin),
                 format!("a relative margin in [0, {MAX_MARGIN}] (default 0.08)"),
             ));
         }
         if !(opt.cg_tolerance > 0.0 && opt.cg_tolerance < 1.0) {
             return Err(invalid(
-                "--cg-tolerance",
+                CG_TOLERANCE,
                 compact(opt.cg_tolerance),
                 "a value in (0, 1) (default 1e-8)",
             ));
         }
         if !(opt.cg_accept > 0.0 && opt.cg_accept < 1.0) {
             return Err(invalid(
-                "--cg-accept",
+                CG_ACCEPT,
                 compact(opt.cg_accept),
                 "a value in (0, 1) (default 1e-5)",
             ));
         }
         if !(1..=MAX_CG_ITERATIONS).contains(&opt.cg_max_iterations) {
             return Err(invalid(
-                "--cg-max-iterations",
+                CG_MAX_ITERATIONS,
                 opt.cg_max_iterations,
                 format!("from 1 to {MAX_CG_ITERATIONS} (default 5000)"),
             ));
         }
         if !(-MAX_MESH_ANGLE..=MAX_MESH_ANGLE).contains(&opt.mesh_angle_deg) {
             return Err(invalid(
-                "--mesh-angle",
+                MESH_ANGLE,
                 compact(opt.mesh_angle_deg),
                 format!(
                     "an angle in degrees in [−{MAX_MESH_ANGLE}, {MAX_MESH_ANGLE}] (e.g. 0 or 45)"
@@ -140,7 +144,7 @@ impl Model {
         let (ox, oy) = opt.apex_offset;
         if !((-0.5..=0.5).contains(&ox) && (-0.5..=0.5).contains(&oy)) {
             return Err(invalid(
-                "--apex-offset",
+                APEX_OFFSET,
                 format!("{},{}", compact(ox), compact(oy)),
                 "two fractions of an element in [−0.5, 0.5], e.g. 0.25,-0.5".to_string(),
             ));
@@ -150,7 +154,7 @@ impl Model {
         let initial = scene
             .indenter
             .first_contact(c0_len, scene.e_star, scene.work_of_adhesion)
-            .map_err(|e| invalid("--indenter", scene.indenter.describe(), e))?;
+            .map_err(|e| invalid(INDENTER, scene.indenter.describe(), e))?;
         // The box around the (rotated) initial contact, plus the margin.
         let (box_x, box_y) = mesh.bounding_half_widths(initial.a, initial.b);
         let half_x = box_x * (1.0 + opt.margin);
@@ -161,11 +165,11 @@ impl Model {
         let ny = match opt.ny {
             Some(ny) if ny < need_y => {
                 return Err(invalid(
-                    "--grid-y",
+                    GRID_Y,
                     ny,
                     format!(
                     "the initial contact (c̄0 = {c0}) spans {need_y} elements along y at this Δx: \
-                         use --grid-y {} or more, or a smaller --start-radius",
+                         use {GRID_Y} {} or more, or a smaller {START_RADIUS}",
                     need_y.next_power_of_two()
                 ),
                 ))
@@ -241,15 +245,15 @@ impl Model {
                     range,
                     advice: format!(
                         "it follows from E* = {}, Δγ = {}, the {} and the grid; \
-                         rescale --e-star, --work-of-adhesion and the indenter's lengths to \
+                         rescale {E_STAR}, {WORK_OF_ADHESION} and the indenter's lengths to \
                          units nearer 1 (the normalised results do not depend on the units){}",
                         compact(self.scene.e_star),
                         compact(self.scene.work_of_adhesion),
                         self.scene.indenter.describe(),
                         if precision == "f32" {
-                            ", or use --backend cpu (f64)"
+                            format!(", or use {BACKEND} cpu (f64)")
                         } else {
-                            ""
+                            String::new()
                         }
                     ),
                 });
@@ -422,11 +426,11 @@ fn check_covered(
         return Ok(());
     }
     Err(invalid(
-        "--height-map",
+        HEIGHT_MAP,
         scene.indenter.describe(),
         format!(
             "the domain (±{} × ±{} about the apex, the first contact of c̄0 = {} and its margin) \
-             reaches beyond the map: use a larger map, or a smaller --start-radius or --margin",
+             reaches beyond the map: use a larger map, or a smaller {START_RADIUS} or {MARGIN}",
             compact(ex),
             compact(ey),
             compact(opt.start_radius_bar)
@@ -463,7 +467,10 @@ mod tests {
                 ..Default::default()
             };
             let e = Model::build(&s, &opt).unwrap_err();
-            assert!(e.to_string().contains("--grid"), "{e}");
+            assert!(
+                matches!(e, ModelError::Grid { param, .. } if param == GRID),
+                "{e}"
+            );
         }
     }
 
@@ -487,7 +494,10 @@ mod tests {
                 ..Default::default()
             };
             let e = Model::build(&s, &opt).unwrap_err();
-            assert!(e.to_string().contains("--mesh-angle"), "{e}");
+            assert!(
+                matches!(e, ModelError::Invalid { param, .. } if param == MESH_ANGLE),
+                "{e}"
+            );
         }
     }
 
@@ -639,6 +649,7 @@ mod tests {
             .check_scales("f32", F32_SAFE_RANGE)
             .unwrap_err()
             .to_string();
+        let e = crate::run::schema::words::flags(&e);
         assert!(e.contains("f32") && e.contains("--backend cpu"), "{e}");
     }
 
@@ -656,7 +667,7 @@ mod tests {
         )
         .unwrap_err();
         assert!(matches!(e, ModelError::TooCoarse { .. }), "{e}");
-        let text = e.to_string();
+        let text = crate::run::schema::words::flags(&e.to_string());
         let suggested: usize = text
             .split("use --grid ")
             .nth(1)

@@ -5,6 +5,7 @@
 use super::grid::invalid;
 use super::limits::MIN_FINAL_D_BAR;
 use super::ModelError;
+use crate::run::schema::FINAL_D;
 use crate::scene::{PullOffHint, Scene};
 use crate::text::compact;
 
@@ -58,7 +59,7 @@ impl LoadPath {
         if let Some(f) = final_d_bar {
             if !(f >= MIN_FINAL_D_BAR && f < d0_bar) {
                 return Err(invalid(
-                    "--final-d",
+                    FINAL_D,
                     compact(f),
                     format!(
                         "a d̄ in [{MIN_FINAL_D_BAR}, d̄0) below the initial approach d̄0 = {d0_bar:.4}"
@@ -118,6 +119,9 @@ mod tests {
     #[test]
     fn a_final_approach_above_the_first_is_refused() {
         let e = LoadPath::new(3.0, 2.0, 100, Some(2.0), HINT).unwrap_err();
-        assert!(e.to_string().contains("--final-d"), "{e}");
+        assert!(
+            matches!(e, ModelError::Invalid { param, .. } if param == FINAL_D),
+            "{e}"
+        );
     }
 }

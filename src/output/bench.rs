@@ -4,6 +4,7 @@
 use super::chart::{LogLogChart, Series};
 use super::OutputError;
 use crate::bench::{GridProfile, Measurement};
+use crate::run::schema::ONSETS;
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -199,7 +200,7 @@ pub fn cost_text(rows: &[BenchRow]) -> String {
     }
     let _ = writeln!(
         out,
-        "pull-off cost account (whole curve, --onsets near-minimum):\n{:<8} {:>9} {:>7} {:>6} \
+        "pull-off cost account (whole curve, {ONSETS} near-minimum):\n{:<8} {:>9} {:>7} {:>6} \
          {:>7} {:>7} {:>7} {:>8} {:>7} {:>9} {:>9}",
         "backend",
         "grid",

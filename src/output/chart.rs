@@ -328,10 +328,10 @@ pub(crate) fn write_svg_document(
 ) -> Result<(), OutputError> {
     let svg = svg.map_err(|reason| OutputError::Chart {
         path: path.display().to_string(),
-        flag: None,
+        param: None,
         reason,
     })?;
-    super::file::write_bytes(path, svg.as_bytes())
+    super::file::write_text(path, &svg)
 }
 
 /// The points of a series that have a place on log axes.

@@ -116,7 +116,7 @@ pub fn npz_bytes(fields: &[StateFields], about: Value) -> Result<Vec<u8>, String
 pub fn write_npz(path: &Path, fields: &[StateFields], about: Value) -> Result<(), OutputError> {
     let bytes = npz_bytes(fields, about).map_err(|reason| OutputError::Encode {
         path: path.display().to_string(),
-        flag: None,
+        param: None,
         reason,
     })?;
     super::file::write_bytes(path, &bytes)

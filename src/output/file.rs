@@ -102,7 +102,7 @@ pub fn set_force(force: bool) {
 fn refused(path: &Path, reason: impl Into<String>) -> OutputError {
     OutputError::Refused {
         path: path.display().to_string(),
-        flag: None,
+        param: None,
         reason: reason.into(),
     }
 }
@@ -147,7 +147,7 @@ fn check_file_name(path: &Path) -> Result<(), OutputError> {
     if let Some(c) = text.chars().find(|c| c.is_control()) {
         return Err(OutputError::Refused {
             path: format!("{text:?}"),
-            flag: None,
+            param: None,
             reason: format!(
                 "the name holds a control character ({c:?}), which would break the messages \
                  and listings that name the file: choose a name without one"
@@ -190,8 +190,11 @@ fn check_writable(path: &Path, meta: &fs::Metadata) -> Result<(), OutputError> {
         {
             return Err(refused(
                 path,
-                "it exists and is write-protected: make it writable (chmod u+w), choose \
-                 another name, or pass --force to replace it",
+                format!(
+                    "it exists and is write-protected: make it writable (chmod u+w), choose \
+                     another name, or pass {} to replace it",
+                    crate::run::schema::FORCE
+                ),
             ));
         }
     }
@@ -280,17 +283,25 @@ fn after_work(e: OutputError, kept: Option<&Path>) -> OutputError {
         format!("; the complete result is kept in {}", p.display())
     });
     match e {
-        OutputError::Refused { path, flag, reason } => OutputError::Io {
+        OutputError::Refused {
             path,
-            flag,
+            param,
+            reason,
+        } => OutputError::Io {
+            path,
+            param,
             source: io::Error::other(format!(
                 "{reason} (found when writing, after the run's work: it changed during the \
                  run), so nothing was written under this name{kept}"
             )),
         },
-        OutputError::Io { path, flag, source } if !kept.is_empty() => OutputError::Io {
+        OutputError::Io {
             path,
-            flag,
+            param,
+            source,
+        } if !kept.is_empty() => OutputError::Io {
+            path,
+            param,
             source: io::Error::new(source.kind(), format!("{source}{kept}")),
         },
         other => other,
@@ -416,31 +427,51 @@ where
     outcome
 }
 
-/// Write `bytes` to `path` atomically (see [`write_atomic`]).
+/// Write `bytes` to `path` atomically (see [`write_atomic`]), as they are (a binary file).
 pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
     write_atomic(path, |w| w.write_all(bytes))
 }
 
+/// Write `text` to `path` atomically (see [`write_atomic`]), in the command line's words.
+///
+/// The rule for text files: the messages a file carries (a summary's warnings, a row's error,
+/// a chart's legend, the study's captions) name their parameters by marker in memory, so that
+/// each front end words them; every text file the library writes (JSON, CSV, SVG, HTML) is the
+/// command line's, and is worded as it is written, each marker as its flag
+/// ([`words::flags`](crate::run::schema::words::flags)). A file read back (a summary a later
+/// run reuses, a shard) therefore names flags.
+pub fn write_text(path: &Path, text: &str) -> Result<(), OutputError> {
+    write_bytes(path, crate::run::schema::words::flags(text).as_bytes())
+}
+
 /// Write rows as CSV to `path` atomically (see [`write_atomic`]); `header` is written first
 /// when given (so that a file without rows still says what it holds), otherwise the rows'
-/// own field names are.
+/// own field names are. Text in the rows is worded for the command line, as by
+/// [`write_text`].
 pub fn write_csv<T: serde::Serialize>(
     path: &Path,
     header: Option<&str>,
     rows: impl IntoIterator<Item = T>,
 ) -> Result<(), OutputError> {
-    write_atomic(path, |w| {
-        let mut c = csv::WriterBuilder::new()
-            .has_headers(header.is_none())
-            .from_writer(w);
+    let mut c = csv::WriterBuilder::new()
+        .has_headers(header.is_none())
+        .from_writer(Vec::new());
+    let written = (|| {
         if let Some(h) = header {
-            c.write_record(h.split(',')).map_err(io::Error::other)?;
+            c.write_record(h.split(','))?;
         }
         for r in rows {
-            c.serialize(r).map_err(io::Error::other)?;
+            c.serialize(r)?;
         }
-        c.flush()
-    })
+        c.flush()?;
+        Ok::<(), csv::Error>(())
+    })();
+    written.map_err(|e| OutputError::io(path, io::Error::other(e)))?;
+    let bytes = c
+        .into_inner()
+        .map_err(|e| OutputError::io(path, io::Error::other(e.to_string())))?;
+    let text = String::from_utf8(bytes).map_err(|e| OutputError::io(path, io::Error::other(e)))?;
+    write_text(path, &text)
 }
 
 /// Open `path` for reading without blocking on a FIFO.
@@ -800,7 +831,7 @@ impl OutputLock {
                     }
                     return Err(OutputError::Locked {
                         path: target.display().to_string(),
-                        flag: None,
+                        param: None,
                         lock: path.display().to_string(),
                         pid,
                     });

@@ -19,65 +19,90 @@ pub mod summary;
 pub mod sweep_charts;
 pub mod sweep_csv;
 
+use crate::run::schema::Spec;
 use thiserror::Error;
 
-/// " (FLAG)" when the flag that named a path is known, else nothing.
-fn flag_note(flag: &Option<String>) -> String {
-    flag.as_ref()
-        .map_or_else(String::new, |f| format!(" ({f})"))
+/// What named a path in a request: a parameter (shown as its marker, which each front end
+/// words) or an argument of a command that is no parameter (`collect`'s `DIR`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NamedBy {
+    /// A parameter, e.g. [`OUT`](crate::run::schema::OUT).
+    Param(&'static Spec),
+    /// An argument, as the command names it.
+    Argument(&'static str),
 }
 
-/// An output that could not be written. Every variant names the path, and the flag that set
-/// it once the command line has added it ([`OutputError::with_flag`]).
+impl From<&'static Spec> for NamedBy {
+    fn from(p: &'static Spec) -> Self {
+        NamedBy::Param(p)
+    }
+}
+
+impl std::fmt::Display for NamedBy {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            NamedBy::Param(p) => p.fmt(f),
+            NamedBy::Argument(a) => f.write_str(a),
+        }
+    }
+}
+
+/// " (PARAMETER)" when what named a path is known, else nothing.
+fn param_note(param: &Option<NamedBy>) -> String {
+    param.map_or_else(String::new, |p| format!(" ({p})"))
+}
+
+/// An output that could not be written. Every variant names the path, and the parameter that
+/// set it once the request has added it ([`OutputError::with_param`]).
 #[derive(Debug, Error)]
 pub enum OutputError {
     /// A file or folder could not be created or written.
-    #[error("cannot write {path}{}: {source}", flag_note(flag))]
+    #[error("cannot write {path}{}: {source}", param_note(param))]
     Io {
         /// The path.
         path: String,
-        /// The flag that named it.
-        flag: Option<String>,
+        /// The parameter that named it.
+        param: Option<NamedBy>,
         /// The cause.
         source: std::io::Error,
     },
     /// A CSV record could not be written or read.
-    #[error("cannot write CSV {path}{}: {source}", flag_note(flag))]
+    #[error("cannot write CSV {path}{}: {source}", param_note(param))]
     Csv {
         /// The path.
         path: String,
-        /// The flag that named it.
-        flag: Option<String>,
+        /// The parameter that named it.
+        param: Option<NamedBy>,
         /// The cause.
         source: csv::Error,
     },
     /// A chart could not be drawn.
-    #[error("cannot draw chart {path}{}: {reason}", flag_note(flag))]
+    #[error("cannot draw chart {path}{}: {reason}", param_note(param))]
     Chart {
         /// The path.
         path: String,
-        /// The flag that named it.
-        flag: Option<String>,
+        /// The parameter that named it.
+        param: Option<NamedBy>,
         /// What the plotting library said.
         reason: String,
     },
     /// Data could not be encoded in the file's format (e.g. a `.npz` archive).
-    #[error("cannot encode {path}{}: {reason}", flag_note(flag))]
+    #[error("cannot encode {path}{}: {reason}", param_note(param))]
     Encode {
         /// The path.
         path: String,
-        /// The flag that named it.
-        flag: Option<String>,
+        /// The parameter that named it.
+        param: Option<NamedBy>,
         /// What the encoder said.
         reason: String,
     },
     /// The target may not be written (it is not a regular file, or two outputs clash).
-    #[error("cannot write {path}{}: {reason}", flag_note(flag))]
+    #[error("cannot write {path}{}: {reason}", param_note(param))]
     Refused {
         /// The path.
         path: String,
-        /// The flag that named it.
-        flag: Option<String>,
+        /// The parameter that named it.
+        param: Option<NamedBy>,
         /// Why.
         reason: String,
     },
@@ -85,14 +110,14 @@ pub enum OutputError {
     #[error(
         "{path}{} is being written by another jkrbem run ({}, lock file {lock}): wait for it \
          to finish, or choose another output",
-        flag_note(flag),
+        param_note(param),
         pid.map_or_else(|| "process id unknown".to_string(), |p| format!("process {p}"))
     )]
     Locked {
         /// The output.
         path: String,
-        /// The flag that named it.
-        flag: Option<String>,
+        /// The parameter that named it.
+        param: Option<NamedBy>,
         /// The lock file.
         lock: String,
         /// The process that holds it, if its id could be read.
@@ -104,7 +129,7 @@ impl OutputError {
     pub(crate) fn io(path: &std::path::Path, source: std::io::Error) -> Self {
         OutputError::Io {
             path: path.display().to_string(),
-            flag: None,
+            param: None,
             source,
         }
     }
@@ -112,21 +137,23 @@ impl OutputError {
     pub(crate) fn csv(path: &std::path::Path, source: csv::Error) -> Self {
         OutputError::Csv {
             path: path.display().to_string(),
-            flag: None,
+            param: None,
             source,
         }
     }
 
-    /// The same error, saying which flag named the path (e.g. "--out", "--summary").
-    pub fn with_flag(mut self, name: &str) -> Self {
+    /// The same error, saying which parameter named the path (e.g. [`OUT`](crate::run::schema::OUT),
+    /// [`SUMMARY`](crate::run::schema::SUMMARY)), unless one was said already.
+    pub fn with_param(mut self, name: impl Into<NamedBy>) -> Self {
+        let name = name.into();
         match &mut self {
-            OutputError::Io { flag, .. }
-            | OutputError::Csv { flag, .. }
-            | OutputError::Chart { flag, .. }
-            | OutputError::Encode { flag, .. }
-            | OutputError::Refused { flag, .. }
-            | OutputError::Locked { flag, .. } => {
-                flag.get_or_insert_with(|| name.to_string());
+            OutputError::Io { param, .. }
+            | OutputError::Csv { param, .. }
+            | OutputError::Chart { param, .. }
+            | OutputError::Encode { param, .. }
+            | OutputError::Refused { param, .. }
+            | OutputError::Locked { param, .. } => {
+                param.get_or_insert(name);
             }
         }
         self

@@ -2,10 +2,18 @@
 //! the best estimate of |min F̄| with its uncertainty, where the minimum lies, the requested
 //! accuracy, the closed forms as comparisons, and every run. Printed for people, written as
 //! JSON for scripts. Every number comes from `analysis`; this module only lays it out.
+//!
+//! Its messages (warnings, a run's error, what was withheld) and its text name parameters by
+//! their marker (`⟨steps⟩`): in memory, a [`Summary`] is every front end's, and each words it
+//! (the command line as flags, Python as keywords); the JSON file ([`Summary::write_json`]) is
+//! the command line's, worded as flags as it is written, as is every text file the library
+//! writes ([`write_text`](super::file::write_text)). A summary read back from its file (a run
+//! that `reference` or `coverage` reuses) names flags.
 
 use super::OutputError;
 use crate::analysis::estimate::AdhesiveResult;
 use crate::analysis::report::RunReport;
+use crate::run::schema::{FINAL_D, MEASURE, ONSETS, STEPS};
 use crate::text::fixed;
 use serde::Serialize;
 use std::path::Path;
@@ -123,10 +131,10 @@ impl Summary {
         }
     }
 
-    /// Write as pretty JSON.
+    /// Write as pretty JSON, in the command line's words (see the module's rule).
     pub fn write_json(&self, path: &Path) -> Result<(), OutputError> {
         let text = serde_json::to_string_pretty(self).expect("a summary always serialises");
-        super::file::write_bytes(path, (text + "\n").as_bytes())
+        super::file::write_text(path, &(text + "\n"))
     }
 
     /// Human-readable lines.
@@ -208,8 +216,8 @@ impl Summary {
                 s += &format!(
                     "NO ADHESIVE FORCE: the load steps of the {} run were too large to resolve \
                      the force minimum (see the WARNING below): its lowest state is not the \
-                     minimum, so no answer with an uncertainty is given; leave out --onsets none \
-                     or use more --steps\n",
+                     minimum, so no answer with an uncertainty is given; leave out {ONSETS} none \
+                     or use more {STEPS}\n",
                     grids.join(", ")
                 );
             }
@@ -225,11 +233,13 @@ impl Summary {
                     None => "no state was recorded".to_string(),
                 };
                 let why = if self.complete {
-                    "the run ran to its final approach without the force turning (given by \
-                     --final-d, or by default where the closed form puts the end of contact): \
-                     a lower --final-d passes the minimum"
+                    format!(
+                        "the run ran to its final approach without the force turning (given by \
+                         {FINAL_D}, or by default where the closed form puts the end of \
+                         contact): a lower {FINAL_D} passes the minimum"
+                    )
                 } else {
-                    "the run stopped early (see INCOMPLETE below)"
+                    "the run stopped early (see INCOMPLETE below)".to_string()
                 };
                 s += &format!(
                     "NO ADHESIVE FORCE: the run did not reach the force minimum; {seen}; {why}\n"
@@ -331,7 +341,8 @@ fn run_text(r: &RunReport) -> String {
         );
     }
     if r.stopped_after_minimum {
-        s += "  stopped once the force minimum was confirmed (--measure adhesive-force)\n";
+        s +=
+            &format!("  stopped once the force minimum was confirmed ({MEASURE} adhesive-force)\n");
     }
     s
 }

@@ -14,6 +14,7 @@
 use super::file;
 use super::summary::Summary;
 use super::OutputError;
+use crate::run::schema::{ACCURACY, GRID, MARGIN, RATIOS, SHARD, START_RADIUS, STEPS};
 use crate::scene::MAX_RATIO;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -200,7 +201,7 @@ impl Shard {
     /// Write it as JSON, atomically. Non-finite numbers are written as null.
     pub fn write(&self, path: &Path) -> Result<(), OutputError> {
         let text = serde_json::to_string_pretty(self).expect("a shard always serialises");
-        file::write_bytes(path, (text + "\n").as_bytes())
+        file::write_text(path, &(text + "\n"))
     }
 }
 
@@ -231,7 +232,7 @@ pub enum CollectError {
     #[error("cannot read {0}: {1}")]
     Io(String, std::io::Error),
     /// No shard file was found.
-    #[error("no sweep-shard-K-of-N.json files in {0} (a sweep run with --shard K/N writes them)")]
+    #[error("no sweep-shard-K-of-N.json files in {0} (a sweep run with {SHARD} K/N writes them)")]
     Empty(String),
     /// A file named as a shard is not a valid shard.
     #[error("{0} is not a valid shard file: {1}")]
@@ -290,7 +291,7 @@ fn parse_shard_name(name: &str) -> Option<Result<(usize, usize), String>> {
         _ => {
             return Some(Err(format!(
                 "it names N = {n} shards; a sweep is split into at most {MAX_SHARDS} \
-                 (--shard K/N)"
+                 ({SHARD} K/N)"
             )))
         }
     };
@@ -306,31 +307,31 @@ fn parse_shard_name(name: &str) -> Option<Result<(usize, usize), String>> {
 fn difference(a: &SweepSettings, b: &SweepSettings) -> String {
     let mut d = Vec::new();
     if a.ratios != b.ratios {
-        d.push(format!("--ratios {:?} against {:?}", a.ratios, b.ratios));
+        d.push(format!("{RATIOS} {:?} against {:?}", a.ratios, b.ratios));
     }
     let grid = |s: &SweepSettings| match (s.grid, s.accuracy) {
-        (Some(nx), _) => format!("--grid {nx}"),
-        (None, Some(t)) => format!("--accuracy {}%", crate::text::compact(100.0 * t)),
+        (Some(nx), _) => format!("{GRID} {nx}"),
+        (None, Some(t)) => format!("{ACCURACY} {}%", crate::text::compact(100.0 * t)),
         (None, None) => "no grid".into(),
     };
     match (a.grid, b.grid) {
-        (Some(x), Some(y)) if x != y => d.push(format!("--grid {x} against {y}")),
+        (Some(x), Some(y)) if x != y => d.push(format!("{GRID} {x} against {y}")),
         _ if a.grid != b.grid || a.accuracy != b.accuracy => {
             d.push(format!("{} against {}", grid(a), grid(b)))
         }
         _ => {}
     }
     if a.steps != b.steps {
-        d.push(format!("--steps {} against {}", a.steps, b.steps));
+        d.push(format!("{STEPS} {} against {}", a.steps, b.steps));
     }
     if a.start_radius != b.start_radius {
         d.push(format!(
-            "--start-radius {} against {}",
+            "{START_RADIUS} {} against {}",
             a.start_radius, b.start_radius
         ));
     }
     if a.margin != b.margin {
-        d.push(format!("--margin {} against {}", a.margin, b.margin));
+        d.push(format!("{MARGIN} {} against {}", a.margin, b.margin));
     }
     d.join(", ")
 }
@@ -359,13 +360,13 @@ fn read_shard(path: &Path, (k, n): (usize, usize)) -> Result<Shard, CollectError
     let ratios = &shard.sweep.ratios;
     if ratios.is_empty() || ratios.len() > MAX_SWEEP_RATIOS {
         return Err(corrupt(format!(
-            "its sweep has {} ratios; a sweep has 1 to {MAX_SWEEP_RATIOS} (--ratios)",
+            "its sweep has {} ratios; a sweep has 1 to {MAX_SWEEP_RATIOS} ({RATIOS})",
             ratios.len()
         )));
     }
     if let Some(r) = ratios.iter().find(|r| !(1.0..=MAX_RATIO).contains(*r)) {
         return Err(corrupt(format!(
-            "its sweep has R1/R2 = {r}, outside [1, {MAX_RATIO}] (the range of --ratios)"
+            "its sweep has R1/R2 = {r}, outside [1, {MAX_RATIO}] (the range of {RATIOS})"
         )));
     }
     if let Some(r) = shard
@@ -374,7 +375,7 @@ fn read_shard(path: &Path, (k, n): (usize, usize)) -> Result<Shard, CollectError
         .find(|r| !(1.0..=MAX_RATIO).contains(&r.ratio))
     {
         return Err(corrupt(format!(
-            "it has a row for R1/R2 = {}, outside [1, {MAX_RATIO}] (the range of --ratios)",
+            "it has a row for R1/R2 = {}, outside [1, {MAX_RATIO}] (the range of {RATIOS})",
             r.ratio
         )));
     }
@@ -386,7 +387,7 @@ fn read_shard(path: &Path, (k, n): (usize, usize)) -> Result<Shard, CollectError
     }
     if shard.ratios != shard_ratios(&shard.sweep.ratios, Some((k, n))) {
         return Err(corrupt(format!(
-            "its ratios {:?} are not those of shard {k} of {n} of --ratios {:?}",
+            "its ratios {:?} are not those of shard {k} of {n} of {RATIOS} {:?}",
             shard.ratios, shard.sweep.ratios
         )));
     }
@@ -461,7 +462,7 @@ pub fn collect(dir: &Path) -> Result<Collected, CollectError> {
     if let Some(w) = listed.windows(2).find(|w| w[0] == w[1]) {
         return Err(CollectError::Duplicate {
             ratio: w[0],
-            where_: format!("twice in the sweep's --ratios {:?}", sweep.ratios),
+            where_: format!("twice in the sweep's {RATIOS} {:?}", sweep.ratios),
         });
     }
     for &ratio in &sweep.ratios {
@@ -641,7 +642,7 @@ pub fn check_row(row: &SweepRow, shard: &Path, summary: &Path) -> Result<RowChec
 
 /// Parse a shard "K/N" (1 ≤ K ≤ N ≤ [`MAX_SHARDS`]).
 pub fn parse_shard(text: &str) -> Result<(usize, usize), String> {
-    let err = || format!("--shard {text:?}: expected K/N with 1 ≤ K ≤ N ≤ {MAX_SHARDS}, e.g. 2/8");
+    let err = || format!("{SHARD} {text:?}: expected K/N with 1 ≤ K ≤ N ≤ {MAX_SHARDS}, e.g. 2/8");
     let (k, n) = text.split_once('/').ok_or_else(err)?;
     let (k, n): (usize, usize) = (
         k.trim().parse().map_err(|_| err())?,
@@ -766,7 +767,10 @@ mod tests {
         r2.grid = 64;
         write_shard(dir.path(), &other, (2, 2), vec![r2]);
         let e = collect(dir.path()).unwrap_err();
-        assert!(e.to_string().contains("--grid 128 against 64"), "{e}");
+        assert!(
+            crate::run::schema::words::flags(&e.to_string()).contains("--grid 128 against 64"),
+            "{e}"
+        );
 
         let dir = tempfile::tempdir().unwrap();
         let sweep = settings(&[1.0, 2.0]);

@@ -15,6 +15,7 @@ use crate::analysis::report::RunReport;
 use crate::backend::select::BackendKind;
 use crate::model::{Measure, Model, ModelOptions};
 use crate::output::chart::{LogLogChart, Series};
+use crate::run::schema::{BACKENDS, GRIDS, MEASURE, OUT, REGRID, VARIANTS};
 use crate::scene::Scene;
 use serde::Serialize;
 use std::fmt;
@@ -47,12 +48,12 @@ impl Variant {
         }
     }
 
-    /// The flags this variant adds, for labels.
-    fn flags(self) -> &'static str {
+    /// The parameters this variant sets, for labels.
+    fn flags(self) -> String {
         match self {
-            Variant::Plain => "whole curve",
-            Variant::Measure => "--measure adhesive-force",
-            Variant::Regrid => "--measure adhesive-force --regrid",
+            Variant::Plain => "whole curve".to_string(),
+            Variant::Measure => format!("{MEASURE} adhesive-force"),
+            Variant::Regrid => format!("{MEASURE} adhesive-force {REGRID}"),
         }
     }
 
@@ -149,14 +150,14 @@ fn backend_name(kind: BackendKind) -> &'static str {
 /// Check the request, claim its outputs, run every grid and write the chart.
 pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone, RunError> {
     if !(2..=12).contains(&req.grids.len()) || req.grids.windows(2).any(|w| w[1] <= w[0]) {
-        return Err(input(
-            "--grids: give 2 to 12 increasing grids, e.g. 32,64,128",
-        ));
+        return Err(input(format!(
+            "{GRIDS}: give 2 to 12 increasing grids, e.g. 32,64,128"
+        )));
     }
     if req.variants.is_empty() || req.backends.is_empty() {
-        return Err(input(
-            "--variants and --backends: give at least one of each",
-        ));
+        return Err(input(format!(
+            "{VARIANTS} and {BACKENDS}: give at least one of each"
+        )));
     }
     let scene = Scene::from_ratio(req.ratio, 1.0, 1.0, 1.0).map_err(input)?;
     // Every model is built, and every output claimed, before any work.
@@ -166,7 +167,7 @@ pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone
             let mut jobs = Vec::new();
             for &nx in &req.grids {
                 let model = Model::build(&scene, &variant.options(nx))
-                    .map_err(|e| input(format!("--grids {nx}: {e}")))?;
+                    .map_err(|e| input(format!("{GRIDS} {nx}: {e}")))?;
                 let file = format!("{}-{}-n{nx}.csv", backend_name(kind), variant.name());
                 jobs.push(Job {
                     target: None,
@@ -181,7 +182,7 @@ pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone
         .iter()
         .flat_map(|p| p.2.iter().map(|j| &j.model))
         .collect();
-    crate::plan::check_memory(&refs, 1, "--grids").map_err(input)?;
+    crate::plan::check_memory(&refs, 1, GRIDS).map_err(input)?;
     let csv = req.out.join("accuracy.csv");
     let svg = req.out.join("accuracy.svg");
     let mut targets: Vec<PathBuf> = plan
@@ -189,7 +190,7 @@ pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone
         .flat_map(|p| p.2.iter().flat_map(|j| run_files(&j.out)))
         .collect();
     targets.extend([csv.clone(), svg.clone()]);
-    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    let _claimed = Outputs::claim(&named(OUT, &targets))?;
     let mut series = Vec::new();
     let mut failures = Vec::new();
     for (kind, variant, jobs) in plan {
@@ -214,7 +215,7 @@ pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone
     let (reference, reference_text) = reference(req.ratio, &series);
     let rows = chart_rows(&series, reference);
     write_chart(req.ratio, &series, &rows, &reference_text, &svg)?;
-    crate::output::file::write_csv(&csv, Some(ROW_HEADER), &rows).map_err(write_error("--out"))?;
+    crate::output::file::write_csv(&csv, Some(ROW_HEADER), &rows).map_err(write_error(OUT))?;
     Ok(AccuracyDone {
         rows,
         reference: reference_text,
@@ -347,5 +348,5 @@ fn write_chart(
             });
         }
     }
-    chart.write_svg(svg).map_err(write_error("--out"))
+    chart.write_svg(svg).map_err(write_error(OUT))
 }

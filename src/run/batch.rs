@@ -11,6 +11,7 @@ use crate::analysis::estimate::AdhesiveResult;
 use crate::model::{Model, ModelOptions};
 use crate::output::summary::Summary;
 use crate::output::sweep_csv::SweepRow;
+use crate::run::schema::{ACCURACY, OUT};
 use crate::solver::State;
 use rayon::prelude::*;
 use std::path::PathBuf;
@@ -39,11 +40,11 @@ pub enum GridChoice {
 }
 
 impl GridChoice {
-    /// "grid 256" or "--accuracy 2 %", for progress lines.
+    /// "grid 256" or "⟨accuracy⟩ 2 %", for progress lines and captions.
     pub fn describe(&self) -> String {
         match self {
             GridChoice::Fixed(nx) => format!("grid {nx}"),
-            GridChoice::Accuracy(t) => format!("--accuracy {} %", crate::text::compact(100.0 * t)),
+            GridChoice::Accuracy(t) => format!("{ACCURACY} {} %", crate::text::compact(100.0 * t)),
         }
     }
 }
@@ -208,7 +209,7 @@ fn run_one(backend: &BackendRequest, mut job: Job, watch: &dyn Watch) -> Result<
     let notes = NotesOnly(watch);
     let run = crate::with_backend!(
         &mut any,
-        b => pulloff(b, &job.model, Some(StatesFile { path: &job.out, flag: "--out" }), &notes, Some(&mut capture), None)
+        b => pulloff(b, &job.model, Some(StatesFile { path: &job.out, param: OUT }), &notes, Some(&mut capture), None)
     )?;
     let [_, json, contours] = run_files(&job.out);
     let shown = run.states_shown();
@@ -223,12 +224,12 @@ fn run_one(backend: &BackendRequest, mut job: Job, watch: &dyn Watch) -> Result<
         ),
         super::provenance::backend_json(backend, &summary.runs),
     ));
-    summary.write_json(&json).map_err(write_error("--out"))?;
+    summary.write_json(&json).map_err(write_error(OUT))?;
     let rows = contour_rows(
         &job.model,
         &capture.into_snapshots(run.outcome.min_reached()),
     );
-    crate::output::file::write_csv(&contours, None, rows.clone()).map_err(write_error("--out"))?;
+    crate::output::file::write_csv(&contours, None, rows.clone()).map_err(write_error(OUT))?;
     let error = run
         .outcome
         .error

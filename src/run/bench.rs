@@ -14,6 +14,7 @@ use crate::model::{Model, ModelOptions, MIN_GRID};
 use crate::output::bench::{timing_chart, write_csv, BenchRow};
 #[cfg(feature = "gpu")]
 use crate::output::profile::{self, ProfileRow};
+use crate::run::schema::{BACKENDS, CG_ITERATIONS, GRIDS, OUT, PROFILE, REPEATS};
 use crate::scene::Scene;
 use std::path::PathBuf;
 
@@ -57,19 +58,22 @@ pub struct BenchDone {
     pub problems: Vec<String>,
 }
 
-/// The flag that names a backend.
-fn flag(kind: BackendKind) -> &'static str {
-    match kind {
-        BackendKind::Cpu => "--backends cpu",
-        BackendKind::Gpu => "--backends gpu",
-        BackendKind::Auto => "--backends auto",
-    }
+/// The parameter and value that name a backend ("⟨backends⟩ cpu").
+fn flag(kind: BackendKind) -> String {
+    let name = match kind {
+        BackendKind::Cpu => "cpu",
+        BackendKind::Gpu => "gpu",
+        BackendKind::Auto => "auto",
+    };
+    format!("{BACKENDS} {name}")
 }
 
 /// The grids asked for, sorted and without repeats; refused unless all are powers of two ≥ 16.
 fn grids(args: &BenchRequest) -> Result<Vec<usize>, RunError> {
     if args.grids.is_empty() {
-        return Err(input("--grids is empty: give e.g. --grids 64,128,256"));
+        return Err(input(format!(
+            "{GRIDS} is empty: give e.g. {GRIDS} 64,128,256"
+        )));
     }
     if let Some(bad) = args
         .grids
@@ -77,8 +81,8 @@ fn grids(args: &BenchRequest) -> Result<Vec<usize>, RunError> {
         .find(|&&g| g < MIN_GRID || !g.is_power_of_two())
     {
         return Err(input(format!(
-            "--grids {bad} is invalid: every grid must be a power of two ≥ {MIN_GRID} \
-             (e.g. --grids 64,128,256)"
+            "{GRIDS} {bad} is invalid: every grid must be a power of two ≥ {MIN_GRID} \
+             (e.g. {GRIDS} 64,128,256)"
         )));
     }
     let mut g = args.grids.clone();
@@ -106,13 +110,13 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
     let mut targets = vec![csv.clone(), svg.clone()];
     if args.profile {
         if cfg!(not(feature = "gpu")) {
-            return Err(input(
-                "--profile times GPU kernels, and this jkrbem was built without the `gpu` feature",
-            ));
+            return Err(input(format!(
+                "{PROFILE} times GPU kernels, and this jkrbem was built without the `gpu` feature"
+            )));
         }
         targets.push(profile_csv.clone());
     }
-    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    let _claimed = Outputs::claim(&named(OUT, &targets))?;
 
     // Open every backend on the first grid before any work, so a missing one is refused
     // up front; the default takes the GPU only if it opens.
@@ -143,12 +147,12 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
         problems,
     } = got;
 
-    write_csv(&csv, &rows).map_err(write_error("--out"))?;
+    write_csv(&csv, &rows).map_err(write_error(OUT))?;
     #[cfg_attr(not(feature = "gpu"), allow(unused_mut))]
     let mut files = vec![csv.clone(), svg.clone()];
     #[cfg(feature = "gpu")]
     if args.profile {
-        profile::write_csv(&profile_csv, &profile_rows).map_err(write_error("--out"))?;
+        profile::write_csv(&profile_csv, &profile_rows).map_err(write_error(OUT))?;
         files.push(profile_csv.clone());
     }
     let title = format!(
@@ -158,7 +162,7 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
     );
     timing_chart(&rows, &title)
         .write_svg(&svg)
-        .map_err(write_error("--out"))?;
+        .map_err(write_error(OUT))?;
     Ok(BenchDone {
         rows,
         measured,
@@ -168,13 +172,16 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
     })
 }
 
-/// The scene and one model per grid, every flag checked and the largest grid's memory too.
+/// The scene and one model per grid, every parameter checked and the largest grid's memory
+/// too.
 fn bench_models(args: &BenchRequest, grids: &[usize]) -> Result<(Scene, Vec<Model>), RunError> {
     if args.repeats == 0 {
-        return Err(input("--repeats 0 is invalid: give at least 1"));
+        return Err(input(format!("{REPEATS} 0 is invalid: give at least 1")));
     }
     if args.cg_iterations == 0 {
-        return Err(input("--cg-iterations 0 is invalid: give at least 1"));
+        return Err(input(format!(
+            "{CG_ITERATIONS} 0 is invalid: give at least 1"
+        )));
     }
     let scene = Scene::from_ratio(args.ratio, 1.0, 1.0, 1.0).map_err(input)?;
     let models = grids
@@ -190,7 +197,7 @@ fn bench_models(args: &BenchRequest, grids: &[usize]) -> Result<(Scene, Vec<Mode
         })
         .collect::<Result<Vec<_>, _>>()?;
     let refs: Vec<&Model> = models.iter().collect();
-    crate::plan::check_memory(&refs, 1, "--grids").map_err(input)?;
+    crate::plan::check_memory(&refs, 1, GRIDS).map_err(input)?;
     Ok((scene, models))
 }
 

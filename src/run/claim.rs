@@ -8,14 +8,16 @@ use super::{failed, input, RunError};
 use crate::output::file::{
     canonical, check_target, file_id, input_at, lock_of, FileId, OutputLock,
 };
-use crate::output::OutputError;
+use crate::output::{NamedBy, OutputError};
 use std::path::{Path, PathBuf};
 
 /// An output error as the request's error: a refusal (not a regular file, held by another
-/// run) is bad input, anything else a failure. The message names the path and `flag`.
-pub fn write_error(flag: &str) -> impl Fn(OutputError) -> RunError + '_ {
+/// run) is bad input, anything else a failure. The message names the path and `param`, the
+/// parameter that named it.
+pub fn write_error(param: impl Into<NamedBy>) -> impl Fn(OutputError) -> RunError {
+    let param = param.into();
     move |e| {
-        let e = e.with_flag(flag);
+        let e = e.with_param(param);
         if e.is_refusal() {
             input(e)
         } else {
@@ -31,21 +33,21 @@ pub struct Outputs {
 }
 
 impl Outputs {
-    /// Claim every `(path, flag)` for this command: refuse two that name the same file, a
+    /// Claim every `(path, parameter)` for this command: refuse two that name the same file, a
     /// target that exists and is not a regular file, and one that another run holds. Nothing
     /// is created unless all pass the first two checks; the folders are then created and the
     /// locks taken. Every failure here comes before any work and is bad input (exit code 2).
-    pub fn claim(targets: &[(PathBuf, String)]) -> Result<Outputs, RunError> {
+    pub fn claim(targets: &[(PathBuf, NamedBy)]) -> Result<Outputs, RunError> {
         Self::check(targets)?;
         let mut outputs = Outputs::default();
-        let mut taken: Vec<(PathBuf, &Path, &str)> = Vec::new();
-        for (path, flag) in targets {
+        let mut taken: Vec<(PathBuf, &Path, NamedBy)> = Vec::new();
+        for &(ref path, param) in targets {
             // Two of this run's own outputs on one lock (a link changed since the check) are
             // said to be so, not blamed on another run.
             let lock = canonical(&lock_of(path));
-            if let Some((_, other, other_flag)) = taken.iter().find(|(l, _, _)| *l == lock) {
+            if let Some((_, other, other_param)) = taken.iter().find(|(l, _, _)| *l == lock) {
                 return Err(input(format!(
-                    "{flag} {} is the same file as {other_flag} {} (they share the lock file \
+                    "{param} {} is the same file as {other_param} {} (they share the lock file \
                      {}): give them different names",
                     path.display(),
                     other.display(),
@@ -55,9 +57,9 @@ impl Outputs {
             // Nothing has been computed yet: a lock that cannot be taken (held by another
             // run, a read-only or full folder, a name too long, a file where a folder should
             // be) is a refusal of the request, exit code 2.
-            let held = OutputLock::acquire(path).map_err(|e| input(e.with_flag(flag)))?;
+            let held = OutputLock::acquire(path).map_err(|e| input(e.with_param(param)))?;
             outputs.locks.push(held);
-            taken.push((lock, path, flag));
+            taken.push((lock, path, param));
         }
         Ok(outputs)
     }
@@ -68,38 +70,38 @@ impl Outputs {
     /// named as another's lock file; and none that is, or whose lock file is, a file this run
     /// reads ([`note_input`](crate::output::file::note_input): `--height-map`, the shards of
     /// `collect`), the program itself or a standard stream redirected to a file.
-    pub fn check(targets: &[(PathBuf, String)]) -> Result<(), RunError> {
+    pub fn check(targets: &[(PathBuf, NamedBy)]) -> Result<(), RunError> {
         let mut seen: Vec<Claimed> = Vec::new();
-        for (path, flag) in targets {
-            check_target(path).map_err(write_error(flag))?;
+        for &(ref path, param) in targets {
+            check_target(path).map_err(write_error(param))?;
             let claimed = Claimed {
                 id: file_id(path),
                 lock: file_id(&lock_of(path)),
                 path,
-                flag,
+                param,
             };
             if let Some(other) = seen
                 .iter()
                 .find(|o| o.id == claimed.id || o.lock == claimed.lock)
             {
-                return Err(input(if other.flag == flag.as_str() {
+                return Err(input(if other.param == param {
                     format!(
-                        "{flag}: two outputs of this command would be the same file {} \
+                        "{param}: two outputs of this command would be the same file {} \
                          (check for repeated values)",
                         path.display()
                     )
                 } else {
                     format!(
-                        "{flag} {} is the same file as {} {}: give them different names",
+                        "{param} {} is the same file as {} {}: give them different names",
                         path.display(),
-                        other.flag,
+                        other.param,
                         other.path.display()
                     )
                 }));
             }
             if let Some(read) = input_at(&claimed.id) {
                 return Err(input(format!(
-                    "{flag} {} is the same file as {}: an output never replaces it; give \
+                    "{param} {} is the same file as {}: an output never replaces it; give \
                      another name",
                     path.display(),
                     read.describe()
@@ -107,7 +109,7 @@ impl Outputs {
             }
             if let Some(read) = input_at(&claimed.lock) {
                 return Err(input(format!(
-                    "{flag} {}: its lock file {} is the same file as {}: the lock would \
+                    "{param} {}: its lock file {} is the same file as {}: the lock would \
                      overwrite it; give another name",
                     path.display(),
                     lock_of(path).display(),
@@ -121,9 +123,9 @@ impl Outputs {
             if let Some(other) = seen.iter().find(|o| o.lock == s.id) {
                 return Err(input(format!(
                     "{} {} is the lock file of {} {}: give it another name",
-                    s.flag,
+                    s.param,
                     s.path.display(),
-                    other.flag,
+                    other.param,
                     other.path.display()
                 )));
             }
@@ -132,21 +134,19 @@ impl Outputs {
     }
 }
 
-/// An output being checked: its identity, its lock file's, and how it was named.
+/// An output being checked: its identity, its lock file's, and the parameter that named it.
 struct Claimed<'a> {
     id: FileId,
     lock: FileId,
     path: &'a Path,
-    flag: &'a str,
+    param: NamedBy,
 }
 
-/// `(path, flag)` pairs for [`Outputs::claim`].
+/// `(path, parameter)` pairs for [`Outputs::claim`], every path named by `param`.
 pub fn named<'a>(
-    flag: &str,
+    param: impl Into<NamedBy>,
     paths: impl IntoIterator<Item = &'a PathBuf>,
-) -> Vec<(PathBuf, String)> {
-    paths
-        .into_iter()
-        .map(|p| (p.clone(), flag.to_string()))
-        .collect()
+) -> Vec<(PathBuf, NamedBy)> {
+    let param = param.into();
+    paths.into_iter().map(|p| (p.clone(), param)).collect()
 }

@@ -14,7 +14,12 @@ use super::{failed, input, RunError, Watch};
 use crate::analysis::convergence::{self, TableValue};
 use crate::analysis::estimate;
 use crate::model::{Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID, MAX_MARGIN};
+use crate::run::schema::{
+    words, Spec, APEX_OFFSET, APEX_OFFSETS, BACKEND, GRID, GRIDS, MARGIN, MARGINS, MESH_ANGLE,
+    MESH_ANGLES, OUT, RATIOS, RUNS_PER_CASE, VARIANTS,
+};
 use crate::scene::Scene;
+use crate::solver::edge_advice;
 use serde::Serialize;
 use std::fmt;
 use std::path::PathBuf;
@@ -236,7 +241,7 @@ fn reference_of(ratio: f64, table: &[TableValue]) -> Result<CaseReference, RunEr
     }
     let row = table.iter().find(|r| r.ratio == ratio).ok_or_else(|| {
         input(format!(
-            "--ratios {ratio}: the reference table has no row for it; give 1 or one of {}",
+            "{RATIOS} {ratio}: the reference table has no row for it; give 1 or one of {}",
             table
                 .iter()
                 .map(|r| crate::text::compact(r.ratio))
@@ -270,19 +275,39 @@ pub fn case_grids(ladder: Option<&[usize]>) -> Vec<usize> {
 /// convergence law describes ([`crate::plan::MIN_PLAN_GRID`]).
 pub const MIN_CASE_GRID: usize = crate::plan::MIN_PLAN_GRID;
 
-/// The flags of `jkrbem coverage`: advice from a run that names any other (a `simulate` flag,
-/// which coverage sets to its defaults) is followed by what to change here.
-pub const COVERAGE_FLAGS: [&str; 9] = [
-    "--ratios",
-    "--grids",
-    "--margins",
-    "--variants",
-    "--mesh-angles",
-    "--apex-offsets",
-    "--runs-per-case",
-    "--backend",
-    "--out",
+/// The parameters of `jkrbem coverage`: advice from a run that names any other (a
+/// simulation's parameter, which coverage sets to its default) is followed by what to change
+/// here.
+pub const COVERAGE_SPECS: [&Spec; 9] = [
+    RATIOS,
+    GRIDS,
+    MARGINS,
+    VARIANTS,
+    MESH_ANGLES,
+    APEX_OFFSETS,
+    RUNS_PER_CASE,
+    BACKEND,
+    OUT,
 ];
+
+/// The parameter of coverage that sets what a run's parameter `p` sets, where coverage sets
+/// it (a case's margin, grid and placement come from coverage's lists); `None` for one that
+/// coverage leaves at its default.
+fn coverage_spec(p: &'static Spec) -> Option<&'static Spec> {
+    if COVERAGE_SPECS.contains(&p) {
+        Some(p)
+    } else if p == MARGIN {
+        Some(MARGINS)
+    } else if p == GRID {
+        Some(GRIDS)
+    } else if p == MESH_ANGLE {
+        Some(MESH_ANGLES)
+    } else if p == APEX_OFFSET {
+        Some(APEX_OFFSETS)
+    } else {
+        None
+    }
+}
 
 /// How the grid lies against the contact in a case: its mesh angle θ (degrees) and the
 /// apex's offset within the element grid (elements).
@@ -336,7 +361,7 @@ fn check_case_grid(
 ) -> Result<(), RunError> {
     if !nx.is_power_of_two() || !(MIN_CASE_GRID..=MAX_GRID).contains(&nx) {
         return Err(input(format!(
-            "--grids {nx}: give powers of two from {MIN_CASE_GRID} to {MAX_GRID} (coarser grids \
+            "{GRIDS} {nx}: give powers of two from {MIN_CASE_GRID} to {MAX_GRID} (coarser grids \
              are not yet in the first-order regime the estimates assume)"
         )));
     }
@@ -358,45 +383,43 @@ fn check_case_grid(
                 fine *= 2;
             }
             Err(input(format!(
-                "--grids {nx}: too coarse for R1/R2 = {} (the contact would span too few \
-                 elements at the --margins and --mesh-angles asked); give --grids {fine} or finer",
+                "{GRIDS} {nx}: too coarse for R1/R2 = {} (the contact would span too few \
+                 elements at the {MARGINS} and {MESH_ANGLES} asked); give {GRIDS} {fine} or finer",
                 crate::text::compact(scene.ratio())
             )))
         }
         Err(e) => Err(input(format!(
-            "--grids {nx} with these --margins, --mesh-angles and --apex-offsets: {e}"
+            "{GRIDS} {nx} with these {MARGINS}, {MESH_ANGLES} and {APEX_OFFSETS}: {e}"
         ))),
     }
 }
 
-/// A run's failure in coverage's words: the advice of a contact at the domain's edge names
-/// `--margins` and `--grids`; advice that names another flag says that coverage runs with
-/// that flag's default.
+/// A run's failure in coverage's words: the advice of a contact at the domain's edge
+/// ([`edge_advice`]) becomes coverage's (larger margins or finer grids); every parameter the
+/// message names is coverage's that sets it ([`coverage_spec`]: the margin as the margins, the
+/// grid as the grids, …), and one that coverage does not set is followed by a note that
+/// coverage runs with its default.
 fn in_coverage_words(e: RunError) -> RunError {
     let RunError::Failed(m) = e else {
         return e;
     };
     let m = m.replace(
-        "use a larger --margin or a smaller --start-radius",
-        "use larger --margins or finer --grids",
+        &edge_advice(),
+        &format!("use larger {MARGINS} or finer {GRIDS}"),
     );
-    let foreign: Vec<&str> = m
-        .split(|c: char| !(c.is_ascii_alphanumeric() || c == '-'))
-        .filter(|w| w.starts_with("--") && w.len() > 2 && !COVERAGE_FLAGS.contains(w))
+    let foreign: Vec<String> = words::named(&m)
+        .into_iter()
+        .filter(|p| coverage_spec(p).is_none())
+        .map(|p| p.to_string())
         .collect();
+    let m = words::render(&m, &|p| coverage_spec(p).unwrap_or(p).to_string());
     if foreign.is_empty() {
         return RunError::Failed(m);
     }
-    let mut named: Vec<&str> = Vec::new();
-    for f in foreign {
-        if !named.contains(&f) {
-            named.push(f);
-        }
-    }
     RunError::Failed(format!(
         "{m}\n  (coverage runs every case with the defaults of {}, which it does not set: \
-         change --grids or --margins, or run that case with `jkrbem simulate`)",
-        named.join(", ")
+         change {GRIDS} or {MARGINS}, or run that case with `jkrbem simulate`)",
+        foreign.join(", ")
     ))
 }
 
@@ -407,7 +430,7 @@ pub fn coverage(req: &CoverageRequest, watch: &dyn Watch) -> Result<CoverageDone
     let plan = plan_cases(req)?;
     let csv = req.out.join("coverage.csv");
     let summary_csv = req.out.join("coverage-summary.csv");
-    let _claimed = Outputs::claim(&named("--out", [&csv, &summary_csv]))?;
+    let _claimed = Outputs::claim(&named(OUT, [&csv, &summary_csv]))?;
     let mut cases = Vec::new();
     for (ratio, grids, reference) in plan {
         let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(input)?;
@@ -464,8 +487,8 @@ pub fn coverage(req: &CoverageRequest, watch: &dyn Watch) -> Result<CoverageDone
         }
     }
     summary.extend(summarise("all", &cases.iter().collect::<Vec<_>>()));
-    crate::output::file::write_csv(&csv, None, &cases).map_err(write_error("--out"))?;
-    crate::output::file::write_csv(&summary_csv, None, &summary).map_err(write_error("--out"))?;
+    crate::output::file::write_csv(&csv, None, &cases).map_err(write_error(OUT))?;
+    crate::output::file::write_csv(&summary_csv, None, &summary).map_err(write_error(OUT))?;
     Ok(CoverageDone {
         cases,
         summary,
@@ -483,14 +506,14 @@ fn check_request(req: &CoverageRequest) -> Result<(), RunError> {
         || req.mesh_angles.is_empty()
         || req.apex_offsets.is_empty()
     {
-        return Err(input(
-            "--ratios, --margins, --variants, --mesh-angles and --apex-offsets: give at least \
-             one of each",
-        ));
+        return Err(input(format!(
+            "{RATIOS}, {MARGINS}, {VARIANTS}, {MESH_ANGLES} and {APEX_OFFSETS}: give at least \
+             one of each"
+        )));
     }
     if !(1..=req.margins.len()).contains(&req.runs_per_case) {
         return Err(input(format!(
-            "--runs-per-case {}: give 1 to the number of --margins ({})",
+            "{RUNS_PER_CASE} {}: give 1 to the number of {MARGINS} ({})",
             req.runs_per_case,
             req.margins.len()
         )));
@@ -501,7 +524,7 @@ fn check_request(req: &CoverageRequest) -> Result<(), RunError> {
         .find(|m| !(0.0..=MAX_MARGIN).contains(*m))
     {
         return Err(input(format!(
-            "--margins {m}: give margins in [0, {MAX_MARGIN}]"
+            "{MARGINS} {m}: give margins in [0, {MAX_MARGIN}]"
         )));
     }
     Ok(())
@@ -528,7 +551,7 @@ fn plan_cases(req: &CoverageRequest) -> Result<Vec<(f64, Vec<usize>, CaseReferen
                 .find(|&&g| g << LEVELS_BELOW_REFERENCE > finest)
             {
                 return Err(input(format!(
-                    "--grids {too_fine}: the reference of R1/R2 = {ratio} comes from grids up \
+                    "{GRIDS} {too_fine}: the reference of R1/R2 = {ratio} comes from grids up \
                      to {finest}; give grids up to {} (at least {LEVELS_BELOW_REFERENCE} levels \
                      coarser, so that the reference is known far better than a case)",
                     finest >> LEVELS_BELOW_REFERENCE
@@ -718,25 +741,41 @@ mod tests {
 
     #[test]
     fn a_run_s_advice_is_given_in_coverage_s_flags() {
-        let e = in_coverage_words(RunError::Failed(
-            "r1-n16: the contact reached the edge of the domain at d̄ = 2.25 (8 elements on the \
-             outer ring): use a larger --margin or a smaller --start-radius"
-                .into(),
-        ))
-        .to_string();
+        use crate::solver::cg::CgEnd;
+        use crate::solver::SolverError;
+        let shown = |e: SolverError| {
+            let e = in_coverage_words(RunError::Failed(format!("r1-n16: {e}")));
+            words::flags(&e.to_string())
+        };
+        // A contact at the domain's edge: the solver's advice (a larger margin or a smaller
+        // first contact) in what coverage can change.
+        let e = shown(SolverError::ContactAtEdge {
+            d_bar: 2.25,
+            elements: 8,
+        });
         assert!(e.contains("use larger --margins or finer --grids"), "{e}");
         assert!(
-            !e.contains("--margin ") && !e.contains("--start-radius"),
+            !e.contains("--margin ") && !e.contains("--start-radius") && !e.contains("defaults"),
             "{e}"
         );
-        let e = in_coverage_words(RunError::Failed(
-            "CG did not converge: raise --cg-max-iterations or --cg-max-iterations".into(),
-        ))
-        .to_string();
+        // Advice that names parameters coverage leaves at their defaults says so, each once.
+        let e = shown(SolverError::CgNotConverged {
+            d_bar: 1.5,
+            first: CgEnd::IterationLimit,
+            end: CgEnd::IterationLimit,
+            residual: 1e-3,
+            iterations: 10_000,
+            tolerance: 1e-8,
+            accept: 1e-5,
+        });
         assert!(
-            e.contains("the defaults of --cg-max-iterations, which it does not set"),
+            e.contains(
+                "the defaults of --cg-max-iterations, --cg-tolerance, --cg-accept, \
+                 --preconditioner, which it does not set"
+            ),
             "{e}"
         );
+        assert!(!e.contains('⟨'), "{e}");
     }
 
     #[test]

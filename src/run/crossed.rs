@@ -10,6 +10,7 @@ use super::{input, RunError};
 use crate::analysis::CrossedCylinders;
 use crate::model::{Model, ModelOptions};
 use crate::output::line_chart::{LineChart, Style};
+use crate::run::schema::{Spec, ANGLE, GRID, OUT};
 use crate::theory;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -98,11 +99,12 @@ impl CrossedRequest {
 }
 
 /// Run the request: check every angle, claim the outputs, run, write crossed.csv and the chart.
-/// `flags` maps the analysis layer's parameter names (`--angle`, `--young`, …) to the front
-/// end's flags in messages.
+/// `rename` maps the analysis layer's parameters ([`ANGLE`], the cylinders' modulus, …) to
+/// those the front end names in messages (e.g. `crossed`'s
+/// [`ANGLES`](crate::run::schema::ANGLES)).
 pub fn crossed(
     req: &CrossedRequest,
-    flags: &dyn Fn(&'static str) -> &'static str,
+    rename: &dyn Fn(&'static Spec) -> &'static Spec,
     watch: &dyn Watch,
 ) -> Result<CrossedDone, RunError> {
     req.backend.check()?;
@@ -110,7 +112,7 @@ pub fn crossed(
     let mut scales = Vec::new();
     for &angle in &req.angles {
         let c = req.pair(angle);
-        let scene = c.scene().map_err(|e| input(e.renamed(flags)))?;
+        let scene = c.scene().map_err(|e| input(e.renamed(rename)))?;
         let base = ModelOptions {
             steps: req.steps,
             margin: req.margin,
@@ -119,24 +121,24 @@ pub fn crossed(
         let (model, target) = batch_model(&scene, req.grid, &base).map_err(|e| {
             input(format!(
                 "{} {}: {e}",
-                flags("--angle"),
+                rename(ANGLE),
                 crate::text::compact(angle)
             ))
         })?;
         scales.push((
             angle,
             scene.ratio(),
-            c.force_scale().map_err(|e| input(e.renamed(flags)))?,
+            c.force_scale().map_err(|e| input(e.renamed(rename)))?,
         ));
         let out = crate::output::names::crossed_states(&req.out, angle, model.nx);
         jobs.push(Job { model, out, target });
     }
     let refs: Vec<&Model> = jobs.iter().map(|j| &j.model).collect();
-    crate::plan::check_memory(&refs, req.jobs, "--grid").map_err(input)?;
+    crate::plan::check_memory(&refs, req.jobs, GRID).map_err(input)?;
     let files = [req.out.join("crossed.csv"), req.out.join("crossed.svg")];
     let mut targets: Vec<PathBuf> = jobs.iter().flat_map(|j| run_files(&j.out)).collect();
     targets.extend(files.iter().cloned());
-    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    let _claimed = Outputs::claim(&named(OUT, &targets))?;
     let results = run_jobs(jobs, req.jobs, req.backend, watch);
     let failures = results.iter().filter_map(|r| r.error.clone()).collect();
     let warnings = results.iter().flat_map(|r| r.warnings()).collect();
@@ -164,10 +166,10 @@ pub fn crossed(
         })
         .collect();
     rows.sort_by(|a, b| b.angle_deg.total_cmp(&a.angle_deg));
-    crate::output::file::write_csv(&files[0], None, &rows).map_err(write_error("--out"))?;
+    crate::output::file::write_csv(&files[0], None, &rows).map_err(write_error(OUT))?;
     chart(req, &rows)
         .write_svg(&files[1])
-        .map_err(write_error("--out"))?;
+        .map_err(write_error(OUT))?;
     Ok(CrossedDone {
         rows,
         files,

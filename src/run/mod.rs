@@ -4,7 +4,9 @@
 //! program) only builds a request, calls one function here and shows what comes back.
 //!
 //! Errors say whether the request was refused before any work ([`RunError::Input`]) or the
-//! work failed ([`RunError::Failed`]), and name the flag or value to change.
+//! work failed ([`RunError::Failed`]), and name the parameter or value to change: a parameter
+//! by its [`schema::Spec`]'s marker, which each front end words (the command line as its flag,
+//! Python as its keyword; [`schema::words`]).
 
 pub mod accuracy;
 pub mod batch;

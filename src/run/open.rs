@@ -7,6 +7,7 @@ use crate::backend::cpu::CpuBackend;
 use crate::backend::select::{self, AnyBackend, BackendKind};
 use crate::backend::BackendError;
 use crate::model::Model;
+use crate::run::schema::{BACKEND, CONVOLUTION};
 
 /// How the displacements u = K ∗ p are convolved.
 #[derive(
@@ -45,9 +46,9 @@ impl BackendRequest {
     /// Refuse a combination no backend offers (checked before any output is claimed).
     pub fn check(&self) -> Result<(), RunError> {
         if self.convolution == Convolution::Periodic && self.kind == BackendKind::Gpu {
-            return Err(input(
-                "--convolution periodic runs on the CPU backend only: use --backend cpu",
-            ));
+            return Err(input(format!(
+                "{CONVOLUTION} periodic runs on the CPU backend only: use {BACKEND} cpu"
+            )));
         }
         Ok(())
     }

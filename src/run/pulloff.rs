@@ -8,6 +8,7 @@ use crate::analysis::report::RunReport;
 use crate::backend::Backend;
 use crate::model::Model;
 use crate::output::states_csv::StateWriter;
+use crate::run::schema::Spec;
 use crate::solver::{self, Outcome};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -37,14 +38,14 @@ impl Pulloff {
     }
 }
 
-/// Where a pull-off's states go besides memory: a CSV file, with the flag that named it.
+/// Where a pull-off's states go besides memory: a CSV file, with the parameter that named it.
 #[derive(Debug, Clone, Copy)]
 pub struct StatesFile<'a> {
     /// The file's name (the run's states are written under its partial name until it
     /// completes).
     pub path: &'a Path,
-    /// The flag or parameter that named it, for messages.
-    pub flag: &'a str,
+    /// The parameter that named it, for messages.
+    pub param: &'static Spec,
 }
 
 /// Run `model`'s pull-off on `backend`, its states kept in [`Pulloff::outcome`] and, if
@@ -64,7 +65,7 @@ pub fn pulloff<B: Backend>(
 ) -> Result<Pulloff, RunError> {
     let mut writer = match file {
         Some(f) => {
-            Some(StateWriter::create(f.path, model.onsets.name()).map_err(write_error(f.flag))?)
+            Some(StateWriter::create(f.path, model.onsets.name()).map_err(write_error(f.param))?)
         }
         None => None,
     };
@@ -114,7 +115,7 @@ pub fn pulloff<B: Backend>(
                 return Err(failed(format!(
                     "{}; the run stopped after {} states, and what could be written is in \
                      {partial} (incomplete); nothing was written to {}",
-                    e.with_flag(f.flag),
+                    e.with_param(f.param),
                     outcome.states.len(),
                     f.path.display()
                 )));
@@ -122,7 +123,7 @@ pub fn pulloff<B: Backend>(
             Some(
                 writer
                     .finish(outcome.complete())
-                    .map_err(write_error(f.flag))?,
+                    .map_err(write_error(f.param))?,
             )
         }
         _ => None,

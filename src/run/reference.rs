@@ -14,6 +14,9 @@ use crate::analysis::convergence::{self, TableLaw};
 use crate::analysis::estimate;
 use crate::analysis::report::RunReport;
 use crate::model::{Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID};
+use crate::run::schema::{
+    ACCURACY, FIRST_GRID, MAX_GRID as MAX_GRID_SPEC, OUT, PHASES, RATIOS, TARGET,
+};
 use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -127,11 +130,17 @@ pub struct ReferenceDone {
 /// The first grid of a ratio's ladder: the one a 5 % plan takes (n_d about 20–40).
 fn first_grid(scene: &Scene, base: &ModelOptions) -> Result<usize, RunError> {
     let p = crate::plan::for_accuracy_one_grid(scene, 0.05, base).map_err(|e| {
+        // The plan's refusal names the accuracy, which reference does not have: only what it
+        // says of the grids is kept.
+        let why = match e {
+            ModelError::Invalid {
+                param, expected, ..
+            } if param == ACCURACY => expected,
+            other => other.to_string(),
+        };
         input(format!(
-            "R1/R2 = {}: no first grid for its ladder (--first-grid): {}",
+            "R1/R2 = {}: no first grid for its ladder ({FIRST_GRID}): {why}",
             crate::text::compact(scene.ratio()),
-            // The plan's own words name --accuracy, which reference does not have.
-            e.to_string().replace("--accuracy = 5% is invalid: ", "")
         ))
     })?;
     Ok(p.grids[0])
@@ -165,7 +174,7 @@ pub struct LadderGrids {
 /// The grids of R1/R2 = `ratio`'s ladder, coarse to fine, checked before any work: from the
 /// first grid (`--first-grid`, or the one a 5 % plan takes), doubling up to `--max-grid`,
 /// each built at every phase's margin and fitting in the memory `available` (bytes; `None`:
-/// unchecked). Fewer than [`MIN_LEVELS`] is refused, naming the flag to change.
+/// unchecked). Fewer than [`MIN_LEVELS`] is refused, naming the parameter to change.
 pub fn ladder_grids(
     req: &ReferenceRequest,
     ratio: f64,
@@ -174,8 +183,11 @@ pub fn ladder_grids(
     let scene = ratio_scene(ratio)?;
     let base = ladder_options();
     let (first, whose) = match req.first_grid {
-        Some(nx) => (nx, "--first-grid"),
-        None => (first_grid(&scene, &base)?, "the grid a 5 % plan takes"),
+        Some(nx) => (nx, FIRST_GRID.to_string()),
+        None => (
+            first_grid(&scene, &base)?,
+            "the grid a 5 % plan takes".to_string(),
+        ),
     };
     let margins = phase_margins(base.margin, req.phases);
     let build = |nx: usize| -> Result<Vec<Model>, ModelError> {
@@ -208,13 +220,13 @@ pub fn ladder_grids(
             Err(ModelError::TooCoarse { .. }) if nx == first => {
                 let fine = coarsest();
                 return Err(input(format!(
-                    "--first-grid {nx}: too coarse for R1/R2 = {ratio} (the contact would span \
-                     too few elements); give --first-grid {fine} or more"
+                    "{FIRST_GRID} {nx}: too coarse for R1/R2 = {ratio} (the contact would span \
+                     too few elements); give {FIRST_GRID} {fine} or more"
                 )));
             }
             Err(e) => {
                 return Err(input(format!(
-                    "--max-grid {}: grid {nx}: {e}",
+                    "{MAX_GRID_SPEC} {}: grid {nx}: {e}",
                     req.max_grid
                 )))
             }
@@ -242,7 +254,7 @@ pub fn ladder_grids(
     Err(short_ladder(
         req,
         ratio,
-        (first, whose),
+        (first, &whose),
         &grids,
         too_large,
         coarsest(),
@@ -275,13 +287,13 @@ fn short_ladder(
     };
     let max = req.max_grid;
     let coarser = if first > coarsest {
-        format!("a coarser --first-grid (from {coarsest}, the coarsest that resolves the contact)")
+        format!("a coarser {FIRST_GRID} (from {coarsest}, the coarsest that resolves the contact)")
     } else {
         String::new()
     };
     input(match too_large {
         Some((nx, need, a)) => format!(
-            "--max-grid {max}: R1/R2 = {ratio}: the ladder from grid {first} ({whose}) fits \
+            "{MAX_GRID_SPEC} {max}: R1/R2 = {ratio}: the ladder from grid {first} ({whose}) fits \
              {list} in memory (grid {nx} needs about {}, more than the {} available), and a \
              ladder needs at least {MIN_LEVELS} grids: {}",
             crate::plan::bytes_text(need),
@@ -293,9 +305,9 @@ fn short_ladder(
             }
         ),
         None => format!(
-            "--max-grid {max}: R1/R2 = {ratio}: the ladder from grid {first} ({whose}) has \
-             {list} up to --max-grid {max}, and a ladder needs at least {MIN_LEVELS} grids: give \
-             --max-grid {} or more{}",
+            "{MAX_GRID_SPEC} {max}: R1/R2 = {ratio}: the ladder from grid {first} ({whose}) has \
+             {list} up to {MAX_GRID_SPEC} {max}, and a ladder needs at least {MIN_LEVELS} grids: \
+             give {MAX_GRID_SPEC} {} or more{}",
             first << (MIN_LEVELS - 1),
             if coarser.is_empty() {
                 String::new()
@@ -368,7 +380,7 @@ fn ladder(
     }
     let e = est.ok_or_else(|| {
         failed(format!(
-            "R1/R2 = {ratio}: fewer than {MIN_LEVELS} grids fit below --max-grid {}",
+            "R1/R2 = {ratio}: fewer than {MIN_LEVELS} grids fit below {MAX_GRID_SPEC} {}",
             req.max_grid
         ))
     })?;
@@ -450,7 +462,7 @@ pub(crate) fn run_or_reuse(
             summary.display()
         )),
     }
-    let _claimed = Outputs::claim(&named("--out", [&summary]))?;
+    let _claimed = Outputs::claim(&named(OUT, [&summary]))?;
     let one = SimulateRequest {
         scene: scene.clone(),
         options,
@@ -490,7 +502,7 @@ fn write_summary(
         );
     }
     let text = serde_json::to_string_pretty(&v).map_err(failed)?;
-    crate::output::file::write_bytes(path, (text + "\n").as_bytes()).map_err(write_error("--out"))
+    crate::output::file::write_text(path, &(text + "\n")).map_err(write_error(OUT))
 }
 
 pub use crate::output::names::reference_runs as runs_dir;
@@ -503,7 +515,7 @@ fn existing_rows(path: &std::path::Path) -> Result<Vec<ReferenceRow>, RunError> 
     }
     let mut r = csv::Reader::from_path(path).map_err(|e| {
         input(format!(
-            "--out {}: cannot read the existing table: {e}",
+            "{OUT} {}: cannot read the existing table: {e}",
             path.display()
         ))
     })?;
@@ -511,7 +523,7 @@ fn existing_rows(path: &std::path::Path) -> Result<Vec<ReferenceRow>, RunError> 
         .collect::<Result<Vec<ReferenceRow>, _>>()
         .map_err(|e| {
             input(format!(
-                "--out {} exists and is not a reference table ({e}): give another name",
+                "{OUT} {} exists and is not a reference table ({e}): give another name",
                 path.display()
             ))
         })
@@ -523,28 +535,31 @@ fn existing_rows(path: &std::path::Path) -> Result<Vec<ReferenceRow>, RunError> 
 /// sorted by ratio) after each ratio so that a long job keeps what it has finished.
 pub fn reference(req: &ReferenceRequest, watch: &dyn Watch) -> Result<ReferenceDone, RunError> {
     if !(req.target > 0.0 && req.target < 1.0) {
-        return Err(input("--target: give a percentage in (0, 100), e.g. 0.3%"));
+        return Err(input(format!(
+            "{TARGET}: give a percentage in (0, 100), e.g. 0.3%"
+        )));
     }
     if req.ratios.is_empty() || req.ratios.iter().any(|r| !(1.0..=1000.0).contains(r)) {
-        return Err(input("--ratios: give ratios R1/R2 in [1, 1000]"));
+        return Err(input(format!("{RATIOS}: give ratios R1/R2 in [1, 1000]")));
     }
     if !req.max_grid.is_power_of_two() || !(MIN_FIRST_GRID..=MAX_GRID).contains(&req.max_grid) {
         return Err(input(format!(
-            "--max-grid {}: give a power of two from {MIN_FIRST_GRID} to {MAX_GRID}",
+            "{MAX_GRID_SPEC} {}: give a power of two from {MIN_FIRST_GRID} to {MAX_GRID}",
             req.max_grid
         )));
     }
     if let Some(nx) = req.first_grid {
         if !nx.is_power_of_two() || nx < MIN_FIRST_GRID || nx > req.max_grid {
             return Err(input(format!(
-                "--first-grid {nx}: give a power of two from {MIN_FIRST_GRID} to --max-grid ({})",
+                "{FIRST_GRID} {nx}: give a power of two from {MIN_FIRST_GRID} to {MAX_GRID_SPEC} \
+                 ({})",
                 req.max_grid
             )));
         }
     }
     if !(1..=MAX_PHASES).contains(&req.phases) {
         return Err(input(format!(
-            "--phases {}: give the runs per grid, 1 to {MAX_PHASES}",
+            "{PHASES} {}: give the runs per grid, 1 to {MAX_PHASES}",
             req.phases
         )));
     }
@@ -557,7 +572,7 @@ pub fn reference(req: &ReferenceRequest, watch: &dyn Watch) -> Result<ReferenceD
         .map(|&ratio| ladder_grids(req, ratio, available))
         .collect::<Result<Vec<_>, _>>()?;
     let kept = existing_rows(&req.out)?;
-    let _claimed = Outputs::claim(&named("--out", [&req.out]))?;
+    let _claimed = Outputs::claim(&named(OUT, [&req.out]))?;
     let mut table: Vec<ReferenceRow> = kept
         .into_iter()
         .filter(|r| !req.ratios.contains(&r.ratio))
@@ -568,7 +583,7 @@ pub fn reference(req: &ReferenceRequest, watch: &dyn Watch) -> Result<ReferenceD
         rows.push(row.clone());
         table.push(row);
         table.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
-        crate::output::file::write_csv(&req.out, None, &table).map_err(write_error("--out"))?;
+        crate::output::file::write_csv(&req.out, None, &table).map_err(write_error(OUT))?;
     }
     let written = std::fs::read_to_string(&req.out).unwrap_or_default();
     Ok(ReferenceDone {

@@ -15,8 +15,11 @@ use crate::analysis::fields::{
 use crate::model::{Measure, Model, ModelOptions, Onsets};
 use crate::output::provenance::Provenance;
 use crate::output::summary::Summary;
-use crate::output::{fields_npz, names, pressure_chart};
+use crate::output::{fields_npz, names, pressure_chart, NamedBy};
 use crate::plan;
+use crate::run::schema::{
+    Spec, ACCURACY, EXTRAPOLATE, EXTRAPOLATE_GRIDS, FIELDS, GRID, OUT, SUMMARY, TIME_LIMIT,
+};
 use crate::scene::Scene;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -145,24 +148,24 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
     } = plan_models(req)?;
     let planned_runs = models.len();
     let refs: Vec<&Model> = models.iter().collect();
-    let flag = match req.mode {
-        Mode::Single => "--grid",
-        _ => "--extrapolate-grids",
+    let param = match req.mode {
+        Mode::Single => GRID,
+        _ => EXTRAPOLATE_GRIDS,
     };
-    plan::check_memory_with_fields(&refs, 1, flag, &req.fields).map_err(input)?;
+    plan::check_memory_with_fields(&refs, 1, param, &req.fields).map_err(input)?;
     let (outs, _claimed) = match &req.sink {
         Sink::Files { out, summary } => {
             let outs = output_paths(req, out, &models)?;
-            let mut targets: Vec<(PathBuf, String)> =
-                outs.iter().map(|p| (p.clone(), "--out".into())).collect();
+            let mut targets: Vec<(PathBuf, NamedBy)> =
+                outs.iter().map(|p| (p.clone(), OUT.into())).collect();
             if !req.fields.is_none() {
                 for o in &outs {
-                    targets.push((names::fields_npz(o), "--fields".into()));
-                    targets.push((names::pressure_chart(o), "--fields".into()));
+                    targets.push((names::fields_npz(o), FIELDS.into()));
+                    targets.push((names::pressure_chart(o), FIELDS.into()));
                 }
             }
             if let Some(p) = summary {
-                targets.push((p.clone(), "--summary".into()));
+                targets.push((p.clone(), SUMMARY.into()));
             }
             Outputs::check(&targets)?;
             let claimed = Outputs::claim(&targets)?;
@@ -223,7 +226,7 @@ fn write_fields(
         let npz = names::fields_npz(out);
         match fields_npz::write_npz(&npz, &run.fields, about) {
             Ok(()) => written.push(npz),
-            Err(e) => unwritten.push(e.with_flag("--fields").to_string()),
+            Err(e) => unwritten.push(e.with_param(FIELDS).to_string()),
         }
         // The run's lowest state: its force minimum, or only the lowest force it recorded.
         let lowest = |f: &&StateFields| {
@@ -242,7 +245,7 @@ fn write_fields(
             );
             match pressure_chart::write_pressure_svg(&chart, min, &title) {
                 Ok(()) => written.push(chart),
-                Err(e) => unwritten.push(e.with_flag("--fields").to_string()),
+                Err(e) => unwritten.push(e.with_param(FIELDS).to_string()),
             }
         }
     }
@@ -274,7 +277,7 @@ fn output_paths(
                 .unwrap_or_else(|| names::simulate_stem(name, &req.scene.tag()));
             if stem.is_dir() || stem.file_stem().is_none() {
                 return Err(input(format!(
-                    "--out {}: with several grids --out is the stem of one states file per \
+                    "{OUT} {}: with several grids {OUT} is the stem of one states file per \
                      grid (e.g. runs/r5.csv gives runs/r5-n128.csv, …); give a file name, not a \
                      folder",
                     stem.display()
@@ -333,10 +336,7 @@ fn run_grids(
             opened.note
         ));
         let mut any = opened.backend;
-        let file = out.as_deref().map(|path| StatesFile {
-            path,
-            flag: "--out",
-        });
+        let file = out.as_deref().map(|path| StatesFile { path, param: OUT });
         let mut picks = FieldPicks::new(req.fields.clone());
         let observer: Option<&mut dyn MaskObserver> = match req.fields.is_none() {
             true => None,
@@ -352,7 +352,7 @@ fn run_grids(
         if !unrecorded.is_empty() {
             let list: Vec<String> = unrecorded.iter().map(|i| i.to_string()).collect();
             watch.warning(&format!(
-                "--fields: no fields for state(s) {}: the {}×{} run recorded {} states \
+                "{FIELDS}: no fields for state(s) {}: the {}×{} run recorded {} states \
                  (numbered from 0)",
                 list.join(", "),
                 model.nx,
@@ -481,7 +481,7 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
     if let (Some(why), true) = (&timed_out, reports.is_empty()) {
         let limit = req.time_limit.unwrap_or_default().as_secs_f64();
         failure = Some(format!(
-            "--time-limit {}: {why}, and no grid had reached the force minimum; allow more \
+            "{TIME_LIMIT} {}: {why}, and no grid had reached the force minimum; allow more \
              time",
             crate::text::duration(limit)
         ));
@@ -508,7 +508,7 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
     if let (Some(why), false) = (&timed_out, summary.runs.is_empty()) {
         let limit = req.time_limit.unwrap_or_default().as_secs_f64();
         summary.warnings.push(format!(
-            "--time-limit {} reached: {why}; the answer is from the grids that finished",
+            "{TIME_LIMIT} {} reached: {why}; the answer is from the grids that finished",
             crate::text::duration(limit)
         ));
     }
@@ -527,7 +527,7 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
             let written: Vec<String> = states.iter().map(|s| s.display().to_string()).collect();
             let why = format!(
                 "{}; the states were written (complete): {}",
-                e.with_flag("--summary"),
+                e.with_param(SUMMARY),
                 written.join(", ")
             );
             failure = Some(match failure {
@@ -560,14 +560,14 @@ struct Planned {
 
 /// The models the request runs.
 fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
-    let build = |options: &ModelOptions, flag: &str| {
-        Model::build(&req.scene, options).map_err(|e| match flag {
-            "" => input(e),
-            f => input(format!("{f} {}: {e}", options.nx)),
+    let build = |options: &ModelOptions, param: Option<&'static Spec>| {
+        Model::build(&req.scene, options).map_err(|e| match param {
+            None => input(e),
+            Some(p) => input(format!("{p} {}: {e}", options.nx)),
         })
     };
-    // One model per grid Nx (Ny fitted to the contact), a refusal naming `flag` and the grid.
-    let per_grid = |grids: &[usize], options: &ModelOptions, flag: &str| {
+    // One model per grid Nx (Ny fitted to the contact), a refusal naming `param` and the grid.
+    let per_grid = |grids: &[usize], options: &ModelOptions, param: &'static Spec| {
         grids
             .iter()
             .map(|&nx| {
@@ -576,20 +576,20 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
                     ny: None,
                     ..options.clone()
                 };
-                build(&options, flag)
+                build(&options, Some(param))
             })
             .collect::<Result<Vec<_>, _>>()
     };
     if !req.scene.is_ellipsoid() && req.mode != Mode::Single {
         return Err(input(format!(
-            "--accuracy and --extrapolate need a convergence law, and the {} has none yet \
-             (they are for the ellipsoid): run one grid with --grid N and refine it",
+            "{ACCURACY} and {EXTRAPOLATE} need a convergence law, and the {} has none yet \
+             (they are for the ellipsoid): run one grid with {GRID} N and refine it",
             req.scene.indenter.name()
         )));
     }
     match &req.mode {
         Mode::Single => Ok(Planned {
-            models: vec![build(&req.options, "")?],
+            models: vec![build(&req.options, None)?],
             target: None,
             note: None,
             fallback: 0,
@@ -600,11 +600,11 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
                 None => plan::extrapolation_grids(&req.scene, &req.options).map_err(input)?,
             };
             if !(2..=8).contains(&grids.len()) || grids.windows(2).any(|w| w[1] <= w[0]) {
-                return Err(input(
-                    "--extrapolate-grids: give 2 to 8 increasing grids, e.g. 64,128,256",
-                ));
+                return Err(input(format!(
+                    "{EXTRAPOLATE_GRIDS}: give 2 to 8 increasing grids, e.g. 64,128,256"
+                )));
             }
-            let models = per_grid(&grids, &req.options, "--extrapolate-grids")?;
+            let models = per_grid(&grids, &req.options, EXTRAPOLATE_GRIDS)?;
             Ok(Planned {
                 models,
                 target: None,
@@ -630,13 +630,13 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
                     grids.insert(0, first);
                     fallback = 1;
                     note.push_str(&format!(
-                        "; with --time-limit, grid {first} first (the coarsest that resolves \
+                        "; with {TIME_LIMIT}, grid {first} first (the coarsest that resolves \
                          the contact), so that an answer exists however early the limit comes \
                          (used only if the planned grids do not finish)"
                     ));
                 }
             }
-            let models = per_grid(&grids, &options, "--accuracy")?;
+            let models = per_grid(&grids, &options, ACCURACY)?;
             Ok(Planned {
                 models,
                 target: Some(*target),

@@ -23,6 +23,7 @@ use crate::output::study_index::{self, Figure, StudyPage};
 use crate::output::summary::Summary;
 use crate::output::sweep_charts::{force_vs_ratio_chart, pulloff_curves_chart};
 use crate::output::sweep_csv::{self, SweepRow};
+use crate::run::schema::{ACCURACY, OUT, QUICK};
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -100,7 +101,7 @@ pub fn study(args: &StudyRequest, watch: &dyn Watch) -> Result<StudyDone, RunErr
     let mut targets: Vec<PathBuf> = work.iter().flat_map(|j| run_files(&j.out)).collect();
     targets.push(sweep_csv::sweep_csv_path(&sweep_dir));
     targets.extend(FILES.iter().map(|file| args.out.join(file)));
-    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    let _claimed = Outputs::claim(&named(OUT, &targets))?;
     announce(args, watch);
     let results = run_study_jobs(work, args, watch);
     let mut failures: Vec<String> = results.iter().filter_map(|r| r.error.clone()).collect();
@@ -187,7 +188,7 @@ fn study_jobs(args: &StudyRequest, sweep_dir: &Path) -> Result<Vec<Job>, RunErro
 /// Refuse a study whose `--jobs` largest pull-offs do not fit in memory.
 fn check_study_memory(work: &[Job], args: &StudyRequest) -> Result<(), RunError> {
     let refs: Vec<&Model> = work.iter().map(|j| &j.model).collect();
-    crate::plan::check_memory(&refs, args.jobs, "--quick").map_err(|e| {
+    crate::plan::check_memory(&refs, args.jobs, QUICK).map_err(|e| {
         let why = match e {
             crate::model::ModelError::Invalid { expected, .. } => expected,
             other => other.to_string(),
@@ -195,9 +196,12 @@ fn check_study_memory(work: &[Job], args: &StudyRequest) -> Result<(), RunError>
         input(format!(
             "the study's grids do not fit in this machine's memory{}: {why}",
             if args.quick {
-                ""
+                String::new()
             } else {
-                " (use --quick for one grid of 64 to 256 per ratio, or a machine with more memory)"
+                format!(
+                    " (use {QUICK} for one grid of 64 to 256 per ratio, or a machine with more \
+                     memory)"
+                )
             }
         ))
     })
@@ -237,7 +241,7 @@ fn write_sweep_rows(sweep_dir: &Path, results: &[JobResult]) -> Result<Vec<Sweep
         .collect();
     rows.sort_by(|a, b| a.ratio.total_cmp(&b.ratio));
     sweep_csv::write_rows(&sweep_csv::sweep_csv_path(sweep_dir), &rows)
-        .map_err(write_error("--out"))?;
+        .map_err(write_error(OUT))?;
     Ok(rows)
 }
 
@@ -265,9 +269,9 @@ fn ratio_runs(results: &[JobResult]) -> Vec<(f64, Vec<RatioRun>)> {
 /// advice this command can follow.
 fn study_warnings(results: &[JobResult], quick: bool) -> Vec<String> {
     let advice = if quick {
-        "; the full study (reproduce without --quick) runs finer grids"
+        format!("; the full study (reproduce without {QUICK}) runs finer grids")
     } else {
-        "; the study's grids are fixed: simulate this ratio with --accuracy for its answer"
+        format!("; the study's grids are fixed: simulate this ratio with {ACCURACY} for its answer")
     };
     results
         .iter()
@@ -275,6 +279,7 @@ fn study_warnings(results: &[JobResult], quick: bool) -> Vec<String> {
             let finest = !results
                 .iter()
                 .any(|o| o.ratio == r.ratio && o.grid.0 > r.grid.0);
+            let advice = &advice;
             r.warnings().into_iter().filter_map(move |w| {
                 if !w.contains(crate::analysis::convergence::COARSE_WARNING) {
                     Some(w)
@@ -288,17 +293,16 @@ fn study_warnings(results: &[JobResult], quick: bool) -> Vec<String> {
         .collect()
 }
 
-/// A too-coarse warning with its `simulate` advice replaced by `advice` (what the study's
-/// user can change); any other warning as it is.
+/// A too-coarse warning with its `simulate` advice (from
+/// [`coarse_grid_advice`](crate::analysis::convergence::coarse_grid_advice) on) replaced by
+/// `advice` (what the study's user can change); any other warning as it is.
 fn with_advice(warning: &str, advice: &str) -> String {
-    match warning.split_once(SIMULATE_ADVICE) {
+    let simulate_advice = crate::analysis::convergence::coarse_grid_advice();
+    match warning.split_once(simulate_advice.as_str()) {
         Some((head, _)) => format!("{head}{advice}"),
         None => warning.to_string(),
     }
 }
-
-/// Where a too-coarse warning's advice for `simulate` begins.
-const SIMULATE_ADVICE: &str = "; use a finer --grid";
 
 /// The branch laws of each ratio: at Δx → 0 from the full study's grids, else the one
 /// grid's (with a warning where grids could not be extrapolated together).
@@ -366,7 +370,7 @@ impl<'a> Figures<'a> {
     fn add(&mut self, file: &str, chart: LineChart, caption: String) -> Result<(), RunError> {
         chart
             .write_svg(&self.out.join(file))
-            .map_err(write_error("--out"))?;
+            .map_err(write_error(OUT))?;
         self.figures.push(Figure {
             file: file.into(),
             caption,
@@ -549,19 +553,21 @@ fn crossed_step(
         out: crossed_dir.clone(),
     };
     let t = Instant::now();
-    match crossed(&crossed_req, &crossed_flag, watch) {
+    match crossed(&crossed_req, &|p| p, watch) {
         Ok(done) => {
             failures.extend(
                 done.failures
                     .iter()
                     .map(|f| format!("crossed cylinders: {f}")),
             );
-            let advice = "; the study's crossed cylinders run fixed grids: simulate that ratio \
-                          with --accuracy for its answer";
+            let advice = format!(
+                "; the study's crossed cylinders run fixed grids: simulate that ratio with \
+                 {ACCURACY} for its answer"
+            );
             warnings.extend(
                 done.warnings
                     .iter()
-                    .map(|w| format!("crossed cylinders: {}", with_advice(w, advice))),
+                    .map(|w| format!("crossed cylinders: {}", with_advice(w, &advice))),
             );
         }
         Err(e) => failures.push(format!("crossed cylinders: {e}")),
@@ -570,8 +576,9 @@ fn crossed_step(
     if crossed_svg.exists() {
         let svg = std::fs::read(&crossed_svg)
             .map_err(|e| failed(format!("cannot read {}: {e}", crossed_svg.display())))?;
+        // A copy of a file already written in the command line's words.
         crate::output::file::write_bytes(&args.out.join("crossed.svg"), &svg)
-            .map_err(write_error("--out"))?;
+            .map_err(write_error(OUT))?;
         figures.figures.push(Figure {
             file: "crossed.svg".into(),
             caption: format!(
@@ -610,11 +617,6 @@ fn ratio_row(ratio: f64, group: &[&JobResult]) -> SweepRow {
         }
         None => finest.row(),
     }
-}
-
-/// The crossed-cylinder parameters as this request names them (it has no flags of its own).
-fn crossed_flag(parameter: &'static str) -> &'static str {
-    parameter
 }
 
 /// One ratio's branch fits with their quality and, where extrapolated to Δx → 0, their
@@ -722,12 +724,11 @@ fn write_csv<T: serde::Serialize>(
     path: &Path,
     rows: impl Iterator<Item = T>,
 ) -> Result<(), RunError> {
-    crate::output::file::write_csv(path, None, rows).map_err(write_error("--out"))
+    crate::output::file::write_csv(path, None, rows).map_err(write_error(OUT))
 }
 
 /// index.html, as [`study_index::index_html`] writes it.
 fn write_index(dir: &Path, page: &StudyPage) -> Result<(), RunError> {
     let html = study_index::index_html(page);
-    crate::output::file::write_bytes(&dir.join("index.html"), html.as_bytes())
-        .map_err(write_error("--out"))
+    crate::output::file::write_text(&dir.join("index.html"), &html).map_err(write_error(OUT))
 }

@@ -10,7 +10,9 @@ use super::{input, RunError};
 use crate::model::{Model, ModelOptions};
 use crate::output::sweep_charts::write_sweep_charts;
 use crate::output::sweep_csv::{self, Shard, SweepRow, SweepSettings};
-use crate::scene::Scene;
+use crate::output::NamedBy;
+use crate::run::schema::{ALLOW_MISSING, GRID, OUT, RATIO, RATIOS};
+use crate::scene::{Scene, SceneError};
 use std::path::{Path, PathBuf};
 
 /// A request for a sweep over R1/R2.
@@ -61,14 +63,19 @@ pub use crate::output::names::sweep_charts as chart_files;
 /// The model of one ratio (R2 = E* = Δγ = 1: the normalised results do not depend on them)
 /// and the accuracy it is held to.
 fn model_for(req: &SweepRequest, ratio: f64) -> Result<(Model, Option<f64>), RunError> {
-    let fail = |e: String| {
-        input(format!(
-            "--ratios {}: {}",
-            crate::text::compact(ratio),
-            e.replacen("--ratio = ", "R1/R2 = ", 1)
-        ))
-    };
-    let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(|e| fail(e.to_string()))?;
+    let fail = |e: String| input(format!("{RATIOS} {}: {e}", crate::text::compact(ratio)));
+    // The ratio out of range is said as R1/R2 (the sweep's ratios are not its own ratio).
+    let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(|e| match e {
+        SceneError::Invalid {
+            param,
+            value,
+            expected,
+        } if param == RATIO => fail(format!(
+            "R1/R2 = {} is invalid: {expected}",
+            crate::text::compact(value)
+        )),
+        other => fail(other.to_string()),
+    })?;
     let base = ModelOptions {
         steps: req.steps,
         start_radius_bar: req.start_radius,
@@ -92,7 +99,7 @@ pub fn sweep(req: &SweepRequest, watch: &dyn Watch) -> Result<SweepDone, RunErro
     if req.shard.is_none() {
         targets.extend(chart_files(&req.out));
     }
-    let _claimed = Outputs::claim(&named("--out", &targets))?;
+    let _claimed = Outputs::claim(&named(OUT, &targets))?;
     watch.note(&format!(
         "sweep: {} ratio(s) {:?} ({}: grids {:?}){}, {} at a time",
         jobs.len(),
@@ -122,7 +129,7 @@ pub fn sweep(req: &SweepRequest, watch: &dyn Watch) -> Result<SweepDone, RunErro
                 warnings.extend(w);
                 (Some(chart_files(&req.out)), None)
             }
-            Err(e) => (None, Some(e.with_flag("--out").to_string())),
+            Err(e) => (None, Some(e.with_param(OUT).to_string())),
         },
     };
     Ok(SweepDone {
@@ -147,7 +154,7 @@ fn sweep_jobs(req: &SweepRequest) -> Result<Vec<Job>, RunError> {
         model_for(req, ratio)?;
     }
     let refs: Vec<&Model> = models.iter().map(|(m, _)| m).collect();
-    crate::plan::check_memory(&refs, req.jobs, "--grid").map_err(input)?;
+    crate::plan::check_memory(&refs, req.jobs, GRID).map_err(input)?;
     Ok(models
         .into_iter()
         .map(|(model, target)| {
@@ -175,9 +182,9 @@ fn write_summary(req: &SweepRequest, path: &Path, rows: &[SweepRow]) -> Result<(
             };
             Shard::new(settings, kn, rows.to_vec())
                 .write(path)
-                .map_err(write_error("--out"))
+                .map_err(write_error(OUT))
         }
-        None => sweep_csv::write_rows(path, rows).map_err(write_error("--out")),
+        None => sweep_csv::write_rows(path, rows).map_err(write_error(OUT)),
     }
 }
 
@@ -262,6 +269,9 @@ fn listed(ratios: &[f64]) -> String {
         .join(", ")
 }
 
+/// `collect`'s folder, which names its outputs (an argument, not a parameter).
+const DIR: NamedBy = NamedBy::Argument("DIR");
+
 /// Merge the shard files in `dir` into `dir/sweep.csv` and its charts, after checking that
 /// they are of one sweep with no ratio twice. Missing or incomplete ratios stop the merge
 /// (naming them) unless `allow_missing`.
@@ -299,7 +309,7 @@ pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunErro
     }
     if !problems.is_empty() && !allow_missing {
         return Err(super::failed(format!(
-            "{}; nothing was written (pass --allow-missing to merge what there is)",
+            "{}; nothing was written (pass {ALLOW_MISSING} to merge what there is)",
             problems.join("; ")
         )));
     }
@@ -308,8 +318,8 @@ pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunErro
     let mut targets = vec![path.clone()];
     targets.extend(charts.iter().cloned());
     note_read_files(dir, &c);
-    let _claimed = Outputs::claim(&named("DIR", &targets))?;
-    sweep_csv::write_rows(&path, &c.rows).map_err(write_error("DIR"))?;
+    let _claimed = Outputs::claim(&named(DIR, &targets))?;
+    sweep_csv::write_rows(&path, &c.rows).map_err(write_error(DIR))?;
     let mut warnings = Vec::new();
     if !unchecked.is_empty() {
         warnings.push(format!(
@@ -325,7 +335,7 @@ pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunErro
         ));
     }
     let curves = sweep_curves(dir, &c.rows);
-    warnings.extend(write_sweep_charts(dir, &c.rows, &curves).map_err(write_error("DIR"))?);
+    warnings.extend(write_sweep_charts(dir, &c.rows, &curves).map_err(write_error(DIR))?);
     Ok(Merged {
         rows: c.rows.len(),
         shards_found: c.shards - c.missing_shards.len(),

@@ -4,6 +4,7 @@
 
 use super::measured::MeasuredSurface;
 use super::{check, input_range, Scales, SceneError};
+use crate::run::schema::{EXPONENT, RADIUS, SCALE};
 use crate::text::compact;
 use crate::theory::hertz::HertzContact;
 use crate::theory::power_law::{kendall_approach, kendall_force, PowerLawContact};
@@ -97,19 +98,19 @@ pub struct PullOffHint {
 }
 
 impl Indenter {
-    /// Check the shape's parameters; errors name the flag that sets each.
+    /// Check the shape's parameters; errors name the parameter that sets each.
     pub fn checked(self) -> Result<Self, SceneError> {
         match self {
             Indenter::Ellipsoid { .. } | Indenter::HeightMap(_) => Ok(self),
             Indenter::PowerLaw { n, scale } => {
                 check(
-                    "--exponent",
+                    EXPONENT,
                     n,
                     (MIN_EXPONENT..=MAX_EXPONENT).contains(&n),
                     &format!("an exponent n in [{MIN_EXPONENT}, {MAX_EXPONENT}] (2 is the sphere)"),
                 )?;
                 check(
-                    "--scale",
+                    SCALE,
                     scale,
                     super::input_in_range(scale),
                     &input_range("the factor s of h = s·rⁿ (length^(1−n))"),
@@ -117,13 +118,13 @@ impl Indenter {
                 // Every scale of the problem must stay finite: the length scale c_n.
                 let probe =
                     PowerLawContact::new(n, scale, 1.0, 1.0).map_err(|e| SceneError::Invalid {
-                        flag: "--scale",
+                        param: SCALE,
                         value: scale,
                         expected: e,
                     })?;
                 let (length, _, _) = probe.scales();
                 check(
-                    "--scale",
+                    SCALE,
                     scale,
                     length.is_finite() && length > 0.0,
                     "a factor whose contact length scale is finite; rescale the units",
@@ -132,7 +133,7 @@ impl Indenter {
             }
             Indenter::FlatPunch { radius } => {
                 check(
-                    "--radius",
+                    RADIUS,
                     radius,
                     super::input_in_range(radius),
                     &input_range("a punch radius"),
@@ -451,33 +452,33 @@ mod tests {
     }
 
     #[test]
-    fn bad_shapes_name_their_flag() {
-        for (shape, flag) in [
-            (Indenter::PowerLaw { n: 0.5, scale: 1.0 }, "--exponent"),
+    fn bad_shapes_name_their_parameter() {
+        use crate::run::schema::{EXPONENT, RADIUS, SCALE};
+        for (shape, param) in [
+            (Indenter::PowerLaw { n: 0.5, scale: 1.0 }, EXPONENT),
             (
                 Indenter::PowerLaw {
                     n: f64::NAN,
                     scale: 1.0,
                 },
-                "--exponent",
+                EXPONENT,
             ),
             (
                 Indenter::PowerLaw {
                     n: 3.0,
                     scale: -1.0,
                 },
-                "--scale",
+                SCALE,
             ),
-            (Indenter::FlatPunch { radius: 0.0 }, "--radius"),
+            (Indenter::FlatPunch { radius: 0.0 }, RADIUS),
             (
                 Indenter::FlatPunch {
                     radius: f64::INFINITY,
                 },
-                "--radius",
+                RADIUS,
             ),
         ] {
-            let e = shape.checked().unwrap_err().to_string();
-            assert!(e.contains(flag), "{e}");
+            assert_eq!(shape.checked().unwrap_err().param(), param);
         }
     }
 }

@@ -5,6 +5,7 @@
 
 use super::height_map::HeightMap;
 use super::SceneError;
+use crate::run::schema::HEIGHT_MAP;
 use crate::text::compact;
 
 /// The fit around the lowest node takes the nodes within this fraction of the map's smaller
@@ -32,13 +33,13 @@ pub struct MeasuredSurface {
 impl MeasuredSurface {
     /// Place `map` (read from `source`): fit h ≈ c0 + g·x + ½ xᵀ K x around its lowest node,
     /// take the fit's stationary point as the apex (the lowest node if that point lies
-    /// outside the fit's disc). Refused (naming `--height-map`) where the map is not convex
+    /// outside the fit's disc). Refused (naming the height map's parameter) where the map is not convex
     /// around its lowest node.
     pub fn new(map: HeightMap, source: &str) -> Result<Self, SceneError> {
         let (ex, ey) = map.extent();
         let radius = (FIT_FRACTION * ex.min(ey)).max(MIN_FIT_NODES * map.spacing());
         let refuse = |why: String| SceneError::Refused {
-            flag: "--height-map",
+            param: HEIGHT_MAP,
             why: format!("{source}: {why}"),
         };
         let fit = map.curvature_fit(radius).ok_or_else(|| {

@@ -10,6 +10,7 @@ pub use indenter::{
 };
 pub use measured::MeasuredSurface;
 
+use crate::run::schema::{Spec, E_STAR, R1, R2, RATIO, WORK_OF_ADHESION};
 use crate::text::compact;
 use thiserror::Error;
 
@@ -26,45 +27,54 @@ pub const MIN_INPUT: f64 = 1e-30;
 /// Largest dimensional input accepted (see [`MIN_INPUT`]).
 pub const MAX_INPUT: f64 = 1e30;
 
-/// An invalid scene parameter, named as the command-line flag that sets it.
+/// An invalid scene parameter, named by its [`Spec`] (which each front end words: the
+/// command line as its flag, Python as its keyword).
 #[derive(Debug, Error, PartialEq)]
 pub enum SceneError {
     /// A parameter is outside its valid range.
-    #[error("{flag} = {} is invalid: {expected}", compact(*value))]
+    #[error("{param} = {} is invalid: {expected}", compact(*value))]
     Invalid {
-        /// The flag that sets the parameter.
-        flag: &'static str,
+        /// The parameter.
+        param: &'static Spec,
         /// The value given.
         value: f64,
         /// The valid range, in words.
         expected: String,
     },
     /// An input that is not a number (a file) cannot be used, for the reason given.
-    #[error("{flag} {why}")]
+    #[error("{param} {why}")]
     Refused {
-        /// The flag that gives the input.
-        flag: &'static str,
+        /// The parameter that gives the input.
+        param: &'static Spec,
         /// What is wrong, starting with the input's name.
         why: String,
     },
 }
 
 impl SceneError {
-    /// The same error naming its parameter by the front end's flag (`rename` maps the
-    /// library's name, e.g. "--angle", to the flag that sets it there, e.g. "--angles").
-    pub fn renamed(self, rename: &dyn Fn(&'static str) -> &'static str) -> SceneError {
+    /// The parameter the error names.
+    pub fn param(&self) -> &'static Spec {
+        match self {
+            SceneError::Invalid { param, .. } | SceneError::Refused { param, .. } => param,
+        }
+    }
+
+    /// The same error naming its parameter as the front end does (`rename` maps the
+    /// library's parameter, e.g. [`ANGLE`](crate::run::schema::ANGLE), to the one that sets
+    /// it there, e.g. [`ANGLES`](crate::run::schema::ANGLES)).
+    pub fn renamed(self, rename: &dyn Fn(&'static Spec) -> &'static Spec) -> SceneError {
         match self {
             SceneError::Invalid {
-                flag,
+                param,
                 value,
                 expected,
             } => SceneError::Invalid {
-                flag: rename(flag),
+                param: rename(param),
                 value,
                 expected,
             },
-            SceneError::Refused { flag, why } => SceneError::Refused {
-                flag: rename(flag),
+            SceneError::Refused { param, why } => SceneError::Refused {
+                param: rename(param),
                 why,
             },
         }
@@ -87,7 +97,7 @@ pub struct Scene {
 }
 
 pub(crate) fn check(
-    flag: &'static str,
+    param: &'static Spec,
     value: f64,
     ok: bool,
     expected: &str,
@@ -96,7 +106,7 @@ pub(crate) fn check(
         Ok(())
     } else {
         Err(SceneError::Invalid {
-            flag,
+            param,
             value,
             expected: expected.to_string(),
         })
@@ -120,16 +130,11 @@ pub(crate) fn input_range(what: &str) -> String {
 impl Scene {
     /// A scene from the two radii (length), E* (force/length²) and Δγ (force/length).
     pub fn new(r1: f64, r2: f64, e_star: f64, work_of_adhesion: f64) -> Result<Self, SceneError> {
-        check("--r2", r2, input_in_range(r2), &input_range("a radius"))?;
-        check("--r1", r1, input_in_range(r1), &input_range("a radius"))?;
+        check(R2, r2, input_in_range(r2), &input_range("a radius"))?;
+        check(R1, r1, input_in_range(r1), &input_range("a radius"))?;
+        check(R1, r1, r1 >= r2, "R1 must be ≥ R2 (x is the major axis)")?;
         check(
-            "--r1",
-            r1,
-            r1 >= r2,
-            "R1 must be ≥ R2 (x is the major axis)",
-        )?;
-        check(
-            "--r1",
+            R1,
             r1,
             r1 / r2 <= MAX_RATIO,
             &format!("R1/R2 = {} must be ≤ {MAX_RATIO}", compact(r1 / r2)),
@@ -138,20 +143,20 @@ impl Scene {
     }
 
     /// A scene of any indenter, E* (force/length²) and Δγ (force/length); the shape's
-    /// parameters are checked (errors name their flags).
+    /// parameters are checked (errors name their parameters).
     pub fn with_indenter(
         indenter: Indenter,
         e_star: f64,
         work_of_adhesion: f64,
     ) -> Result<Self, SceneError> {
         check(
-            "--e-star",
+            E_STAR,
             e_star,
             input_in_range(e_star),
             &input_range("a modulus"),
         )?;
         check(
-            "--work-of-adhesion",
+            WORK_OF_ADHESION,
             work_of_adhesion,
             input_in_range(work_of_adhesion),
             &input_range("an energy per area"),
@@ -171,7 +176,7 @@ impl Scene {
         work_of_adhesion: f64,
     ) -> Result<Self, SceneError> {
         check(
-            "--ratio",
+            RATIO,
             ratio,
             (1.0..=MAX_RATIO).contains(&ratio),
             &format!("R1/R2 must be in [1, {MAX_RATIO}]"),
@@ -248,39 +253,38 @@ mod tests {
     }
 
     #[test]
-    fn bad_values_name_their_flag() {
-        let e = Scene::from_ratio(0.5, 1.0, 1.0, 1.0).unwrap_err();
-        assert!(e.to_string().contains("--ratio"));
-        let e = Scene::from_ratio(f64::NAN, 1.0, 1.0, 1.0).unwrap_err();
-        assert!(e.to_string().contains("--ratio"));
-        let e = Scene::from_ratio(2.0, 1.0, -1.0, 1.0).unwrap_err();
-        assert!(e.to_string().contains("--e-star"));
-        let e = Scene::from_ratio(2.0, 1.0, 1.0, 0.0).unwrap_err();
-        assert!(e.to_string().contains("--work-of-adhesion"));
-        let e = Scene::from_ratio(2.0, 0.0, 1.0, 1.0).unwrap_err();
-        assert!(e.to_string().contains("--r2"));
+    fn bad_values_name_their_parameter() {
+        for (e, param) in [
+            (Scene::from_ratio(0.5, 1.0, 1.0, 1.0), RATIO),
+            (Scene::from_ratio(f64::NAN, 1.0, 1.0, 1.0), RATIO),
+            (Scene::from_ratio(2.0, 1.0, -1.0, 1.0), E_STAR),
+            (Scene::from_ratio(2.0, 1.0, 1.0, 0.0), WORK_OF_ADHESION),
+            (Scene::from_ratio(2.0, 0.0, 1.0, 1.0), R2),
+        ] {
+            let e = e.unwrap_err();
+            assert_eq!(e.param(), param);
+            assert!(e.to_string().starts_with(&param.to_string()), "{e}");
+        }
     }
 
     #[test]
     fn inputs_are_bounded_and_echoed_short() {
-        for (e, flag) in [
-            (Scene::from_ratio(1e8, 1.0, 1.0, 1.0), "--ratio"),
-            (Scene::from_ratio(2.0, 1.0, 1e300, 1.0), "--e-star"),
-            (Scene::from_ratio(2.0, 1.0, 1e-300, 1.0), "--e-star"),
-            (
-                Scene::from_ratio(2.0, 1.0, 1.0, 1e-300),
-                "--work-of-adhesion",
-            ),
-            (Scene::new(2e3, 1.0, 1.0, 1.0), "--r1"),
+        for (e, param) in [
+            (Scene::from_ratio(1e8, 1.0, 1.0, 1.0), RATIO),
+            (Scene::from_ratio(2.0, 1.0, 1e300, 1.0), E_STAR),
+            (Scene::from_ratio(2.0, 1.0, 1e-300, 1.0), E_STAR),
+            (Scene::from_ratio(2.0, 1.0, 1.0, 1e-300), WORK_OF_ADHESION),
+            (Scene::new(2e3, 1.0, 1.0, 1.0), R1),
         ] {
-            let e = e.unwrap_err().to_string();
-            assert!(e.contains(flag), "{e}");
-            assert!(e.len() < 200, "{e}");
+            let e = e.unwrap_err();
+            assert_eq!(e.param(), param);
+            assert!(e.to_string().len() < 200, "{e}");
         }
         let e = Scene::from_ratio(2.0, 1.0, 1e300, 1.0)
             .unwrap_err()
             .to_string();
-        assert!(e.starts_with("--e-star = 1e300 is invalid"), "{e}");
+        let shown = crate::run::schema::words::flags(&e);
+        assert!(shown.starts_with("--e-star = 1e300 is invalid"), "{shown}");
         assert!(Scene::from_ratio(MAX_RATIO, 1.0, MAX_INPUT, MIN_INPUT).is_ok());
     }
 }

@@ -138,7 +138,13 @@ impl fmt::Display for CgEnd {
             CgEnd::Stagnated => "stagnated (its best residual stopped halving)",
             CgEnd::Diverged => "diverged (its residual rose 1000 times above its best)",
             CgEnd::NonFinite => "produced a non-finite value",
-            CgEnd::IterationLimit => "reached the iteration limit (--cg-max-iterations)",
+            CgEnd::IterationLimit => {
+                return write!(
+                    f,
+                    "reached the iteration limit ({})",
+                    crate::run::schema::CG_MAX_ITERATIONS
+                )
+            }
             CgEnd::ResidualGap => {
                 "reached the tolerance in its recurrence but not in the true residual \
                  recomputed from p (the arithmetic's precision floor)"

@@ -15,8 +15,16 @@ pub use protocol::{run, run_until, run_watched, run_with_contact, Outcome};
 pub use state::{Phase, State};
 
 use crate::backend::BackendError;
+use crate::run::schema::{CG_ACCEPT, CG_TOLERANCE, MARGIN, START_RADIUS};
 use cg::CgEnd;
 use thiserror::Error;
+
+/// The advice of [`SolverError::ContactAtEdge`]: more room around the contact, in a
+/// simulation's parameters. A command that sets the domain otherwise (coverage, whose cases
+/// take their margins from a list) gives its own advice in place of this piece.
+pub fn edge_advice() -> String {
+    format!("use a larger {MARGIN} or a smaller {START_RADIUS}")
+}
 
 /// Why a run stopped before it was complete.
 #[derive(Debug, Error)]
@@ -28,7 +36,7 @@ pub enum SolverError {
     #[error(
         "conjugate gradients did not converge at d̄ = {d_bar:.5}: CG {first}; retried in the \
          safer mode it {end}. The best relative residual reached was {residual:.2e} after \
-         {iterations} iterations in all, above --cg-tolerance {tolerance:.1e} and --cg-accept \
+         {iterations} iterations in all, above {CG_TOLERANCE} {tolerance:.1e} and {CG_ACCEPT} \
          {accept:.1e}; {}",
         retry::advice(*.end)
     )]
@@ -51,7 +59,8 @@ pub enum SolverError {
     /// The contact reached the outer ring of the domain.
     #[error(
         "the contact reached the edge of the domain at d̄ = {d_bar:.5} ({elements} elements on the \
-         outer ring): use a larger --margin or a smaller --start-radius"
+         outer ring): {}",
+        edge_advice()
     )]
     ContactAtEdge {
         /// Approach (dimensionless).

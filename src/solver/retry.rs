@@ -3,6 +3,9 @@
 
 use super::cg::{CgEnd, CgReport, REPLACE_EVERY, TRUE_RESIDUAL_SLACK};
 use crate::model::CgSettings;
+use crate::run::schema::{
+    BACKEND, CG_ACCEPT, CG_MAX_ITERATIONS, CG_TOLERANCE, PRECONDITIONER, STEPS,
+};
 
 /// What became of a safer retry.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -66,9 +69,9 @@ pub fn floor_warning(
     (floor > TRUE_RESIDUAL_SLACK * settings.tolerance).then(|| {
         format!(
             "CG stopped at the {precision} precision floor of this backend, at relative \
-             residual {floor:.1e}, above --cg-tolerance {:.1e}, which {precision} cannot \
+             residual {floor:.1e}, above {CG_TOLERANCE} {:.1e}, which {precision} cannot \
              reach (the worst state's residual, in the cg_residual column of the states CSV: \
-             {}); use --backend cpu (f64) to reach it",
+             {}); use {BACKEND} cpu (f64) to reach it",
             settings.tolerance,
             worst.map_or("—".into(), |w| format!("{w:.2e}"))
         )
@@ -76,19 +79,19 @@ pub fn floor_warning(
 }
 
 /// What to try when CG ended as `end` above the tolerance.
-pub fn advice(end: CgEnd) -> &'static str {
+pub fn advice(end: CgEnd) -> String {
     match end {
-        CgEnd::Stagnated | CgEnd::ResidualGap | CgEnd::Converged => {
-            "the tolerance is below what this arithmetic reaches: use a looser --cg-tolerance \
-             (or, on the f32 GPU backend, --backend cpu for f64)"
-        }
-        CgEnd::Diverged | CgEnd::NonFinite => {
-            "try --preconditioner stiffness, more --steps, or (on the f32 GPU backend) \
-             --backend cpu for f64"
-        }
-        CgEnd::IterationLimit => {
-            "raise --cg-max-iterations, use --preconditioner stiffness, or loosen --cg-tolerance"
-        }
+        CgEnd::Stagnated | CgEnd::ResidualGap | CgEnd::Converged => format!(
+            "the tolerance is below what this arithmetic reaches: use a looser {CG_TOLERANCE} \
+             (or, on the f32 GPU backend, {BACKEND} cpu for f64)"
+        ),
+        CgEnd::Diverged | CgEnd::NonFinite => format!(
+            "try {PRECONDITIONER} stiffness, more {STEPS}, or (on the f32 GPU backend) \
+             {BACKEND} cpu for f64"
+        ),
+        CgEnd::IterationLimit => format!(
+            "raise {CG_MAX_ITERATIONS}, use {PRECONDITIONER} stiffness, or loosen {CG_TOLERANCE}"
+        ),
     }
 }
 
@@ -112,7 +115,7 @@ pub fn warnings(retries: &[CgRetry], settings: &CgSettings) -> Vec<String> {
     let converged = count(RetryVerdict::Converged);
     if converged > 0 {
         out.push(format!(
-            "{converged} retr{} reached --cg-tolerance {:.1e}",
+            "{converged} retr{} reached {CG_TOLERANCE} {:.1e}",
             if converged == 1 { "y" } else { "ies" },
             settings.tolerance
         ));
@@ -129,8 +132,8 @@ pub fn warnings(retries: &[CgRetry], settings: &CgSettings) -> Vec<String> {
             ("ies", "were")
         };
         out.push(format!(
-            "{accepted} retr{ies} stopped above --cg-tolerance {:.1e} and {were} accepted \
-             (relative residual ≤ --cg-accept {:.1e}); the worst, at d̄ = {:.5}, {} at relative \
+            "{accepted} retr{ies} stopped above {CG_TOLERANCE} {:.1e} and {were} accepted \
+             (relative residual ≤ {CG_ACCEPT} {:.1e}); the worst, at d̄ = {:.5}, {} at relative \
              residual {:.2e} after {} iterations in all. Those states carry their residual in \
              the cg_residual column of the states CSV; {}",
             settings.tolerance,
@@ -192,7 +195,10 @@ mod tests {
             CgRetry::new(1.98, first, report(CgEnd::Stagnated, 54, 9.41e-8), &s),
             CgRetry::new(1.71, first, report(CgEnd::Converged, 3, 1e-12), &s),
         ];
-        let w = warnings(&retries, &s);
+        let w: Vec<String> = warnings(&retries, &s)
+            .iter()
+            .map(|w| crate::run::schema::words::flags(w))
+            .collect();
         assert_eq!(w.len(), 3, "{w:#?}");
         assert!(
             w[0].contains("in 3 solve(s)") && w[0].contains("8.62e-8"),

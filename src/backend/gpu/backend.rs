@@ -23,6 +23,7 @@ use crate::backend::{
     BackendError, CgKernels, CgStop, ChordAxes, ContactChange, ContactKernels, ContactMeasure,
     Counters, Device, ElasticOperator, GridSetup, Preconditioner, Scalars, Slot,
 };
+use crate::run::schema::BACKEND;
 use wgpu::util::DeviceExt;
 
 /// Most workgroups of a reduction's first pass.
@@ -280,14 +281,14 @@ pub fn check_fits(limits: &wgpu::Limits, nx: usize, ny: usize) -> Result<(), Bac
     let reason = if nx.max(ny) > side {
         format!(
             "its FFT lines of {} values exceed the {side} that the adapter's {} KiB of workgroup \
-             memory holds; the largest square grid that fits is {n}×{n} (or use --backend cpu)",
+             memory holds; the largest square grid that fits is {n}×{n} (or use {BACKEND} cpu)",
             nx.max(ny),
             limits.max_compute_workgroup_storage_size >> 10
         )
     } else if need > limit || nx * ny > u32::MAX as usize / 4 {
         format!(
             "the padded half spectrum needs one buffer of {} MiB but the adapter's {which} is {} \
-             MiB; the largest square grid that fits is {n}×{n} (or use --backend cpu)",
+             MiB; the largest square grid that fits is {n}×{n} (or use {BACKEND} cpu)",
             need >> 20,
             limit >> 20
         )

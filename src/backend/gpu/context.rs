@@ -162,10 +162,12 @@ impl GpuContext {
             .find(|a| accepts(preference, a.get_info().device_type))
         else {
             let msg = if seen.is_empty() {
-                "no GPU adapter with compute shaders was found: install a Vulkan, Metal or DX12 \
-                 driver (on Linux without a GPU, Mesa's lavapipe gives a software one), \
-                 or run with `--backend cpu`"
-                    .to_string()
+                format!(
+                    "no GPU adapter with compute shaders was found: install a Vulkan, Metal or \
+                     DX12 driver (on Linux without a GPU, Mesa's lavapipe gives a software one), \
+                     or run with `{} cpu`",
+                    crate::run::schema::BACKEND
+                )
             } else {
                 format!(
                     "no {preference:?} GPU adapter was found; available: {}",

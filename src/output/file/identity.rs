@@ -3,8 +3,8 @@
 //! - [`file_id`]: an existing file is its (device, inode), so that a hard link, a symbolic link
 //!   to it, `./`, `..` and an absolute spelling all give one identity; a path where nothing
 //!   exists is its [`canonical`] path.
-//! - [`note_input`]: a file the run reads (a height map, a shard), with the flag that named
-//!   it. [`input_at`] says whether a file is one of them, or one that every run reads or
+//! - [`note_input`]: a file the run reads (a height map, a shard), with the parameter (or
+//!   argument) that named it. [`input_at`] says whether a file is one of them, or one that every run reads or
 //!   writes besides its outputs: the program itself and its standard input, output and
 //!   error where they are regular files. No file a run reads is ever one it writes.
 
@@ -78,7 +78,7 @@ pub fn canonical(path: &Path) -> PathBuf {
 /// What kind of file an [`Input`] is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum InputKind {
-    /// A file the run reads, named by a flag or argument ([`note_input`]).
+    /// A file the run reads, named by a parameter or argument ([`note_input`]).
     Noted,
     /// The program file this process runs from.
     Program,
@@ -91,8 +91,9 @@ pub enum InputKind {
 pub struct Input {
     /// The path as the user gave it (or as the system names it).
     pub path: PathBuf,
-    /// The flag or argument that named it (`--height-map`, `DIR`), or what it is ("this
-    /// run's standard output").
+    /// The parameter that named it (its marker, `⟨height_map⟩`, which the front end words;
+    /// or a front end's own word), the argument (`DIR`), or what it is ("this run's standard
+    /// output").
     pub flag: String,
     /// Its identity when it was noted.
     pub id: FileId,
@@ -115,8 +116,9 @@ impl Input {
 /// The files noted by [`note_input`].
 static INPUTS: Mutex<Vec<Input>> = Mutex::new(Vec::new());
 
-/// Note that this run reads `path`, named by `flag`: an output that is the same file (or
-/// whose lock file is) is refused by the claim before any work, and never written.
+/// Note that this run reads `path`, named by `flag` (a parameter's marker, e.g.
+/// `&HEIGHT_MAP.to_string()`, or an argument's name): an output that is the same file (or whose
+/// lock file is) is refused by the claim before any work, and never written.
 pub fn note_input(path: &Path, flag: &str) {
     let input = Input {
         path: path.to_path_buf(),

@@ -9,6 +9,7 @@ use crate::backend::select::BackendKind;
 use crate::model::ModelOptions;
 use crate::output::states_csv::read_state_rows;
 use crate::run::open::BackendRequest;
+use crate::run::schema::BACKEND;
 use crate::scene::Scene;
 use clap::ValueEnum;
 use serde::{Deserialize, Serialize};
@@ -144,7 +145,7 @@ fn report_differences(run: &RunReport, asked: &RunSettings, kind: BackendKind) -
     let mut why = Vec::new();
     if !backend_matches(kind, &run.backend, &run.precision) {
         why.push(format!(
-            "it ran on {} ({}), asked --backend {}",
+            "it ran on {} ({}), asked {BACKEND} {}",
             run.backend,
             run.precision,
             name_of(kind)

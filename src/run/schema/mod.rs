@@ -8,8 +8,10 @@
 pub mod values;
 pub mod words;
 
+mod study_table;
 mod table;
 
+pub use study_table::*;
 pub use table::*;
 
 use std::fmt;
@@ -149,6 +151,9 @@ pub enum Group {
     Plan,
     /// What is written, and where.
     Output,
+    /// The other commands' own: their lists of ratios, grids and cases, ladders, shards and
+    /// jobs ([`STUDY_SPECS`]).
+    Study,
 }
 
 /// One parameter: its name (the Python keyword, the JSON key of a request and the column of a
@@ -187,14 +192,20 @@ impl fmt::Display for Spec {
     }
 }
 
-/// The parameter of this name, if any.
-pub fn by_name(name: &str) -> Option<&'static Spec> {
-    SPECS.iter().copied().find(|s| s.name == name)
+/// Every parameter a message can name: a simulation's ([`SPECS`]), then the other commands'
+/// ([`STUDY_SPECS`]).
+pub fn all() -> impl Iterator<Item = &'static Spec> {
+    SPECS.iter().chain(STUDY_SPECS).copied()
 }
 
-/// The parameter of this flag (`--mesh-angle`), if any.
+/// The parameter of this name, if any (of [`SPECS`] or [`STUDY_SPECS`]).
+pub fn by_name(name: &str) -> Option<&'static Spec> {
+    all().find(|s| s.name == name)
+}
+
+/// The parameter of this flag (`--mesh-angle`), if any (of [`SPECS`] or [`STUDY_SPECS`]).
 pub fn by_flag(flag: &str) -> Option<&'static Spec> {
-    SPECS.iter().copied().find(|s| s.flag == flag)
+    all().find(|s| s.flag == flag)
 }
 
 impl Spec {

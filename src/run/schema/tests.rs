@@ -5,18 +5,28 @@ use serde_json::json;
 
 #[test]
 fn names_and_flags_are_unique_and_spelt_alike() {
-    for (i, a) in SPECS.iter().enumerate() {
+    let every: Vec<&Spec> = all().collect();
+    assert_eq!(every.len(), SPECS.len() + STUDY_SPECS.len());
+    for (i, a) in every.iter().enumerate() {
         assert_eq!(a.name, a.flag[2..].replace('-', "_"), "{a:?}");
         assert!(!a.help.is_empty(), "{}", a.name);
-        for b in &SPECS[i + 1..] {
+        for b in &every[i + 1..] {
             assert_ne!(a.name, b.name);
         }
     }
+    for s in STUDY_SPECS {
+        assert_eq!(by_name(s.name), Some(*s));
+        assert_eq!(by_flag(s.flag), Some(*s));
+    }
+    assert_eq!(
+        flags(&format!("{MARGINS} and {MARGIN}")),
+        "--margins and --margin"
+    );
 }
 
 #[test]
 fn every_default_value_is_valid() {
-    for s in SPECS {
+    for s in all() {
         if let Fallback::Value(text) = s.fallback {
             assert!(from_text(s, text).is_ok(), "{}: {text}", s.name);
         }
@@ -83,4 +93,147 @@ fn values_out_of_kind_or_range_are_refused_naming_the_parameter() {
         assert!(e.starts_with(&spec.to_string()), "{e}");
         assert!(e.len() < 300, "{e}");
     }
+}
+
+/// The library names every parameter by its [`Spec`], never by a flag: no string literal of a
+/// library source (all of `src` but the command line's `src/cli` and `src/main.rs`, and the
+/// schema that declares the flags) holds a `--flag`. Comments and tests may.
+#[test]
+fn no_library_message_names_a_flag() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    let mut dirs = vec![root.clone()];
+    while let Some(dir) = dirs.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                dirs.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                files.push(path);
+            }
+        }
+    }
+    let skipped = ["cli", "main.rs", "run/schema"];
+    let mut found = Vec::new();
+    for path in files {
+        let relative = path
+            .strip_prefix(&root)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        if skipped.iter().any(|s| relative.starts_with(s)) {
+            continue;
+        }
+        let source = std::fs::read_to_string(&path).unwrap();
+        let code = source.split("#[cfg(test)]").next().unwrap();
+        for literal in string_literals(code) {
+            if let Some(flag) = flag_in(&literal) {
+                found.push(format!("{relative}: {flag} in {literal:?}"));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "flags in library messages:\n{}",
+        found.join("\n")
+    );
+    // The scan itself finds a flag, and only in code.
+    let sample = "// --grid in a comment\nlet m = format!(\"use --grid {n}\"); let c = '\"';";
+    let literals = string_literals(sample);
+    assert_eq!(literals, ["use --grid {n}"]);
+    assert_eq!(flag_in(&literals[0]), Some("--grid".to_string()));
+}
+
+/// The text of every string literal in Rust `code` (plain and raw), comments skipped.
+fn string_literals(code: &str) -> Vec<String> {
+    let chars: Vec<char> = code.chars().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let rest = |k: usize| chars.get(i + k).copied();
+        match chars[i] {
+            '/' if rest(1) == Some('/') => {
+                while i < chars.len() && chars[i] != '\n' {
+                    i += 1;
+                }
+            }
+            '/' if rest(1) == Some('*') => {
+                i += 2;
+                while i + 1 < chars.len() && !(chars[i] == '*' && chars[i + 1] == '/') {
+                    i += 1;
+                }
+                i += 2;
+            }
+            // A character literal ('"', '\'', 'x'), not a lifetime ('a).
+            '\'' if rest(1) == Some('\\') => {
+                i += 2;
+                while i < chars.len() && chars[i] != '\'' {
+                    i += 1;
+                }
+                i += 1;
+            }
+            '\'' if rest(2) == Some('\'') => i += 3,
+            'r' if matches!(rest(1), Some('"') | Some('#'))
+                && !(i > 0 && (chars[i - 1].is_alphanumeric() || chars[i - 1] == '_')) =>
+            {
+                let mut j = i + 1;
+                let mut hashes = 0;
+                while chars.get(j) == Some(&'#') {
+                    hashes += 1;
+                    j += 1;
+                }
+                if chars.get(j) != Some(&'"') {
+                    i += 1;
+                    continue;
+                }
+                let start = j + 1;
+                let mut k = start;
+                loop {
+                    if k >= chars.len() {
+                        break;
+                    }
+                    if chars[k] == '"' && (0..hashes).all(|h| chars.get(k + 1 + h) == Some(&'#')) {
+                        break;
+                    }
+                    k += 1;
+                }
+                out.push(chars[start..k.min(chars.len())].iter().collect());
+                i = k + 1 + hashes;
+            }
+            '"' => {
+                let mut text = String::new();
+                i += 1;
+                while i < chars.len() && chars[i] != '"' {
+                    if chars[i] == '\\' {
+                        i += 1;
+                    }
+                    if let Some(&c) = chars.get(i) {
+                        text.push(c);
+                    }
+                    i += 1;
+                }
+                out.push(text);
+                i += 1;
+            }
+            _ => i += 1,
+        }
+    }
+    out
+}
+
+/// The first `--flag` token of `text` ("--" and a lower-case letter, then letters, digits
+/// and hyphens), if any.
+fn flag_in(text: &str) -> Option<String> {
+    let mut rest = text;
+    while let Some(at) = rest.find("--") {
+        let tail = &rest[at + 2..];
+        if tail.starts_with(|c: char| c.is_ascii_lowercase()) {
+            let len = tail
+                .find(|c: char| !(c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'))
+                .unwrap_or(tail.len());
+            return Some(format!("--{}", &tail[..len]));
+        }
+        rest = tail;
+    }
+    None
 }
