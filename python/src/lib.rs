@@ -556,7 +556,7 @@ fn crossed_scene(
             work_of_adhesion,
         };
         let refused = |e: jkrbem::scene::SceneError| {
-            input_error(e.renamed(&|flag| if flag == "--angle" { "--angles" } else { flag }))
+            input_error(e.renamed(&|p| if p == schema::ANGLE { schema::ANGLES } else { p }))
         };
         c.validate().map_err(refused)?;
         let (r1, r2) = c.radii().map_err(refused)?;

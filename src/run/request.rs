@@ -141,7 +141,7 @@ impl Request {
     pub fn from_texts<'a>(
         given: impl IntoIterator<Item = (&'a str, &'a str)>,
     ) -> Result<Request, RunError> {
-        let map = values::checked(SPECS, given, |s, t| values::from_text(s, t)).map_err(input)?;
+        let map = values::checked(SPECS, given, values::from_text).map_err(input)?;
         Request::from_values(map)
     }
 

@@ -44,6 +44,7 @@ fn heading(spec: &Spec) -> &'static str {
         Solver => "Solves and backend",
         Plan => "One grid, several, or an accuracy",
         Output => "Outputs",
+        Study => "Studies",
     }
 }
 

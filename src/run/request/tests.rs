@@ -63,10 +63,29 @@ fn the_schemas_defaults_are_the_models() {
     let o = r.options();
     let d = ModelOptions::default();
     assert_eq!(
-        (o.cg_tolerance, o.cg_max_iterations, o.cg_accept, o.max_sweeps),
-        (d.cg_tolerance, d.cg_max_iterations, d.cg_accept, d.max_sweeps)
+        (
+            o.cg_tolerance,
+            o.cg_max_iterations,
+            o.cg_accept,
+            o.max_sweeps
+        ),
+        (
+            d.cg_tolerance,
+            d.cg_max_iterations,
+            d.cg_accept,
+            d.max_sweeps
+        )
     );
-    assert_eq!((o.mesh_angle_deg, o.apex_offset), (d.mesh_angle_deg, d.apex_offset));
-    assert_eq!((o.start_radius_bar, o.preconditioner), (d.start_radius_bar, d.preconditioner));
-    assert_eq!((o.onsets, o.measure, o.regrid), (d.onsets, d.measure, d.regrid));
+    assert_eq!(
+        (o.mesh_angle_deg, o.apex_offset),
+        (d.mesh_angle_deg, d.apex_offset)
+    );
+    assert_eq!(
+        (o.start_radius_bar, o.preconditioner),
+        (d.start_radius_bar, d.preconditioner)
+    );
+    assert_eq!(
+        (o.onsets, o.measure, o.regrid),
+        (d.onsets, d.measure, d.regrid)
+    );
 }

@@ -250,7 +250,10 @@ pub fn from_json(spec: &Spec, value: &Value) -> Result<Value, Refusal> {
     // A whole number must be written as one (32, not 32.0); one beyond 64 bits comes as a
     // float (and is then out of range).
     let whole = |v: &Value| {
-        v.is_i64() || v.is_u64() || v.as_f64().is_some_and(|x| x.abs() >= 9.2e18 && x.fract() == 0.0)
+        v.is_i64()
+            || v.is_u64()
+            || v.as_f64()
+                .is_some_and(|x| x.abs() >= 9.2e18 && x.fract() == 0.0)
     };
     let num = |v: &Value| v.as_f64().unwrap_or(f64::NAN);
     let nums = |a: &[Value]| a.iter().map(num).collect::<Vec<f64>>();
