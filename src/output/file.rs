@@ -429,18 +429,26 @@ pub fn write_csv<T: serde::Serialize>(
     header: Option<&str>,
     rows: impl IntoIterator<Item = T>,
 ) -> Result<(), OutputError> {
-    write_atomic(path, |w| {
-        let mut c = csv::WriterBuilder::new()
-            .has_headers(header.is_none())
-            .from_writer(w);
-        if let Some(h) = header {
-            c.write_record(h.split(',')).map_err(io::Error::other)?;
-        }
-        for r in rows {
-            c.serialize(r).map_err(io::Error::other)?;
-        }
-        c.flush()
-    })
+    write_atomic(path, |w| csv_to(w, header, rows))
+}
+
+/// Write rows as CSV to `w`, as [`write_csv`] writes them to a file (for a stream that is not
+/// a file, such as standard output, given a `Vec<u8>`).
+pub fn csv_to<T: serde::Serialize>(
+    w: impl Write,
+    header: Option<&str>,
+    rows: impl IntoIterator<Item = T>,
+) -> io::Result<()> {
+    let mut c = csv::WriterBuilder::new()
+        .has_headers(header.is_none())
+        .from_writer(w);
+    if let Some(h) = header {
+        c.write_record(h.split(',')).map_err(io::Error::other)?;
+    }
+    for r in rows {
+        c.serialize(r).map_err(io::Error::other)?;
+    }
+    c.flush()
 }
 
 /// Open `path` for reading without blocking on a FIFO.

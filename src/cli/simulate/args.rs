@@ -140,10 +140,12 @@ pub struct Args {
     /// states go to <stem>.incomplete-<pid>.csv beside it (unique to the run); only a complete
     /// run renames that to this name, and an existing file here is untouched until then. A
     /// run that fails keeps the partial name. A second run on the same file is refused while
-    /// this one holds it.
+    /// this one holds it. `-` writes the states CSV to standard output once the run ends (one
+    /// grid only; the other lines then go to standard error).
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Also write the summary as JSON to this file (not the --out file).
+    /// Also write the summary as JSON to this file (not the --out file). `-` writes it to
+    /// standard output, and the summary's text then goes to standard error.
     #[arg(long)]
     pub summary: Option<PathBuf>,
     /// Also write the fields of chosen states of the last grid's run: `minimum` (the state of

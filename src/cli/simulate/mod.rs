@@ -3,11 +3,14 @@
 //! what comes back.
 
 use super::progress::Progress;
+use super::stdout::{claim_stdout, is_stdout, write_stdout_bytes, Channel};
 use super::{run_error, CliError};
 use jkrbem::model::{Measure, ModelOptions, Onsets};
+use jkrbem::output::states_csv::states_csv_bytes;
 use jkrbem::run::open::BackendRequest;
 use jkrbem::run::simulate::{failure_error, simulate, Mode, SimulateRequest, Sink};
 use jkrbem::scene::Scene;
+use std::path::PathBuf;
 
 mod args;
 mod indenter;
@@ -20,6 +23,15 @@ pub use jkrbem::run::simulate::DEFAULT_ACCURACY;
 
 /// Nx of a one-grid run that names no --grid.
 pub const DEFAULT_GRID: usize = 256;
+
+/// Which file of `simulate` goes to standard output (named `-`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OnStdout {
+    /// The states CSV (`--out -`).
+    States,
+    /// The summary JSON (`--summary -`).
+    Summary,
+}
 
 impl Args {
     /// The scene of these arguments.
@@ -83,13 +95,34 @@ impl Args {
                 check_every: self.cg_check_every,
             },
             mode,
-            sink: Sink::Files {
-                out: self.out.clone(),
-                summary: self.summary.clone(),
-            },
+            sink: self.sink()?,
             fields: self.fields.clone(),
             time_limit: self.time_limit,
         })
+    }
+
+    /// Where the states and the summary go: files, except one named `-` (standard output),
+    /// which the command writes itself once the run ends.
+    fn sink(&self) -> Result<Sink, CliError> {
+        let on_stdout = self.stdout_claim()?;
+        let file = |p: &Option<PathBuf>| p.clone().filter(|p| !is_stdout(p));
+        Ok(match on_stdout {
+            Some(OnStdout::States) => Sink::OneRunReturned {
+                summary: file(&self.summary),
+            },
+            _ => Sink::Files {
+                out: self.out.clone(),
+                summary: file(&self.summary),
+            },
+        })
+    }
+
+    /// Which flag's file goes to standard output (`-`), if any (at most one may).
+    pub fn stdout_claim(&self) -> Result<Option<OnStdout>, CliError> {
+        claim_stdout(&[
+            (OnStdout::States, "--out", self.out.as_deref()),
+            (OnStdout::Summary, "--summary", self.summary.as_deref()),
+        ])
     }
 
     /// The model options of these arguments.
@@ -134,17 +167,33 @@ pub fn run(args: Args) -> Result<(), CliError> {
         jkrbem::output::file::note_input(map, "--height-map");
     }
     let request = args.request()?;
+    let on_stdout = args.stdout_claim()?;
     let progress = Progress::new();
     let done = simulate(&request, &progress).map_err(run_error)?;
     if let Some(plan) = &done.plan {
         errln!("jkrbem: {plan}");
     }
-    out!("{}", done.summary.to_text());
+    // The results on standard output: the summary's text, or the file asked for there (then
+    // the text goes to standard error). The warnings go to standard error after it.
+    let text = Channel::beside(on_stdout.is_some());
+    match on_stdout {
+        Some(OnStdout::Summary) => write_stdout_bytes(done.summary.to_json().as_bytes()),
+        Some(OnStdout::States) => {
+            for run in &done.runs {
+                write_stdout_bytes(&states_csv_bytes(&run.states, run.onsets.name()));
+            }
+        }
+        None => {}
+    }
+    text.print(&done.summary.to_text());
+    for line in done.summary.warning_lines() {
+        errln!("{line}");
+    }
     for path in &done.states {
-        outln!("states written to {}", path.display());
+        text.line(&format!("states written to {}", path.display()));
     }
     for path in &done.field_files {
-        outln!("fields written to {}", path.display());
+        text.line(&format!("fields written to {}", path.display()));
     }
     failure_error(done.failure).map_err(run_error)
 }
