@@ -6,7 +6,7 @@ use crate::model::{Model, Onsets, MIN_MAP_SPACINGS_AT_MINIMUM};
 use crate::solver::cost::CostAccount;
 use crate::solver::window::Refinement;
 use crate::solver::State;
-use crate::solver::{protocol::RegridEvent, Outcome};
+use crate::solver::{state::RegridEvent, Outcome};
 use crate::text::compact;
 use serde::Serialize;
 use std::path::Path;

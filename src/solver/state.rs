@@ -74,3 +74,14 @@ pub struct State {
 fn not_recorded() -> f64 {
     f64::NAN
 }
+
+/// One change of grid during a run.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct RegridEvent {
+    /// Approach at which the grid changed (dimensionless).
+    pub d_bar: f64,
+    /// Element side before (length).
+    pub dx_from: f64,
+    /// Element side after (length).
+    pub dx_to: f64,
+}
