@@ -32,13 +32,16 @@ mod cli;
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
 
-/// FFT-based BEM solver for JKR-type adhesive contact of a rigid ellipsoid
-/// h = x²/(2R1) + y²/(2R2) with an elastic half-space (Pohrt–Popov detachment criterion).
+/// FFT-based BEM solver for JKR-type adhesive contact of a rigid indenter with an elastic
+/// half-space (Pohrt–Popov detachment criterion): an ellipsoid h = x²/(2R1) + y²/(2R2) by
+/// default, or a flat punch, a power law h = s·rⁿ or a measured height map (`simulate
+/// --indenter`).
 ///
 /// Units: give lengths in any unit L, E* in F/L² and the work of adhesion Δγ in F/L (energy per
-/// area); dimensional outputs come out in L and F. Normalised outputs (suffix _bar) use
-/// Re = √(R1 R2), c_r = (9π Re² Δγ / (4E*))^(1/3): c̄ = c/c_r, F̄ = F/(3π Re Δγ),
-/// d̄ = d·Re/c_r². For a sphere JKR gives the adhesive force |min F̄| = 1/2.
+/// area); dimensional outputs come out in L and F. Normalised outputs (suffix _bar) of an
+/// ellipsoid use Re = √(R1 R2), c_r = (9π Re² Δγ / (4E*))^(1/3): c̄ = c/c_r, F̄ = F/(3π Re Δγ),
+/// d̄ = d·Re/c_r² (the other indenters have their own scales: docs/indenters.md). For a sphere
+/// JKR gives the adhesive force |min F̄| = 1/2.
 #[derive(Parser)]
 #[command(name = "jkrbem", version, about, long_about)]
 struct Cli {

@@ -7,7 +7,7 @@ use crate::run::schema::{ONSETS, SPACING};
 use crate::solver::cost::CostAccount;
 use crate::solver::window::Refinement;
 use crate::solver::State;
-use crate::solver::{protocol::RegridEvent, Outcome};
+use crate::solver::{state::RegridEvent, Outcome};
 use crate::text::compact;
 use serde::Serialize;
 use std::path::Path;

@@ -40,6 +40,7 @@ pub struct Args {
 /// Run `jkrbem accuracy`.
 pub fn run(args: Args) -> Result<(), CliError> {
     count_in("--grids", args.grids.len(), 2, 12)?;
+    super::stdout::not_stdout("--out", &args.out, "accuracy")?;
     let names: Vec<String> = args
         .backends
         .iter()

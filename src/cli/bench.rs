@@ -53,6 +53,7 @@ pub struct Args {
 
 /// Run `jkrbem bench`.
 pub fn run(args: Args) -> Result<(), CliError> {
+    super::stdout::not_stdout("--out", &args.out, "bench")?;
     let req = BenchRequest {
         backends: args.backends,
         grids: args.grids,

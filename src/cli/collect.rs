@@ -32,10 +32,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
         m.path.display()
     );
     for p in &m.problems {
-        outln!("warning (--allow-missing): {p}");
+        errln!("warning (--allow-missing): {p}");
     }
     for w in &m.warnings {
-        outln!("warning: {w}");
+        errln!("warning: {w}");
     }
     outln!(
         "charts written to {} and {}",

@@ -63,6 +63,7 @@ pub struct Args {
 
 /// Run `jkrbem coverage`.
 pub fn run(args: Args) -> Result<(), CliError> {
+    super::stdout::not_stdout("--out", &args.out, "coverage")?;
     let ratios = if args.ratios.is_empty() {
         REFERENCE_RATIOS.to_vec()
     } else {

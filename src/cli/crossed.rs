@@ -3,6 +3,7 @@
 //! of the inputs) beside Johnson–Greenwood's. The work is [`jkrbem::run::crossed`].
 
 use super::progress::Progress;
+use super::stdout::not_stdout;
 use super::{count_in, no_repeats, run_error, CliError, MAX_JOBS};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::run::crossed::{crossed, CrossedRequest};
@@ -75,6 +76,7 @@ pub(crate) fn flag(parameter: &'static Spec) -> &'static Spec {
 pub fn run(args: Args) -> Result<(), CliError> {
     count_in("--angles", args.angles.len(), 1, 100)?;
     no_repeats("--angles", &args.angles)?;
+    not_stdout("--out", &args.out, "crossed")?;
     let request = CrossedRequest {
         radius: args.radius,
         angles: args.angles.clone(),
@@ -108,7 +110,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         );
     }
     for w in &done.warnings {
-        outln!("WARNING: {w}");
+        errln!("WARNING: {w}");
     }
     outln!(
         "written {} and {}",

@@ -11,48 +11,14 @@ pub mod progress;
 pub mod reference;
 pub mod reproduce;
 pub mod simulate;
+pub mod stdout;
 pub mod sweep;
 pub mod theory;
 
 use std::fmt;
-use std::io::{self, Write};
 use std::process::ExitCode;
-use std::sync::Mutex;
 
-/// The first error standard output gave, if any; once set, nothing more is written there.
-static STDOUT_ERROR: Mutex<Option<io::Error>> = Mutex::new(None);
-
-/// Write to standard output without ever panicking (the `out!`/`outln!` macros), each
-/// parameter a message names worded as its flag. A reader that
-/// went away (a closed pipe: `jkrbem … | head -1`) ends the output quietly while the run goes
-/// on and writes its files; any other error (`> /dev/full`) is kept and reported at the exit
-/// ([`finish_stdout`]), with exit code 1.
-pub fn write_stdout(args: fmt::Arguments) {
-    let Ok(mut failed) = STDOUT_ERROR.lock() else {
-        return;
-    };
-    if failed.is_none() {
-        let text = jkrbem::run::schema::words::flags(&args.to_string());
-        if let Err(e) = io::stdout().lock().write_all(text.as_bytes()) {
-            *failed = Some(e);
-        }
-    }
-}
-
-/// Flush standard output and say what it could not take: `None` if all was written or its
-/// reader went away (a broken pipe ends quietly), else the error in words.
-pub fn finish_stdout() -> Option<String> {
-    let mut failed = STDOUT_ERROR.lock().ok()?;
-    if failed.is_none() {
-        if let Err(e) = io::stdout().lock().flush() {
-            *failed = Some(e);
-        }
-    }
-    match failed.as_ref()? {
-        e if e.kind() == io::ErrorKind::BrokenPipe => None,
-        e => Some(format!("cannot write to standard output: {e}")),
-    }
-}
+pub use stdout::{finish_stdout, write_stdout};
 
 /// A command's failure: bad input (exit 2, nothing was done) or a failed run (exit 1).
 #[derive(Debug)]

@@ -54,6 +54,7 @@ pub struct Args {
 
 /// Run `jkrbem reference`.
 pub fn run(args: Args) -> Result<(), CliError> {
+    super::stdout::not_stdout("--out", &args.out, "reference")?;
     let ratios = if args.ratios.is_empty() {
         REFERENCE_RATIOS.to_vec()
     } else {

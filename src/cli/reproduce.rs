@@ -32,6 +32,7 @@ pub struct Args {
 
 /// Run `jkrbem reproduce`.
 pub fn run(args: Args) -> Result<(), CliError> {
+    super::stdout::not_stdout("--out", &args.out, "reproduce")?;
     let req = StudyRequest {
         out: args.out,
         quick: args.quick,

@@ -3,6 +3,7 @@
 //! `jkrbem collect` merges the shards. The work is [`jkrbem::run::sweep`].
 
 use super::progress::Progress;
+use super::stdout::not_stdout;
 use super::{count_in, input, no_repeats, run_error, CliError, MAX_JOBS};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::output::sweep_csv;
@@ -63,6 +64,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         jkrbem::output::sweep_csv::MAX_SWEEP_RATIOS,
     )?;
     no_repeats("--ratios", &args.ratios)?;
+    not_stdout("--out", &args.out, "sweep")?;
     let shard = args
         .shard
         .as_deref()
@@ -100,13 +102,13 @@ pub fn run(args: Args) -> Result<(), CliError> {
         );
     }
     if done.ran == 0 {
-        outln!(
-            "(this shard got no ratio: --ratios has only {} value(s))",
+        errln!(
+            "jkrbem: this shard got no ratio: --ratios has only {} value(s)",
             args.ratios.len()
         );
     }
     for w in &done.warnings {
-        outln!("WARNING: {w}");
+        errln!("WARNING: {w}");
     }
     outln!("summary written to {}", done.summary_path.display());
     if let Some([a, b]) = &done.charts {

@@ -1,5 +1,6 @@
 //! `jkrbem theory`: closed-form curves.
 
+use super::stdout::{is_stdout, write_stdout_bytes, Channel};
 use super::{input, CliError};
 use clap::ValueEnum;
 use jkrbem::run::claim::{write_error, Outputs};
@@ -30,8 +31,8 @@ pub struct Args {
     /// Number of points on the curve, 2 to 1000000.
     #[arg(long, default_value_t = 400, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(2..=jkrbem::theory::MAX_CURVE_POINTS as u64))]
     pub points: usize,
-    /// Output CSV with columns c_bar,f_bar,d_bar,a_bar,b_bar [default:
-    /// jkrbem-out/theory-<model>-r<ratio>.csv].
+    /// Output CSV with columns c_bar,f_bar,d_bar,a_bar,b_bar (`-`: standard output, the
+    /// other lines then on standard error) [default: jkrbem-out/theory-<model>-r<ratio>.csv].
     #[arg(long)]
     pub out: Option<PathBuf>,
 }
@@ -53,36 +54,39 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let out = args
         .out
         .unwrap_or_else(|| jkrbem::output::names::theory_default(name, args.ratio));
-    let _claimed = Outputs::claim(&[(out.clone(), OUT.into())])?;
-    jkrbem::output::file::write_csv(
-        &out,
-        Some("c_bar,f_bar,d_bar,a_bar,b_bar"),
-        curve
-            .iter()
-            .map(|p| (p.c_bar, p.f_bar, p.d_bar, p.a_bar, p.b_bar)),
-    )
-    .map_err(write_error(OUT))?;
-    outln!(
-        "{} points of {} at R1/R2 = {} written to {}",
-        curve.len(),
-        name.to_uppercase(),
-        args.ratio,
-        out.display()
-    );
+    let header = Some("c_bar,f_bar,d_bar,a_bar,b_bar");
+    let rows = curve
+        .iter()
+        .map(|p| (p.c_bar, p.f_bar, p.d_bar, p.a_bar, p.b_bar));
+    // `--out -`: the CSV on standard output, and the lines below on standard error.
+    let text = Channel::beside(is_stdout(&out));
+    if is_stdout(&out) {
+        let mut bytes = Vec::new();
+        jkrbem::output::file::csv_to(&mut bytes, header, rows).map_err(super::failed)?;
+        write_stdout_bytes(&bytes);
+    } else {
+        let _claimed = Outputs::claim(&[(out.clone(), OUT.into())])?;
+        jkrbem::output::file::write_csv(&out, header, rows).map_err(write_error(OUT))?;
+        text.line(&format!(
+            "{} points of {} at R1/R2 = {} written to {}",
+            curve.len(),
+            name.to_uppercase(),
+            args.ratio,
+            out.display()
+        ));
+    }
     if model != TheoryModel::Hertz {
         let p = theory::pull_off(model, args.ratio).map_err(input)?;
         let f = p.force_min;
         let e = p.end_of_contact;
-        outln!(
+        text.line(&format!(
             "force-controlled pull-off (min F̄): F̄ = {:.6}, c̄ = {:.6}, d̄ = {:.6}, ā = {:.6}, b̄ = {:.6}",
             f.f_bar, f.c_bar, f.d_bar, f.a_bar, f.b_bar
-        );
-        outln!(
+        ));
+        text.line(&format!(
             "displacement-controlled end of contact (min d̄): F̄ = {:.6}, c̄ = {:.6}, d̄ = {:.6}",
-            e.f_bar,
-            e.c_bar,
-            e.d_bar
-        );
+            e.f_bar, e.c_bar, e.d_bar
+        ));
     }
     Ok(())
 }

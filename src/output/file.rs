@@ -453,25 +453,29 @@ pub fn write_csv<T: serde::Serialize>(
     header: Option<&str>,
     rows: impl IntoIterator<Item = T>,
 ) -> Result<(), OutputError> {
-    let mut c = csv::WriterBuilder::new()
-        .has_headers(header.is_none())
-        .from_writer(Vec::new());
-    let written = (|| {
-        if let Some(h) = header {
-            c.write_record(h.split(','))?;
-        }
-        for r in rows {
-            c.serialize(r)?;
-        }
-        c.flush()?;
-        Ok::<(), csv::Error>(())
-    })();
-    written.map_err(|e| OutputError::io(path, io::Error::other(e)))?;
-    let bytes = c
-        .into_inner()
-        .map_err(|e| OutputError::io(path, io::Error::other(e.to_string())))?;
+    let mut bytes = Vec::new();
+    csv_to(&mut bytes, header, rows).map_err(|e| OutputError::io(path, e))?;
     let text = String::from_utf8(bytes).map_err(|e| OutputError::io(path, io::Error::other(e)))?;
     write_text(path, &text)
+}
+
+/// Write rows as CSV to `w`, as [`write_csv`] writes them to a file (for a stream that is not
+/// a file, such as standard output, given a `Vec<u8>`).
+pub fn csv_to<T: serde::Serialize>(
+    w: impl Write,
+    header: Option<&str>,
+    rows: impl IntoIterator<Item = T>,
+) -> io::Result<()> {
+    let mut c = csv::WriterBuilder::new()
+        .has_headers(header.is_none())
+        .from_writer(w);
+    if let Some(h) = header {
+        c.write_record(h.split(',')).map_err(io::Error::other)?;
+    }
+    for r in rows {
+        c.serialize(r).map_err(io::Error::other)?;
+    }
+    c.flush()
 }
 
 /// Open `path` for reading without blocking on a FIFO.

@@ -12,6 +12,7 @@ pub mod pressure_chart;
 #[cfg(feature = "gpu")]
 pub mod profile;
 pub mod provenance;
+pub mod series;
 pub mod states_csv;
 pub mod study_charts;
 pub mod study_index;

@@ -72,6 +72,20 @@ impl StateWriter {
     }
 }
 
+/// The CSV of `states` as [`StateWriter`] writes it to a file (header first, then each state
+/// with `onsets`), as bytes for a stream that is not a file (standard output).
+pub fn states_csv_bytes(states: &[State], onsets: &str) -> Vec<u8> {
+    let mut writer = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    // Writing to memory fails only if a state cannot be serialised, which none can.
+    let _ = writer.write_record(HEADER.split(','));
+    for s in states {
+        let _ = writer.serialize((s, onsets));
+    }
+    writer.into_inner().unwrap_or_default()
+}
+
 /// Read the states of a CSV written by [`StateWriter`] (for tests and post-processing).
 pub fn read_states(path: &Path) -> Result<Vec<csv::StringRecord>, OutputError> {
     let mut r = csv::Reader::from_path(path).map_err(|e| OutputError::csv(path, e))?;
@@ -94,6 +108,36 @@ pub fn read_state_rows(path: &Path) -> Result<Vec<State>, OutputError> {
 mod tests {
     use super::*;
     use std::fs;
+
+    #[test]
+    fn the_states_as_bytes_are_the_file_a_complete_run_leaves() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("s.csv");
+        let states: Vec<State> = [(0usize, -0.1), (1, -0.52), (2, -0.3)]
+            .into_iter()
+            .map(|(step, f_bar)| State {
+                step,
+                phase: crate::solver::Phase::Pulloff,
+                f_bar,
+                d_bar: 0.1 * step as f64,
+                cg_residual: 1e-9,
+                ..State::default()
+            })
+            .collect();
+        let mut w = StateWriter::create(&path, "near-minimum").unwrap();
+        for s in &states {
+            w.write(s).unwrap();
+        }
+        w.finish(true).unwrap();
+        assert_eq!(
+            fs::read(&path).unwrap(),
+            states_csv_bytes(&states, "near-minimum")
+        );
+        assert_eq!(
+            states_csv_bytes(&[], "all"),
+            format!("{HEADER}\n").into_bytes()
+        );
+    }
 
     #[test]
     fn a_file_written_before_the_cg_residual_column_still_reads() {

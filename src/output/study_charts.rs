@@ -1,54 +1,70 @@
 //! The charts of the study (physics §8.2, §8.4–§8.6) made from pull-off states: the axis ratio
 //! b/a against F̄, the branch laws d̄(c̄), F̄(c̄), F̄(d̄) with their fits, the fitted
-//! coefficients against R1/R2, and the adhesive force with its fitted law.
+//! coefficients against R1/R2, and the contours. The points, closed forms and fitted laws come
+//! computed from the session layer (`run::chart_data`); this module only draws them.
 
 use super::line_chart::{LineChart, Style};
-use crate::analysis::adhesive_branch;
-use crate::analysis::study_fits::{BranchFits, CoefficientLaw, RatioRun};
-use crate::solver::Phase;
-use crate::theory::{self, TheoryModel, TheoryPoint};
+use super::series::LawCurve;
 
-/// Points of closed-form and fitted curves.
+/// Points of the ellipses beside the contours.
 const CURVE_POINTS: usize = 200;
 
-fn reference(ratio: f64) -> (TheoryModel, String) {
-    let model = TheoryModel::adhesive_reference(ratio);
-    (model, model.name().to_uppercase())
-}
-
-fn theory_points(ratio: f64) -> Vec<TheoryPoint> {
-    theory::curve(reference(ratio).0, ratio, CURVE_POINTS).unwrap_or_default()
+/// One ratio's points for the axis-ratio chart, gathered by the session layer.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AxisRatioSeries {
+    /// R1/R2.
+    pub ratio: f64,
+    /// Elements along x and y.
+    pub grid: (usize, usize),
+    /// (F̄, b/a) of the run's pull-off states in contact.
+    pub points: Vec<(f64, f64)>,
+    /// (F̄, b/a) of Johnson–Greenwood's curve over the run's range of F̄.
+    pub jg: Vec<(f64, f64)>,
 }
 
 /// b/a against F̄ for each run (pull-off states in contact) beside JG's g(F̄).
-pub fn axis_ratio_chart(runs: &[RatioRun]) -> LineChart {
+pub fn axis_ratio_chart(series: &[AxisRatioSeries]) -> LineChart {
     let mut chart = LineChart::new(
         "Contact axis ratio against force (markers: jkrbem, lines: JG)",
         "force F̄",
         "axis ratio b_simu / a_simu",
     );
-    for (i, run) in runs.iter().enumerate() {
-        let sim = run
-            .states
-            .iter()
-            .filter(|s| s.phase != Phase::Approach && s.n_contact > 0 && s.a_bar > 0.0)
-            .map(|s| (s.f_bar, s.b_bar / s.a_bar))
-            .collect();
+    for (i, run) in series.iter().enumerate() {
         chart.push(
             &format!("R1/R2 = {} ({}×{})", run.ratio, run.grid.0, run.grid.1),
-            sim,
+            run.points.clone(),
             i,
             Style::Markers,
         );
-        let f_max = run.states.iter().map(|s| s.f_bar).fold(0.0, f64::max);
-        let jg = theory_points(run.ratio)
-            .iter()
-            .filter(|p| p.f_bar <= f_max && p.a_bar > 0.0)
-            .map(|p| (p.f_bar, p.b_bar / p.a_bar))
-            .collect();
-        chart.push(&format!("JG, R1/R2 = {}", run.ratio), jg, i, Style::Line);
+        chart.push(
+            &format!("JG, R1/R2 = {}", run.ratio),
+            run.jg.clone(),
+            i,
+            Style::Line,
+        );
     }
     chart
+}
+
+/// A point of an adhesive branch: (c̄, d̄, F̄), each dimensionless.
+pub type BranchTriple = [f64; 3];
+
+/// One ratio's adhesive branch, its closed form and its fitted laws, as (c̄, d̄, F̄) points
+/// from which each branch chart takes its two coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BranchSeries {
+    /// R1/R2.
+    pub ratio: f64,
+    /// Elements along x and y.
+    pub grid: (usize, usize),
+    /// The run's adhesive branch (its onset states).
+    pub branch: Vec<BranchTriple>,
+    /// The closed form's name ("JKR", "JG").
+    pub reference_name: String,
+    /// The closed form over the branch's range of c̄.
+    pub reference: Vec<BranchTriple>,
+    /// The fitted laws d̄(c̄) and F̄(c̄) over that range, where both were fitted.
+    pub fit: Option<Vec<BranchTriple>>,
 }
 
 /// Which law of the branch a chart shows.
@@ -64,7 +80,7 @@ pub enum BranchLaw {
 
 /// One branch law for several runs: the adhesive branch (markers), the closed form (line) and
 /// the fitted law (dashed).
-pub fn branch_chart(runs: &[RatioRun], fits: &[BranchFits], law: BranchLaw) -> LineChart {
+pub fn branch_chart(series: &[BranchSeries], law: BranchLaw) -> LineChart {
     let (title, x, y) = match law {
         BranchLaw::DOfC => ("Approach against contact radius", "c̄", "d̄"),
         BranchLaw::FOfC => ("Force against contact radius", "c̄", "F̄"),
@@ -75,43 +91,33 @@ pub fn branch_chart(runs: &[RatioRun], fits: &[BranchFits], law: BranchLaw) -> L
         x,
         y,
     );
-    let pick = |c: f64, d: f64, f: f64| match law {
-        BranchLaw::DOfC => (c, d),
-        BranchLaw::FOfC => (c, f),
-        BranchLaw::FOfD => (d, f),
+    let pick = |points: &[BranchTriple]| -> Vec<(f64, f64)> {
+        points
+            .iter()
+            .map(|&[c, d, f]| match law {
+                BranchLaw::DOfC => (c, d),
+                BranchLaw::FOfC => (c, f),
+                BranchLaw::FOfD => (d, f),
+            })
+            .collect()
     };
-    for (i, (run, fit)) in runs.iter().zip(fits).enumerate() {
-        let branch = adhesive_branch(&run.states);
-        let c_max = branch.iter().map(|p| p.c_bar).fold(0.0, f64::max);
-        let c_min = branch.iter().map(|p| p.c_bar).fold(f64::INFINITY, f64::min);
+    for (i, run) in series.iter().enumerate() {
         chart.push(
             &format!("R1/R2 = {} ({}×{})", run.ratio, run.grid.0, run.grid.1),
-            branch
-                .iter()
-                .map(|p| pick(p.c_bar, p.d_bar, p.f_bar))
-                .collect(),
+            pick(&run.branch),
             i,
             Style::Markers,
         );
-        let (_, name) = reference(run.ratio);
         chart.push(
-            &format!("{name}, R1/R2 = {}", run.ratio),
-            theory_points(run.ratio)
-                .iter()
-                .filter(|p| p.c_bar <= c_max && p.c_bar >= c_min)
-                .map(|p| pick(p.c_bar, p.d_bar, p.f_bar))
-                .collect(),
+            &format!("{}, R1/R2 = {}", run.reference_name, run.ratio),
+            pick(&run.reference),
             i,
             Style::Line,
         );
-        if let (Some(d), Some(f)) = (&fit.d_of_c, &fit.f_of_c) {
-            let fitted = (0..=CURVE_POINTS)
-                .map(|k| c_min + (c_max - c_min) * k as f64 / CURVE_POINTS as f64)
-                .map(|c| pick(c, d.eval(c), f.eval(c)))
-                .collect();
+        if let Some(fitted) = &run.fit {
             chart.push(
                 &format!("fit, R1/R2 = {}", run.ratio),
-                fitted,
+                pick(fitted),
                 i,
                 Style::Dashed,
             );
@@ -120,33 +126,36 @@ pub fn branch_chart(runs: &[RatioRun], fits: &[BranchFits], law: BranchLaw) -> L
     chart
 }
 
+/// One fitted coefficient against R1/R2, and its law.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CoefficientSeries {
+    /// The coefficient's name.
+    pub name: &'static str,
+    /// (R1/R2, value, half-width if known) per ratio.
+    pub points: Vec<(f64, f64, Option<f64>)>,
+    /// The law k1·(R1/R2)^k2 + k3 fitted to them, if it could be.
+    pub law: Option<LawCurve>,
+}
+
 /// The fitted coefficients against R1/R2 (log axis) with their laws (dashed).
-pub fn coefficients_chart(laws: &[CoefficientLaw]) -> LineChart {
+pub fn coefficients_chart(series: &[CoefficientSeries]) -> LineChart {
     let mut chart = LineChart::new(
         "Branch-law coefficients against axis ratio (dashed: k1·(R1/R2)^k2 + k3)",
         "R1/R2",
         "coefficient",
     );
     chart.x_log = true;
-    for (i, c) in laws.iter().enumerate() {
-        let hi = c.points.iter().map(|p| p.0).fold(1.0, f64::max);
+    for (i, c) in series.iter().enumerate() {
         let pts: Vec<(f64, f64)> = c.points.iter().map(|p| (p.0, p.1)).collect();
         match c.points.iter().map(|p| p.2).collect::<Option<Vec<f64>>>() {
             Some(errors) => chart.push_with_errors(c.name, pts, errors, i),
             None => chart.push(c.name, pts, i, Style::Markers),
         }
-        if let Some(law) = c.law {
-            let curve = (0..=CURVE_POINTS)
-                .map(|k| hi.powf(k as f64 / CURVE_POINTS as f64))
-                .map(|x| (x, law.eval(x)))
-                .collect();
+        if let Some(law) = &c.law {
+            let [k1, k2, k3] = law.k;
             chart.push(
-                &format!(
-                    "{} = {}",
-                    c.name,
-                    crate::text::power_law(law.k1, law.k2, law.k3)
-                ),
-                curve,
+                &format!("{} = {}", c.name, crate::text::power_law(k1, k2, k3)),
+                law.points.clone(),
                 i,
                 Style::Dashed,
             );

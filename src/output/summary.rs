@@ -131,13 +131,20 @@ impl Summary {
         }
     }
 
-    /// Write as pretty JSON, in the command line's words (see the module's rule).
+    /// Write as pretty JSON ([`Summary::to_json`]), in the command line's words (see the
+    /// module's rule).
     pub fn write_json(&self, path: &Path) -> Result<(), OutputError> {
-        let text = serde_json::to_string_pretty(self).expect("a summary always serialises");
-        super::file::write_text(path, &(text + "\n"))
+        super::file::write_text(path, &self.to_json())
     }
 
-    /// Human-readable lines.
+    /// The pretty JSON [`Summary::write_json`] writes, newline-terminated (for a stream).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("a summary always serialises") + "\n"
+    }
+
+    /// Human-readable lines of the result: the answer, every run and what stopped early (the
+    /// warnings are apart, in [`Summary::warning_lines`], for a front end to show where it
+    /// shows warnings).
     pub fn to_text(&self) -> String {
         let opt = |v: Option<f64>, p: usize| v.map_or("—".into(), |x| fixed(x, p));
         let pct =
@@ -198,8 +205,8 @@ impl Summary {
                     .collect();
                 s += &format!(
                     "NO ADHESIVE FORCE: the {} run reached the force minimum, but the answer is \
-                     withheld: the height map is too coarse for the contact there (see the \
-                     WARNING below)\n",
+                     withheld: the height map is too coarse for the contact there (see its \
+                     WARNING)\n",
                     grids.join(", ")
                 );
             }
@@ -215,7 +222,7 @@ impl Summary {
                     .collect();
                 s += &format!(
                     "NO ADHESIVE FORCE: the load steps of the {} run were too large to resolve \
-                     the force minimum (see the WARNING below): its lowest state is not the \
+                     the force minimum (see its WARNING): its lowest state is not the \
                      minimum, so no answer with an uncertainty is given; leave out {ONSETS} none \
                      or use more {STEPS}\n",
                     grids.join(", ")
@@ -249,15 +256,20 @@ impl Summary {
         for r in &self.runs {
             s += &run_text(r);
         }
-        for w in &self.warnings {
-            s += &format!("WARNING: {w}\n");
-        }
         for r in &self.runs {
             if let Some(e) = &r.error {
                 s += &format!("INCOMPLETE ({}): {e}\n", r.grid);
             }
         }
         s
+    }
+
+    /// The warnings, one human-readable line each ("WARNING: …", without a newline).
+    pub fn warning_lines(&self) -> Vec<String> {
+        self.warnings
+            .iter()
+            .map(|w| format!("WARNING: {w}"))
+            .collect()
     }
 }
 
@@ -512,6 +524,27 @@ mod tests {
         let text = s.to_text();
         assert!(text.contains("deviation from JG"), "{text}");
         assert!(!text.contains("error +"), "{text}");
+    }
+
+    #[test]
+    fn the_warnings_are_apart_from_the_text_of_the_result() {
+        // 16 elements across the minor axis: too coarse a grid, warned of.
+        let model = sphere(32);
+        let min = state(&model, -0.55, 8.0, 100);
+        let gone = state(&model, -0.3, 0.0, 0);
+        let s = summary_of(&model, vec![min, gone]);
+        assert!(!s.warnings.is_empty());
+        let text = s.to_text();
+        assert!(
+            text.contains("adhesive force") && !text.contains("WARNING"),
+            "{text}"
+        );
+        let lines = s.warning_lines();
+        assert_eq!(lines.len(), s.warnings.len());
+        assert!(lines
+            .iter()
+            .all(|l| l.starts_with("WARNING: ") && !l.contains('\n')));
+        assert!(s.to_json().ends_with("}\n"));
     }
 
     #[test]

@@ -2,36 +2,32 @@
 //! JKR/JG, and the adhesive force |min F̄| against R1/R2 beside JG.
 
 use super::line_chart::{LineChart, Style};
+use super::series::{LawCurve, Named};
 use super::sweep_csv::SweepRow;
 use super::OutputError;
-use crate::theory::{self, TheoryModel};
 use std::path::Path;
 
-/// Points of the closed-form curves (per ratio).
-const THEORY_POINTS: usize = 300;
-
-/// The closed form for a ratio: JKR for the sphere, JG otherwise, as (d̄, F̄) on its adhesive
-/// branch up to approach `d_max`; empty if the theory cannot be evaluated.
-fn theory_curve(ratio: f64, d_max: f64) -> Vec<(f64, f64)> {
-    let model = TheoryModel::adhesive_reference(ratio);
-    theory::curve(model, ratio, THEORY_POINTS)
-        .map(|pts| {
-            pts.iter()
-                .filter(|p| p.d_bar <= d_max)
-                .map(|p| (p.d_bar, p.f_bar))
-                .collect()
-        })
-        .unwrap_or_default()
+/// What a sweep's charts draw beside its rows' own numbers, gathered and computed by the
+/// session layer (`run::curves`): each row's states and closed form, JG's adhesive force and
+/// the law fitted to the rows.
+#[derive(Debug, Clone, Default)]
+pub struct SweepCurves {
+    /// Each row's (d̄, F̄) pull-off points, or why there are none, in the rows' order.
+    pub pulloffs: Vec<Result<Vec<(f64, f64)>, String>>,
+    /// Each row's closed form (JKR for the sphere, JG otherwise) as (d̄, F̄) on its adhesive
+    /// branch up to the row's last approach, in the rows' order.
+    pub references: Vec<Named>,
+    /// Johnson–Greenwood's |min F̄| against R1/R2 (JKR at 1), over the sweep's range.
+    pub jg_force: Vec<(f64, f64)>,
+    /// The power law fitted to the rows' |min F̄| against R1/R2, if it could be fitted.
+    pub fit: Option<LawCurve>,
 }
 
-/// F̄(d̄) of every ratio of a sweep, with the closed forms dashed: `curves[i]` holds the
-/// (d̄, F̄) points of `rows[i]`'s states, or why there are none. Also one line per ratio whose
-/// states it could not draw: that ratio's legend entry says so and only its closed form is
-/// drawn.
-pub fn pulloff_curves_chart(
-    rows: &[SweepRow],
-    curves: &[Result<Vec<(f64, f64)>, String>],
-) -> (LineChart, Vec<String>) {
+/// F̄(d̄) of every ratio of a sweep, with the closed forms dashed: `curves.pulloffs[i]` holds
+/// the (d̄, F̄) points of `rows[i]`'s states, or why there are none. Also one line per ratio
+/// whose states it could not draw: that ratio's legend entry says so and only its closed form
+/// is drawn.
+pub fn pulloff_curves_chart(rows: &[SweepRow], curves: &SweepCurves) -> (LineChart, Vec<String>) {
     let mut chart = LineChart::new(
         "Pull-off: force against approach (markers: jkrbem, dashed: JKR / JG)",
         "approach d̄ = d·Re/c_r²",
@@ -39,15 +35,14 @@ pub fn pulloff_curves_chart(
     );
     let mut notes = Vec::new();
     for (i, r) in rows.iter().enumerate() {
-        let mut d_max = 1.0;
         let label = format!("R1/R2 = {} ({}×{})", r.ratio, r.grid, r.ny);
         let curve = curves
+            .pulloffs
             .get(i)
             .cloned()
             .unwrap_or_else(|| Err("its states were not given".into()));
         match curve {
             Ok(points) => {
-                d_max = points.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
                 chart.push(&label, points, i, Style::Markers);
             }
             Err(why) => {
@@ -64,12 +59,10 @@ pub fn pulloff_curves_chart(
                 );
             }
         }
-        let reference = TheoryModel::adhesive_reference(r.ratio)
-            .name()
-            .to_uppercase();
+        let reference = curves.references.get(i).cloned().unwrap_or_default();
         chart.push(
-            &format!("{reference}, R1/R2 = {}", r.ratio),
-            theory_curve(r.ratio, d_max),
+            &format!("{}, R1/R2 = {}", reference.name, r.ratio),
+            reference.points,
             i,
             Style::Dashed,
         );
@@ -77,37 +70,34 @@ pub fn pulloff_curves_chart(
     (chart, notes)
 }
 
-/// |min F̄| against R1/R2 (log axis): the sweep's points beside JG's pull-off force.
-pub fn force_vs_ratio_chart(rows: &[SweepRow]) -> LineChart {
+/// |min F̄| against R1/R2 (log axis): the sweep's points beside JG's pull-off force and the
+/// law fitted to them.
+pub fn force_vs_ratio_chart(rows: &[SweepRow], curves: &SweepCurves) -> LineChart {
     let mut chart = LineChart::new(
         "Adhesive force against axis ratio (normalised: F̄ = F/(3π Re Δγ))",
         "R1/R2",
         "adhesive force |min F̄|",
     );
     chart.x_log = true;
-    let hi = rows.iter().map(|r| r.ratio).fold(2.0, f64::max);
-    let jg: Vec<(f64, f64)> = (0..=200)
-        .map(|i| hi.powf(i as f64 / 200.0))
-        .filter_map(|ratio| Some((ratio, theory::reference_adhesive_force(ratio).ok()?)))
-        .collect();
-    chart.push("Johnson–Greenwood (JKR at 1)", jg, 1, Style::Line);
+    chart.push(
+        "Johnson–Greenwood (JKR at 1)",
+        curves.jg_force.clone(),
+        1,
+        Style::Line,
+    );
     let sim: Vec<(f64, f64)> = rows
         .iter()
         .filter_map(|r| Some((r.ratio, r.f_ad_bar?)))
         .collect();
-    let (x, y): (Vec<f64>, Vec<f64>) = sim.iter().copied().unzip();
-    if let Ok(law) = crate::analysis::fit_power_law(&x, &y) {
-        let curve = (0..=200)
-            .map(|i| hi.powf(i as f64 / 200.0))
-            .map(|r| (r, law.eval(r)))
-            .collect();
+    if let Some(law) = &curves.fit {
+        let [k1, k2, k3] = law.k;
         chart.push(
             &format!(
                 "fit {} (R² = {:.4})",
-                crate::text::power_law(law.k1, law.k2, law.k3),
-                law.quality.r_squared
+                crate::text::power_law(k1, k2, k3),
+                law.r_squared
             ),
-            curve,
+            law.points.clone(),
             0,
             Style::Dashed,
         );
@@ -151,10 +141,10 @@ fn grids_text(rows: &[SweepRow]) -> String {
 pub fn write_sweep_charts(
     dir: &Path,
     rows: &[SweepRow],
-    curves: &[Result<Vec<(f64, f64)>, String>],
+    curves: &SweepCurves,
 ) -> Result<Vec<String>, OutputError> {
     let [force_svg, curves_svg] = super::names::sweep_charts(dir);
-    force_vs_ratio_chart(rows).write_svg(&force_svg)?;
+    force_vs_ratio_chart(rows, curves).write_svg(&force_svg)?;
     let (chart, notes) = pulloff_curves_chart(rows, curves);
     chart.write_svg(&curves_svg)?;
     Ok(notes)
@@ -188,7 +178,16 @@ mod tests {
                 error: None,
             })
             .collect();
-        let chart = force_vs_ratio_chart(&rows);
+        let law = LawCurve {
+            k: [0.25, -0.4, 0.3],
+            r_squared: 0.999,
+            points: vec![(1.0, 0.55), (50.0, 0.32)],
+        };
+        let curves = SweepCurves {
+            fit: Some(law),
+            ..SweepCurves::default()
+        };
+        let chart = force_vs_ratio_chart(&rows, &curves);
         let law = chart
             .curves
             .iter()

@@ -91,8 +91,15 @@ impl SweepRow {
     }
 
     /// The row of a pull-off that failed before it produced a summary (e.g. its backend did
-    /// not open, or its states could not be written): incomplete, with the reason.
-    pub fn failed(ratio: f64, grid: (usize, usize), dx: f64, error: String) -> SweepRow {
+    /// not open, or its states could not be written): incomplete, with the reason, and JG's
+    /// |min F̄| for its ratio (`jg_f_ad_bar`, computed by the caller) as comparison.
+    pub fn failed(
+        ratio: f64,
+        grid: (usize, usize),
+        dx: f64,
+        error: String,
+        jg_f_ad_bar: Option<f64>,
+    ) -> SweepRow {
         SweepRow {
             ratio,
             f_ad_bar: None,
@@ -100,7 +107,7 @@ impl SweepRow {
             estimate: None,
             c_bar_at_min: None,
             d_bar_at_min: None,
-            jg_f_ad_bar: crate::theory::reference_adhesive_force(ratio).ok(),
+            jg_f_ad_bar,
             n_d: None,
             grid: grid.0,
             dx,

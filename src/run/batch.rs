@@ -116,12 +116,19 @@ impl JobResult {
                 self.grid,
                 self.dx,
                 self.error.clone().unwrap_or_default(),
+                jg_of(self.ratio),
             ),
         }
     }
 }
 
 pub use crate::output::names::run_files;
+
+/// Johnson–Greenwood's |min F̄| for `ratio` (JKR's 1/2 at 1), the comparison a sweep row
+/// carries; `None` where it cannot be evaluated.
+pub fn jg_of(ratio: f64) -> Option<f64> {
+    crate::theory::reference_adhesive_force(ratio).ok()
+}
 
 /// The notes and warnings of a [`Watch`], without its progress line: jobs run on several
 /// threads at once, so they show none.

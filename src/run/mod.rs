@@ -11,6 +11,7 @@
 pub mod accuracy;
 pub mod batch;
 pub mod bench;
+pub mod chart_data;
 pub mod claim;
 pub mod coverage;
 pub mod crossed;

@@ -99,8 +99,25 @@ pub enum Sink {
         /// The summary JSON, if wanted.
         summary: Option<PathBuf>,
     },
+    /// The states returned only, for the caller to send on as one CSV (the command line's
+    /// `--out -`, standard output): a request that runs more than one grid, or keeps fields
+    /// (written beside a states file), is refused. The summary JSON where `summary` names it.
+    OneRunReturned {
+        /// The summary JSON, if wanted.
+        summary: Option<PathBuf>,
+    },
     /// Nothing written: the states and the summary are returned only.
     Memory,
+}
+
+impl Sink {
+    /// The summary JSON file, where one is asked for.
+    fn summary(&self) -> Option<&PathBuf> {
+        match self {
+            Sink::Files { summary, .. } | Sink::OneRunReturned { summary } => summary.as_ref(),
+            Sink::Memory => None,
+        }
+    }
 }
 
 /// One grid's run of a simulation, in memory.
@@ -116,6 +133,8 @@ pub struct GridRun {
     pub complete: bool,
     /// The fields of the states [`SimulateRequest::fields`] picked, by state index.
     pub fields: Vec<StateFields>,
+    /// Which onsets its states hold (the states CSV's `onsets` column).
+    pub onsets: Onsets,
 }
 
 /// What a simulation produced.
@@ -171,6 +190,16 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
             let claimed = Outputs::claim(&targets)?;
             (outs.into_iter().map(Some).collect(), Some(claimed))
         }
+        Sink::OneRunReturned { summary } => {
+            one_run_returned(req, &models)?;
+            let targets: Vec<(PathBuf, NamedBy)> = summary
+                .iter()
+                .map(|p| (p.clone(), SUMMARY.into()))
+                .collect();
+            Outputs::check(&targets)?;
+            let claimed = Outputs::claim(&targets)?;
+            (vec![None; models.len()], Some(claimed))
+        }
         Sink::Memory => (vec![None; models.len()], None),
     };
     let mut ran = run_grids(req, models, &outs, watch)?;
@@ -202,6 +231,24 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
     );
     done.field_files = field_files;
     Ok(done)
+}
+
+/// Refuse a [`Sink::OneRunReturned`] request that runs several grids or keeps fields.
+fn one_run_returned(req: &SimulateRequest, models: &[Model]) -> Result<(), RunError> {
+    if models.len() != 1 || matches!(req.mode, Mode::Extrapolate(_)) {
+        return Err(input(format!(
+            "{OUT} -: standard output takes the states of one run, and this request runs {} \
+             grids; give {OUT} a file name (the stem of one states file per grid)",
+            models.len()
+        )));
+    }
+    if !req.fields.is_none() {
+        return Err(input(format!(
+            "{FIELDS}: the fields are written beside the states file, and {OUT} - sends the \
+             states to standard output; give {OUT} a file name"
+        )));
+    }
+    Ok(())
 }
 
 /// Write each run's fields beside its states file (where it has a file and fields): the
@@ -374,6 +421,7 @@ fn run_grids(
             states: std::mem::take(&mut run.outcome.states),
             complete: run.outcome.complete(),
             fields,
+            onsets: model.onsets,
         });
         if run.timed_out {
             timed_out = Some(format!(
@@ -516,10 +564,7 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
     for why in unwritten {
         summary.warnings.push(format!("outputs incomplete: {why}"));
     }
-    if let Sink::Files {
-        summary: Some(p), ..
-    } = &req.sink
-    {
+    if let Some(p) = req.sink.summary() {
         // The answer is computed and the states are written: a summary that cannot be
         // written fails the run, but the answer is still given and the files already
         // replaced are named.

@@ -1,7 +1,8 @@
 //! The whole study of physics §8 from one request: the sweep over R1/R2, the branch fits and
 //! their laws, the crossed cylinders, every chart as SVG and an index.html that shows them.
 
-use super::batch::{run_files, run_jobs, Job, JobResult};
+use super::batch::{jg_of, run_files, run_jobs, Job, JobResult};
+use super::chart_data;
 use super::claim::{named, write_error, Outputs};
 use super::crossed::{crossed, CrossedRequest};
 use super::curves::{row_curves, run_of};
@@ -409,7 +410,8 @@ fn draw_study_charts(
     laws: &[CoefficientLaw],
     what: &str,
 ) -> Result<(), RunError> {
-    let (curves_chart, _) = pulloff_curves_chart(rows, &row_curves(results, rows));
+    let curves = chart_data::sweep_curves(rows, row_curves(results, rows));
+    let (curves_chart, _) = pulloff_curves_chart(rows, &curves);
     figures.add(
         "pulloff_curves.svg",
         curves_chart,
@@ -418,10 +420,11 @@ fn draw_study_charts(
     let (r2, _) = pick(runs, fits, &[2.0, 5.0, 10.0, 25.0]);
     figures.add(
         "axis_ratio.svg",
-        axis_ratio_chart(&r2),
+        axis_ratio_chart(&chart_data::axis_ratio_series(&r2)),
         format!("§8.2 Axis ratio b_simu/a_simu against F̄ beside JG's g(F̄). {what}."),
     )?;
     let (r3, f3) = pick(runs, fits, &[2.0, 10.0, 25.0]);
+    let branches = chart_data::branch_series(&r3, &f3);
     for (law, file, name) in [
         (BranchLaw::DOfC, "d_of_c.svg", "d̄(c̄), fit d̄ = A c̄² + B c̄^½"),
         (
@@ -433,13 +436,13 @@ fn draw_study_charts(
     ] {
         figures.add(
             file,
-            branch_chart(&r3, &f3, law),
+            branch_chart(&branches, law),
             format!("§8.4 {name}, on the adhesive branch (onset states), beside JG. {what}."),
         )?;
     }
     figures.add(
         "coefficients.svg",
-        coefficients_chart(laws),
+        coefficients_chart(&chart_data::coefficient_series(laws)),
         format!(
             "§8.5 The branch-law coefficients against R1/R2 with fitted laws: {}. {what}.",
             laws_text(laws)
@@ -447,7 +450,7 @@ fn draw_study_charts(
     )?;
     figures.add(
         "force_vs_ratio.svg",
-        force_vs_ratio_chart(rows),
+        force_vs_ratio_chart(rows, &curves),
         format!("§8.6 Adhesive force |min F̄| against R1/R2 beside JG's pull-off force, with the fitted law. {what}."),
     )
 }
@@ -597,7 +600,7 @@ fn crossed_step(
 /// Δx → 0 from the runs of every grid (the finest run's row, marked failed, if a run failed).
 fn ratio_row(ratio: f64, group: &[&JobResult]) -> SweepRow {
     let Some(finest) = group.last() else {
-        return SweepRow::failed(ratio, (0, 0), 0.0, "no run".into());
+        return SweepRow::failed(ratio, (0, 0), 0.0, "no run".into(), jg_of(ratio));
     };
     if group.len() == 1 {
         return finest.row();

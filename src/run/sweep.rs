@@ -2,6 +2,7 @@
 //! and contours, the sweep's summary CSV (or shard file) and its charts.
 
 use super::batch::{batch_model, run_files, run_jobs, GridChoice, Job};
+use super::chart_data;
 use super::claim::{named, write_error, Outputs};
 use super::curves::{row_curves, sweep_curves};
 use super::open::BackendRequest;
@@ -124,7 +125,11 @@ pub fn sweep(req: &SweepRequest, watch: &dyn Watch) -> Result<SweepDone, RunErro
     // own failures (which it must not hide); sweep.csv is already written.
     let (charts, charts_error) = match req.shard {
         Some(_) => (None, None),
-        None => match write_sweep_charts(&req.out, &sorted, &row_curves(&results, &sorted)) {
+        None => match write_sweep_charts(
+            &req.out,
+            &sorted,
+            &chart_data::sweep_curves(&sorted, row_curves(&results, &sorted)),
+        ) {
             Ok(w) => {
                 warnings.extend(w);
                 (Some(chart_files(&req.out)), None)
@@ -334,7 +339,7 @@ pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunErro
             dir.display()
         ));
     }
-    let curves = sweep_curves(dir, &c.rows);
+    let curves = chart_data::sweep_curves(&c.rows, sweep_curves(dir, &c.rows));
     warnings.extend(write_sweep_charts(dir, &c.rows, &curves).map_err(write_error(DIR))?);
     Ok(Merged {
         rows: c.rows.len(),

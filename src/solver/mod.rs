@@ -4,10 +4,13 @@
 
 pub mod cg;
 pub mod cost;
+mod emit;
 pub mod equilibrium;
 mod onsets;
+mod probe;
 pub mod protocol;
 pub mod retry;
+mod search;
 pub mod state;
 pub mod window;
 

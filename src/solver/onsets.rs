@@ -12,8 +12,9 @@
 //! if that lies further: no onset before that point can be the minimum either.
 
 use super::cg::Goal;
+use super::emit::{force_of, record, Emitter, Progress};
 use super::equilibrium::{settle, solve_for, Equilibrium, Held};
-use super::protocol::{force_of, record, Emitter, Progress};
+use super::probe::{bound_meets, Probe, Through};
 use super::state::{Phase, State};
 use super::SolverError;
 use crate::backend::Backend;
@@ -24,26 +25,6 @@ const ONSET_PUSH: f64 = 1e-4;
 
 /// Limit on onsets located inside one load step before the rest of it is taken at once.
 const MAX_ONSETS_PER_STEP: usize = 100_000;
-
-/// What a probe found.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Probe {
-    /// Force of the step's start state (force; NaN where the walk did not measure it).
-    pub base: f64,
-    /// Force of the probe (force): no onset of the step lies below it.
-    pub lower: f64,
-    /// Fraction of the step at which the first element reaches σ_c (1: none does).
-    pub t: f64,
-    /// The probe's relative CG residual (dimensionless).
-    pub residual: f64,
-}
-
-impl Probe {
-    /// Force (force) of the step's first onset, if it has one: exact, an interpolation.
-    pub fn first_onset(&self) -> Option<f64> {
-        (self.t < 1.0).then_some(self.base + self.t * (self.lower - self.base))
-    }
-}
 
 /// Probe the step from `d_from` to `d_to` (lengths): keep the stable state held (force
 /// `base`) in `p_base` and solve its contact set at `d_to` into `p`. With `last_d`, the
@@ -81,26 +62,6 @@ pub(super) fn probe<B: Backend>(
     })
 }
 
-/// How a walk through a step's onsets is done.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Through {
-    /// The load step.
-    pub step: usize,
-    /// Approach at its start (length).
-    pub d_from: f64,
-    /// Approach at its end (length).
-    pub d_to: f64,
-    /// Stop once the rest of the step cannot hold an onset below the lowest located.
-    pub prune: bool,
-    /// Resolve the cascade at the step's end (else the walk stops at its last onset: the
-    /// step's end state is already known).
-    pub finish: bool,
-    /// Hold the onset states back (they are handed on in the order of the load later).
-    pub hold: bool,
-    /// Record the first onset (false: it was recorded already).
-    pub record_first: bool,
-}
-
 /// Walk through the onsets of a step whose probe has been made (`probe`, with `p_base` and
 /// `p` as [`probe`] left them), recording each; the work goes into `eq`. Returns whether the
 /// contact vanished.
@@ -134,7 +95,7 @@ pub(super) fn through<B: Backend>(
         if walk.prune {
             // No onset lies below the lowest one found before the rest's bound reaches it:
             // the walk goes on from there.
-            let meets = super::window::bound_meets(probe.base, probe.lower, run.best);
+            let meets = bound_meets(probe.base, probe.lower, run.best);
             if meets.is_finite() && meets > t_push && meets < 1.0 {
                 let level = probe.base + meets * (probe.lower - probe.base);
                 run.window.skipped(level);

@@ -8,19 +8,22 @@
 //! detachment cascade at the step's end) until the force minimum is confirmed; then the
 //! steps whose probe lies below the lowest onset known are gone back to and their onsets
 //! located, lowest bound first, each pruned as soon as its remaining bound lies above the
-//! lowest onset found ([`super::window`]). With `regrid` the grid is refined as the contact
-//! shrinks.
+//! lowest onset found ([`super::search`], on the bounds [`super::window`] keeps). With
+//! `regrid` the grid is refined as the contact shrinks.
 
-use super::cost::{CostAccount, Work};
+use super::cost::CostAccount;
+use super::emit::{record, Emitter, Progress};
 use super::equilibrium::{equilibrate, settle, Equilibrium, Fields, Held};
-use super::onsets::{self, Through};
+use super::onsets;
+use super::probe::Through;
 use super::retry::{self, CgRetry};
-use super::state::{Phase, State};
+use super::state::{Phase, RegridEvent, State};
 use super::window::{Refinement, Window};
 use super::SolverError;
-use crate::backend::{Backend, ContactKernels};
+use crate::backend::Backend;
 use crate::model::{Measure, Model, Onsets};
-use std::f64::consts::PI;
+
+pub use super::emit::{CONFIRM_D_BAR, CONFIRM_RISE};
 
 /// What a run produced: the states recorded so far and, if it stopped early, why.
 #[derive(Debug)]
@@ -43,17 +46,6 @@ pub struct Outcome {
     /// Which load steps had their onsets located, and the check that they hold the force
     /// minimum ([`Onsets::NearMinimum`]; `None` otherwise or before any such step).
     pub refinement: Option<Refinement>,
-}
-
-/// One change of grid during a run.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct RegridEvent {
-    /// Approach at which the grid changed (dimensionless).
-    pub d_bar: f64,
-    /// Element side before (length).
-    pub dx_from: f64,
-    /// Element side after (length).
-    pub dx_to: f64,
 }
 
 impl Outcome {
@@ -115,61 +107,6 @@ impl Outcome {
     }
 }
 
-/// Measure and normalise the state of pressure `p` on the backend's contact set (reduced on
-/// the backend's device); also returns the contact's index box (`None` without contact).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn record<B: Backend>(
-    backend: &mut B,
-    model: &Model,
-    c: &B::Mask,
-    p: &B::Field,
-    step: usize,
-    phase: Phase,
-    d: f64,
-    eq: &Equilibrium,
-) -> Result<(State, Option<[usize; 4]>), SolverError> {
-    let m = backend.measure(c, p, model.mesh.chord_axes())?;
-    let (a_el, b_el) = m.half_lengths;
-    let n = m.count;
-    let dx = model.dx;
-    let sc = model.scene.scales();
-    let area = n as f64 * dx * dx;
-    let force = m.sum * dx * dx;
-    let mean_radius = (area / PI).sqrt();
-    let state = State {
-        step,
-        phase,
-        d,
-        force,
-        area,
-        mean_radius,
-        a_axis: a_el * dx,
-        b_axis: b_el * dx,
-        n_contact: n,
-        cg_iterations: eq.work.cg_iterations,
-        detach_sweeps: eq.work.rounds,
-        cg_residual: eq.cg_residual,
-        d_bar: d / sc.approach,
-        f_bar: force / sc.force,
-        c_bar: mean_radius / sc.length,
-        a_bar: a_el * dx / sc.length,
-        b_bar: b_el * dx / sc.length,
-        dx,
-    };
-    Ok((state, m.bounds))
-}
-
-/// The force (force) of pressure `p` on the backend's contact set, reduced on its device.
-pub(super) fn force_of<B: Backend>(
-    backend: &mut B,
-    model: &Model,
-    c: &B::Mask,
-    p: &B::Field,
-) -> Result<f64, SolverError> {
-    let m = backend.measure(c, p, model.mesh.chord_axes())?;
-    Ok(m.sum * model.dx * model.dx)
-}
-
 /// Run the whole protocol on `backend`, calling `observe` with each recorded state.
 pub fn run<B: Backend>(backend: &mut B, model: &Model, observe: &mut dyn FnMut(&State)) -> Outcome {
     run_until(backend, model, false, &mut |s, _| {
@@ -225,24 +162,13 @@ pub fn run_watched<B: Backend>(
     let go_on = std::cell::Cell::new(true);
     let readbacks = backend.counters().readbacks;
     let floor = backend.residual_floor();
-    let mut out = Emitter {
-        push: &mut |s: State, mask: Option<&[bool]>| {
-            if !observe(&s, mask) {
-                go_on.set(false);
-            }
-            states.push(s);
-        },
-        held,
-        with_contact,
-        go_on: &go_on,
-        pending: Vec::new(),
-        least: None,
-        regrids: Vec::new(),
-        stopped_after_minimum: false,
-        retries: Vec::new(),
-        cost: CostAccount::default(),
-        refinement: None,
+    let mut push = |s: State, mask: Option<&[bool]>| {
+        if !observe(&s, mask) {
+            go_on.set(false);
+        }
+        states.push(s);
     };
+    let mut out = Emitter::new(&mut push, held, with_contact, &go_on);
     let error = run_inner(backend, model, &mut out).err();
     out.release(usize::MAX);
     out.cost.readbacks = backend.counters().readbacks.saturating_sub(readbacks);
@@ -274,139 +200,6 @@ pub fn run_watched<B: Backend>(
     }
 }
 
-/// Where states go: to the observer at once, or held while onsets may still be located
-/// among them; and the run's account.
-pub(super) struct Emitter<'a> {
-    push: &'a mut dyn FnMut(State, Option<&[bool]>),
-    /// Sees each state held back when it is found; false: stop.
-    held: &'a mut dyn FnMut(&State) -> bool,
-    /// Whether the observer sees each state's contact mask.
-    with_contact: bool,
-    /// False once the observer asked to stop.
-    go_on: &'a std::cell::Cell<bool>,
-    /// States held back, with their masks if the observer sees them.
-    pending: Vec<(State, Option<Vec<bool>>)>,
-    /// Least force (force) handed on since the last re-grid, and its d̄.
-    least: Option<(f64, f64)>,
-    regrids: Vec<RegridEvent>,
-    stopped_after_minimum: bool,
-    /// The safer CG retries of every equilibrium so far.
-    retries: Vec<CgRetry>,
-    /// The run's cost account.
-    pub(super) cost: CostAccount,
-    /// The window of located onsets, once there is one.
-    pub(super) refinement: Option<Refinement>,
-}
-
-impl Emitter<'_> {
-    /// Record a state: its work goes to the account (in its c̄ band), its retries to the
-    /// run's; then it is handed on, or held if `hold`, with the contact mask read back if
-    /// the observer sees masks. Once the observer has asked to stop, no state is recorded:
-    /// the run ends here with [`SolverError::Interrupted`].
-    pub(super) fn emit<B: ContactKernels>(
-        &mut self,
-        backend: &mut B,
-        c: &B::Mask,
-        state: State,
-        eq: &mut Equilibrium,
-        hold: bool,
-    ) -> Result<(), SolverError> {
-        if !self.go_on() {
-            return Err(SolverError::Interrupted);
-        }
-        self.cost.charge(state.c_bar, eq.work);
-        eq.work = Work::default();
-        self.retries.append(&mut eq.retries);
-        if state.phase == Phase::Onset {
-            self.cost.onset(state.c_bar);
-        } else if state.phase == Phase::Pulloff {
-            self.cost.step(state.c_bar);
-        }
-        let mask = if self.with_contact {
-            let (nx, ny) = backend.shape();
-            let mut mask = vec![false; nx * ny];
-            backend.download_mask(c, &mut mask)?;
-            Some(mask)
-        } else {
-            None
-        };
-        self.cost.states += 1;
-        if hold && !(self.held)(&state) {
-            self.go_on.set(false);
-        }
-        self.pending.push((state, mask));
-        if !hold {
-            self.release(usize::MAX);
-        }
-        Ok(())
-    }
-
-    /// Charge work that produced no state of its own (a step's onsets located on going
-    /// back) to the band of `c_bar`, and to the end state of `step` if it is still held (so
-    /// that the states' `cg_iterations` add up to the run's).
-    pub(super) fn charge(&mut self, step: usize, c_bar: f64, eq: &mut Equilibrium) {
-        self.cost.charge(c_bar, eq.work);
-        if let Some((s, _)) = self
-            .pending
-            .iter_mut()
-            .find(|(s, _)| s.step == step && s.phase == Phase::Pulloff)
-        {
-            s.cg_iterations += eq.work.cg_iterations;
-            s.detach_sweeps += eq.work.rounds;
-            s.cg_residual = s.cg_residual.max(eq.cg_residual);
-        }
-        eq.work = Work::default();
-        self.retries.append(&mut eq.retries);
-    }
-
-    /// Hand on the held states of load steps before `step`, in the order of the load
-    /// (decreasing approach; an onset before the step end it precedes).
-    pub(super) fn release(&mut self, step: usize) {
-        self.pending.sort_by(|a, b| b.0.d.total_cmp(&a.0.d));
-        let n = self.pending.iter().take_while(|s| s.0.step < step).count();
-        let released: Vec<_> = self.pending.drain(..n).collect();
-        for (s, m) in released {
-            if !self.go_on() {
-                break;
-            }
-            if self.least.is_none_or(|(f, _)| s.force < f) {
-                self.least = Some((s.force, s.d_bar));
-            }
-            (self.push)(s, m.as_deref());
-        }
-    }
-
-    /// Whether the observer still wants states.
-    pub(super) fn go_on(&self) -> bool {
-        self.go_on.get()
-    }
-
-    /// Least force (force) since the last re-grid, held states included, and its d̄.
-    fn minimum(&self) -> Option<(f64, f64)> {
-        self.pending
-            .iter()
-            .map(|(s, _)| (s.force, s.d_bar))
-            .chain(self.least)
-            .min_by(|a, b| a.0.total_cmp(&b.0))
-    }
-
-    /// Whether a step-end state of `force` (force) at `d_bar` confirms the minimum:
-    /// [`CONFIRM_D_BAR`] or more past it and above it by [`CONFIRM_RISE`] of its size.
-    fn minimum_confirmed(&self, force: f64, d_bar: f64) -> bool {
-        self.minimum().is_some_and(|(f_min, d_min)| {
-            d_bar <= d_min - CONFIRM_D_BAR && force - f_min >= CONFIRM_RISE * f_min.abs()
-        })
-    }
-}
-
-/// How far past the force minimum (in d̄) the approach must go to confirm it: the sawtooth's
-/// period on coarse grids is a few hundredths; on JKR's curve F̄ has risen by 3.4 % there.
-pub const CONFIRM_D_BAR: f64 = 0.1;
-
-/// Rise of the step-end force above its minimum (of |F_min|) needed, with
-/// [`CONFIRM_D_BAR`], to confirm the minimum.
-pub const CONFIRM_RISE: f64 = 0.02;
-
 /// The least fraction of a load step taken once a step end meets one of the tests that
 /// confirm the minimum ([`confirming_end`]).
 const CONFIRMING_STEP: f64 = 0.25;
@@ -418,25 +211,6 @@ pub const REGRID_BELOW: f64 = 0.8;
 /// it (c̄ = 0.74–0.84 in our runs, 0.63–0.79 in the closed forms), so that it is resolved on
 /// the last, finest grid, where [`Outcome::force_minimum`] looks for it.
 pub const REGRID_ABOVE_C_BAR: f64 = 0.9;
-
-/// The pull-off's progress: the current grid and fields, and what the onset policy keeps.
-pub(super) struct Progress<F, M> {
-    /// The model of the current grid.
-    pub model: Model,
-    /// The solver's fields.
-    pub fields: Fields<F, M>,
-    /// The approach (length) of the state whose p `fields.p_last` holds, if it is the step
-    /// end before the current one on this grid (for the probe's predicted start).
-    pub last_d: Option<f64>,
-    /// The stable state held at the last step's end (or the press, or the re-grid).
-    pub held: State,
-    /// The least force (force) of an onset located exactly on this grid (+∞ before any).
-    pub best: f64,
-    /// The steps' bounds and the snapshots to go back to ([`Onsets::NearMinimum`]).
-    pub window: Window<F, M>,
-    /// Whether re-gridding is still allowed (not once the minimum is confirmed).
-    pub may_regrid: bool,
-}
 
 /// How a load step ended.
 struct StepEnd {
@@ -521,7 +295,7 @@ fn pull_off<B: Backend>(
         }
         if out.minimum_confirmed(end.force, end.d_bar) {
             run.may_regrid = false;
-            super::window::refine(backend, run, out)?;
+            super::search::refine(backend, run, out)?;
             if model.measure == Measure::AdhesiveForce {
                 out.stopped_after_minimum = true;
                 return Ok(());
@@ -534,7 +308,7 @@ fn pull_off<B: Backend>(
         }
     }
     // The contact vanished, or the final approach came first: locate what is left to locate.
-    super::window::refine(backend, run, out)
+    super::search::refine(backend, run, out)
 }
 
 /// Where a step from `d_prev` to `d` (lengths) ends instead when only the adhesive force is

@@ -36,11 +36,13 @@ pub struct State {
     pub area: f64,
     /// Mean contact radius c = √(A/π) (length).
     pub mean_radius: f64,
-    /// Half-length of the contact along the ellipsoid's major axis through the centre (length;
-    /// the grid's x axis unless the mesh is rotated).
+    /// Half-length of the contact along the indenter's x axis through the grid centre (length):
+    /// an ellipsoid's major axis (R1's direction), a height map's x axis; the grid's x axis
+    /// unless the mesh is rotated.
     pub a_axis: f64,
-    /// Half-length of the contact along the ellipsoid's minor axis through the centre (length;
-    /// the grid's y axis unless the mesh is rotated).
+    /// Half-length of the contact along the indenter's y axis through the grid centre (length):
+    /// an ellipsoid's minor axis (R2's direction), a height map's y axis; the grid's y axis
+    /// unless the mesh is rotated.
     pub b_axis: f64,
     /// Elements in contact.
     pub n_contact: usize,
@@ -73,4 +75,15 @@ pub struct State {
 /// The value of a column missing from an older file.
 fn not_recorded() -> f64 {
     f64::NAN
+}
+
+/// One change of grid during a run.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct RegridEvent {
+    /// Approach at which the grid changed (dimensionless).
+    pub d_bar: f64,
+    /// Element side before (length).
+    pub dx_from: f64,
+    /// Element side after (length).
+    pub dx_to: f64,
 }

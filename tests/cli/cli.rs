@@ -303,9 +303,11 @@ fn a_time_limit_gives_the_best_answer_so_far_and_says_the_target_was_missed() {
     );
     let err = stderr(&o);
     assert!(o.status.success(), "{err}");
+    // The warning goes to standard error, beside the progress; the answer to stdout.
+    assert!(err.contains("WARNING: --time-limit 5s reached"), "{err}");
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(
-        stdout.contains("WARNING: --time-limit 5s reached"),
+        stdout.contains("adhesive force") && !stdout.contains("WARNING"),
         "{stdout}"
     );
     let s: serde_json::Value =

@@ -147,7 +147,7 @@ fn an_edited_shard_row_is_refused_against_its_ratios_summary() {
     real_shards(dir.path());
     let o = collect(dir.path());
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    assert!(!stdout(&o).contains("warning"), "{}", stdout(&o));
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
     std::fs::remove_file(dir.path().join("sw/sweep.csv")).unwrap();
     edit_json(
         &dir.path().join("sw/sweep-shard-1-of-2.json"),
@@ -182,11 +182,13 @@ fn a_row_without_its_summary_is_merged_with_a_warning() {
     std::fs::remove_file(dir.path().join("sw/r2-n32.json")).unwrap();
     let o = collect(dir.path());
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let out = stdout(&o);
+    // Warnings go to standard error; stdout keeps only what was merged.
+    let out = stderr(&o);
     assert!(
         out.contains("warning") && out.contains("R1/R2 = 2") && out.contains("r2-n32.json"),
         "{out}"
     );
+    assert!(!stdout(&o).contains("warning"), "{}", stdout(&o));
 }
 
 #[test]
@@ -221,7 +223,7 @@ fn a_missing_states_file_is_named_and_shown_in_the_curves_chart() {
     std::fs::remove_file(dir.path().join("sw/r2-n32.csv")).unwrap();
     let o = collect(dir.path());
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let out = stdout(&o);
+    let out = stderr(&o);
     assert!(
         out.contains("warning")
             && out.contains("R1/R2 = 2")

@@ -1,6 +1,7 @@
 //! The command line: its commands and their output, bad invocations (fuzzed and listed), files
 //! that are missing, damaged, linked or locked, interrupted runs, `collect`, `reference`'s
-//! reuse rules and `bench`. One test binary; each former file is a module.
+//! reuse rules, `bench`, and what goes to stdout and what to stderr. One test binary; each
+//! former file is a module.
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -14,3 +15,4 @@ mod hardening_files;
 mod hardening_inputs;
 mod hardening_reference;
 mod robustness;
+mod streams;

@@ -4,6 +4,7 @@
 
 pub mod backend;
 pub mod context;
+pub mod headless;
 pub mod profile;
 pub mod recorder;
 pub mod shaders;

@@ -1,11 +1,15 @@
 //! `jkrbem simulate`: one scene's pull-off (one grid, several extrapolated, or the grids an
 //! accuracy needs). The flags are the request schema's; the texts given become a typed
-//! [`Request`] in the library, which runs it; this module only prints what comes back.
+//! [`Request`] in the library, which runs it; this module only prints what comes back (and
+//! sends a file asked as `-` to standard output).
 
 use super::progress::Progress;
+use super::stdout::{claim_stdout, is_stdout, write_stdout_bytes, Channel};
 use super::{run_error, CliError};
+use jkrbem::output::states_csv::states_csv_bytes;
 use jkrbem::run::request::Request;
-use jkrbem::run::simulate::{failure_error, simulate};
+use jkrbem::run::simulate::{failure_error, simulate, Sink};
+use std::path::PathBuf;
 
 mod args;
 
@@ -14,6 +18,15 @@ pub use args::Args;
 /// The accuracy of a bare `simulate` (relative): the adhesive force to 2 %.
 pub use jkrbem::run::simulate::DEFAULT_ACCURACY;
 
+/// What goes to standard output instead of a file (`-`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OnStdout {
+    /// The states CSV (`--out -`).
+    States,
+    /// The summary JSON (`--summary -`).
+    Summary,
+}
+
 impl Args {
     /// The typed request of these flags (checked against the schema).
     pub fn request(&self) -> Result<Request, CliError> {
@@ -21,23 +34,60 @@ impl Args {
     }
 }
 
+/// Which file of `request`, if any, goes to standard output; two may not.
+fn stdout_claim(request: &Request) -> Result<Option<OnStdout>, CliError> {
+    claim_stdout(&[
+        (OnStdout::States, "--out", request.out.as_deref()),
+        (OnStdout::Summary, "--summary", request.summary.as_deref()),
+    ])
+}
+
+/// Where the states and the summary go: files, except what goes to standard output.
+fn sink(request: &Request, on_stdout: Option<OnStdout>) -> Sink {
+    let file = |p: &Option<PathBuf>| p.clone().filter(|p| !is_stdout(p));
+    match on_stdout {
+        Some(OnStdout::States) => Sink::OneRunReturned {
+            summary: file(&request.summary),
+        },
+        _ => Sink::Files {
+            out: request.out.clone(),
+            summary: file(&request.summary),
+        },
+    }
+}
+
 /// Run `jkrbem simulate`.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let request = args
-        .request()?
-        .simulate_request(true, None)
-        .map_err(run_error)?;
+    let typed = args.request()?;
+    let on_stdout = stdout_claim(&typed)?;
+    let mut request = typed.simulate_request(true, None).map_err(run_error)?;
+    request.sink = sink(&typed, on_stdout);
     let progress = Progress::new();
     let done = simulate(&request, &progress).map_err(run_error)?;
     if let Some(plan) = &done.plan {
         errln!("jkrbem: {plan}");
     }
-    out!("{}", done.summary.to_text());
+    // The results on standard output: the summary's text, or the file asked for there (then
+    // the text goes to standard error). The warnings go to standard error after it.
+    let text = Channel::beside(on_stdout.is_some());
+    match on_stdout {
+        Some(OnStdout::Summary) => write_stdout_bytes(done.summary.to_json().as_bytes()),
+        Some(OnStdout::States) => {
+            for run in &done.runs {
+                write_stdout_bytes(&states_csv_bytes(&run.states, run.onsets.name()));
+            }
+        }
+        None => {}
+    }
+    text.print(&done.summary.to_text());
+    for line in done.summary.warning_lines() {
+        errln!("{line}");
+    }
     for path in &done.states {
-        outln!("states written to {}", path.display());
+        text.line(&format!("states written to {}", path.display()));
     }
     for path in &done.field_files {
-        outln!("fields written to {}", path.display());
+        text.line(&format!("fields written to {}", path.display()));
     }
     failure_error(done.failure).map_err(run_error)
 }

@@ -463,7 +463,9 @@ pub const OUT: &Spec = &cli_only(spec(
     Kind::File,
     Chosen("jkrbem-out/simulate-r<ratio>-n<grid>.csv"),
     "States CSV. While running the states go to <stem>.incomplete-<pid>.csv beside it; only a \
-     complete run renames that to this name, and an existing file here is untouched until then.",
+     complete run renames that to this name, and an existing file here is untouched until then. \
+     `-` writes the states CSV to standard output once the run ends (one grid only; the other \
+     lines then go to standard error).",
 ));
 /// The summary JSON.
 pub const SUMMARY: &Spec = &cli_only(spec(
@@ -473,7 +475,8 @@ pub const SUMMARY: &Spec = &cli_only(spec(
     "",
     Kind::File,
     Chosen("none"),
-    "Also write the summary as JSON to this file (not the ⟨out⟩ file).",
+    "Also write the summary as JSON to this file (not the ⟨out⟩ file). `-` writes it to standard \
+     output, and the summary's text then goes to standard error.",
 ));
 
 /// Every parameter of a simulation, in the order `--help` shows them.

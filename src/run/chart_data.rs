@@ -1,0 +1,243 @@
+//! What the sweep's and the study's charts draw beside the simulation's points: the closed
+//! forms (JKR, JG) over each run's range, the laws fitted to the points, and the points
+//! themselves as each chart takes them. Computed here, in the session layer that gathers the
+//! runs; `output` only draws what it is given.
+
+use crate::analysis::adhesive_branch;
+use crate::analysis::study_fits::{BranchFits, CoefficientLaw, RatioRun};
+use crate::analysis::PowerLawFit;
+use crate::output::series::{LawCurve, Named};
+use crate::output::study_charts::{AxisRatioSeries, BranchSeries, CoefficientSeries};
+use crate::output::sweep_charts::SweepCurves;
+use crate::output::sweep_csv::SweepRow;
+use crate::solver::Phase;
+use crate::theory::{self, TheoryModel, TheoryPoint};
+
+/// Points of the closed-form curves of the sweep's pull-off chart (per ratio).
+const SWEEP_THEORY_POINTS: usize = 300;
+
+/// Points of the curves against R1/R2 on the sweep's force chart.
+const RATIO_POINTS: usize = 200;
+
+/// Points of the study's closed-form and fitted curves.
+const STUDY_CURVE_POINTS: usize = 200;
+
+/// The closed form a ratio is compared with (JKR for the sphere, JG otherwise), and its name
+/// as the charts show it.
+fn reference(ratio: f64) -> (TheoryModel, String) {
+    let model = TheoryModel::adhesive_reference(ratio);
+    (model, model.name().to_uppercase())
+}
+
+/// The closed form's curve for `ratio` in `points` points; empty if it cannot be evaluated.
+fn theory_points(ratio: f64, points: usize) -> Vec<TheoryPoint> {
+    theory::curve(reference(ratio).0, ratio, points).unwrap_or_default()
+}
+
+/// A fitted power law as a chart draws it: its coefficients, R² and (x, law(x)) at `xs`.
+fn law_curve(law: &PowerLawFit, xs: impl Iterator<Item = f64>) -> LawCurve {
+    LawCurve {
+        k: [law.k1, law.k2, law.k3],
+        r_squared: law.quality.r_squared,
+        points: xs.map(|x| (x, law.eval(x))).collect(),
+    }
+}
+
+/// `n` + 1 points from 1 to `hi`, evenly spaced in log.
+fn log_range(hi: f64, n: usize) -> impl Iterator<Item = f64> {
+    (0..=n).map(move |i| hi.powf(i as f64 / n as f64))
+}
+
+/// A sweep's charts' curves: each row's `pulloffs` (its (d̄, F̄) points, or why there are
+/// none), its closed form on the adhesive branch up to its last approach (1 where it has no
+/// points), JG's adhesive force over the sweep's ratios, and the law fitted to its forces.
+pub fn sweep_curves(
+    rows: &[SweepRow],
+    pulloffs: Vec<Result<Vec<(f64, f64)>, String>>,
+) -> SweepCurves {
+    let references = rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let d_max = match pulloffs.get(i) {
+                Some(Ok(points)) => points.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max),
+                _ => 1.0,
+            };
+            let (model, name) = reference(r.ratio);
+            let points = theory::curve(model, r.ratio, SWEEP_THEORY_POINTS)
+                .map(|pts| {
+                    pts.iter()
+                        .filter(|p| p.d_bar <= d_max)
+                        .map(|p| (p.d_bar, p.f_bar))
+                        .collect()
+                })
+                .unwrap_or_default();
+            Named { name, points }
+        })
+        .collect();
+    let hi = rows.iter().map(|r| r.ratio).fold(2.0, f64::max);
+    let jg_force = log_range(hi, RATIO_POINTS)
+        .filter_map(|ratio| Some((ratio, theory::reference_adhesive_force(ratio).ok()?)))
+        .collect();
+    let (x, y): (Vec<f64>, Vec<f64>) = rows
+        .iter()
+        .filter_map(|r| Some((r.ratio, r.f_ad_bar?)))
+        .unzip();
+    let fit = crate::analysis::fit_power_law(&x, &y)
+        .ok()
+        .map(|law| law_curve(&law, log_range(hi, RATIO_POINTS)));
+    SweepCurves {
+        pulloffs,
+        references,
+        jg_force,
+        fit,
+    }
+}
+
+/// Each run's (F̄, b/a) over its pull-off states in contact, beside JG's over the run's range
+/// of F̄.
+pub fn axis_ratio_series(runs: &[RatioRun]) -> Vec<AxisRatioSeries> {
+    runs.iter()
+        .map(|run| {
+            let points = run
+                .states
+                .iter()
+                .filter(|s| s.phase != Phase::Approach && s.n_contact > 0 && s.a_bar > 0.0)
+                .map(|s| (s.f_bar, s.b_bar / s.a_bar))
+                .collect();
+            let f_max = run.states.iter().map(|s| s.f_bar).fold(0.0, f64::max);
+            let jg = theory_points(run.ratio, STUDY_CURVE_POINTS)
+                .iter()
+                .filter(|p| p.f_bar <= f_max && p.a_bar > 0.0)
+                .map(|p| (p.f_bar, p.b_bar / p.a_bar))
+                .collect();
+            AxisRatioSeries {
+                ratio: run.ratio,
+                grid: run.grid,
+                points,
+                jg,
+            }
+        })
+        .collect()
+}
+
+/// Each run's adhesive branch as (c̄, d̄, F̄), with its closed form and its fitted laws over
+/// the branch's range of c̄.
+pub fn branch_series(runs: &[RatioRun], fits: &[BranchFits]) -> Vec<BranchSeries> {
+    runs.iter()
+        .zip(fits)
+        .map(|(run, fit)| {
+            let branch = adhesive_branch(&run.states);
+            let c_max = branch.iter().map(|p| p.c_bar).fold(0.0, f64::max);
+            let c_min = branch.iter().map(|p| p.c_bar).fold(f64::INFINITY, f64::min);
+            let (_, reference_name) = reference(run.ratio);
+            let reference = theory_points(run.ratio, STUDY_CURVE_POINTS)
+                .iter()
+                .filter(|p| p.c_bar <= c_max && p.c_bar >= c_min)
+                .map(|p| [p.c_bar, p.d_bar, p.f_bar])
+                .collect();
+            let fit = match (&fit.d_of_c, &fit.f_of_c) {
+                (Some(d), Some(f)) => Some(
+                    (0..=STUDY_CURVE_POINTS)
+                        .map(|k| c_min + (c_max - c_min) * k as f64 / STUDY_CURVE_POINTS as f64)
+                        .map(|c| [c, d.eval(c), f.eval(c)])
+                        .collect(),
+                ),
+                _ => None,
+            };
+            BranchSeries {
+                ratio: run.ratio,
+                grid: run.grid,
+                branch: branch.iter().map(|p| [p.c_bar, p.d_bar, p.f_bar]).collect(),
+                reference_name,
+                reference,
+                fit,
+            }
+        })
+        .collect()
+}
+
+/// Each coefficient's points against R1/R2 and its law drawn from 1 to its largest ratio.
+pub fn coefficient_series(laws: &[CoefficientLaw]) -> Vec<CoefficientSeries> {
+    laws.iter()
+        .map(|c| {
+            let hi = c.points.iter().map(|p| p.0).fold(1.0, f64::max);
+            CoefficientSeries {
+                name: c.name,
+                points: c.points.clone(),
+                law: c
+                    .law
+                    .as_ref()
+                    .map(|law| law_curve(law, log_range(hi, STUDY_CURVE_POINTS))),
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(ratio: f64, f_ad_bar: f64) -> SweepRow {
+        SweepRow {
+            ratio,
+            f_ad_bar: Some(f_ad_bar),
+            f_ad_bar_uncertainty: Some(0.01),
+            estimate: Some("single-grid".into()),
+            c_bar_at_min: Some(0.8),
+            d_bar_at_min: Some(-0.2),
+            jg_f_ad_bar: Some(0.5),
+            n_d: Some(30.0),
+            grid: 64,
+            dx: 0.1,
+            wall_s: 1.0,
+            ny: 64,
+            backend: "cpu-f64".into(),
+            complete: true,
+            min_reached: true,
+            error: None,
+        }
+    }
+
+    #[test]
+    fn a_sweep_gets_its_closed_forms_jg_and_the_law_fitted_to_its_forces() {
+        let rows: Vec<SweepRow> = [1.0, 2.0, 5.0, 10.0, 25.0, 50.0]
+            .iter()
+            .map(|&r: &f64| row(r, 0.3 + 0.25 * r.powf(-0.4)))
+            .collect();
+        let pulloffs = rows
+            .iter()
+            .map(|_| Ok(vec![(0.5, -0.1), (-0.3, -0.5)]))
+            .collect();
+        let c = sweep_curves(&rows, pulloffs);
+        // JKR for the sphere, JG otherwise, each cut at the run's last approach (d̄ ≤ 0.5).
+        assert_eq!(c.references[0].name, "JKR");
+        assert_eq!(c.references[1].name, "JG");
+        assert!(c
+            .references
+            .iter()
+            .all(|r| !r.points.is_empty() && r.points.iter().all(|p| p.0 <= 0.5)));
+        // JG's force from 1 to the largest ratio; JKR's 1/2 at 1.
+        assert_eq!(c.jg_force.len(), RATIO_POINTS + 1);
+        assert!((c.jg_force[0].1 - 0.5).abs() < 1e-9, "{:?}", c.jg_force[0]);
+        assert!((c.jg_force.last().unwrap().0 - 50.0).abs() < 1e-9);
+        // The law the points were made from comes back.
+        let law = c.fit.expect("a fitted law");
+        let [k1, k2, k3] = law.k;
+        assert!((k1 - 0.25).abs() < 1e-6 && (k2 + 0.4).abs() < 1e-6 && (k3 - 0.3).abs() < 1e-6);
+        assert!(law.r_squared > 0.999_999);
+        assert!(law
+            .points
+            .iter()
+            .all(|&(x, y)| (y - (0.3 + 0.25 * x.powf(-0.4))).abs() < 1e-6));
+    }
+
+    #[test]
+    fn a_row_without_states_has_its_closed_form_up_to_d_1() {
+        let rows = vec![row(2.0, 0.45)];
+        let c = sweep_curves(&rows, vec![Err("no states".into())]);
+        let jg = &c.references[0].points;
+        assert!(!jg.is_empty() && jg.iter().all(|p| p.0 <= 1.0));
+        assert!(c.fit.is_none(), "one point fits no law");
+    }
+}
