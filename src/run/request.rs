@@ -140,7 +140,7 @@ impl Request {
     pub fn from_texts<'a>(
         given: impl IntoIterator<Item = (&'a str, &'a str)>,
     ) -> Result<Request, RunError> {
-        let map = values::checked(SPECS, given, |s, t| values::from_text(s, t)).map_err(input)?;
+        let map = values::checked(SPECS, given, values::from_text).map_err(input)?;
         Request::from_values(map)
     }
 
@@ -148,7 +148,7 @@ impl Request {
     pub fn from_json<'a>(
         given: impl IntoIterator<Item = (&'a str, &'a Value)>,
     ) -> Result<Request, RunError> {
-        let map = values::checked(SPECS, given, |s, v| values::from_json(s, v)).map_err(input)?;
+        let map = values::checked(SPECS, given, values::from_json).map_err(input)?;
         Request::from_values(map)
     }
 
@@ -381,6 +381,7 @@ impl Request {
             },
             fields,
             time_limit,
+            request: Some(self.to_json()),
         })
     }
 }
