@@ -62,6 +62,9 @@ enum Command {
     /// Run one pull-off per axis ratio R1/R2 (optionally one shard of them) and write a
     /// summary CSV beside each ratio's states.
     Sweep(cli::sweep::Args),
+    /// Simulate every scene of a table (one per row, any parameter of `simulate` as a column),
+    /// each to its own files; optionally one shard of the rows, resuming what is done.
+    Batch(cli::batch::Args),
     /// Crossed identical elastic cylinders at several angles: adhesive force in newtons
     /// beside Johnson–Greenwood.
     Crossed(cli::crossed::Args),
@@ -77,8 +80,8 @@ enum Command {
     /// One scene on several grids and backends: the error of the adhesive force against its
     /// wall time, as CSV and a log–log chart.
     Accuracy(cli::accuracy::Args),
-    /// Merge the shard files of a split sweep into DIR/sweep.csv, checking that they are of
-    /// one sweep and naming missing or incomplete ratios.
+    /// Merge a split sweep's shard files into DIR/sweep.csv, or a batch's scenes into
+    /// DIR/batch.csv, checking that they are of one run and naming what is missing.
     Collect(cli::collect::Args),
     /// Write a closed-form curve (Hertz, JKR or Johnson–Greenwood) as CSV.
     Theory(cli::theory::Args),
@@ -227,6 +230,7 @@ fn main() -> ExitCode {
         Command::Simulate(a) => cli::simulate::run(*a),
         Command::Theory(a) => cli::theory::run(a),
         Command::Sweep(a) => cli::sweep::run(a),
+        Command::Batch(a) => cli::batch::run(a),
         Command::Collect(a) => cli::collect::run(a),
         Command::Accuracy(a) => cli::accuracy::run(a),
         Command::Reproduce(a) => cli::reproduce::run(a),

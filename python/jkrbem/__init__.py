@@ -33,6 +33,7 @@ __version__ = _jkrbem.__version__
 
 __all__ = [
     "simulate",
+    "batch",
     "pulloff",
     "plan",
     "sweep",
@@ -135,6 +136,130 @@ def simulate(
     return result
 
 
+def _frame_records(frame: Any) -> List[Dict[str, Any]]:
+    """A pandas DataFrame's rows as dicts of keywords: an empty (NaN, None, NA) cell is not
+    given, and a whole number in a column pandas made float (because of its empty cells) is
+    an integer again where the keyword takes one."""
+    import pandas as pd
+
+    records = []
+    for row in frame.to_dict("records"):
+        given: Dict[str, Any] = {}
+        for name, value in row.items():
+            if pd.api.types.is_scalar(value) and pd.isna(value):
+                continue
+            kind = _request.BY_NAME.get(name, {}).get("kind", "")
+            if isinstance(value, float) and value.is_integer() and kind.startswith(("Count", "PowerOfTwo")):
+                value = int(value)
+            given[name] = value
+        records.append(given)
+    return records
+
+
+def _batch_progress(progress: Union[None, bool, Callable[[dict], Any]]) -> Optional[Callable[[dict], Any]]:
+    """The callable that sees a batch's events: the user's, a tqdm bar over the scenes
+    (True), or none."""
+    if progress is None or callable(progress):
+        return progress
+    if not _check.flag("progress", progress, _PROGRESS):
+        return None
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        def show(event: dict) -> None:
+            if event["event"] == "scene":
+                print(f"jkrbem: scenes[{event['index']}] ended ({event['done']} of {event['total']})")
+            elif event["event"] == "warning":
+                print(f"jkrbem: {event['text']}")
+        return show
+    bars: Dict[str, Any] = {}
+
+    def bar(event: dict) -> None:
+        if event["event"] == "scene":
+            if "bar" not in bars:
+                bars["bar"] = tqdm(total=event["total"], desc="scenes")
+            bars["bar"].update(1)
+            if event["done"] == event["total"]:
+                bars.pop("bar").close()
+        elif event["event"] == "warning":
+            tqdm.write(f"jkrbem: {event['text']}")
+
+    return bar
+
+
+def batch(
+    scenes: Any,
+    processes: int = 1,
+    progress: Union[None, bool, Callable[[dict], Any]] = None,
+) -> List[Result]:
+    """Simulate many scenes: ``scenes`` is a list of dicts of :func:`simulate`'s keywords (one
+    scene each), or a pandas DataFrame with a column per keyword (an empty or NaN cell is a
+    keyword not given). Every scene is checked before any runs; a refusal names the scene
+    (``scenes[i]``) and the keyword. ``processes`` scenes run at a time (1 to 256), each on its
+    own backend, in threads of this process; 1 runs them one after another, each using every
+    core.
+
+    ``progress``: a callable receiving event dicts (``event`` = "note", "warning", each
+    ``text`` naming its scene, and "scene" as each scene ends: ``index``, ``done``, ``total``,
+    ``adhesive_force``, ``failure``), or True for a tqdm bar over the scenes.
+
+    Returns the :class:`Result` of each scene, in order. Raises :class:`SolveError` naming
+    every scene that has no adhesive force because a run failed; its ``results`` attribute
+    holds every scene's :class:`Result` (None for one that could not start) and ``result``
+    the first failed one's.
+    """
+    if hasattr(scenes, "to_dict") and hasattr(scenes, "columns"):
+        records: List[Any] = _frame_records(scenes)
+    else:
+        records = _check.items("scenes", scenes, "a list of dicts of keywords (or a pandas DataFrame)")
+    processes = _check.integer("processes", processes, 1, 256, "scenes run at a time, from 1 to 256")
+    requests = []
+    for i, params in enumerate(records):
+        if not isinstance(params, dict):
+            raise TypeError(
+                f"scenes[{i}] = {_check.shown(params)} is invalid: a dict of keywords is expected, "
+                f"not {type(params).__name__}"
+            )
+        try:
+            text, heights = _request.request(params)
+        except (TypeError, InputError) as e:
+            raise type(e)(f"scenes[{i}]: {e}") from None
+        if heights is not None:
+            raise InputError(
+                f"scenes[{i}]: height_map as an array is not taken by batch: save it to a file "
+                "and give its path (with spacing)"
+            )
+        requests.append(json.loads(text))
+    answers = _jkrbem.batch(json.dumps(requests), processes, _batch_progress(progress))
+    results: List[Optional[Result]] = []
+    failures = []
+    for i, (text, raw_fields, error) in enumerate(answers):
+        if error is not None:
+            kind, message = error
+            if kind == "input":
+                raise InputError(f"scenes[{i}]: {message}")
+            results.append(None)
+            failures.append((i, message, None))
+            continue
+        r = _result(json.loads(text), _fields(raw_fields))
+        results.append(r)
+        if r.adhesive_force is None and r.failure is not None and not r.interrupted:
+            failures.append((i, r.failure, r))
+    if any(r is not None and r.interrupted for r in results):
+        warnings.warn(
+            "jkrbem: the batch was interrupted; the results hold the states computed so far",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    if failures:
+        lines = [f"scenes[{i}]: {message}" for i, message, _ in failures]
+        error = SolveError(f"{len(failures)} of {len(results)} scene(s) failed:\n  " + "\n  ".join(lines))
+        error.results = results
+        error.result = next((r for _, _, r in failures if r is not None), None)
+        raise error
+    return results  # type: ignore[return-value]
+
+
 def pulloff(
     ratio: Optional[float] = None,
     *,
@@ -168,9 +293,16 @@ def _ratios(ratios: Sequence[float]) -> List[float]:
     return [_check.ratio("ratios", q) for q in values]
 
 
-def sweep_results(ratios: Sequence[float] = (1, 2, 3, 5, 10, 15, 20, 25), **kwargs: Any) -> List[Result]:
-    """The :class:`Result` of :func:`simulate` for each ratio, in order."""
-    return [simulate(q, **kwargs) for q in _ratios(ratios)]
+def sweep_results(
+    ratios: Sequence[float] = (1, 2, 3, 5, 10, 15, 20, 25),
+    *,
+    processes: int = 1,
+    progress: Union[None, bool, Callable[[dict], Any]] = None,
+    **kwargs: Any,
+) -> List[Result]:
+    """The :class:`Result` of :func:`simulate` for each ratio, in order: one :func:`batch`
+    with a scene per ratio (``processes`` of them at a time)."""
+    return batch([dict(kwargs, ratio=q) for q in _ratios(ratios)], processes=processes, progress=progress)
 
 
 def _table(results: List[Result]) -> np.ndarray:

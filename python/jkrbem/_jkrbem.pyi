@@ -18,6 +18,12 @@ def simulate(
 ) -> Tuple[str, List[Dict[str, Any]]]:
     """Run a simulation (request as JSON): the answer as JSON and the fields as dicts of bytes."""
 
+def batch(
+    requests: str, processes: int = ..., progress: Optional[Callable[[Dict[str, Any]], Any]] = ...
+) -> List[Tuple[Optional[str], List[Dict[str, Any]], Optional[Tuple[str, str]]]]:
+    """Run a batch of simulations (a JSON list of requests): per scene, its answer as JSON and
+    its fields, or None and why it has none (kind, message)."""
+
 def plan(request: str) -> str:
     """What a run to the request's accuracy would do, as JSON."""
 

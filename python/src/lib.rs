@@ -591,6 +591,138 @@ fn _panic_for_tests() -> PyResult<()> {
     guarded(|| panic!("a deliberate panic (jkrbem's own test of its last line of defence)"))
 }
 
+/// What Python's [`batch`] watches its scenes with: the progress callback (a callable taking a
+/// dict, or None) sees each scene's notes and warnings (named `scenes[i]`) and its end; once
+/// the callback raises (Ctrl-C in it included), the scenes not yet started do not run.
+struct BatchWatch {
+    progress: Option<Py<PyAny>>,
+    interrupted: AtomicBool,
+    callback_error: Mutex<Option<PyErr>>,
+}
+
+impl BatchWatch {
+    /// Whether the batch is being stopped (the callback raised).
+    fn stopping(&self) -> bool {
+        self.interrupted.load(Ordering::SeqCst) || lock(&self.callback_error).is_some()
+    }
+
+    /// Hands `event` to the callback, unless the batch is stopping.
+    fn event(&self, event: Value) {
+        let Some(cb) = &self.progress else { return };
+        if self.stopping() {
+            return;
+        }
+        Python::attach(|py| {
+            let result = py
+                .import("json")
+                .and_then(|json| json.call_method1("loads", (event.to_string(),)))
+                .and_then(|dict| cb.call1(py, (dict,)));
+            match result {
+                Err(e) if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) => {
+                    self.interrupted.store(true, Ordering::SeqCst)
+                }
+                Err(e) => {
+                    lock(&self.callback_error).get_or_insert(e);
+                }
+                Ok(_) => {}
+            }
+        });
+    }
+}
+
+impl Watch for BatchWatch {
+    fn note(&self, line: &str) {
+        self.event(json!({"event": "note", "text": keywords(line)}));
+    }
+    fn warning(&self, line: &str) {
+        self.event(json!({"event": "warning", "text": keywords(line)}));
+    }
+    fn scene_ended(&self, s: &jkrbem::run::scenes::pool::SceneEnded) {
+        self.event(
+            json!({"event": "scene", "index": s.index, "done": s.done, "total": s.total,
+                          "adhesive_force": s.f_ad_bar, "grid_adhesive_force": s.grid_f_ad_bar,
+                          "failure": s.failure.map(keywords)}),
+        );
+    }
+    fn keep_going(&self) -> bool {
+        !self.stopping()
+    }
+}
+
+/// One scene's outcome for Python: its answer as JSON and its fields, or none and why
+/// ("input" or "failed", and the message in Python's words).
+type SceneAnswer<'py> = (
+    Option<String>,
+    Vec<Bound<'py, PyDict>>,
+    Option<(String, String)>,
+);
+
+/// Run a batch of simulations: `requests` is a JSON list of requests, each as for
+/// [`simulate`] (no height map array); every one is checked before any runs, a refusal naming
+/// the scene (`scenes[i]`) and the keyword. `processes` scenes run at a time, each on its own
+/// backend, in the process's rayon pool (1) or a pool of that many threads, with the GIL
+/// released; `progress` (a callable, or None) sees the scenes' notes, warnings and ends.
+/// Returns, per scene in order, its answer and fields, or why it has none.
+#[pyfunction]
+#[pyo3(signature = (requests, processes=1, progress=None))]
+fn batch<'py>(
+    py: Python<'py>,
+    requests: &str,
+    processes: usize,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Vec<SceneAnswer<'py>>> {
+    use jkrbem::run::scenes::pool::{run_all, SceneJob};
+    guarded(|| {
+        let given: Vec<serde_json::Map<String, Value>> = parse(requests)?;
+        let mut requests = Vec::with_capacity(given.len());
+        let mut jobs = Vec::with_capacity(given.len());
+        for (i, g) in given.iter().enumerate() {
+            let at = |e: RunError| input_error(format!("scenes[{i}]: {e}"));
+            let req = Request::from_json(g.iter().map(|(k, v)| (k.as_str(), v))).map_err(at)?;
+            let sim = req.simulate_request(false, None).map_err(at)?;
+            jkrbem::run::simulate::planned_outputs(&sim).map_err(at)?;
+            jobs.push(SceneJob {
+                request: sim,
+                label: format!("scenes[{i}]"),
+            });
+            requests.push(req);
+        }
+        let watch = BatchWatch {
+            progress,
+            interrupted: AtomicBool::new(false),
+            callback_error: Mutex::new(None),
+        };
+        let pool = process_pool()?;
+        let threads = processes.max(1);
+        let done = py.detach(|| pool.install(|| run_all(jobs, threads, &watch, &|_, o| o)));
+        if let Some(e) = lock(&watch.callback_error).take() {
+            return Err(e);
+        }
+        let interrupted = watch.interrupted.load(Ordering::SeqCst);
+        done.into_iter()
+            .zip(&requests)
+            .map(|(outcome, req)| match outcome {
+                Ok(d) => Ok((
+                    Some(answer(&d, req, interrupted).to_string()),
+                    fields_out(py, &d)?,
+                    None,
+                )),
+                Err(e) => {
+                    let kind = match e {
+                        RunError::Input(_) => "input",
+                        RunError::Failed(_) => "failed",
+                    };
+                    Ok((
+                        None,
+                        Vec::new(),
+                        Some((kind.into(), keywords(&e.to_string()))),
+                    ))
+                }
+            })
+            .collect()
+    })
+}
+
 /// The compiled module.
 #[pymodule]
 fn _jkrbem(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -598,6 +730,7 @@ fn _jkrbem(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SolveError", m.py().get_type::<SolveError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(batch, m)?)?;
     m.add_function(wrap_pyfunction!(plan, m)?)?;
     m.add_function(wrap_pyfunction!(schema_json, m)?)?;
     m.add_function(wrap_pyfunction!(theory_curve, m)?)?;

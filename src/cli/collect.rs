@@ -1,12 +1,15 @@
-//! `jkrbem collect DIR`: merge the shard files sweep-shard-K-of-N.json of a split sweep into
-//! DIR/sweep.csv, after checking that they are of one sweep, that no ratio appears twice and
-//! that each row holds what its ratio's own summary (beside the shards) says; missing and
-//! incomplete ratios are named by value, and rows that could not be checked or drawn are
-//! warned of. The work is
-//! [`jkrbem::run::sweep::collect_shards`].
+//! `jkrbem collect DIR`: merge what a split run left in DIR. For a sweep, the shard files
+//! sweep-shard-K-of-N.json into DIR/sweep.csv, after checking that they are of one sweep, that
+//! no ratio appears twice and that each row holds what its ratio's own summary (beside the
+//! shards) says; missing and incomplete ratios are named by value, and rows that could not be
+//! checked or drawn are warned of. For a batch, its records and every scene's summary into
+//! DIR/batch.csv (and the wall times into DIR/batch-timings.csv); missing, stale and
+//! incomplete scenes are named by id. The work is [`jkrbem::run::collect::collect`].
 
 use super::{run_error, CliError};
-use jkrbem::run::sweep::collect_shards;
+use jkrbem::run::collect::{collect, Collected};
+use jkrbem::run::scenes::collect::BatchMerged;
+use jkrbem::run::sweep::Merged;
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem collect`.
@@ -14,16 +17,24 @@ use std::path::PathBuf;
 pub struct Args {
     /// The folder the shards wrote to (their common --out).
     pub dir: PathBuf,
-    /// Merge even if some ratios are missing (their shard has not written its file) or
+    /// Merge even if some ratios or scenes are missing (their shard has not written them) or
     /// incomplete (failed, or no force minimum reached); they are then absent from, or marked
-    /// in, sweep.csv, and the exit code is 0.
+    /// in, sweep.csv or batch.csv, and the exit code is 0.
     #[arg(long)]
     pub allow_missing: bool,
 }
 
 /// Run `jkrbem collect`.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let m = collect_shards(&args.dir, args.allow_missing).map_err(run_error)?;
+    match collect(&args.dir, args.allow_missing).map_err(run_error)? {
+        Collected::Sweep(m) => sweep(&m),
+        Collected::Batch(m) => batch(&m),
+    }
+    Ok(())
+}
+
+/// What merging a sweep did.
+fn sweep(m: &Merged) {
     outln!(
         "merged {} ratio(s) from {} of {} shard(s) into {}",
         m.rows,
@@ -42,5 +53,19 @@ pub fn run(args: Args) -> Result<(), CliError> {
         m.charts[0].display(),
         m.charts[1].display()
     );
-    Ok(())
+}
+
+/// What merging a batch did.
+fn batch(m: &BatchMerged) {
+    outln!(
+        "merged {} of {} scene(s) from {} record(s) into {}",
+        m.rows,
+        m.scenes,
+        m.records.len(),
+        m.path.display()
+    );
+    for p in &m.problems {
+        outln!("warning (--allow-missing): {p}");
+    }
+    outln!("wall times written to {}", m.timings.display());
 }

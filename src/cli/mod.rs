@@ -1,6 +1,7 @@
 //! One module per subcommand, and the error type they share.
 
 pub mod accuracy;
+pub mod batch;
 pub mod bench;
 pub mod collect;
 pub mod coverage;

@@ -2,6 +2,7 @@
 //! the timings of `jkrbem bench`. Every file is written through [`file`](mod@file): never half-written,
 //! never over a file that is not a regular one, and never over another run's.
 
+pub mod batch_csv;
 pub mod bench;
 pub mod chart;
 pub mod fields_npz;

@@ -21,6 +21,51 @@ pub fn shard(dir: &Path, (k, n): (usize, usize)) -> PathBuf {
     dir.join(format!("sweep-shard-{k}-of-{n}.json"))
 }
 
+/// The states file of a batch's scene `id` in the batch's folder: `dir/scene-<id>.csv` (the
+/// stem of its per-grid files `scene-<id>-n<Nx>.csv` where it runs several grids).
+pub fn scene_states(dir: &Path, id: &str) -> PathBuf {
+    dir.join(format!("scene-{id}.csv"))
+}
+
+/// The summary JSON of a batch's scene `id`: `dir/scene-<id>.json`.
+pub fn scene_summary(dir: &Path, id: &str) -> PathBuf {
+    dir.join(format!("scene-{id}.json"))
+}
+
+/// The record of a batch (every scene, its id and its request) that a batch run writes in
+/// its folder: `dir/batch.json`, or `dir/batch-shard-K-of-N.json` for shard K of N.
+pub fn batch_manifest(dir: &Path, shard: Option<(usize, usize)>) -> PathBuf {
+    match shard {
+        None => dir.join("batch.json"),
+        Some((k, n)) => dir.join(format!("batch-shard-{k}-of-{n}.json")),
+    }
+}
+
+/// (K, N) of a batch's record named `name` (`batch-shard-K-of-N.json`; `None` inside for
+/// `batch.json`), or `None` for any other name.
+pub fn parse_batch_manifest(name: &str) -> Option<Option<(usize, usize)>> {
+    if name == "batch.json" {
+        return Some(None);
+    }
+    let rest = name.strip_prefix("batch-shard-")?.strip_suffix(".json")?;
+    let (k, n) = rest.split_once("-of-")?;
+    let digits = |t: &str| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
+    if !digits(k) || !digits(n) {
+        return None;
+    }
+    Some(Some((k.parse().ok()?, n.parse().ok()?)))
+}
+
+/// The merged table of a batch: `dir/batch.csv`.
+pub fn batch_csv(dir: &Path) -> PathBuf {
+    dir.join("batch.csv")
+}
+
+/// The wall times of a batch's scenes, kept out of [`batch_csv`]: `dir/batch-timings.csv`.
+pub fn batch_timings(dir: &Path) -> PathBuf {
+    dir.join("batch-timings.csv")
+}
+
 /// A sweep's charts in `dir`: `force_vs_ratio.svg` and `pulloff_curves.svg`.
 pub fn sweep_charts(dir: &Path) -> [PathBuf; 2] {
     [
@@ -174,5 +219,17 @@ mod tests {
             Path::new("t/adhesive-force-runs")
         );
         assert_eq!(reference_run(5.0, 64, 1, 0.1), "r5-n64-m0.1");
+        assert_eq!(scene_summary(d, "a1"), Path::new("sw/scene-a1.json"));
+        assert_eq!(
+            batch_manifest(d, Some((2, 4))),
+            Path::new("sw/batch-shard-2-of-4.json")
+        );
+        for (k, n) in [(2, 4), (1, 1)] {
+            let name = format!("batch-shard-{k}-of-{n}.json");
+            assert_eq!(parse_batch_manifest(&name), Some(Some((k, n))));
+        }
+        assert_eq!(parse_batch_manifest("batch.json"), Some(None));
+        assert_eq!(parse_batch_manifest("batch-shard-x-of-4.json"), None);
+        assert_eq!(parse_batch_manifest("batch.csv"), None);
     }
 }

@@ -25,6 +25,11 @@ pub struct Provenance {
     pub backend: Value,
     /// The command line, where the result comes from the `jkrbem` command.
     pub command: Option<String>,
+    /// The request as its schema completed it (every parameter by name, defaults filled),
+    /// where the result answers one (`simulate`, a batch's scene): what a batch's `--resume`
+    /// compares and `collect` tabulates.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub request: Option<Value>,
 }
 
 impl Provenance {
@@ -39,6 +44,7 @@ impl Provenance {
             options,
             backend,
             command,
+            request: None,
         }
     }
 }

@@ -1,7 +1,8 @@
 //! The session layer: what a user asks for (one pull-off, an adhesive force to an accuracy, a
-//! sweep over R1/R2, crossed cylinders, the whole study, timings), planned, run on backends and
-//! handed to `output` to write. Each front end (the `jkrbem` command line, a test, another
-//! program) only builds a request, calls one function here and shows what comes back.
+//! sweep over R1/R2, a batch of any scenes, crossed cylinders, the whole study, timings),
+//! planned, run on backends and handed to `output` to write. Each front end (the `jkrbem`
+//! command line, a test, another program) only builds a request, calls one function here and
+//! shows what comes back.
 //!
 //! Errors say whether the request was refused before any work ([`RunError::Input`]) or the
 //! work failed ([`RunError::Failed`]), and name the parameter or value to change: a parameter
@@ -13,6 +14,7 @@ pub mod batch;
 pub mod bench;
 pub mod chart_data;
 pub mod claim;
+pub mod collect;
 pub mod coverage;
 pub mod crossed;
 pub mod curves;
@@ -22,6 +24,7 @@ pub mod provenance;
 pub mod pulloff;
 pub mod reference;
 pub mod request;
+pub mod scenes;
 pub mod schema;
 pub mod simulate;
 pub mod study;
@@ -79,6 +82,8 @@ pub trait Watch: Sync {
     fn pulloff_ended(&self) {}
     /// A warning about a result.
     fn warning(&self, _line: &str) {}
+    /// A scene of a batch ended ([`scenes::pool`]), with its answer or why it has none.
+    fn scene_ended(&self, _scene: &scenes::pool::SceneEnded) {}
     /// Asked after every state, held ones included: `false` stops the pull-off there (what an
     /// interrupt from a notebook needs); the run then returns the states it had handed on,
     /// marked incomplete.

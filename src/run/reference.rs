@@ -474,6 +474,7 @@ pub(crate) fn run_or_reuse(
         },
         fields: Default::default(),
         time_limit: None,
+        request: None,
     };
     let done = simulate(&one, watch)?;
     write_summary(&summary, &done.summary, &settings)?;

@@ -390,6 +390,7 @@ impl Request {
             },
             fields,
             time_limit,
+            request: Some(self.to_json()),
         })
     }
 }

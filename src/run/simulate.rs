@@ -85,6 +85,9 @@ pub struct SimulateRequest {
     /// that resolves the contact runs first, so that there is one), with `target_met: false`
     /// where that falls short. `None`: no limit.
     pub time_limit: Option<Duration>,
+    /// The request this was built from, as JSON ([`super::request::Request::to_json`]),
+    /// recorded in the summary's provenance where given.
+    pub request: Option<serde_json::Value>,
 }
 
 /// Where a simulation's results go besides memory.
@@ -156,6 +159,53 @@ pub struct Simulated {
     pub field_files: Vec<PathBuf>,
 }
 
+/// The files the request would write (each with the flag that names it), after every check
+/// [`simulate`] makes before any work (the backend asked for, the plan, the memory), creating
+/// nothing: what a batch checks of every scene before it runs any. None with [`Sink::Memory`].
+pub fn planned_outputs(req: &SimulateRequest) -> Result<Vec<(PathBuf, NamedBy)>, RunError> {
+    req.backend.check()?;
+    let planned = plan_models(req)?;
+    check_memory(req, &planned.models)?;
+    match &req.sink {
+        Sink::Files { out, summary } => {
+            let outs = output_paths(req, out, &planned.models)?;
+            Ok(targets(req, &outs, summary))
+        }
+        Sink::OneRunReturned { .. } | Sink::Memory => Ok(Vec::new()),
+    }
+}
+
+/// Refuse models that, with the fields asked for, do not fit in memory.
+fn check_memory(req: &SimulateRequest, models: &[Model]) -> Result<(), RunError> {
+    let refs: Vec<&Model> = models.iter().collect();
+    let param = match req.mode {
+        Mode::Single => GRID,
+        _ => EXTRAPOLATE_GRIDS,
+    };
+    plan::check_memory_with_fields(&refs, 1, param, &req.fields).map_err(input)
+}
+
+/// Every file written for the states files `outs`: each, its fields where asked, and the
+/// summary where asked.
+fn targets(
+    req: &SimulateRequest,
+    outs: &[PathBuf],
+    summary: &Option<PathBuf>,
+) -> Vec<(PathBuf, NamedBy)> {
+    let mut targets: Vec<(PathBuf, NamedBy)> =
+        outs.iter().map(|p| (p.clone(), OUT.into())).collect();
+    if !req.fields.is_none() {
+        for o in outs {
+            targets.push((names::fields_npz(o), FIELDS.into()));
+            targets.push((names::pressure_chart(o), FIELDS.into()));
+        }
+    }
+    if let Some(p) = summary {
+        targets.push((p.clone(), SUMMARY.into()));
+    }
+    targets
+}
+
 /// Run the request: check every input, claim the outputs, run, estimate, write the summary.
 pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, RunError> {
     req.backend.check()?;
@@ -166,26 +216,11 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
         fallback,
     } = plan_models(req)?;
     let planned_runs = models.len();
-    let refs: Vec<&Model> = models.iter().collect();
-    let param = match req.mode {
-        Mode::Single => GRID,
-        _ => EXTRAPOLATE_GRIDS,
-    };
-    plan::check_memory_with_fields(&refs, 1, param, &req.fields).map_err(input)?;
+    check_memory(req, &models)?;
     let (outs, _claimed) = match &req.sink {
         Sink::Files { out, summary } => {
             let outs = output_paths(req, out, &models)?;
-            let mut targets: Vec<(PathBuf, NamedBy)> =
-                outs.iter().map(|p| (p.clone(), OUT.into())).collect();
-            if !req.fields.is_none() {
-                for o in &outs {
-                    targets.push((names::fields_npz(o), FIELDS.into()));
-                    targets.push((names::pressure_chart(o), FIELDS.into()));
-                }
-            }
-            if let Some(p) = summary {
-                targets.push((p.clone(), SUMMARY.into()));
-            }
+            let targets = targets(req, &outs, summary);
             Outputs::check(&targets)?;
             let claimed = Outputs::claim(&targets)?;
             (outs.into_iter().map(Some).collect(), Some(claimed))
@@ -204,11 +239,12 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
     };
     let mut ran = run_grids(req, models, &outs, watch)?;
     let reports: Vec<_> = ran.runs.iter().map(|r| r.report.clone()).collect();
-    let provenance = provenance::provenance(
+    let mut provenance = provenance::provenance(
         &req.scene,
         provenance::options_json(&req.options, mode_json(req)),
         provenance::backend_json(&req.backend, &reports),
     );
+    provenance.request = req.request.clone();
     let (field_files, unwritten) = write_fields(&ran.kept, &outs, &provenance);
     if !unwritten.is_empty() {
         let e = unwritten.join("\n  ");

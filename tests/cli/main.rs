@@ -1,12 +1,13 @@
 //! The command line: its commands and their output, bad invocations (fuzzed and listed), files
-//! that are missing, damaged, linked or locked, interrupted runs, `collect`, `reference`'s
-//! reuse rules, `bench`, and what goes to stdout and what to stderr. One test binary; each
-//! former file is a module.
+//! that are missing, damaged, linked or locked, interrupted runs, `batch` and `collect`,
+//! `reference`'s reuse rules, `bench`, and what goes to stdout and what to stderr. One test
+//! binary; each former file is a module.
 
 #[path = "../common/mod.rs"]
 mod common;
 
 mod bad_inputs;
+mod batch;
 mod bench;
 mod cli;
 mod cli_fuzz;

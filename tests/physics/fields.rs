@@ -28,6 +28,7 @@ fn fields_of(ratio: f64, nx: usize, choice: FieldChoice) -> (Vec<StateFields>, u
             sink: Sink::Memory,
             fields: choice,
             time_limit: None,
+            request: None,
         },
         &jkrbem::run::Quiet,
     )

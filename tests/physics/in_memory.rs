@@ -26,6 +26,7 @@ fn request(sink: Sink) -> SimulateRequest {
         sink,
         fields: Default::default(),
         time_limit: None,
+        request: None,
     }
 }
 

@@ -13,6 +13,7 @@ pub use throttle::{Throttle, PLAIN_EVERY};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use jkrbem::model::Model;
+use jkrbem::run::scenes::pool::SceneEnded;
 use jkrbem::run::Watch;
 use jkrbem::solver::State;
 use std::io::IsTerminal;
@@ -124,6 +125,16 @@ impl Watch for Progress {
 
     fn warning(&self, line: &str) {
         errln!("jkrbem: warning: {line}");
+    }
+
+    fn scene_ended(&self, s: &SceneEnded) {
+        let what = match (s.f_ad_bar, s.grid_f_ad_bar, s.failure) {
+            (_, _, Some(why)) => format!("FAILED: {}", why.lines().next().unwrap_or_default()),
+            (Some(f), _, None) => format!("|min F̄| = {}", jkrbem::text::fixed(f, 4)),
+            (None, Some(f), None) => format!("the grid's |min F̄| = {}", jkrbem::text::fixed(f, 4)),
+            (None, None, None) => "no adhesive force (see its summary)".to_string(),
+        };
+        errln!("jkrbem: {} ({} of {}): {what}", s.label, s.done, s.total);
     }
 }
 

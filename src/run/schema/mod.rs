@@ -208,6 +208,14 @@ pub fn by_flag(flag: &str) -> Option<&'static Spec> {
     all().find(|s| s.flag == flag)
 }
 
+/// The parameter a column of a batch's table names: by its name (`mesh_angle`) or its flag,
+/// with or without the dashes (`--mesh-angle`, `mesh-angle`), if any.
+pub fn by_column(header: &str) -> Option<&'static Spec> {
+    let h = header.trim();
+    let h = h.strip_prefix("--").unwrap_or(h);
+    by_name(&h.replace('-', "_"))
+}
+
 impl Spec {
     /// The range and default in words, as `--help` and the docs add them to [`Spec::help`]
     /// (e.g. "degrees, in [−360, 360]; default 0").

@@ -236,4 +236,48 @@ fn flag_in(text: &str) -> Option<String> {
         rest = tail;
     }
     None
+
+#[test]
+fn a_value_written_as_text_reads_back_as_itself() {
+    use super::values::to_text;
+    let samples: [(&Spec, &str); 12] = [
+        (RATIO, "2.5"),
+        (E_STAR, "1.5e-25"),
+        (E_STAR, "123456789012345678901234"),
+        (GRID, "64"),
+        (ACCURACY, "0.5%"),
+        (TIME_LIMIT, "90s"),
+        (TIME_LIMIT, "2h"),
+        (APEX_OFFSET, "0.25,-0.5"),
+        (EXTRAPOLATE_GRIDS, "64,128,256"),
+        (REGRID, "true"),
+        (ONSETS, "near_minimum"),
+        (FIELDS, "every:3"),
+    ];
+    let defaults = SPECS.iter().filter_map(|s| match s.fallback {
+        Fallback::Value(text) => Some((*s, text)),
+        Fallback::Chosen(_) => None,
+    });
+    for (spec, text) in samples.into_iter().chain(defaults) {
+        let v = from_text(spec, text).unwrap();
+        let written = to_text(spec, &v);
+        assert_eq!(
+            from_text(spec, &written).unwrap(),
+            v,
+            "{}: {text} → {written}",
+            spec.name
+        );
+    }
+    assert_eq!(to_text(ACCURACY, &json!(0.02)), "2%");
+    assert_eq!(to_text(TIME_LIMIT, &json!(90.0)), "90s");
+    assert_eq!(to_text(GRID, &serde_json::Value::Null), "");
+}
+
+#[test]
+fn a_column_names_a_parameter_by_its_name_or_its_flag() {
+    for header in ["mesh_angle", "--mesh-angle", "mesh-angle", " mesh_angle "] {
+        assert_eq!(by_column(header), Some(MESH_ANGLE), "{header}");
+    }
+    assert_eq!(by_column("mesh angle"), None);
+    assert_eq!(by_column("-mesh-angle"), None);
 }

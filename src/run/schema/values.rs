@@ -180,6 +180,54 @@ pub fn from_text(spec: &Spec, text: &str) -> Result<Value, String> {
     }
 }
 
+/// A real number as text that reads back as the same number: Rust's shortest round-trip
+/// form, in exponent form where that is shorter than a long run of digits.
+fn real_text(v: f64) -> String {
+    let plain = format!("{v}");
+    if plain.len() > 20 {
+        format!("{v:e}")
+    } else {
+        plain
+    }
+}
+
+/// A JSON number as text: a whole number as one, a real by [`real_text`].
+fn number_text(n: &serde_json::Number) -> String {
+    match (n.as_u64(), n.as_i64(), n.as_f64()) {
+        (Some(u), _, _) => u.to_string(),
+        (_, Some(i), _) => i.to_string(),
+        (_, _, Some(v)) => real_text(v),
+        _ => n.to_string(),
+    }
+}
+
+/// A checked value (the canonical form [`from_text`] and [`from_json`] give, as a request
+/// records it) written as the command line and a batch's table write it, so that
+/// [`from_text`] reads it back as the same value: an accuracy as a percentage ("2%"), a
+/// duration in seconds with its unit ("90s"), a pair or grids joined by commas, a switch as
+/// true or false. Empty for `null` (a parameter chosen for the scene).
+pub fn to_text(spec: &Spec, value: &Value) -> String {
+    match (spec.kind, value) {
+        (_, Value::Null) => String::new(),
+        (Kind::Fraction(..), Value::Number(n)) => n
+            .as_f64()
+            .map_or_else(|| n.to_string(), |v| format!("{}%", real_text(100.0 * v))),
+        (Kind::Seconds(..), Value::Number(n)) => format!("{}s", number_text(n)),
+        (_, Value::Number(n)) => number_text(n),
+        (_, Value::Bool(b)) => b.to_string(),
+        (_, Value::String(s)) => s.clone(),
+        (_, Value::Array(items)) => items
+            .iter()
+            .map(|v| match v {
+                Value::Number(n) => number_text(n),
+                other => other.to_string(),
+            })
+            .collect::<Vec<_>>()
+            .join(","),
+        (_, other) => other.to_string(),
+    }
+}
+
 /// `value` (from JSON) shown in a message: a string quoted and cut, anything else compact.
 fn shown_json(value: &Value) -> String {
     match value {

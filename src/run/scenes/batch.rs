@@ -1,0 +1,226 @@
+//! `jkrbem batch`: every scene of a table (or one shard of them) simulated to its own files,
+//! `DIR/scene-<id>.csv` (states) and `DIR/scene-<id>.json` (summary, its provenance holding the
+//! scene's request), with the batch's record beside them (`batch.json`, or
+//! `batch-shard-K-of-N.json`) for `collect`. Every row is checked before any work; with
+//! `resume`, a scene whose summary is complete and records the same request is not run again.
+
+use super::pool::{run_all, SceneJob};
+use super::table::{self, Row, Table};
+use crate::output::batch_csv::{Manifest, ManifestScene, MANIFEST_FORMAT};
+use crate::output::file::{note_input, read_regular};
+use crate::output::names;
+use crate::output::NamedBy;
+use crate::run::schema::OUT;
+use crate::run::claim::{write_error, Outputs};
+use crate::run::request::Request;
+use crate::run::simulate::{planned_outputs, SimulateRequest, Sink};
+use crate::run::{input, RunError, Watch};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// A request for a batch.
+#[derive(Debug, Clone)]
+pub struct BatchRequest {
+    /// The table of scenes (CSV).
+    pub scenes: PathBuf,
+    /// The folder every scene's files and the batch's record go to.
+    pub out: PathBuf,
+    /// Run only shard (K, N): the rows whose place j (from 0) has j mod N = K − 1.
+    pub shard: Option<(usize, usize)>,
+    /// Skip each scene whose summary is complete and records the same request.
+    pub resume: bool,
+    /// Scenes run at the same time (each on its own backend).
+    pub jobs: usize,
+}
+
+/// What became of one scene this run took.
+#[derive(Debug, Clone)]
+pub struct SceneOutcome {
+    /// Its id.
+    pub id: String,
+    /// Its summary JSON (written if it ran to an answer or fell short after starting).
+    pub summary: PathBuf,
+    /// Its estimate of |min F̄| (dimensionless), if it has one.
+    pub f_ad_bar: Option<f64>,
+    /// Its uncertainty (absolute), if stated.
+    pub f_ad_bar_uncertainty: Option<f64>,
+    /// Why it failed or fell short, if it did (named by the scene).
+    pub failure: Option<String>,
+}
+
+/// What a batch run did.
+#[derive(Debug, Clone)]
+pub struct BatchDone {
+    /// Scenes in the table.
+    pub total: usize,
+    /// Scenes of this shard (all of them, unsharded).
+    pub in_shard: usize,
+    /// The scenes run, in the table's order.
+    pub ran: Vec<SceneOutcome>,
+    /// The ids of the scenes skipped (`resume`: complete, with the same request).
+    pub skipped: Vec<String>,
+    /// The batch's record.
+    pub manifest: PathBuf,
+}
+
+impl BatchDone {
+    /// Why scenes failed or fell short, one line each.
+    pub fn failures(&self) -> Vec<String> {
+        self.ran.iter().filter_map(|s| s.failure.clone()).collect()
+    }
+}
+
+/// A scene's simulation, to its own files in `dir`.
+fn scene_request(row: &Row, dir: &Path) -> Result<SimulateRequest, RunError> {
+    let mut sim = row.request.simulate_request(true, None)?;
+    sim.sink = Sink::Files {
+        out: Some(names::scene_states(dir, &row.id)),
+        summary: Some(names::scene_summary(dir, &row.id)),
+    };
+    Ok(sim)
+}
+
+/// The largest summary read to decide whether a scene is done (bytes).
+const MAX_SUMMARY_BYTES: u64 = 16 << 20;
+
+/// Whether the summary at `path` is complete and records `request`: the scene need not run
+/// again. Anything else (absent, unreadable, incomplete, of another request or another
+/// version's schema) says it must.
+pub fn is_done(path: &Path, request: &Request) -> bool {
+    let Ok(bytes) = read_regular(path, MAX_SUMMARY_BYTES) else {
+        return false;
+    };
+    let Ok(summary) = serde_json::from_slice::<serde_json::Value>(&bytes) else {
+        return false;
+    };
+    let recorded = summary
+        .get("provenance")
+        .and_then(|p| p.get("request"))
+        .cloned()
+        .and_then(|r| serde_json::from_value::<Request>(r).ok());
+    summary.get("complete") == Some(&serde_json::Value::Bool(true))
+        && recorded.as_ref() == Some(request)
+}
+
+/// A row's simulation, checked, and the files it writes (each with the flag that names it).
+struct Checked {
+    request: SimulateRequest,
+    targets: Vec<(PathBuf, NamedBy)>,
+}
+
+/// Every row's simulation, checked as `simulate` checks it before any work, with the files
+/// each writes; two rows that would write one file are refused, naming both.
+fn checked_scenes(table: &Table, dir: &Path) -> Result<Vec<Checked>, RunError> {
+    let mut writers: HashMap<PathBuf, usize> = HashMap::new();
+    let mut out = Vec::with_capacity(table.rows.len());
+    for row in &table.rows {
+        let refused = |e: RunError| table.refusal(row, &e.to_string());
+        let sim = scene_request(row, dir).map_err(refused)?;
+        let targets = planned_outputs(&sim).map_err(refused)?;
+        for (path, _) in &targets {
+            if let Some(other) = writers.insert(path.clone(), row.index) {
+                return Err(input(format!(
+                    "{} and {} would both write {}: give them ids that differ more",
+                    table.place(&table.rows[other]),
+                    table.place(row),
+                    path.display()
+                )));
+            }
+        }
+        out.push(Checked {
+            request: sim,
+            targets,
+        });
+    }
+    Ok(out)
+}
+
+/// Run the batch: read and check every row (the other shards' too), check this shard's
+/// files, write the batch's record, skip what `resume` finds done and run the rest.
+pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunError> {
+    note_input(&req.scenes, "SCENES");
+    let table = table::read(&req.scenes)?;
+    let scenes = checked_scenes(&table, &req.out)?;
+    let mine: Vec<usize> = (0..table.rows.len())
+        .filter(|j| req.shard.is_none_or(|(k, n)| j % n == k - 1))
+        .collect();
+    for &j in &mine {
+        Outputs::check(&scenes[j].targets)?;
+    }
+    let manifest = names::batch_manifest(&req.out, req.shard);
+    let _claimed = Outputs::claim(&[(manifest.clone(), OUT.into())])?;
+    let record = Manifest {
+        format: MANIFEST_FORMAT.to_string(),
+        shard: req.shard,
+        scenes: table
+            .rows
+            .iter()
+            .map(|r| ManifestScene {
+                id: r.id.clone(),
+                request: r.request.to_json(),
+            })
+            .collect(),
+    };
+    record.write(&manifest).map_err(write_error(OUT))?;
+    let mut skipped = Vec::new();
+    let mut jobs = Vec::new();
+    let mut ran_rows = Vec::new();
+    for &j in &mine {
+        let row = &table.rows[j];
+        if req.resume && is_done(&names::scene_summary(&req.out, &row.id), &row.request) {
+            skipped.push(row.id.clone());
+            continue;
+        }
+        jobs.push(SceneJob {
+            request: scenes[j].request.clone(),
+            label: format!("scene {}", row.id),
+        });
+        ran_rows.push(row);
+    }
+    watch.note(&format!(
+        "batch: {} scene(s){}, {} to run{}, {} at a time",
+        table.rows.len(),
+        req.shard.map_or(String::new(), |(k, n)| format!(
+            ", shard {k} of {n} has {}",
+            mine.len()
+        )),
+        jobs.len(),
+        if skipped.is_empty() {
+            String::new()
+        } else {
+            format!(
+                ", {} skipped (complete, with the same request)",
+                skipped.len()
+            )
+        },
+        req.jobs
+    ));
+    let ran = run_all(jobs, req.jobs, watch, &|i, outcome| {
+        let row = ran_rows[i];
+        let summary = names::scene_summary(&req.out, &row.id);
+        let label = format!("scene {}", row.id);
+        match outcome {
+            Ok(done) => SceneOutcome {
+                id: row.id.clone(),
+                summary,
+                f_ad_bar: done.summary.f_ad_bar,
+                f_ad_bar_uncertainty: done.summary.f_ad_bar_uncertainty,
+                failure: done.failure.map(|f| format!("{label}: {f}")),
+            },
+            Err(e) => SceneOutcome {
+                id: row.id.clone(),
+                summary,
+                f_ad_bar: None,
+                f_ad_bar_uncertainty: None,
+                failure: Some(format!("{label}: {e}")),
+            },
+        }
+    });
+    Ok(BatchDone {
+        total: table.rows.len(),
+        in_shard: mine.len(),
+        ran,
+        skipped,
+        manifest,
+    })
+}

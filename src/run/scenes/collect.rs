@@ -1,0 +1,285 @@
+//! `jkrbem collect DIR` for a batch: the records its runs left (`batch.json`,
+//! `batch-shard-K-of-N.json`) checked to be of one batch, and every scene's summary merged, in
+//! the table's order, into `DIR/batch.csv` (its id, every parameter as its request recorded
+//! it, its results) and `DIR/batch-timings.csv` (the wall times, kept apart so that a batch
+//! collects to the same table however it was split). Missing, stale and incomplete scenes
+//! are named.
+
+use crate::run::schema::ALLOW_MISSING;
+use crate::output::batch_csv::{self, BatchRow, Manifest, ManifestScene};
+use crate::output::file::{note_input, read_regular, ReadError};
+use crate::output::names;
+use crate::output::sweep_csv::MAX_SHARDS;
+use crate::run::claim::{named, write_error, Outputs};
+use crate::run::request::Request;
+use crate::run::schema::{values, Fronts, SPECS};
+use crate::run::{failed, input, RunError};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+/// The folder `collect` merges, as the command names it.
+const DIR: crate::output::NamedBy = crate::output::NamedBy::Argument("DIR");
+
+/// What merging a batch produced.
+#[derive(Debug, Clone)]
+pub struct BatchMerged {
+    /// Scenes of the batch.
+    pub scenes: usize,
+    /// Rows written (scenes with a summary of their request).
+    pub rows: usize,
+    /// The records found.
+    pub records: Vec<PathBuf>,
+    /// `batch.csv`.
+    pub path: PathBuf,
+    /// `batch-timings.csv`.
+    pub timings: PathBuf,
+    /// What is missing, stale or incomplete (merged anyway with `allow_missing`).
+    pub problems: Vec<String>,
+}
+
+/// The records of batches in `dir`, with the shard each names (`None`: a whole batch).
+pub fn records_in(dir: &Path) -> Vec<(PathBuf, Option<(usize, usize)>)> {
+    let mut found: Vec<(PathBuf, Option<(usize, usize)>)> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .filter_map(|e| {
+            let name = e.file_name().to_string_lossy().into_owned();
+            names::parse_batch_manifest(&name).map(|shard| (e.path(), shard))
+        })
+        .collect();
+    found.sort_by(|a, b| a.1.cmp(&b.1).then_with(|| a.0.cmp(&b.0)));
+    found
+}
+
+/// The scenes every record in `dir` holds, after checking that they hold the same ones.
+fn batch_scenes(
+    dir: &Path,
+    records: &[(PathBuf, Option<(usize, usize)>)],
+) -> Result<Vec<ManifestScene>, RunError> {
+    let mut first: Option<(&Path, Manifest)> = None;
+    for (path, shard) in records {
+        let m = Manifest::read(path).map_err(|why| {
+            failed(format!(
+                "{} is not a valid batch record: {why}",
+                path.display()
+            ))
+        })?;
+        let valid = |(k, n): (usize, usize)| (1..=n).contains(&k) && n <= MAX_SHARDS;
+        if m.shard != *shard || !shard.is_none_or(valid) {
+            return Err(failed(format!(
+                "{} is not a valid batch record: its name and its content name different \
+                 shards, or a shard K of N outside 1 ≤ K ≤ N ≤ {MAX_SHARDS}",
+                path.display()
+            )));
+        }
+        match &first {
+            None => first = Some((path, m)),
+            Some((p, f)) if f.scenes != m.scenes => {
+                let differs = f
+                    .scenes
+                    .iter()
+                    .zip(&m.scenes)
+                    .find(|(a, b)| a != b)
+                    .map_or_else(
+                        || format!("{} against {} scenes", f.scenes.len(), m.scenes.len()),
+                        |(a, b)| format!("scene {} against {}", a.id, b.id),
+                    );
+                return Err(failed(format!(
+                    "{} and {} record different batches ({differs}; the table changed between \
+                     runs): run every shard of the same table again with --resume (it skips \
+                     the scenes already done), or remove the older record from {}",
+                    p.display(),
+                    path.display(),
+                    dir.display()
+                )));
+            }
+            Some(_) => {}
+        }
+    }
+    Ok(first.map(|(_, m)| m.scenes).unwrap_or_default())
+}
+
+/// What a scene's summary says, or why it is no row.
+enum Scene {
+    /// Its row.
+    Row(Box<BatchRow>),
+    /// It has no summary.
+    Missing,
+    /// Its summary is unreadable or of another request: why, in words.
+    Stale(String),
+}
+
+/// A summary's number field.
+fn number(v: &Value, key: &str) -> Option<f64> {
+    v.get(key).and_then(Value::as_f64)
+}
+
+/// The row of `scene` from its summary in `dir`.
+fn scene_row(dir: &Path, scene: &ManifestScene) -> Scene {
+    let path = names::scene_summary(dir, &scene.id);
+    let bytes = match read_regular(&path, 16 << 20) {
+        Ok(b) => b,
+        Err(ReadError::Absent) => return Scene::Missing,
+        Err(ReadError::Refused(why)) => return Scene::Stale(format!("{}: {why}", path.display())),
+    };
+    note_input(&path, "DIR");
+    let Ok(s) = serde_json::from_slice::<Value>(&bytes) else {
+        return Scene::Stale(format!("{} is not a summary (edited?)", path.display()));
+    };
+    let recorded = s.pointer("/provenance/request").cloned();
+    let same = match (
+        recorded,
+        serde_json::from_value::<Request>(scene.request.clone()),
+    ) {
+        (Some(r), Ok(want)) => serde_json::from_value::<Request>(r).ok() == Some(want),
+        _ => false,
+    };
+    if !same {
+        return Scene::Stale(format!(
+            "{} is of another request (the table changed since it ran)",
+            path.display()
+        ));
+    }
+    let parameters = SPECS
+        .iter()
+        .filter(|spec| spec.fronts != Fronts::Cli)
+        .map(|spec| values::to_text(spec, scene.request.get(spec.name).unwrap_or(&Value::Null)))
+        .collect();
+    let runs = s.get("runs").and_then(Value::as_array);
+    let flag = |key: &str| s.get(key).and_then(Value::as_bool).unwrap_or(false);
+    Scene::Row(Box::new(BatchRow {
+        id: scene.id.clone(),
+        parameters,
+        f_ad_bar: number(&s, "f_ad_bar"),
+        f_ad_bar_uncertainty: number(&s, "f_ad_bar_uncertainty"),
+        estimate: s.get("estimate").and_then(Value::as_str).map(String::from),
+        c_bar_at_min: number(&s, "c_bar_at_min"),
+        d_bar_at_min: number(&s, "d_bar_at_min"),
+        grid_f_ad_bar: runs
+            .and_then(|r| r.last())
+            .and_then(|r| number(r, "f_ad_bar")),
+        min_reached: flag("min_reached"),
+        complete: flag("complete"),
+        cg_iterations: s.get("cg_iterations").and_then(Value::as_u64).unwrap_or(0),
+        warnings: s
+            .get("warnings")
+            .and_then(Value::as_array)
+            .map_or(0, Vec::len),
+        wall_s: number(&s, "wall_s").unwrap_or(f64::NAN),
+    }))
+}
+
+/// The shards of an N-way split that left no record, where every record found is of one
+/// split; else none.
+fn shards_not_started(
+    records: &[(PathBuf, Option<(usize, usize)>)],
+) -> Option<(Vec<usize>, usize)> {
+    let n = records.first()?.1?.1;
+    if records.iter().any(|(_, s)| s.is_none_or(|(_, m)| m != n)) {
+        return None;
+    }
+    let missing: Vec<usize> = (1..=n)
+        .filter(|k| !records.iter().any(|(_, s)| s.is_some_and(|(j, _)| j == *k)))
+        .collect();
+    (!missing.is_empty()).then_some((missing, n))
+}
+
+/// Ids as text: "a, b and 3 more".
+fn listed(ids: &[String]) -> String {
+    const SHOWN: usize = 20;
+    let mut text = ids
+        .iter()
+        .take(SHOWN)
+        .cloned()
+        .collect::<Vec<_>>()
+        .join(", ");
+    if ids.len() > SHOWN {
+        text.push_str(&format!(" and {} more", ids.len() - SHOWN));
+    }
+    text
+}
+
+/// Merge the batch in `dir` into `batch.csv` and `batch-timings.csv`, after checking that its
+/// records are of one batch. Missing, stale or incomplete scenes stop the merge (naming them)
+/// unless `allow_missing`.
+pub fn collect_batch(dir: &Path, allow_missing: bool) -> Result<BatchMerged, RunError> {
+    let records = records_in(dir);
+    if records.is_empty() {
+        return Err(input(format!(
+            "no batch records (batch.json, batch-shard-K-of-N.json) in {}",
+            dir.display()
+        )));
+    }
+    for (path, _) in &records {
+        note_input(path, "DIR");
+    }
+    let scenes = batch_scenes(dir, &records)?;
+    let mut rows = Vec::new();
+    let mut missing = Vec::new();
+    let mut stale = Vec::new();
+    let mut incomplete = Vec::new();
+    for scene in &scenes {
+        match scene_row(dir, scene) {
+            Scene::Row(row) => {
+                if !row.complete {
+                    incomplete.push(row.id.clone());
+                }
+                rows.push(*row);
+            }
+            Scene::Missing => missing.push(scene.id.clone()),
+            Scene::Stale(why) => stale.push(format!("scene {}: {why}", scene.id)),
+        }
+    }
+    let mut problems = Vec::new();
+    if !missing.is_empty() {
+        let shards = shards_not_started(&records).map_or(String::new(), |(ks, n)| {
+            format!(" (shards {ks:?} of {n} have left no record: run them)")
+        });
+        problems.push(format!(
+            "{} scene(s) missing, with no summary: {}{shards}",
+            missing.len(),
+            listed(&missing)
+        ));
+    }
+    if !stale.is_empty() {
+        problems.push(format!(
+            "{} scene(s) without a summary of their request (run the batch again with \
+             --resume): {}",
+            stale.len(),
+            stale.join("; ")
+        ));
+    }
+    if !incomplete.is_empty() {
+        problems.push(format!(
+            "{} scene(s) incomplete (a run failed or stopped early: see their summaries' \
+             warnings and runs): {}",
+            incomplete.len(),
+            listed(&incomplete)
+        ));
+    }
+    if !problems.is_empty() && !allow_missing {
+        return Err(failed(format!(
+            "{}; nothing was written (pass {ALLOW_MISSING} to merge what there is)",
+            problems.join("; ")
+        )));
+    }
+    let path = names::batch_csv(dir);
+    let timings = names::batch_timings(dir);
+    let _claimed = Outputs::claim(&named(DIR, [&path, &timings]))?;
+    let parameters: Vec<&str> = SPECS
+        .iter()
+        .filter(|spec| spec.fronts != Fronts::Cli)
+        .map(|spec| spec.name)
+        .collect();
+    batch_csv::write_table(&path, &parameters, &rows).map_err(write_error(DIR))?;
+    batch_csv::write_timings(&timings, &rows).map_err(write_error(DIR))?;
+    Ok(BatchMerged {
+        scenes: scenes.len(),
+        rows: rows.len(),
+        records: records.into_iter().map(|(p, _)| p).collect(),
+        path,
+        timings,
+        problems,
+    })
+}

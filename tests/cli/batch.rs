@@ -1,0 +1,308 @@
+//! `jkrbem batch` and `jkrbem collect` of a batch: a table of 200 tiny scenes (ellipsoids of
+//! several ratios, materials, mesh angles and apex offsets, flat punches, power laws) run
+//! whole, and split four ways with one shard killed mid-run and resumed, collect to
+//! byte-identical tables; bad cells are refused naming their row and column before anything is
+//! written; `--resume` skips the scenes done and runs a changed row again.
+
+use crate::common::{names_in, run_in, stderr, wait_for};
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant, SystemTime};
+
+/// A table of `n` tiny scenes (each a fraction of a second), every 50th without an id (so
+/// named by its row number).
+fn scenes(n: usize) -> String {
+    let mut text = String::from(
+        "id,indenter,ratio,e_star,work_of_adhesion,mesh_angle,apex_offset,exponent,grid,\
+         measure,backend\n",
+    );
+    for i in 0..n {
+        let id = if i % 50 == 49 {
+            String::new()
+        } else {
+            format!("s{:03}", i + 1)
+        };
+        let e = [1.0, 2.0, 0.5][i % 3];
+        let w = [1.0, 0.5, 2.0][(i / 3) % 3];
+        let row = match i % 10 {
+            7 => format!("{id},flat-punch,,{e},{w},,,,16"),
+            8 => format!("{id},power-law,,{e},{w},,,{},32", [2, 4][(i / 10) % 2]),
+            _ => format!(
+                "{id},,{},{e},{w},{},{},,32",
+                [1.0, 1.5, 2.0, 2.5][(i / 2) % 4],
+                [0, 15, 30, 45][(i / 5) % 4],
+                ["", "\"0.25,-0.5\"", "\"-0.25,0.25\""][(i / 7) % 3]
+            ),
+        };
+        text += &format!("{row},adhesive-force,cpu\n");
+    }
+    text
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Run `jkrbem` in `dir` and require exit code `code`.
+fn run_ok(dir: &Path, args: &[&str], code: i32) -> Output {
+    let o = run_in(dir, args, &[]);
+    assert_eq!(
+        o.status.code(),
+        Some(code),
+        "jkrbem {args:?}\nstdout: {}\nstderr: {}",
+        stdout(&o),
+        stderr(&o)
+    );
+    o
+}
+
+/// The scene summaries in `dir`.
+fn summaries(dir: &Path) -> Vec<String> {
+    if !dir.exists() {
+        return Vec::new();
+    }
+    names_in(dir, |n| n.starts_with("scene-") && n.ends_with(".json"))
+}
+
+#[test]
+fn a_batch_split_four_ways_with_a_shard_killed_and_resumed_collects_to_the_same_table() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(dir.join("scenes.csv"), scenes(200)).unwrap();
+
+    let start = Instant::now();
+    let o = run_ok(
+        dir,
+        &["batch", "scenes.csv", "--out", "whole", "--jobs", "2"],
+        0,
+    );
+    let whole_s = start.elapsed().as_secs_f64();
+    assert!(stdout(&o).contains("200 ran (0 failed)"), "{}", stdout(&o));
+    assert_eq!(summaries(&dir.join("whole")).len(), 200);
+
+    // Shard 1 of 4 (50 scenes), killed once some but not all of its summaries exist.
+    let start = Instant::now();
+    let split = dir.join("split");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_jkrbem"))
+        .args([
+            "batch",
+            "scenes.csv",
+            "--out",
+            "split",
+            "--shard",
+            "1/4",
+            "--jobs",
+            "2",
+        ])
+        .current_dir(dir)
+        .env_remove("JKRBEM_MEMORY_LIMIT")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("the binary starts");
+    let some = wait_for(Duration::from_secs(120), || summaries(&split).len() >= 3);
+    child.kill().expect("SIGKILL");
+    child.wait().unwrap();
+    assert!(some, "shard 1 wrote fewer than 3 summaries in 120 s");
+    let done_at_kill = summaries(&split);
+    assert!(
+        done_at_kill.len() < 50,
+        "shard 1 finished all its 50 scenes before it was killed: the kill tested nothing"
+    );
+    // What the killed run left is whole: every summary a complete JSON document.
+    for name in &done_at_kill {
+        let text = std::fs::read_to_string(split.join(name)).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&text)
+            .unwrap_or_else(|e| panic!("{name} is not whole after the kill: {e}"));
+        assert_eq!(v["complete"], true, "{name}");
+    }
+    for k in 2..=4 {
+        let shard = format!("{k}/4");
+        let o = run_ok(
+            dir,
+            &[
+                "batch",
+                "scenes.csv",
+                "--out",
+                "split",
+                "--shard",
+                &shard,
+                "--jobs",
+                "2",
+            ],
+            0,
+        );
+        assert!(stdout(&o).contains("50 ran (0 failed)"), "{}", stdout(&o));
+    }
+    // Before shard 1 is resumed, collect names what is missing and writes nothing.
+    let o = run_ok(dir, &["collect", "split"], 1);
+    assert!(stderr(&o).contains("missing"), "{}", stderr(&o));
+    assert!(!split.join("batch.csv").exists());
+    let o = run_ok(
+        dir,
+        &[
+            "batch",
+            "scenes.csv",
+            "--out",
+            "split",
+            "--shard",
+            "1/4",
+            "--resume",
+            "--jobs",
+            "2",
+        ],
+        0,
+    );
+    let ran = 50 - done_at_kill.len();
+    let expected = format!("{ran} ran (0 failed), {} skipped", done_at_kill.len());
+    assert!(stdout(&o).contains(&expected), "{}", stdout(&o));
+    let split_s = start.elapsed().as_secs_f64();
+
+    run_ok(dir, &["collect", "whole"], 0);
+    let o = run_ok(dir, &["collect", "split"], 0);
+    assert!(
+        stdout(&o).contains("merged 200 of 200 scene(s) from 4 record(s)"),
+        "{}",
+        stdout(&o)
+    );
+    let whole = std::fs::read(dir.join("whole/batch.csv")).unwrap();
+    let parts = std::fs::read(split.join("batch.csv")).unwrap();
+    assert!(
+        whole == parts,
+        "the split batch's table differs from the whole one's"
+    );
+    let text = String::from_utf8(whole).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 201);
+    assert!(lines[0].starts_with("id,indenter,ratio,"), "{}", lines[0]);
+    assert!(!lines[0].contains("wall"), "{}", lines[0]);
+    assert!(lines[1].starts_with("s001,ellipsoid,1,"), "{}", lines[1]);
+    assert!(lines[50].starts_with("50,"), "{}", lines[50]);
+    assert!(split.join("batch-timings.csv").exists());
+    eprintln!(
+        "200 scenes: whole (--jobs 2) {whole_s:.1} s; split four ways, one shard killed after \
+         {} scenes and resumed, {split_s:.1} s",
+        done_at_kill.len()
+    );
+}
+
+#[test]
+fn bad_cells_and_columns_are_refused_naming_their_row_and_column_before_any_work() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let table = scenes(20).replacen("s013,,2,", "s013,,0.5,", 1);
+    assert!(table.contains("s013,,0.5,"));
+    std::fs::write(dir.join("bad.csv"), &table).unwrap();
+    let o = run_ok(dir, &["batch", "bad.csv", "--out", "runs"], 2);
+    let err = stderr(&o);
+    assert!(
+        err.contains("bad.csv row 13 (line 14, id s013), column ratio: ratio = \"0.5\" is invalid"),
+        "{err}"
+    );
+    assert!(
+        !dir.join("runs").exists(),
+        "a refused batch wrote {:?}",
+        dir.join("runs")
+    );
+
+    for (table, words) in [
+        ("id,ratoi\na,2\n", vec!["column 2", "did you mean ratio"]),
+        (
+            "id,ratio,out\na,2,x.csv\n",
+            vec!["column 3", "leave the column out"],
+        ),
+        (
+            "id,ratio,grid\na,2,32\na,3,32\n",
+            vec!["rows 1 and 2 have the same id"],
+        ),
+        (
+            "id,ratio,grid,accuracy\na,2,32,\nb,2,32,2%\n",
+            vec![
+                "row 2 (line 3, id b), column accuracy",
+                "cannot be given together",
+            ],
+        ),
+        (
+            "id,--mesh-angle\na,400\n",
+            vec!["row 1 (line 2, id a), column --mesh-angle"],
+        ),
+    ] {
+        std::fs::write(dir.join("bad.csv"), table).unwrap();
+        let o = run_ok(dir, &["batch", "bad.csv", "--out", "runs"], 2);
+        for w in words {
+            assert!(
+                stderr(&o).contains(w),
+                "{table:?}: {w:?} not in {}",
+                stderr(&o)
+            );
+        }
+        assert!(!dir.join("runs").exists());
+    }
+}
+
+/// The modification time of `dir/scene-<id>.json`.
+fn modified(dir: &Path, id: &str) -> SystemTime {
+    std::fs::metadata(dir.join(format!("scene-{id}.json")))
+        .unwrap()
+        .modified()
+        .unwrap()
+}
+
+#[test]
+fn resume_skips_the_scenes_done_and_runs_a_changed_row_again() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let runs = dir.join("runs");
+    let table = "id,ratio,grid,measure,backend\na,1,32,adhesive-force,cpu\n\
+                 b,2,32,adhesive-force,cpu\nc,1.5,32,adhesive-force,cpu\n";
+    std::fs::write(dir.join("scenes.csv"), table).unwrap();
+    let args = ["batch", "scenes.csv", "--out", "runs", "--resume"];
+    let o = run_ok(dir, &args, 0);
+    assert!(
+        stdout(&o).contains("3 ran (0 failed), 0 skipped"),
+        "{}",
+        stdout(&o)
+    );
+    let before: Vec<SystemTime> = ["a", "b", "c"].map(|id| modified(&runs, id)).to_vec();
+
+    let o = run_ok(dir, &args, 0);
+    assert!(
+        stdout(&o).contains("0 ran (0 failed), 3 skipped"),
+        "{}",
+        stdout(&o)
+    );
+    let after: Vec<SystemTime> = ["a", "b", "c"].map(|id| modified(&runs, id)).to_vec();
+    assert_eq!(before, after, "a complete scene was run again");
+
+    std::fs::write(dir.join("scenes.csv"), table.replace("b,2,", "b,2.5,")).unwrap();
+    let o = run_ok(dir, &args, 0);
+    assert!(
+        stdout(&o).contains("1 ran (0 failed), 2 skipped"),
+        "{}",
+        stdout(&o)
+    );
+    assert_eq!(modified(&runs, "a"), before[0]);
+    assert_ne!(modified(&runs, "b"), before[1]);
+    let b: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(runs.join("scene-b.json")).unwrap()).unwrap();
+    assert_eq!(b["provenance"]["request"]["ratio"], 2.5);
+
+    // Without --resume every scene runs again, replacing its files.
+    let o = run_ok(dir, &["batch", "scenes.csv", "--out", "runs"], 0);
+    assert!(
+        stdout(&o).contains("3 ran (0 failed), 0 skipped"),
+        "{}",
+        stdout(&o)
+    );
+    assert_ne!(modified(&runs, "a"), before[0]);
+
+    // collect merges in the table's order; a folder that also holds a sweep's shard is refused.
+    let o = run_ok(dir, &["collect", "runs"], 0);
+    assert!(stdout(&o).contains("merged 3 of 3"), "{}", stdout(&o));
+    let csv = std::fs::read_to_string(runs.join("batch.csv")).unwrap();
+    let ids: Vec<&str> = csv.lines().skip(1).map(|l| &l[..1]).collect();
+    assert_eq!(ids, ["a", "b", "c"]);
+    std::fs::write(runs.join("sweep-shard-1-of-1.json"), "{}").unwrap();
+    let o = run_ok(dir, &["collect", "runs"], 2);
+    assert!(stderr(&o).contains("holds both"), "{}", stderr(&o));
+}
