@@ -5,13 +5,13 @@
 //! collects to the same table however it was split). Missing, stale and incomplete scenes
 //! are named.
 
-use crate::run::schema::ALLOW_MISSING;
 use crate::output::batch_csv::{self, BatchRow, Manifest, ManifestScene};
 use crate::output::file::{note_input, read_regular, ReadError};
 use crate::output::names;
 use crate::output::sweep_csv::MAX_SHARDS;
 use crate::run::claim::{named, write_error, Outputs};
 use crate::run::request::Request;
+use crate::run::schema::ALLOW_MISSING;
 use crate::run::schema::{values, Fronts, SPECS};
 use crate::run::{failed, input, RunError};
 use serde_json::Value;

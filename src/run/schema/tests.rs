@@ -236,6 +236,7 @@ fn flag_in(text: &str) -> Option<String> {
         rest = tail;
     }
     None
+}
 
 #[test]
 fn a_value_written_as_text_reads_back_as_itself() {
