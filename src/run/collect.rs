@@ -3,6 +3,7 @@
 //! ([`super::scenes::collect::collect_batch`]).
 
 use super::scenes::collect::{collect_batch, records_in, BatchMerged};
+use super::schema::OUT;
 use super::sweep::{collect_shards, Merged};
 use super::{input, RunError};
 use std::path::Path;
@@ -34,7 +35,7 @@ pub fn collect(dir: &Path, allow_missing: bool) -> Result<Collected, RunError> {
     match (records_in(dir).is_empty(), has_sweep_shards(dir)) {
         (false, true) => Err(input(format!(
             "{} holds both a sweep's shard files (sweep-shard-K-of-N.json) and a batch's \
-             records (batch.json, batch-shard-K-of-N.json): give each run its own --out \
+             records (batch.json, batch-shard-K-of-N.json): give each run its own {OUT} \
              folder, then collect each",
             dir.display()
         ))),

@@ -11,8 +11,8 @@ use crate::output::names;
 use crate::output::sweep_csv::MAX_SHARDS;
 use crate::run::claim::{named, write_error, Outputs};
 use crate::run::request::Request;
-use crate::run::schema::ALLOW_MISSING;
 use crate::run::schema::{values, Fronts, SPECS};
+use crate::run::schema::{ALLOW_MISSING, RESUME};
 use crate::run::{failed, input, RunError};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -87,7 +87,7 @@ fn batch_scenes(
                     );
                 return Err(failed(format!(
                     "{} and {} record different batches ({differs}; the table changed between \
-                     runs): run every shard of the same table again with --resume (it skips \
+                     runs): run every shard of the same table again with {RESUME} (it skips \
                      the scenes already done), or remove the older record from {}",
                     p.display(),
                     path.display(),
@@ -245,7 +245,7 @@ pub fn collect_batch(dir: &Path, allow_missing: bool) -> Result<BatchMerged, Run
     if !stale.is_empty() {
         problems.push(format!(
             "{} scene(s) without a summary of their request (run the batch again with \
-             --resume): {}",
+             {RESUME}): {}",
             stale.len(),
             stale.join("; ")
         ));

@@ -208,6 +208,15 @@ pub const ALLOW_MISSING: &Spec = &cli(
     Value("false"),
     "Collect: merge even if some ratios are missing or incomplete.",
 );
+/// Resuming a batch.
+pub const RESUME: &Spec = &cli(
+    "resume",
+    "--resume",
+    "",
+    Kind::Switch,
+    Value("false"),
+    "Batch: skip the scenes whose summary is complete and records the same request; run the rest.",
+);
 /// Pull-offs at the same time.
 pub const JOBS: &Spec = &cli(
     "jobs",
@@ -342,6 +351,7 @@ pub const STUDY_SPECS: &[&Spec] = &[
     BACKENDS,
     SHARD,
     ALLOW_MISSING,
+    RESUME,
     JOBS,
     QUICK,
     REPEATS,
