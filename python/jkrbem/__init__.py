@@ -257,6 +257,7 @@ def batch(
         error.results = results
         error.result = next((r for _, _, r in failures if r is not None), None)
         raise error
+    warn_all(w for r in results if r is not None for w in r.warnings)
     return results  # type: ignore[return-value]
 
 

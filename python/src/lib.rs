@@ -98,14 +98,19 @@ fn parse<T: for<'de> Deserialize<'de>>(json: &str) -> PyResult<T> {
 /// schema; every keyword not given takes the schema's default.
 fn request(json: &str) -> PyResult<Request> {
     let given: serde_json::Map<String, Value> = parse(json)?;
-    let values = Request::check_json(given.iter().map(|(k, v)| (k.as_str(), v))).map_err(|r| {
-        if r.wrong_type {
-            pyo3::exceptions::PyTypeError::new_err(keywords(&r.message))
-        } else {
-            input_error(r.message)
-        }
-    })?;
+    let values = Request::check_json(given.iter().map(|(k, v)| (k.as_str(), v)))
+        .map_err(|r| refusal(&r.message, r.wrong_type))?;
     Request::from_values(values).map_err(run_input_error)
+}
+
+/// A refused value in Python's words: a TypeError where it was of the wrong type (or no
+/// keyword), else an [`InputError`].
+fn refusal(message: &str, wrong_type: bool) -> PyErr {
+    if wrong_type {
+        pyo3::exceptions::PyTypeError::new_err(keywords(message))
+    } else {
+        input_error(message)
+    }
 }
 
 /// A height map given as an array: its heights (native-endian f64, rows along y) and shape.
@@ -678,7 +683,9 @@ fn batch<'py>(
         let mut jobs = Vec::with_capacity(given.len());
         for (i, g) in given.iter().enumerate() {
             let at = |e: RunError| input_error(format!("scenes[{i}]: {e}"));
-            let req = Request::from_json(g.iter().map(|(k, v)| (k.as_str(), v))).map_err(at)?;
+            let values = Request::check_json(g.iter().map(|(k, v)| (k.as_str(), v)))
+                .map_err(|r| refusal(&format!("scenes[{i}]: {}", r.message), r.wrong_type))?;
+            let req = Request::from_values(values).map_err(at)?;
             let sim = req.simulate_request(false, None).map_err(at)?;
             jkrbem::run::simulate::planned_outputs(&sim).map_err(at)?;
             jobs.push(SceneJob {
