@@ -80,7 +80,8 @@ fn too_large_load_steps_are_reported() {
         dir.path(),
     );
     assert!(fixed.status.success(), "{}", stderr(&fixed));
-    let text = String::from_utf8_lossy(&fixed.stdout);
+    // The summary on stdout, its warnings on stderr.
+    let text = String::from_utf8_lossy(&fixed.stdout).into_owned() + &stderr(&fixed);
     assert!(text.contains("load steps too large"), "{text}");
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("f.json")).unwrap()).unwrap();
@@ -96,7 +97,10 @@ fn too_large_load_steps_are_reported() {
     assert_eq!(summary["runs"][0]["min_resolved"], false);
     let adaptive = jkrbem(&[&args[..], &["--out", "a.csv"]].concat(), dir.path());
     assert!(adaptive.status.success());
-    assert!(!String::from_utf8_lossy(&adaptive.stdout).contains("load steps too large"));
+    assert!(
+        !(String::from_utf8_lossy(&adaptive.stdout).into_owned() + &stderr(&adaptive))
+            .contains("load steps too large")
+    );
 }
 
 #[test]
@@ -122,7 +126,10 @@ fn too_coarse_a_grid_is_reported_with_n_d_and_the_expected_error() {
         assert!(o.status.success(), "{}", stderr(&o));
         let s: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.path().join(json)).unwrap()).unwrap();
-        (String::from_utf8_lossy(&o.stdout).into_owned(), s)
+        (
+            String::from_utf8_lossy(&o.stdout).into_owned() + &stderr(&o),
+            s,
+        )
     };
     let (text, s) = run("32", "c.json");
     let run0 = &s["runs"][0];
