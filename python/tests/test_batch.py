@@ -61,7 +61,8 @@ def test_a_bad_scene_is_refused_before_any_runs_naming_it_and_the_keyword():
     # Conflicts, unknown keywords and wrong types name the scene too.
     with pytest.raises(jkrbem.InputError, match=r"scenes\[1\]: accuracy"):
         jkrbem.batch([dict(ratio=1, **FAST), dict(ratio=1, accuracy="2%", **FAST)])
-    with pytest.raises(jkrbem.InputError, match=r'scenes\[0\]: "ratoi"'):
+    # An unknown keyword is a TypeError, as for simulate (and as Python's own calls make it).
+    with pytest.raises(TypeError, match=r'scenes\[0\]: "ratoi"'):
         jkrbem.batch([dict(ratoi=2, **FAST)])
     with pytest.raises(TypeError, match=r"scenes\[1\]: ratio"):
         jkrbem.batch([dict(ratio=1, **FAST), dict(ratio=object(), **FAST)])
