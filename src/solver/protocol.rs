@@ -8,7 +8,7 @@
 //! detachment cascade at the step's end) until the force minimum is confirmed; then the
 //! steps whose probe lies below the lowest onset known are gone back to and their onsets
 //! located, lowest bound first, each pruned as soon as its remaining bound lies above the
-//! lowest onset found ([`super::search`], on the bounds [`super::window`] keeps). With
+//! lowest onset found (`search`, on the bounds [`super::window`] keeps). With
 //! `regrid` the grid is refined as the contact shrinks.
 
 use super::cost::CostAccount;

@@ -1,7 +1,7 @@
 //! The window of load steps that may hold the force minimum
 //! ([`Onsets::NearMinimum`](crate::model::Onsets)): each whole step's bound, the start states
 //! kept on the device to go back to, and the report of what was searched. The search itself,
-//! a branch and bound over these steps, is [`super::search`].
+//! a branch and bound over these steps, is `search`.
 
 use super::equilibrium::Fields;
 use super::probe::Probe;

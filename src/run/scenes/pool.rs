@@ -9,7 +9,7 @@ use crate::solver::State;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// One scene to run: its request, and how messages name it ("scene a1", "scenes[3]").
+/// One scene to run: its request, and how messages name it ("scene a1", "scenes\[3\]").
 #[derive(Debug, Clone)]
 pub struct SceneJob {
     /// The scene's simulation.

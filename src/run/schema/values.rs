@@ -9,7 +9,7 @@ use serde_json::{Map, Value};
 /// Longest part of a refused text that a message repeats (characters).
 const SHOWN_CHARS: usize = 40;
 
-/// `text` quoted for a message, cut to [`SHOWN_CHARS`] characters and made printable.
+/// `text` quoted for a message, cut to `SHOWN_CHARS` (40) characters and made printable.
 pub fn shown(text: &str) -> String {
     let printable = crate::text::printable(text, SHOWN_CHARS);
     format!("\"{printable}\"")
