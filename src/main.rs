@@ -221,6 +221,9 @@ fn install_signal_handlers() {
 }
 
 fn main() -> ExitCode {
+    // First, while this is the only thread: the environment may be changed only now.
+    #[cfg(feature = "gpu")]
+    jkrbem::backend::gpu::headless::quiet_display_probe();
     install_signal_handlers();
     jkrbem::run::provenance::set_command_line(command_line());
     let command = values_may_start_with_a_hyphen(Cli::command());

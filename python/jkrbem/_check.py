@@ -1,10 +1,10 @@
-"""The checks every keyword of the package passes before a request is built: each value of the
-type it is meant to be (Python and numpy numbers alike, never a bool where a number is meant,
-never a float where an integer is), finite, and within what the JSON request can carry. A
+"""The checks of the keywords that are not a simulation's (a simulation's keywords are checked
+by the library against its schema): ``crossed``'s, ``theory``'s, ``sweep``'s ratios, a
+batch's ``processes``. Each value of the type it is meant to be (Python and numpy numbers
+alike, never a bool where a number is meant, never a float where an integer is) and finite. A
 refusal is a :class:`TypeError` (wrong type) or an :class:`InputError` (a ValueError: wrong
 value) whose message names the keyword and says what is expected. The ranges themselves are
-the library's (``_jkrbem.limits()``); what only the library can judge (a power of two, R1 ≥ R2
-…) it refuses, naming the keyword too."""
+the library's (``_jkrbem.limits()``)."""
 
 from __future__ import annotations
 
@@ -59,9 +59,6 @@ def real(name: str, value: Any, what: str = "a number") -> float:
     return x + 0.0
 
 
-def optional_real(name: str, value: Any, what: str = "a number") -> Optional[float]:
-    """None, or :func:`real`."""
-    return None if value is None else real(name, value, what)
 
 
 def integer(name: str, value: Any, low: int, high: int, what: str) -> int:
@@ -80,9 +77,6 @@ def integer(name: str, value: Any, low: int, high: int, what: str) -> int:
     return i
 
 
-def optional_integer(name: str, value: Any, low: int, high: int, what: str) -> Optional[int]:
-    """None, or :func:`integer`."""
-    return None if value is None else integer(name, value, low, high, what)
 
 
 def text(name: str, value: Any, what: str) -> str:
@@ -92,9 +86,6 @@ def text(name: str, value: Any, what: str) -> str:
     return value
 
 
-def optional_text(name: str, value: Any, what: str) -> Optional[str]:
-    """None, or :func:`text`."""
-    return None if value is None else text(name, value, what)
 
 
 def flag(name: str, value: Any, what: str) -> bool:
@@ -116,10 +107,6 @@ def items(name: str, value: Any, what: str) -> List[Any]:
     raise TypeError(f"{name} = {shown(value)} is invalid: {what} is expected, not {_type_name(value)}")
 
 
-def grid_side(name: str, value: Any) -> int:
-    """A grid side: an integer (the library checks that it is a power of two)."""
-    lo, hi = LIMITS["min_grid"], LIMITS["max_grid"]
-    return integer(name, value, lo, hi, f"a power of two from {lo} to {hi} (e.g. 64, 128, 256)")
 
 
 def ratio(name: str, value: Any) -> float:
@@ -130,18 +117,3 @@ def ratio(name: str, value: Any) -> float:
     if not 1.0 <= r <= hi:
         raise InputError(f"{name} = {r:g} is invalid: {what}")
     return r
-
-
-def pair(name: str, value: Any, what: str) -> Tuple[float, float]:
-    """Two finite numbers."""
-    values = items(name, value, what)
-    if len(values) != 2:
-        raise InputError(f"{name} = {shown(value)} is invalid: {what} is expected")
-    return real(name, values[0], what), real(name, values[1], what)
-
-
-def conflict(given: Sequence[Tuple[str, bool]], why: str) -> None:
-    """Refuse keywords given together that cannot be (each pair: a name, whether given)."""
-    names = [n for n, g in given if g]
-    if len(names) > 1:
-        raise InputError(f"{' and '.join(names)} cannot be given together: {why}")

@@ -14,9 +14,12 @@ class SolveError(RuntimeError):
     result: Any
 
 def simulate(
-    request: str, progress: Optional[Callable[[Dict[str, Any]], Any]] = ...
+    request: str,
+    progress: Optional[Callable[[Dict[str, Any]], Any]] = ...,
+    height_map: Optional[Tuple[bytes, int, int]] = ...,
 ) -> Tuple[str, List[Dict[str, Any]]]:
-    """Run a simulation (request as JSON): the answer as JSON and the fields as dicts of bytes."""
+    """Run a simulation (the keywords given, as JSON; a height map's f64 bytes, ny, nx): the
+    answer as JSON and the fields as dicts of bytes."""
 
 def batch(
     requests: str, processes: int = ..., progress: Optional[Callable[[Dict[str, Any]], Any]] = ...
@@ -24,8 +27,11 @@ def batch(
     """Run a batch of simulations (a JSON list of requests): per scene, its answer as JSON and
     its fields, or None and why it has none (kind, message)."""
 
-def plan(request: str) -> str:
+def plan(request: str, height_map: Optional[Tuple[bytes, int, int]] = ...) -> str:
     """What a run to the request's accuracy would do, as JSON."""
+
+def schema() -> str:
+    """Every keyword of a simulation (name, unit, kind, default, terms, help), as JSON."""
 
 def theory_curve(model: str, ratio: float, points: int) -> str:
     """A closed-form curve (c̄, F̄, d̄, ā, b̄ per point) as JSON."""

@@ -6,7 +6,7 @@
 use jkrbem::model::{Measure, Model};
 use jkrbem::run::request::Request;
 use jkrbem::run::schema::{self, words::keywords};
-use jkrbem::run::simulate::{simulate as run_simulate, Simulated, DEFAULT_ACCURACY};
+use jkrbem::run::simulate::{simulate as run_simulate, Simulated, Sink, DEFAULT_ACCURACY};
 use jkrbem::run::{RunError, Watch};
 use jkrbem::scene::height_map::HeightMap;
 use jkrbem::solver::State;
@@ -41,25 +41,9 @@ use jkrbem::run::simulate::MAX_TIME_LIMIT_S;
 use jkrbem::scene::DEFAULT_POWER_LAW_SCALE as DEFAULT_SCALE;
 use jkrbem::theory::MAX_CURVE_POINTS as MAX_THEORY_POINTS;
 
-/// Longest part of a refused text that a message repeats (characters).
-const SHOWN_CHARS: usize = 40;
-
 /// A refusal naming Python keywords.
 fn input_error(message: impl std::fmt::Display) -> PyErr {
     InputError::new_err(keywords(&message.to_string()))
-}
-
-/// `text` quoted for a message, cut to [`SHOWN_CHARS`] characters.
-fn shown(text: &str) -> String {
-    match text.char_indices().nth(SHOWN_CHARS) {
-        Some((at, _)) => format!("{:?}…", &text[..at]),
-        None => format!("{text:?}"),
-    }
-}
-
-/// A run's refusal naming Python keywords.
-fn run_input_error(e: RunError) -> PyErr {
-    input_error(e)
 }
 
 /// The message a panic carried.
@@ -100,7 +84,7 @@ fn request(json: &str) -> PyResult<Request> {
     let given: serde_json::Map<String, Value> = parse(json)?;
     let values = Request::check_json(given.iter().map(|(k, v)| (k.as_str(), v)))
         .map_err(|r| refusal(&r.message, r.wrong_type))?;
-    Request::from_values(values).map_err(run_input_error)
+    Request::from_values(values).map_err(input_error)
 }
 
 /// A refused value in Python's words: a TypeError where it was of the wrong type (or no
@@ -171,58 +155,90 @@ struct Throttle {
     grid: (usize, usize),
 }
 
+/// A progress callback (a callable taking a dict, or none) and what stopped it: Ctrl-C
+/// (inside the callback or, for a run, anywhere) or an exception the callback raised, kept to
+/// be raised once the run returns.
+struct Callback {
+    progress: Option<Py<PyAny>>,
+    interrupted: AtomicBool,
+    error: Mutex<Option<PyErr>>,
+}
+
+impl Callback {
+    fn new(progress: Option<Py<PyAny>>) -> Self {
+        Callback {
+            progress,
+            interrupted: AtomicBool::new(false),
+            error: Mutex::new(None),
+        }
+    }
+
+    /// Whether the work is being stopped (Ctrl-C, or the callback raised).
+    fn stopping(&self) -> bool {
+        self.interrupted.load(Ordering::SeqCst) || lock(&self.error).is_some()
+    }
+
+    /// Whether Ctrl-C stopped it.
+    fn interrupted(&self) -> bool {
+        self.interrupted.load(Ordering::SeqCst)
+    }
+
+    /// The exception the callback raised, if it did.
+    fn take_error(&self) -> Option<PyErr> {
+        lock(&self.error).take()
+    }
+
+    /// Hands `event` to the callback as a dict, unless the work is stopping. Ctrl-C inside
+    /// the callback stops the work as Ctrl-C anywhere else does; another exception is kept.
+    fn deliver(&self, event: &Value) {
+        let Some(cb) = &self.progress else { return };
+        if self.stopping() {
+            return;
+        }
+        Python::attach(|py| {
+            let result = py
+                .import("json")
+                .and_then(|json| json.call_method1("loads", (event.to_string(),)))
+                .and_then(|dict| cb.call1(py, (dict,)));
+            match result {
+                Err(e) if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) => {
+                    self.interrupted.store(true, Ordering::SeqCst)
+                }
+                Err(e) => {
+                    lock(&self.error).get_or_insert(e);
+                }
+                Ok(_) => {}
+            }
+        });
+    }
+}
+
 /// What the Python side watches a run with: its progress callback (a callable taking a dict)
 /// and Ctrl-C (SIGINT), which stops the run. The callback sees every "note", "start",
 /// "warning" and "end", and of the "state" events the latest one at most every
 /// [`STATE_EVERY`], less often where the callback itself is slow (it may take at most
 /// [`CALLBACK_SHARE`] of the run), and the last state of each grid before its "end".
 struct PyWatch {
-    progress: Option<Py<PyAny>>,
+    callback: Callback,
     throttle: Mutex<Throttle>,
-    interrupted: AtomicBool,
-    callback_error: Mutex<Option<PyErr>>,
 }
 
 impl PyWatch {
     fn new(progress: Option<Py<PyAny>>) -> Self {
         PyWatch {
-            progress,
+            callback: Callback::new(progress),
             throttle: Mutex::new(Throttle::default()),
-            interrupted: AtomicBool::new(false),
-            callback_error: Mutex::new(None),
         }
-    }
-
-    /// Whether the run is being stopped (Ctrl-C, or the callback raised).
-    fn stopping(&self) -> bool {
-        self.interrupted.load(Ordering::SeqCst) || lock(&self.callback_error).is_some()
     }
 
     /// Hands `event` to the callback (unless the run is stopping), and sets when the next
     /// state event may follow: after `floor` at least, later where the callback was slow.
     fn call(&self, event: Value, floor: Duration) {
-        let Some(cb) = &self.progress else { return };
-        if self.stopping() {
+        if self.callback.progress.is_none() || self.callback.stopping() {
             return;
         }
         let started = Instant::now();
-        Python::attach(|py| {
-            let text = event.to_string();
-            let result = py
-                .import("json")
-                .and_then(|json| json.call_method1("loads", (text,)))
-                .and_then(|dict| cb.call1(py, (dict,)));
-            match result {
-                // Ctrl-C inside the callback stops the run as Ctrl-C anywhere else does.
-                Err(e) if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) => {
-                    self.interrupted.store(true, Ordering::SeqCst)
-                }
-                Err(e) => {
-                    lock(&self.callback_error).get_or_insert(e);
-                }
-                Ok(_) => {}
-            }
-        });
+        self.callback.deliver(&event);
         let took = started.elapsed();
         let rest = took.mul_f64((1.0 - CALLBACK_SHARE) / CALLBACK_SHARE);
         lock(&self.throttle).next = Some(Instant::now() + rest.max(floor));
@@ -232,7 +248,7 @@ impl PyWatch {
     /// `held`: found but held back while the search for the force minimum may still go back
     /// to earlier steps (it is recorded later).
     fn state_event(&self, model: &Model, s: &State, held: bool) {
-        if self.progress.is_none() {
+        if self.callback.progress.is_none() {
             return;
         }
         let event = StateEvent {
@@ -294,12 +310,12 @@ impl Watch for PyWatch {
         self.event(json!({"event": "warning", "text": keywords(line)}));
     }
     fn keep_going(&self) -> bool {
-        if self.stopping() {
+        if self.callback.stopping() {
             return false;
         }
         let signalled = Python::attach(|py| py.check_signals().is_err());
         if signalled {
-            self.interrupted.store(true, Ordering::SeqCst);
+            self.callback.interrupted.store(true, Ordering::SeqCst);
         }
         !signalled
     }
@@ -349,17 +365,19 @@ fn answer(done: &Simulated, req: &Request, interrupted: bool) -> Value {
                    "states": r.states})
         })
         .collect();
-    worded(json!({
+    // The states name no parameter: only the rest is worded.
+    let mut answer = worded(json!({
         "summary": done.summary,
         "plan": done.plan,
         "failure": done.failure,
         "warnings": done.summary.warnings,
         "stopped": done.stopped,
         "interrupted": interrupted,
-        "runs": runs,
         "request": req.to_json(),
         "version": env!("CARGO_PKG_VERSION"),
-    }))
+    }));
+    answer["runs"] = Value::from(runs);
+    answer
 }
 
 /// A rayon pool of this process: a process forked from one that ran jkrbem gets a pool of its
@@ -398,20 +416,20 @@ fn simulate<'py>(
     guarded(|| {
         let req = self::request(request)?;
         let map = array_map(&req, height_map)?;
-        let sim = req.simulate_request(false, map).map_err(run_input_error)?;
+        let sim = req.simulate_request(Sink::Memory, map).map_err(input_error)?;
         let watch = PyWatch::new(progress);
         let pool = process_pool()?;
         let done = py.detach(|| pool.install(|| run_simulate(&sim, &watch)));
-        if let Some(e) = lock(&watch.callback_error).take() {
+        if let Some(e) = watch.callback.take_error() {
             return Err(e);
         }
         let done = done.map_err(|e| match e {
-            e @ RunError::Input(_) => run_input_error(e),
+            e @ RunError::Input(_) => input_error(e),
             other => SolveError::new_err(keywords(&other.to_string())),
         })?;
         let fields = fields_out(py, &done)?;
         Ok((
-            answer(&done, &req, watch.interrupted.load(Ordering::SeqCst)).to_string(),
+            answer(&done, &req, watch.callback.interrupted()).to_string(),
             fields,
         ))
     })
@@ -424,7 +442,7 @@ fn simulate<'py>(
 fn plan(request: &str, height_map: Option<Heights<'_>>) -> PyResult<String> {
     guarded(|| {
         let req = self::request(request)?;
-        let scene = req.scene(array_map(&req, height_map)?).map_err(run_input_error)?;
+        let scene = req.scene(array_map(&req, height_map)?).map_err(input_error)?;
         let target = req.accuracy.unwrap_or(DEFAULT_ACCURACY);
         let p = jkrbem::plan::for_accuracy(&scene, target, &req.options())
             .map_err(|e| input_error(e.to_string()))?;
@@ -476,7 +494,7 @@ fn theory_model(model: &str) -> PyResult<TheoryModel> {
         "jg" => Ok(TheoryModel::Jg),
         m => Err(input_error(format!(
             "model = {} is invalid: \"hertz\", \"jkr\" or \"jg\"",
-            shown(m)
+            schema::values::shown(m)
         ))),
     }
 }
@@ -599,39 +617,12 @@ fn _panic_for_tests() -> PyResult<()> {
 /// What Python's [`batch`] watches its scenes with: the progress callback (a callable taking a
 /// dict, or None) sees each scene's notes and warnings (named `scenes[i]`) and its end; once
 /// the callback raises (Ctrl-C in it included), the scenes not yet started do not run.
-struct BatchWatch {
-    progress: Option<Py<PyAny>>,
-    interrupted: AtomicBool,
-    callback_error: Mutex<Option<PyErr>>,
-}
+struct BatchWatch(Callback);
 
 impl BatchWatch {
-    /// Whether the batch is being stopped (the callback raised).
-    fn stopping(&self) -> bool {
-        self.interrupted.load(Ordering::SeqCst) || lock(&self.callback_error).is_some()
-    }
-
-    /// Hands `event` to the callback, unless the batch is stopping.
+    /// Hands `event` to the callback ([`Callback::deliver`]).
     fn event(&self, event: Value) {
-        let Some(cb) = &self.progress else { return };
-        if self.stopping() {
-            return;
-        }
-        Python::attach(|py| {
-            let result = py
-                .import("json")
-                .and_then(|json| json.call_method1("loads", (event.to_string(),)))
-                .and_then(|dict| cb.call1(py, (dict,)));
-            match result {
-                Err(e) if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) => {
-                    self.interrupted.store(true, Ordering::SeqCst)
-                }
-                Err(e) => {
-                    lock(&self.callback_error).get_or_insert(e);
-                }
-                Ok(_) => {}
-            }
-        });
+        self.0.deliver(&event);
     }
 }
 
@@ -650,7 +641,7 @@ impl Watch for BatchWatch {
         );
     }
     fn keep_going(&self) -> bool {
-        !self.stopping()
+        !self.0.stopping()
     }
 }
 
@@ -686,7 +677,7 @@ fn batch<'py>(
             let values = Request::check_json(g.iter().map(|(k, v)| (k.as_str(), v)))
                 .map_err(|r| refusal(&format!("scenes[{i}]: {}", r.message), r.wrong_type))?;
             let req = Request::from_values(values).map_err(at)?;
-            let sim = req.simulate_request(false, None).map_err(at)?;
+            let sim = req.simulate_request(Sink::Memory, None).map_err(at)?;
             jkrbem::run::simulate::planned_outputs(&sim).map_err(at)?;
             jobs.push(SceneJob {
                 request: sim,
@@ -694,18 +685,14 @@ fn batch<'py>(
             });
             requests.push(req);
         }
-        let watch = BatchWatch {
-            progress,
-            interrupted: AtomicBool::new(false),
-            callback_error: Mutex::new(None),
-        };
+        let watch = BatchWatch(Callback::new(progress));
         let pool = process_pool()?;
         let threads = processes.max(1);
         let done = py.detach(|| pool.install(|| run_all(jobs, threads, &watch, &|_, o| o)));
-        if let Some(e) = lock(&watch.callback_error).take() {
+        if let Some(e) = watch.0.take_error() {
             return Err(e);
         }
-        let interrupted = watch.interrupted.load(Ordering::SeqCst);
+        let interrupted = watch.0.interrupted();
         done.into_iter()
             .zip(&requests)
             .map(|(outcome, req)| match outcome {
@@ -733,6 +720,9 @@ fn batch<'py>(
 /// The compiled module.
 #[pymodule]
 fn _jkrbem(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // On import, before jkrbem starts a thread or opens a GPU: quiet the display probe of a
+    // machine without a display (it sets an environment variable).
+    jkrbem::backend::gpu::headless::quiet_display_probe();
     m.add("InputError", m.py().get_type::<InputError>())?;
     m.add("SolveError", m.py().get_type::<SolveError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

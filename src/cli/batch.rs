@@ -5,8 +5,7 @@
 //! [`jkrbem::run::scenes::batch`].
 
 use super::progress::Progress;
-use super::{input, run_error, CliError, MAX_JOBS};
-use jkrbem::output::sweep_csv;
+use super::{run_error, CliError, MAX_JOBS};
 use jkrbem::run::scenes::batch::{batch, BatchRequest};
 use std::path::PathBuf;
 
@@ -41,12 +40,7 @@ pub struct Args {
 
 /// Run `jkrbem batch`.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let shard = args
-        .shard
-        .as_deref()
-        .map(sweep_csv::parse_shard)
-        .transpose()
-        .map_err(input)?;
+    let shard = super::shard(args.shard.as_deref())?;
     let request = BatchRequest {
         scenes: args.scenes,
         out: args.out,

@@ -72,8 +72,8 @@ pub fn failed(e: impl fmt::Display) -> CliError {
     CliError::Run(e.to_string())
 }
 
-/// Most pull-offs a command runs at the same time (`--jobs`).
-pub const MAX_JOBS: usize = 256;
+/// Most pull-offs a command runs at the same time (`--jobs`): the schema's.
+pub use jkrbem::run::schema::MAX_JOBS;
 
 /// Refuse a list flag with a repeated value, naming the flag and the value.
 pub fn no_repeats<T: PartialEq + fmt::Display>(flag: &str, values: &[T]) -> Result<(), CliError> {
@@ -86,6 +86,13 @@ pub fn no_repeats<T: PartialEq + fmt::Display>(flag: &str, values: &[T]) -> Resu
         }
     }
     Ok(())
+}
+
+/// `--shard K/N` as (K, N) where given (sweep and batch alike).
+pub fn shard(text: Option<&str>) -> Result<Option<(usize, usize)>, CliError> {
+    text.map(jkrbem::output::sweep_csv::parse_shard)
+        .transpose()
+        .map_err(input)
 }
 
 /// Refuse a list flag with fewer than `min` or more than `max` values.

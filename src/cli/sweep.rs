@@ -4,9 +4,8 @@
 
 use super::progress::Progress;
 use super::stdout::not_stdout;
-use super::{count_in, input, no_repeats, run_error, CliError, MAX_JOBS};
+use super::{count_in, no_repeats, run_error, CliError, MAX_JOBS};
 use jkrbem::backend::select::BackendKind;
-use jkrbem::output::sweep_csv;
 use jkrbem::run::open::BackendRequest;
 use jkrbem::run::sweep::{sweep, SweepRequest};
 use std::path::PathBuf;
@@ -65,12 +64,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     )?;
     no_repeats("--ratios", &args.ratios)?;
     not_stdout("--out", &args.out, "sweep")?;
-    let shard = args
-        .shard
-        .as_deref()
-        .map(sweep_csv::parse_shard)
-        .transpose()
-        .map_err(input)?;
+    let shard = super::shard(args.shard.as_deref())?;
     let request = SweepRequest {
         ratios: args.ratios.clone(),
         grid: super::grid_choice(args.grid, args.accuracy),

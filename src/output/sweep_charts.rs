@@ -159,24 +159,7 @@ mod tests {
         // Before: laws were printed as "… + -1.010".
         let rows: Vec<SweepRow> = [1.0, 2.0, 5.0, 10.0, 25.0, 50.0]
             .iter()
-            .map(|&ratio: &f64| SweepRow {
-                ratio,
-                f_ad_bar: Some(0.3 + 0.25 * ratio.powf(-0.4)),
-                f_ad_bar_uncertainty: Some(0.01),
-                estimate: Some("single-grid".into()),
-                c_bar_at_min: Some(0.8),
-                d_bar_at_min: Some(-0.2),
-                jg_f_ad_bar: Some(0.5),
-                n_d: Some(30.0),
-                grid: 64,
-                dx: 0.1,
-                wall_s: 1.0,
-                ny: 64,
-                backend: "cpu-f64".into(),
-                complete: true,
-                min_reached: true,
-                error: None,
-            })
+            .map(|&ratio: &f64| SweepRow::sample(ratio, 0.3 + 0.25 * ratio.powf(-0.4)))
             .collect();
         let law = LawCurve {
             k: [0.25, -0.4, 0.3],

@@ -67,6 +67,31 @@ fn yes() -> bool {
 }
 
 impl SweepRow {
+    /// A complete single-grid row of R1/R2 = `ratio` with |min F̄| = `f_ad_bar` ± 0.01 on a
+    /// 64² grid (Δx = 0.1, 30 elements across the minor axis, 1 s): a sample for tests and
+    /// examples.
+    #[doc(hidden)]
+    pub fn sample(ratio: f64, f_ad_bar: f64) -> SweepRow {
+        SweepRow {
+            ratio,
+            f_ad_bar: Some(f_ad_bar),
+            f_ad_bar_uncertainty: Some(0.01),
+            estimate: Some("single-grid".into()),
+            c_bar_at_min: Some(0.8),
+            d_bar_at_min: Some(-0.2),
+            jg_f_ad_bar: Some(0.5),
+            n_d: Some(30.0),
+            grid: 64,
+            dx: 0.1,
+            wall_s: 1.0,
+            ny: 64,
+            backend: "cpu-f64".into(),
+            complete: true,
+            min_reached: true,
+            error: None,
+        }
+    }
+
     /// The row of one scene's finished (or stopped) request: its estimate and its finest run.
     pub fn from_summary(s: &Summary) -> SweepRow {
         let finest = s.runs.last();
@@ -683,22 +708,10 @@ mod tests {
 
     fn row(ratio: f64) -> SweepRow {
         SweepRow {
-            ratio,
-            f_ad_bar: Some(0.5 / ratio.sqrt()),
-            f_ad_bar_uncertainty: Some(0.01),
-            estimate: Some("single-grid".into()),
-            c_bar_at_min: Some(0.8),
-            d_bar_at_min: Some(-0.2),
-            jg_f_ad_bar: Some(0.5),
             n_d: Some(60.0),
             grid: 128,
             dx: 0.05,
-            wall_s: 1.0,
-            ny: 64,
-            backend: "cpu-f64".into(),
-            complete: true,
-            min_reached: true,
-            error: None,
+            ..SweepRow::sample(ratio, 0.5 / ratio.sqrt())
         }
     }
 

@@ -103,21 +103,26 @@ pub struct Request {
 /// Nx of a one-grid run that names no grid.
 pub const DEFAULT_GRID: usize = 256;
 
-/// The parameters given that only a single grid takes (with whether each was given).
+/// The parameters of [`ONE_GRID`] that `r` gives, in that order.
 fn one_grid_parameters(r: &Request) -> Vec<&'static Spec> {
-    [
-        (GRID, r.grid.is_some()),
-        (GRID_Y, r.grid_y.is_some()),
-        (STEPS, r.steps.is_some()),
-        (ONSETS, r.onsets.is_some()),
-        (MEASURE, r.measure.is_some()),
-        (REGRID, r.regrid),
-        (FINAL_D, r.final_d.is_some()),
-    ]
-    .into_iter()
-    .filter_map(|(spec, given)| given.then_some(spec))
-    .collect()
+    let given = [
+        r.grid.is_some(),
+        r.grid_y.is_some(),
+        r.steps.is_some(),
+        r.onsets.is_some(),
+        r.measure.is_some(),
+        r.regrid,
+        r.final_d.is_some(),
+    ];
+    ONE_GRID
+        .into_iter()
+        .zip(given)
+        .filter_map(|(spec, given)| given.then_some(spec))
+        .collect()
 }
+
+/// The parameters that only a single grid takes (giving one runs one grid).
+const ONE_GRID: [&Spec; 7] = [GRID, GRID_Y, STEPS, ONSETS, MEASURE, REGRID, FINAL_D];
 
 impl Request {
     /// The request of these checked values (from [`values::checked`]), each parameter not
@@ -335,7 +340,7 @@ impl Request {
             return Err(input(format!(
                 "{TIME_LIMIT} applies to a run to an accuracy ({ACCURACY} given, or none of \
                  {}, which run one grid)",
-                names(&[GRID, GRID_Y, STEPS, ONSETS, MEASURE, REGRID, FINAL_D])
+                names(&ONE_GRID)
             )));
         }
         Ok(mode)
@@ -350,12 +355,12 @@ impl Request {
         }
     }
 
-    /// The session's request: `sink` says whether the states and the summary go to files (the
-    /// CLI's [`Request::out`] and [`Request::summary`]) or stay in memory; `map` is a height
-    /// map the caller holds in memory.
+    /// The session's request: `sink` says where the states and the summary go besides memory
+    /// (the CLI's from [`Request::out`] and [`Request::summary`], a batch's to its scene's
+    /// files, [`Sink::Memory`] for Python); `map` is a height map the caller holds in memory.
     pub fn simulate_request(
         &self,
-        files: bool,
+        sink: Sink,
         map: Option<HeightMap>,
     ) -> Result<SimulateRequest, RunError> {
         let mode = self.mode()?;
@@ -380,14 +385,7 @@ impl Request {
             options: self.options(),
             backend: self.backend(),
             mode,
-            sink: if files {
-                Sink::Files {
-                    out: self.out.clone(),
-                    summary: self.summary.clone(),
-                }
-            } else {
-                Sink::Memory
-            },
+            sink,
             fields,
             time_limit,
             request: Some(self.to_json()),

@@ -4,7 +4,7 @@
 //! byte-identical tables; bad cells are refused naming their row and column before anything is
 //! written; `--resume` skips the scenes done and runs a changed row again.
 
-use crate::common::{names_in, run_in, stderr, wait_for};
+use crate::common::{names_in, run_in, stderr, stdout, wait_for};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant, SystemTime};
@@ -37,10 +37,6 @@ fn scenes(n: usize) -> String {
         text += &format!("{row},adhesive-force,cpu\n");
     }
     text
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
 /// Run `jkrbem` in `dir` and require exit code `code`.

@@ -7,6 +7,7 @@
 //! inside its picture.
 
 use crate::common;
+use crate::common::stdout;
 use jkrbem::output::sweep_csv::{shard_path, shard_ratios, Shard, SweepRow, SweepSettings};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -16,10 +17,6 @@ fn bin() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_jkrbem"));
     c.env_remove("JKRBEM_MEMORY_LIMIT");
     c
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
 fn stderr(o: &Output) -> String {

@@ -8,6 +8,7 @@
 //! Every case failed before its fix: what it did then is in its first comment.
 
 use crate::common;
+use crate::common::SHORT;
 
 use common::{names_in, stderr, wait_for};
 use std::collections::BTreeSet;
@@ -65,19 +66,6 @@ fn assert_refused(o: &Output, words: &[&str], dir: &Path, before: &BTreeSet<(Pat
     assert!(!err.contains("another jkrbem run"), "{err}");
     assert_eq!(&snapshot(dir), before, "{err}");
 }
-
-/// A one-grid run of a few seconds or less (32², 20 steps, CPU).
-const SHORT: &[&str] = &[
-    "simulate",
-    "--ratio",
-    "1",
-    "--grid",
-    "32",
-    "--steps",
-    "20",
-    "--backend",
-    "cpu",
-];
 
 /// A sampled sphere of radius 1 (161 × 161 nodes, spacing 0.05) as a text grid, for
 /// `--indenter height-map`.

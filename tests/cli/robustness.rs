@@ -7,6 +7,7 @@
 //! Every case is listed, with its outcome, in docs/errors.md.
 
 use crate::common;
+use crate::common::SHORT;
 
 use common::{names_in, stderr, wait_for};
 use std::collections::BTreeSet;
@@ -440,18 +441,6 @@ fn long_run(dir: &Path, out: &str) -> Child {
         .spawn()
         .unwrap()
 }
-
-const SHORT: &[&str] = &[
-    "simulate",
-    "--ratio",
-    "1",
-    "--grid",
-    "32",
-    "--steps",
-    "20",
-    "--backend",
-    "cpu",
-];
 
 #[test]
 fn an_existing_output_survives_a_run_that_fails_and_the_partial_file_has_a_header() {

@@ -2,30 +2,13 @@
 //! as standard output where a flag names a file of results, and no display-server noise from
 //! the GPU probe on a machine without a display.
 
-use crate::common::{jkrbem, stderr};
+use crate::common::{jkrbem, stderr, stdout, SHORT};
 use std::process::{Command, Output};
-
-/// A short sphere run on 32² (16 elements across the contact: a too-coarse warning).
-const SHORT: &[&str] = &[
-    "simulate",
-    "--ratio",
-    "1",
-    "--grid",
-    "32",
-    "--steps",
-    "20",
-    "--backend",
-    "cpu",
-];
 
 fn run(extra: &[&str], dir: &std::path::Path) -> Output {
     let mut args = SHORT.to_vec();
     args.extend_from_slice(extra);
     jkrbem(&args, dir)
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
 #[test]

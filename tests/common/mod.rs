@@ -95,6 +95,25 @@ pub fn worded(o: &std::process::Output) {
     }
 }
 
+/// A one-grid run of a few seconds or less (32², 20 steps, CPU): a sphere whose 16 elements
+/// across the contact draw a too-coarse warning.
+pub const SHORT: &[&str] = &[
+    "simulate",
+    "--ratio",
+    "1",
+    "--grid",
+    "32",
+    "--steps",
+    "20",
+    "--backend",
+    "cpu",
+];
+
+/// A run's standard output, as text.
+pub fn stdout(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
 /// Run the binary in `dir` with `args` and the environment variables `env`, the memory
 /// limit of the caller's environment removed.
 pub fn run_in(dir: &std::path::Path, args: &[&str], env: &[(&str, &str)]) -> std::process::Output {

@@ -5,22 +5,11 @@ use jkrbem::output::sweep_csv::{SweepRow, SweepSettings};
 /// A complete row of R1/R2 = `ratio` on grid 32 with |min F̄| = `f_ad_bar`.
 pub fn row(ratio: f64, f_ad_bar: f64) -> SweepRow {
     SweepRow {
-        ratio,
-        f_ad_bar: Some(f_ad_bar),
-        f_ad_bar_uncertainty: Some(0.01),
-        estimate: Some("single-grid".into()),
-        c_bar_at_min: Some(0.8),
-        d_bar_at_min: Some(-0.2),
-        jg_f_ad_bar: Some(0.5),
-        n_d: Some(30.0),
         grid: 32,
         dx: 0.2,
         wall_s: 0.1,
         ny: 32,
-        backend: "cpu-f64".into(),
-        complete: true,
-        min_reached: true,
-        error: None,
+        ..SweepRow::sample(ratio, f_ad_bar)
     }
 }
 

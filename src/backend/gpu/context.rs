@@ -106,7 +106,6 @@ fn accepts(preference: AdapterPreference, t: wgpu::DeviceType) -> bool {
 
 /// Every adapter wgpu can see, with the backends allowed by `WGPU_BACKEND` (default: all).
 fn adapters() -> Vec<wgpu::Adapter> {
-    super::headless::quiet_display_probe();
     let desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
     let backends = desc.backends;
     let instance = wgpu::Instance::new(desc);

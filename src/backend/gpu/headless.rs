@@ -35,8 +35,11 @@ pub fn should_quiet(var: impl Fn(&str) -> Option<OsString>) -> bool {
         && !LAYER_REQUESTS.iter().any(|v| set(v))
 }
 
-/// Switch the device-select layer off where [`should_quiet`] says so, once per process and
-/// before any Vulkan instance exists (callers of the adapter probe wait for it).
+/// Switch the device-select layer off where [`should_quiet`] says so, once per process. It
+/// sets an environment variable, which is sound only while no other thread reads the
+/// environment: a program's entry point calls it first, before it starts a thread or opens a
+/// GPU (the `jkrbem` command in `main`, the Python module when it is imported), never the
+/// library on a worker thread.
 pub fn quiet_display_probe() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {

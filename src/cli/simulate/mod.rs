@@ -60,8 +60,9 @@ fn sink(request: &Request, on_stdout: Option<OnStdout>) -> Sink {
 pub fn run(args: Args) -> Result<(), CliError> {
     let typed = args.request()?;
     let on_stdout = stdout_claim(&typed)?;
-    let mut request = typed.simulate_request(true, None).map_err(run_error)?;
-    request.sink = sink(&typed, on_stdout);
+    let request = typed
+        .simulate_request(sink(&typed, on_stdout), None)
+        .map_err(run_error)?;
     let progress = Progress::new();
     let done = simulate(&request, &progress).map_err(run_error)?;
     if let Some(plan) = &done.plan {

@@ -44,7 +44,10 @@ fn conflicting_parameters_are_refused_naming_them() {
         (vec![("radius", "2")], "radius"),
     ] {
         let r = Request::from_texts(given.clone()).unwrap();
-        let e = r.simulate_request(false, None).unwrap_err().to_string();
+        let e = r
+            .simulate_request(Sink::Memory, None)
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with(&format!("⟨{named}⟩")), "{given:?}: {e}");
     }
 }
@@ -88,4 +91,18 @@ fn the_schemas_defaults_are_the_models() {
         (o.onsets, o.measure, o.regrid),
         (d.onsets, d.measure, d.regrid)
     );
+}
+
+/// Every name a choice of the schema offers is one the request's enums take, so that the
+/// schema's lists and the enums cannot drift apart.
+#[test]
+fn every_choice_the_schema_offers_is_a_value_of_the_request() {
+    for spec in SPECS {
+        if let schema::Kind::Choice(names) = spec.kind {
+            for name in names {
+                let r = Request::from_texts([(spec.name, *name)]);
+                assert!(r.is_ok(), "{} = {name}: {:?}", spec.name, r.err());
+            }
+        }
+    }
 }

@@ -72,12 +72,13 @@ impl BatchDone {
 
 /// A scene's simulation, to its own files in `dir`.
 fn scene_request(row: &Row, dir: &Path) -> Result<SimulateRequest, RunError> {
-    let mut sim = row.request.simulate_request(true, None)?;
-    sim.sink = Sink::Files {
-        out: Some(names::scene_states(dir, &row.id)),
-        summary: Some(names::scene_summary(dir, &row.id)),
-    };
-    Ok(sim)
+    row.request.simulate_request(
+        Sink::Files {
+            out: Some(names::scene_states(dir, &row.id)),
+            summary: Some(names::scene_summary(dir, &row.id)),
+        },
+        None,
+    )
 }
 
 /// The largest summary read to decide whether a scene is done (bytes).

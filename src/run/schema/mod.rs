@@ -179,6 +179,36 @@ pub struct Spec {
     pub help: &'static str,
 }
 
+/// A parameter that both front ends take.
+const fn spec(
+    name: &'static str,
+    flag: &'static str,
+    group: Group,
+    unit: &'static str,
+    kind: Kind,
+    fallback: Fallback,
+    help: &'static str,
+) -> Spec {
+    Spec {
+        name,
+        flag,
+        unit,
+        kind,
+        fallback,
+        group,
+        fronts: Fronts::Both,
+        help,
+    }
+}
+
+/// `spec` taken by the command line only (a file it writes, a command Python lacks).
+const fn cli_only(spec: Spec) -> Spec {
+    Spec {
+        fronts: Fronts::Cli,
+        ..spec
+    }
+}
+
 /// The marker that stands for a parameter's name in a message: each front end replaces it by
 /// its own word for the parameter ([`words::render`]).
 pub const OPEN: char = '⟨';

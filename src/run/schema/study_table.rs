@@ -8,7 +8,7 @@
 //! with the kind and range of each of its values, and its default where its commands differ
 //! is said in words ([`Fallback::Chosen`]).
 
-use super::{Fallback, Fronts, Group, Kind, Range, Spec};
+use super::{cli_only, spec, Fallback, Fronts, Group, Kind, Range, Spec};
 use crate::analysis::crossed::MIN_POISSON;
 use crate::model::{MAX_MARGIN, MAX_MESH_ANGLE, MIN_GRID};
 use crate::scene::{MAX_INPUT, MAX_RATIO, MIN_INPUT};
@@ -45,16 +45,7 @@ const fn cli(
     fallback: Fallback,
     help: &'static str,
 ) -> Spec {
-    Spec {
-        name,
-        flag,
-        unit,
-        kind,
-        fallback,
-        group: Group::Study,
-        fronts: Fronts::Cli,
-        help,
-    }
+    cli_only(spec(name, flag, Group::Study, unit, kind, fallback, help))
 }
 
 /// A parameter of the crossed cylinders that Python's crossed scene takes too.

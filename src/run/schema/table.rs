@@ -1,7 +1,7 @@
 //! The table of parameters: one `const` [`Spec`] each (a message names one as `{MARGIN}`), and
 //! [`SPECS`], every one of them in the order `--help` shows them.
 
-use super::{Fallback, Fronts, Group, Kind, Range, Spec};
+use super::{cli_only, spec, Fallback, Group, Kind, Range, Spec};
 use crate::model::{
     MAX_CG_ITERATIONS, MAX_GRID, MAX_MARGIN, MAX_MESH_ANGLE, MAX_STEPS, MIN_FINAL_D_BAR, MIN_GRID,
     START_RADIUS_RANGE,
@@ -13,36 +13,6 @@ use crate::scene::{MAX_INPUT, MAX_RATIO, MIN_INPUT};
 const INPUT: Kind = Kind::Real(Range::closed(MIN_INPUT, MAX_INPUT));
 /// A grid side's range.
 const GRID_SIDE: Kind = Kind::PowerOfTwo(MIN_GRID as u64, MAX_GRID as u64);
-
-/// A parameter that both front ends take.
-const fn spec(
-    name: &'static str,
-    flag: &'static str,
-    group: Group,
-    unit: &'static str,
-    kind: Kind,
-    fallback: Fallback,
-    help: &'static str,
-) -> Spec {
-    Spec {
-        name,
-        flag,
-        unit,
-        kind,
-        fallback,
-        group,
-        fronts: Fronts::Both,
-        help,
-    }
-}
-
-/// A parameter that only the command line takes (a file it writes).
-const fn cli_only(spec: Spec) -> Spec {
-    Spec {
-        fronts: Fronts::Cli,
-        ..spec
-    }
-}
 
 use Fallback::{Chosen, Value};
 use Group::*;
