@@ -119,3 +119,15 @@ pub const F64_SAFE_RANGE: (f64, f64) = (1e-150, 1e150);
 
 /// [`F64_SAFE_RANGE`] for f32 fields, whose squares must stay inside f32's 1e-38 … 3e38.
 pub const F32_SAFE_RANGE: (f64, f64) = (1e-15, 1e15);
+
+/// The fraction of the domain a height map on a window is pressed on to cover where no
+/// preload is given (dimensionless): a contact well inside the domain, of many elements.
+pub const DEFAULT_PRELOAD_AREA: f64 = 0.1;
+
+/// How far below the first touch a height map's pull-off is expected to end, in the depth
+/// of its default preload (dimensionless): what sizes its load steps.
+pub const WINDOW_PULL_BELOW: f64 = 0.5;
+
+/// How far below the first touch a height map's pull-off stops if the contact has not
+/// vanished, in the depth of its default preload (dimensionless).
+pub const WINDOW_FINAL_BELOW: f64 = 20.0;

@@ -5,9 +5,10 @@
 
 use crate::run::schema::{
     APEX_OFFSET, BACKEND, CG_ACCEPT, CG_MAX_ITERATIONS, CG_TOLERANCE, E_STAR, GRID, GRID_Y,
-    HEIGHT_MAP, INDENTER, MARGIN, MESH_ANGLE, START_RADIUS, STEPS, WORK_OF_ADHESION,
+    HEIGHT_MAP, INDENTER, MARGIN, MESH_ANGLE, PRELOAD_AREA, PRELOAD_DEPTH, PRELOAD_FORCE,
+    START_RADIUS, STEPS, WORK_OF_ADHESION,
 };
-use crate::scene::{FirstContact, PullOffHint, Scene};
+use crate::scene::{FirstContact, Indenter, PullOffHint, Scene};
 use crate::setup::Preconditioner;
 use crate::text::compact;
 
@@ -21,8 +22,8 @@ pub use error::ModelError;
 use grid::{check_grid, check_resolution, invalid};
 pub use grid::{critical_stress, kappa, memory_estimate, MeshAngle};
 pub use limits::*;
-pub use options::{CgSettings, Measure, ModelOptions, Onsets};
-pub use steps::LoadPath;
+pub use options::{CgSettings, Measure, ModelOptions, Onsets, Preload};
+pub use steps::{LoadPath, LoadTarget, Loading};
 
 /// The numerical model of a scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -74,6 +75,14 @@ pub struct Model {
     /// The apex's position within the element grid (elements along x and y, in [−0.5, 0.5]):
     /// element centres lie at x = (i + ½ − nx/2 − offset.0)·Δx from the apex.
     pub apex_offset: (f64, f64),
+    /// The loading phase before the pull-off, if the contact is pressed on rather than built
+    /// in one piece as the first contact's non-adhesive solution.
+    pub loading: Option<Loading>,
+    /// Whether a measure of the adhesive force may stop once the force minimum is confirmed
+    /// ([`crate::solver::protocol::CONFIRM_D_BAR`] past it): only where the results are
+    /// normalised, so that the test's d̄ has its meaning; a surface in the user's units runs
+    /// to the end of contact.
+    pub confirm_minimum: bool,
 }
 
 impl Model {
@@ -149,6 +158,11 @@ impl Model {
                 "two fractions of an element in [−0.5, 0.5], e.g. 0.25,-0.5".to_string(),
             ));
         }
+        let placed = placed_on_map(scene, opt, &mesh)?;
+        let scene = &placed;
+        if let Some(half) = scene.window_half() {
+            return Model::on_window(scene, opt, mesh, half);
+        }
         let scales = scene.scales();
         let c0_len = c0 * scales.length;
         let initial = scene
@@ -208,9 +222,159 @@ impl Model {
             regrid: opt.regrid,
             mesh,
             apex_offset: opt.apex_offset,
+            loading: None,
+            confirm_minimum: true,
+        };
+        let preload = opt
+            .preload
+            .or_else(|| scene.presses_on().then_some(Preload::StartRadius));
+        let model = Model {
+            loading: preload.map(|p| model.loading_to(p)).transpose()?,
+            ..model
         };
         model.check_scales("f64", F64_SAFE_RANGE)?;
         Ok(model)
+    }
+
+    /// The model of a height map placed on a window of half-widths `half` (length): the
+    /// window is the domain (Δx = its width / Nx, Ny fitted to its aspect unless given), the
+    /// surface is pressed on from its first touch (to [`DEFAULT_PRELOAD_AREA`] of the domain
+    /// unless a preload is given), and the load steps are sized from the approach at which
+    /// the indenter's height falls below the approach over twice that area (the bearing
+    /// area; an elastic contact covers about half of it).
+    fn on_window(
+        scene: &Scene,
+        opt: &ModelOptions,
+        mesh: MeshAngle,
+        (half_x, half_y): (f64, f64),
+    ) -> Result<Self, ModelError> {
+        let dx = 2.0 * half_x / opt.nx as f64;
+        let need_y = ((2.0 * half_y / dx - 1e-9).ceil() as usize).max(1);
+        let ny = opt.ny.unwrap_or(need_y.next_power_of_two().max(MIN_GRID));
+        let mut model = Model {
+            scene: scene.clone(),
+            nx: opt.nx,
+            ny,
+            dx,
+            sigma_c: critical_stress(scene, dx),
+            initial: FirstContact {
+                a: 0.0,
+                b: 0.0,
+                d: 0.0,
+                force: 0.0,
+                p0: 0.0,
+            },
+            load: LoadPath {
+                d0: 0.0,
+                d_step: 0.0,
+                d_final: 0.0,
+                d_end: 0.0,
+            },
+            cg: CgSettings {
+                tolerance: opt.cg_tolerance,
+                max_iterations: opt.cg_max_iterations,
+                check_every: opt.cg_check_every.max(1),
+                accept: opt.cg_accept,
+            },
+            preconditioner: opt.preconditioner,
+            max_sweeps: opt.max_sweeps,
+            margin: opt.margin,
+            onsets: opt.onsets,
+            loose_rounds: opt.loose_rounds,
+            spread_detached: opt.loose_rounds,
+            certify_detached: opt.loose_rounds,
+            tighten_stalls: opt.loose_rounds,
+            measure: opt.measure,
+            regrid: false,
+            mesh,
+            apex_offset: opt.apex_offset,
+            loading: None,
+            confirm_minimum: scene.is_normalised(),
+        };
+        let mut heights: Vec<f64> = model
+            .profile()
+            .into_iter()
+            .filter(|h| h.is_finite())
+            .collect();
+        heights.sort_by(f64::total_cmp);
+        let Some(&d_touch) = heights.first() else {
+            return Err(invalid(
+                INDENTER,
+                scene.indenter.describe(),
+                "a surface that the half-space can touch somewhere in the domain",
+            ));
+        };
+        let window = (half_x * half_y * 4.0 / (dx * dx)).round().max(1.0) as usize;
+        let k = ((2.0 * DEFAULT_PRELOAD_AREA * window as f64) as usize).min(heights.len() - 1);
+        let depth = (heights[k] - d_touch).max(f64::MIN_POSITIVE);
+        let steps = opt.steps as f64;
+        model.load = LoadPath {
+            d0: d_touch + depth,
+            d_step: depth * (1.0 + WINDOW_PULL_BELOW) / steps,
+            d_final: d_touch - WINDOW_FINAL_BELOW * depth,
+            d_end: d_touch - WINDOW_PULL_BELOW * depth,
+        };
+        model.initial = FirstContact {
+            a: 0.0,
+            b: 0.0,
+            d: d_touch + depth,
+            force: 0.0,
+            // The pressure a contact of the domain's size pressed by `depth` carries.
+            p0: scene.e_star * depth / (2.0 * half_x),
+        };
+        let preload = opt
+            .preload
+            .unwrap_or(Preload::AreaFraction(DEFAULT_PRELOAD_AREA));
+        model.loading = Some(model.loading_to(preload)?);
+        model.check_scales("f64", F64_SAFE_RANGE)?;
+        Ok(model)
+    }
+
+    /// The loading phase to `preload`: from the least height of the grid's element centres,
+    /// in steps of the pull-off's load step. Refuses a preload that is not finite and
+    /// positive (a depth: above the first touch; an area: a fraction below 1).
+    fn loading_to(&self, preload: Preload) -> Result<Loading, ModelError> {
+        let d_touch = self.profile().into_iter().fold(f64::INFINITY, f64::min);
+        let target = match preload {
+            Preload::StartRadius => LoadTarget::Depth(self.load.d0),
+            Preload::Depth(d) => LoadTarget::Depth(d),
+            Preload::Force(f) => LoadTarget::Force(f),
+            Preload::AreaFraction(a) => LoadTarget::AreaFraction(a),
+        };
+        let refuse = |spec: &'static crate::run::schema::Spec, value: f64, expected: String| {
+            Err(invalid(spec, compact(value), expected))
+        };
+        match target {
+            LoadTarget::Depth(d) if !(d.is_finite() && d > d_touch) => {
+                return refuse(
+                    PRELOAD_DEPTH,
+                    d,
+                    format!(
+                        "an approach beyond the first touch at d = {} (length)",
+                        compact(d_touch)
+                    ),
+                )
+            }
+            LoadTarget::Force(f) if !(f.is_finite() && f > 0.0) => {
+                return refuse(PRELOAD_FORCE, f, "a compressive force > 0".to_string())
+            }
+            LoadTarget::AreaFraction(a) if !(a > 0.0 && a < 1.0) => {
+                return refuse(PRELOAD_AREA, a, "a fraction of the domain in (0, 1)".into())
+            }
+            _ => {}
+        }
+        if !d_touch.is_finite() {
+            return Err(invalid(
+                INDENTER,
+                self.scene.indenter.describe(),
+                "a surface that the half-space can touch somewhere in the domain",
+            ));
+        }
+        Ok(Loading {
+            d_touch,
+            d_step: self.load.d_step,
+            target,
+        })
     }
 
     /// The characteristic numbers a backend holds, with their names and units: σ_c, the
@@ -380,6 +544,46 @@ impl Model {
         }
         m
     }
+}
+
+/// The scene as the model places it: a height map at its apex whose first contact of c̄0
+/// (with its margin, on this grid) does not fit in the map is placed on the whole map.
+fn placed_on_map(scene: &Scene, opt: &ModelOptions, mesh: &MeshAngle) -> Result<Scene, ModelError> {
+    let Indenter::HeightMap(ref m) = scene.indenter else {
+        return Ok(scene.clone());
+    };
+    if m.on_window_placed() {
+        return Ok(scene.clone());
+    }
+    let scales = scene.scales();
+    let fits = scene
+        .indenter
+        .first_contact(
+            opt.start_radius_bar * scales.length,
+            scene.e_star,
+            scene.work_of_adhesion,
+        )
+        .map(|first| {
+            let (bx, by) = mesh.bounding_half_widths(first.a, first.b);
+            let (ox, oy) = opt.apex_offset;
+            let hx = bx * (1.0 + opt.margin);
+            let dx = 2.0 * hx / opt.nx as f64;
+            let hy = by * (1.0 + opt.margin) + (oy.abs() + 1.0) * dx;
+            let hx = hx + ox.abs() * dx;
+            (0..4).all(|k| {
+                let (sx, sy) = ([1.0, -1.0][k % 2], [1.0, -1.0][k / 2]);
+                let (xi, eta) = mesh.to_ellipsoid(sx * hx, sy * hy);
+                scene.indenter.covers(xi.abs(), eta.abs())
+            })
+        })
+        .unwrap_or(false);
+    if fits {
+        return Ok(scene.clone());
+    }
+    Ok(Scene {
+        indenter: Indenter::HeightMap(std::sync::Arc::new(m.on_whole_map())),
+        ..scene.clone()
+    })
 }
 
 /// Refuse a height map whose spacing is too coarse for the contact at the force minimum

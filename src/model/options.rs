@@ -118,6 +118,28 @@ pub struct ModelOptions {
     /// scene's own closed form (the sphere's values where the indenter has none).
     #[serde(skip)]
     pub hint: Option<PullOffHint>,
+    /// How far the loading phase presses before the pull-off ([`Preload`]); `None`: the
+    /// scene's default (a smooth closed-form shape starts from its non-adhesive first
+    /// contact of c̄0 built in one piece; a height map or a rough shape is pressed on).
+    #[serde(default)]
+    pub preload: Option<Preload>,
+}
+
+/// Where the loading phase stops: the pull-off starts from the contact pressed on to it,
+/// elements attaching where their gap closes.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Preload {
+    /// At this approach d (length, as the states' d: from the indenter's reference point,
+    /// its apex or, for a height map, the lowest node of the domain).
+    Depth(f64),
+    /// Once the compressive force reaches this (force).
+    Force(f64),
+    /// Once the contact covers this fraction of the domain (dimensionless, in (0, 1)).
+    AreaFraction(f64),
+    /// At the approach of the scene's own first contact of c̄0 (length: today's d0), pressed
+    /// on instead of built in one piece.
+    StartRadius,
 }
 
 impl Default for ModelOptions {
@@ -142,6 +164,7 @@ impl Default for ModelOptions {
             mesh_angle_deg: 0.0,
             apex_offset: (0.0, 0.0),
             hint: None,
+            preload: None,
         }
     }
 }

@@ -90,6 +90,52 @@ impl LoadPath {
     }
 }
 
+/// Where the loading phase stops (see [`crate::model::Preload`], resolved for one model).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LoadTarget {
+    /// At this approach d (length).
+    Depth(f64),
+    /// Once the compressive force reaches this (force).
+    Force(f64),
+    /// Once the contact covers this fraction of the domain (dimensionless).
+    AreaFraction(f64),
+}
+
+/// The loading phase: from the first touch, the approach rises in steps of `d_step` (the
+/// last one shortened to land on a [`LoadTarget::Depth`]; towards a force or an area the
+/// steps are aimed by the secant through the last two states) until the target is reached.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Loading {
+    /// The approach at which the indenter first touches the grid: the least height of its
+    /// element centres (length).
+    pub d_touch: f64,
+    /// The approach's increment per loading step (length).
+    pub d_step: f64,
+    /// Where loading stops.
+    pub target: LoadTarget,
+}
+
+impl Loading {
+    /// Loading steps the phase is expected to take (for a progress line).
+    pub fn expected_steps(&self) -> usize {
+        match self.target {
+            LoadTarget::Depth(d) => ((d - self.d_touch) / self.d_step).ceil().max(1.0) as usize,
+            _ => 1,
+        }
+    }
+
+    /// The approach after `step` loading steps towards a depth `d_pre` (length): equal steps
+    /// from the touch, the last landing on `d_pre` exactly.
+    pub fn depth_approach(&self, step: usize, d_pre: f64) -> f64 {
+        let n = self.expected_steps();
+        if step >= n {
+            d_pre
+        } else {
+            self.d_touch + (d_pre - self.d_touch) * step as f64 / n as f64
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

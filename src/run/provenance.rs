@@ -34,12 +34,30 @@ pub fn scene_json(scene: &Scene) -> Value {
                                                   "scale": scale}),
         Indenter::FlatPunch { radius } => json!({"indenter": "flat-punch", "radius": radius}),
         Indenter::HeightMap(m) => json!({"indenter": "height-map", "source": m.source,
-                                         "spacing": m.map.spacing(), "fitted_radii": [m.radii.0, m.radii.1]}),
+                                         "spacing": m.map.spacing(),
+                                         "fitted_radii": m.radii.map(|r| [r.0, r.1]),
+                                         "placement": m.describe()}),
+        Indenter::Rough(r) => {
+            let mut base = scene_json(&Scene {
+                indenter: r.base.clone(),
+                ..scene.clone()
+            });
+            base["roughness"] = json!({"source": r.source, "spacing": r.map.spacing(),
+                                       "rms_height": r.rms_height()});
+            base
+        }
     };
     let mut v = shape;
     v["e_star"] = json!(scene.e_star);
     v["work_of_adhesion"] = json!(scene.work_of_adhesion);
     v["units"] = json!("lengths in the user's unit L, e_star in F/L², work_of_adhesion in F/L");
+    let sc = scene.scales();
+    v["normalisation"] = if scene.is_normalised() {
+        json!({"length": sc.length, "force": sc.force, "approach": sc.approach,
+               "by": scene.normalised_by()})
+    } else {
+        json!({"by": "none: the normalised values are in the user's units"})
+    };
     v
 }
 

@@ -9,15 +9,16 @@ use super::open::{BackendRequest, Convolution};
 use super::schema::{self, values, Fallback, Spec, SPECS};
 use super::schema::{
     ACCURACY, EXTRAPOLATE, EXTRAPOLATE_GRIDS, FINAL_D, GRID, GRID_Y, HEIGHT_MAP, INDENTER, MEASURE,
-    ONSETS, R1, RATIO, REGRID, SPACING, START_RADIUS, STEPS, TIME_LIMIT,
+    ONSETS, PRELOAD_AREA, PRELOAD_DEPTH, PRELOAD_FORCE, R1, RATIO, REGRID, ROUGHNESS, SPACING,
+    START_RADIUS, STEPS, TIME_LIMIT, WINDOW_X, WINDOW_Y,
 };
 use super::simulate::{Mode, SimulateRequest, Sink};
 use super::{input, RunError};
 use crate::analysis::fields::FieldChoice;
 use crate::backend::select::BackendKind;
-use crate::model::{Measure, ModelOptions, Onsets};
+use crate::model::{Measure, ModelOptions, Onsets, Preload};
 use crate::scene::height_map::HeightMap;
-use crate::scene::{Indenter, MeasuredSurface, Scene};
+use crate::scene::{Indenter, MeasuredSurface, RoughShape, Scene};
 use crate::setup::Preconditioner;
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
@@ -70,6 +71,9 @@ pub struct Request {
     pub scale: Option<f64>,
     pub height_map: Option<PathBuf>,
     pub spacing: Option<f64>,
+    pub roughness: Option<PathBuf>,
+    pub window_x: Option<[f64; 2]>,
+    pub window_y: Option<[f64; 2]>,
     pub grid: Option<usize>,
     pub grid_y: Option<usize>,
     pub start_radius: Option<f64>,
@@ -79,6 +83,9 @@ pub struct Request {
     pub regrid: bool,
     pub final_d: Option<f64>,
     pub margin: Option<f64>,
+    pub preload_depth: Option<f64>,
+    pub preload_force: Option<f64>,
+    pub preload_area: Option<f64>,
     pub mesh_angle: f64,
     pub apex_offset: [f64; 2],
     pub cg_tolerance: f64,
@@ -171,10 +178,11 @@ impl Request {
     }
 
     /// Refuse a shape's parameter given with another indenter (it would be ignored).
-    fn refuse_foreign(&self, map_given: bool) -> Result<(), RunError> {
+    fn refuse_foreign(&self, map_given: bool, rough_given: bool) -> Result<(), RunError> {
         use schema::{EXPONENT, R2, RADIUS, SCALE};
         use Shape::*;
-        let given: [(&Spec, bool, &[Shape]); 9] = [
+        let rough = self.roughness.is_some() || rough_given;
+        let given: [(&Spec, bool, &[Shape]); 12] = [
             (RATIO, self.ratio.is_some(), &[Ellipsoid]),
             (R1, self.r1.is_some(), &[Ellipsoid]),
             (R2, self.r2.is_some(), &[Ellipsoid]),
@@ -191,7 +199,10 @@ impl Request {
                 self.height_map.is_some() || map_given,
                 &[HeightMap],
             ),
-            (SPACING, self.spacing.is_some(), &[HeightMap]),
+            (SPACING, self.spacing.is_some() && !rough, &[HeightMap]),
+            (ROUGHNESS, rough, &[Ellipsoid, PowerLaw, FlatPunch]),
+            (WINDOW_X, self.window_x.is_some(), &[HeightMap]),
+            (WINDOW_Y, self.window_y.is_some(), &[HeightMap]),
         ];
         for (spec, given, shapes) in given {
             if given && !shapes.contains(&self.indenter) {
@@ -204,6 +215,22 @@ impl Request {
                 )));
             }
         }
+        let preloads = [
+            (PRELOAD_DEPTH, self.preload_depth.is_some()),
+            (PRELOAD_FORCE, self.preload_force.is_some()),
+            (PRELOAD_AREA, self.preload_area.is_some()),
+        ];
+        let named: Vec<String> = preloads
+            .iter()
+            .filter(|(_, given)| *given)
+            .map(|(spec, _)| spec.to_string())
+            .collect();
+        if named.len() > 1 {
+            return Err(input(format!(
+                "{} each set where the loading stops: give one",
+                named.join(" and ")
+            )));
+        }
         if self.ratio.is_some() && self.r1.is_some() {
             return Err(input(format!(
                 "{RATIO} and {R1} both set R1/R2: give one ({R1} with {}, or {RATIO})",
@@ -213,19 +240,23 @@ impl Request {
         Ok(())
     }
 
-    /// The scene: the indenter and the materials. A height map is read from its file, or is
-    /// `map` where the caller holds it in memory (Python's array).
+    /// The scene: the indenter and the materials. A height map (or the roughness added to a
+    /// base shape) is read from its file, or is `map` where the caller holds it in memory
+    /// (Python's array).
     pub fn scene(&self, map: Option<HeightMap>) -> Result<Scene, RunError> {
-        self.refuse_foreign(map.is_some())?;
+        let is_map = self.indenter == Shape::HeightMap;
+        let (map, rough_map) = if is_map { (map, None) } else { (None, map) };
+        self.refuse_foreign(map.is_some(), rough_map.is_some())?;
         let (e, w) = (self.e_star, self.work_of_adhesion);
         let r2 = self.r2.unwrap_or(1.0);
         let shape = match self.indenter {
             Shape::Ellipsoid => {
-                return match self.r1 {
+                let smooth = match self.r1 {
                     Some(r1) => Scene::new(r1, r2, e, w),
                     None => Scene::from_ratio(self.ratio.unwrap_or(5.0), r2, e, w),
                 }
-                .map_err(input)
+                .map_err(input)?;
+                smooth.indenter
             }
             Shape::FlatPunch => Indenter::FlatPunch {
                 radius: self.radius.unwrap_or(1.0),
@@ -236,10 +267,42 @@ impl Request {
             },
             Shape::HeightMap => self.height_map_indenter(map)?,
         };
+        let shape = match self.roughness_map(rough_map)? {
+            Some((map, name)) => {
+                let base = shape.checked().map_err(input)?;
+                Indenter::Rough(Arc::new(RoughShape::new(base, map, &name).map_err(input)?))
+            }
+            None => shape,
+        };
         Scene::with_indenter(shape, e, w).map_err(input)
     }
 
-    /// The measured surface: `map` if given, else read from [`Request::height_map`].
+    /// The roughness to add to the base shape, with its name: `map` if given, else read
+    /// from [`Request::roughness`]; `None` for a smooth shape.
+    fn roughness_map(
+        &self,
+        map: Option<HeightMap>,
+    ) -> Result<Option<(HeightMap, String)>, RunError> {
+        match (map, &self.roughness) {
+            (Some(map), _) => Ok(Some((map, "the array given".to_string()))),
+            (None, Some(path)) => {
+                let Some(spacing) = self.spacing else {
+                    return Err(input(format!(
+                        "{ROUGHNESS} needs {SPACING} (the nodes' spacing, length)"
+                    )));
+                };
+                let name = crate::text::printable(&path.display().to_string(), 200);
+                Ok(Some((
+                    map_file::read_as(path, &name, spacing, ROUGHNESS)?,
+                    name,
+                )))
+            }
+            (None, None) => Ok(None),
+        }
+    }
+
+    /// The measured surface: `map` if given, else read from [`Request::height_map`]; placed
+    /// on the window asked for, else at its apex where it has one, else on the whole map.
     fn height_map_indenter(&self, map: Option<HeightMap>) -> Result<Indenter, RunError> {
         let (map, name) = match (map, &self.height_map) {
             (Some(map), _) => (map, "the array given".to_string()),
@@ -260,7 +323,12 @@ impl Request {
                 )))
             }
         };
-        let surface = MeasuredSurface::new(map, &name).map_err(input)?;
+        let surface = if self.window_x.is_some() || self.window_y.is_some() {
+            MeasuredSurface::on_window(map, &name, self.window_x, self.window_y)
+        } else {
+            MeasuredSurface::new(map, &name)
+        }
+        .map_err(input)?;
         Ok(Indenter::HeightMap(Arc::new(surface)))
     }
 
@@ -291,8 +359,17 @@ impl Request {
             loose_rounds: !self.exact_cascade,
             measure,
             regrid: self.regrid,
+            preload: self.preload(),
             ..ModelOptions::default()
         }
+    }
+
+    /// The preload asked for (at most one is given: [`Request::check`] refuses more).
+    fn preload(&self) -> Option<Preload> {
+        self.preload_depth
+            .map(Preload::Depth)
+            .or(self.preload_force.map(Preload::Force))
+            .or(self.preload_area.map(Preload::AreaFraction))
     }
 
     /// One grid, several or an accuracy. Parameters the choice would drop are refused: an

@@ -3,6 +3,7 @@
 //! where its pull-off lies (the hints the model sizes its domain and load path from).
 
 use super::measured::MeasuredSurface;
+use super::rough::RoughShape;
 use super::{check, input_range, Scales, SceneError};
 use crate::run::schema::{EXPONENT, RADIUS, SCALE};
 use crate::text::compact;
@@ -57,6 +58,9 @@ pub enum Indenter {
     /// A measured topography ([`MeasuredSurface`]): its apex at the origin, sized and
     /// normalised as the ellipsoid of its apex's principal radii.
     HeightMap(Arc<MeasuredSurface>),
+    /// A base shape with roughness added ([`RoughShape`]): sized, normalised and hinted as
+    /// its base.
+    Rough(Arc<RoughShape>),
 }
 
 /// The first, non-adhesive contact the approach aims at (Hertz's for the ellipsoid): what the
@@ -101,7 +105,7 @@ impl Indenter {
     /// Check the shape's parameters; errors name the parameter that sets each.
     pub fn checked(self) -> Result<Self, SceneError> {
         match self {
-            Indenter::Ellipsoid { .. } | Indenter::HeightMap(_) => Ok(self),
+            Indenter::Ellipsoid { .. } | Indenter::HeightMap(_) | Indenter::Rough(_) => Ok(self),
             Indenter::PowerLaw { n, scale } => {
                 check(
                     EXPONENT,
@@ -150,6 +154,7 @@ impl Indenter {
             Indenter::PowerLaw { .. } => "power-law",
             Indenter::FlatPunch { .. } => "flat-punch",
             Indenter::HeightMap(_) => "height-map",
+            Indenter::Rough(_) => "rough",
         }
     }
 
@@ -175,6 +180,7 @@ impl Indenter {
                 format!("flat punch of radius {}", compact(radius))
             }
             Indenter::HeightMap(ref m) => m.describe(),
+            Indenter::Rough(ref r) => r.describe(),
         }
     }
 
@@ -199,7 +205,8 @@ impl Indenter {
     fn ellipsoid_like(&self) -> Option<(f64, f64)> {
         match *self {
             Indenter::Ellipsoid { r1, r2 } => Some((r1, r2)),
-            Indenter::HeightMap(ref m) => Some(m.radii),
+            Indenter::HeightMap(ref m) => m.radii,
+            Indenter::Rough(ref r) => r.base.ellipsoid_like(),
             _ => None,
         }
     }
@@ -208,6 +215,7 @@ impl Indenter {
     pub fn map_spacing(&self) -> Option<f64> {
         match *self {
             Indenter::HeightMap(ref m) => Some(m.map.spacing()),
+            Indenter::Rough(ref r) => Some(r.map.spacing()),
             _ => None,
         }
     }
@@ -217,6 +225,7 @@ impl Indenter {
     pub fn covers(&self, half_x: f64, half_y: f64) -> bool {
         match *self {
             Indenter::HeightMap(ref m) => m.covers(half_x, half_y),
+            Indenter::Rough(ref r) => r.covers(half_x, half_y) && r.base.covers(half_x, half_y),
             _ => true,
         }
     }
@@ -228,6 +237,10 @@ impl Indenter {
     pub fn height(&self, x: f64, y: f64, e_star: f64, work_of_adhesion: f64) -> f64 {
         match *self {
             Indenter::HeightMap(ref m) => m.height(x, y).unwrap_or(f64::INFINITY),
+            Indenter::Rough(ref r) => {
+                r.base.height(x, y, e_star, work_of_adhesion)
+                    + r.roughness(x, y).unwrap_or(f64::INFINITY)
+            }
             Indenter::Ellipsoid { r1, r2 } => x * x / (2.0 * r1) + y * y / (2.0 * r2),
             Indenter::PowerLaw { n, scale } => scale * (x * x + y * y).sqrt().powf(n),
             Indenter::FlatPunch { radius } => {
@@ -247,9 +260,11 @@ impl Indenter {
     pub fn scales(&self, e_star: f64, work_of_adhesion: f64) -> Scales {
         match *self {
             Indenter::Ellipsoid { r1, r2 } => ellipsoid_scales(r1, r2, e_star, work_of_adhesion),
-            Indenter::HeightMap(ref m) => {
-                ellipsoid_scales(m.radii.0, m.radii.1, e_star, work_of_adhesion)
-            }
+            Indenter::HeightMap(ref m) => match m.radii {
+                Some((r1, r2)) => ellipsoid_scales(r1, r2, e_star, work_of_adhesion),
+                None => Scales::UNITS,
+            },
+            Indenter::Rough(ref r) => r.base.scales(e_star, work_of_adhesion),
             Indenter::PowerLaw { n, scale } => {
                 let (length, force, approach) =
                     power_law(n, scale, e_star, work_of_adhesion).scales();
@@ -283,10 +298,17 @@ impl Indenter {
                     .map(FirstContact::from)
                     .map_err(|e| e.to_string())
             }
+            Indenter::Rough(ref r) => r.base.first_contact(c, e_star, work_of_adhesion),
             Indenter::HeightMap(ref m) => {
                 // The apex ellipsoid's Hertz contact, as a circle of its major half-axis: the
                 // map's principal axes need not lie along the grid's.
-                let (r1, r2) = m.radii;
+                let Some((r1, r2)) = m.radii else {
+                    return Err(
+                        "a map that is not convex about its lowest node has no first \
+                                contact to build: it is pressed on"
+                            .to_string(),
+                    );
+                };
                 let h = theory::hertz::hertz_for_mean_radius(r1, r2, e_star, c)
                     .map_err(|e| e.to_string())?;
                 Ok(FirstContact { b: h.a, ..h.into() })
@@ -320,6 +342,8 @@ impl Indenter {
     /// punch); `None` where none is computed.
     pub fn pull_off_hint(&self, e_star: f64, work_of_adhesion: f64) -> Option<PullOffHint> {
         match *self {
+            Indenter::Rough(ref r) => r.base.pull_off_hint(e_star, work_of_adhesion),
+            Indenter::HeightMap(ref m) if m.radii.is_none() => None,
             Indenter::Ellipsoid { .. } | Indenter::HeightMap(_) => {
                 let ratio = self.ratio();
                 let p = theory::pull_off(TheoryModel::adhesive_reference(ratio), ratio).ok()?;
@@ -354,7 +378,7 @@ impl Indenter {
     ) -> Option<(&'static str, f64)> {
         match *self {
             Indenter::Ellipsoid { r1, r2 } => (r1 == r2).then_some(("JKR", 0.5)),
-            Indenter::HeightMap(_) => None,
+            Indenter::HeightMap(_) | Indenter::Rough(_) => None,
             Indenter::PowerLaw { n, scale } => {
                 let p = power_law(n, scale, e_star, work_of_adhesion);
                 let s = self.scales(e_star, work_of_adhesion);

@@ -4,11 +4,13 @@
 pub mod height_map;
 mod indenter;
 mod measured;
+mod rough;
 
 pub use indenter::{
     FirstContact, Indenter, PullOffHint, DEFAULT_POWER_LAW_SCALE, MAX_EXPONENT, MIN_EXPONENT,
 };
-pub use measured::MeasuredSurface;
+pub use measured::{MeasuredSurface, Placement};
+pub use rough::RoughShape;
 
 use crate::run::schema::{Spec, E_STAR, R1, R2, RATIO, WORK_OF_ADHESION};
 use crate::text::compact;
@@ -197,6 +199,14 @@ impl Scene {
             Indenter::PowerLaw { n, .. } => format!("power-law-n{n}"),
             Indenter::FlatPunch { .. } => "flat-punch".to_string(),
             Indenter::HeightMap(_) => "height-map".to_string(),
+            Indenter::Rough(ref r) => format!(
+                "rough-{}",
+                Scene {
+                    indenter: r.base.clone(),
+                    ..self.clone()
+                }
+                .tag()
+            ),
         }
     }
 
@@ -213,6 +223,50 @@ impl Scene {
     /// reference table and Johnson–Greenwood's theory are for).
     pub fn is_ellipsoid(&self) -> bool {
         matches!(self.indenter, Indenter::Ellipsoid { .. })
+    }
+
+    /// Whether the indenter is pressed on by default (a loading phase to the first contact's
+    /// approach) rather than its first contact built in one piece: a height map or a rough
+    /// shape, whose first contact has no closed form.
+    pub fn presses_on(&self) -> bool {
+        matches!(self.indenter, Indenter::HeightMap(_) | Indenter::Rough(_))
+    }
+
+    /// The half-widths (length) of the window a height map is placed on, which is the
+    /// domain; `None` for every other placement and shape.
+    pub fn window_half(&self) -> Option<(f64, f64)> {
+        match self.indenter {
+            Indenter::HeightMap(ref m) => m.window_half(),
+            _ => None,
+        }
+    }
+
+    /// What normalises the results, in words.
+    pub fn normalised_by(&self) -> String {
+        match &self.indenter {
+            Indenter::Ellipsoid { .. } => "the ellipsoid's c_r, 3πRΔγ, c_r²/R".to_string(),
+            Indenter::PowerLaw { .. } => "the power law's c_n, 3πR_nΔγ, c_n²/R_n".to_string(),
+            Indenter::FlatPunch { .. } => "the punch's radius, Kendall's force and approach".into(),
+            Indenter::HeightMap(m) => match m.radii {
+                Some(_) => "the apex fit's radii, as an ellipsoid's".to_string(),
+                None => "none: the user's units".to_string(),
+            },
+            Indenter::Rough(r) => format!(
+                "the base shape's: {}",
+                Scene {
+                    indenter: r.base.clone(),
+                    ..self.clone()
+                }
+                .normalised_by()
+            ),
+        }
+    }
+
+    /// Whether the results are normalised (by the shape's own scales, a base shape's or a
+    /// height map's apex radii); `false` for a height map without an apex, whose results are
+    /// in the user's units.
+    pub fn is_normalised(&self) -> bool {
+        !matches!(self.indenter, Indenter::HeightMap(ref m) if m.radii.is_none())
     }
 
     /// Indenter height h(x, y) (length) at (x, y) (length) from the apex, in its own axes.
@@ -236,6 +290,16 @@ pub struct Scales {
     pub force: f64,
     /// c_r² / Re (length): the approach d.
     pub approach: f64,
+}
+
+impl Scales {
+    /// The scales of a surface without a normalisation: each 1 in the user's units, so that
+    /// the "normalised" values are the dimensional ones.
+    pub const UNITS: Scales = Scales {
+        length: 1.0,
+        force: 1.0,
+        approach: 1.0,
+    };
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ pub mod cg;
 pub mod cost;
 mod emit;
 pub mod equilibrium;
+mod loading;
 mod onsets;
 mod probe;
 pub mod protocol;

@@ -74,7 +74,7 @@ impl Outcome {
         let last_dx = self.states.last()?.dx;
         self.states
             .iter()
-            .filter(|s| s.dx == last_dx)
+            .filter(|s| s.dx == last_dx && s.phase != Phase::Loading)
             .min_by(|a, b| a.force.total_cmp(&b.force))
     }
 
@@ -226,10 +226,44 @@ fn run_inner<B: Backend>(
     model: &Model,
     out: &mut Emitter,
 ) -> Result<(), SolverError> {
+    let (fields, held, model) = match model.loading {
+        Some(_) => {
+            // 1. Pressed on to the preload; the pull-off steps down from where it stopped.
+            let (fields, state) = super::loading::press(backend, model, out)?;
+            let mut from_preload = model.clone();
+            from_preload.load.d0 = state.d;
+            (fields, state, std::borrow::Cow::Owned(from_preload))
+        }
+        None => {
+            let (fields, state) = first_contact(backend, model, out)?;
+            (fields, state, std::borrow::Cow::Borrowed(model))
+        }
+    };
+    let model = model.as_ref();
+    let mut run = Progress {
+        model: model.clone(),
+        fields,
+        held,
+        last_d: None,
+        best: f64::INFINITY,
+        window: Window::new(model.onsets == Onsets::NearMinimum, model.nx * model.ny),
+        may_regrid: true,
+    };
+    let result = pull_off(backend, &mut run, out, model);
+    out.refinement = run.window.report(&run.model, run.best);
+    result
+}
+
+/// 1. The non-adhesive press to d0, the first contact built in one piece from the model's
+/// initial guess; returns the fields and the state there.
+fn first_contact<B: Backend>(
+    backend: &mut B,
+    model: &Model,
+    out: &mut Emitter,
+) -> Result<(Fields<B::Field, B::Mask>, State), SolverError> {
     let mut c = backend.mask()?;
     backend.upload_mask(&mut c, &model.initial_contact())?;
     let mut fields = Fields::new(backend, c)?;
-    // 1. Non-adhesive press to d0.
     let mut eq = equilibrate(backend, model, &mut fields, model.load.d0, 0.0)?;
     let (state, _) = record(
         backend,
@@ -246,18 +280,7 @@ fn run_inner<B: Backend>(
     }
     let held = state.clone();
     out.emit(backend, &fields.c, state, &mut eq, false)?;
-    let mut run = Progress {
-        model: model.clone(),
-        fields,
-        held,
-        last_d: None,
-        best: f64::INFINITY,
-        window: Window::new(model.onsets == Onsets::NearMinimum, model.nx * model.ny),
-        may_regrid: true,
-    };
-    let result = pull_off(backend, &mut run, out, model);
-    out.refinement = run.window.report(&run.model, run.best);
-    result
+    Ok((fields, held))
 }
 
 /// 2. The adhesive pull-off, step by step.
@@ -293,7 +316,7 @@ fn pull_off<B: Backend>(
         if end.vanished {
             break;
         }
-        if out.minimum_confirmed(end.force, end.d_bar) {
+        if model.confirm_minimum && out.minimum_confirmed(end.force, end.d_bar) {
             run.may_regrid = false;
             super::search::refine(backend, run, out)?;
             if model.measure == Measure::AdhesiveForce {
@@ -327,7 +350,7 @@ fn confirming_end(
     d_prev: f64,
     d: f64,
 ) -> Option<f64> {
-    if model.measure != Measure::AdhesiveForce {
+    if model.measure != Measure::AdhesiveForce || !model.confirm_minimum {
         return None;
     }
     let (f_min, d_bar_min) = out.minimum()?;

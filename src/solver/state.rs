@@ -18,6 +18,9 @@ pub enum Phase {
     /// The state just after re-gridding: the contact carried to a finer grid and
     /// re-equilibrated at the same approach.
     Regrid,
+    /// A step of the loading phase: the indenter pressed on, elements attaching where their
+    /// gap closes (the pull-off starts from its last state).
+    Loading,
 }
 
 /// One converged state. Dimensional values are in the scene's units; `*_bar` values are

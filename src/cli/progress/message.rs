@@ -19,6 +19,7 @@ pub fn progress_message(model: &Model, s: &State, held: bool, count: &StepCount)
         Phase::Onset if held => "onset, searching near the minimum",
         Phase::Onset => "onset",
         Phase::Regrid => "re-grid",
+        Phase::Loading => "loading",
     };
     format!(
         "{}, step {} ({phase}): d̄ = {}, F̄ = {}, c̄ = {}",

@@ -1,7 +1,7 @@
 //! A height map read from its file (`.npy` or text), refused before reading where it would not
 //! fit in memory.
 
-use super::super::schema::{HEIGHT_MAP, SPACING};
+use super::super::schema::{Spec, HEIGHT_MAP, SPACING};
 use super::super::{input, RunError};
 use crate::output::file::{read_regular, ReadError};
 use crate::scene::height_map::{HeightMap, HeightMapError};
@@ -18,7 +18,7 @@ const MAP_READ_BYTES_PER_BYTE: u64 = 6;
 
 /// Refuse, before reading it, a map file whose reading would need more memory than the machine
 /// has ([`crate::plan::available_memory`]).
-fn check_map_memory(path: &Path, name: &str) -> Result<(), RunError> {
+fn check_map_memory(path: &Path, name: &str, param: &Spec) -> Result<(), RunError> {
     let Ok(meta) = std::fs::metadata(path) else {
         return Ok(()); // read_regular says why it cannot be read
     };
@@ -26,7 +26,7 @@ fn check_map_memory(path: &Path, name: &str) -> Result<(), RunError> {
     let need = meta.len().saturating_mul(MAP_READ_BYTES_PER_BYTE);
     match available {
         Some(a) if meta.is_file() && need > a => Err(input(format!(
-            "{HEIGHT_MAP} {name}: reading this {} file needs up to {} of memory, more than the \
+            "{param} {name}: reading this {} file needs up to {} of memory, more than the \
              {} this machine has available (free memory, control group and process limits): \
              save it as a .npy of float32 (4 bytes a height), or crop or subsample it",
             crate::plan::bytes_text(meta.len()),
@@ -40,14 +40,25 @@ fn check_map_memory(path: &Path, name: &str) -> Result<(), RunError> {
 /// The map of the file at `path` (shown as `name`) with nodes `spacing` apart (length). The
 /// file is noted as this run's input, so that no output of the run may be it.
 pub fn read(path: &Path, name: &str, spacing: f64) -> Result<HeightMap, RunError> {
-    crate::output::file::note_input(path, &HEIGHT_MAP.to_string());
-    check_map_memory(path, name)?;
+    read_as(path, name, spacing, HEIGHT_MAP)
+}
+
+/// Like [`read`], the file given by `param` (the height map, or the roughness added to a
+/// base shape), which errors name.
+pub fn read_as(
+    path: &Path,
+    name: &str,
+    spacing: f64,
+    param: &'static Spec,
+) -> Result<HeightMap, RunError> {
+    crate::output::file::note_input(path, &param.to_string());
+    check_map_memory(path, name, param)?;
     let bytes = read_regular(path, MAX_MAP_BYTES).map_err(|e| match e {
-        ReadError::Absent => input(format!("{HEIGHT_MAP} {name}: no such file")),
-        ReadError::Refused(why) => input(format!("{HEIGHT_MAP} {name}: {why}")),
+        ReadError::Absent => input(format!("{param} {name}: no such file")),
+        ReadError::Refused(why) => input(format!("{param} {name}: {why}")),
     })?;
     HeightMap::from_file_bytes(path, &bytes, spacing).map_err(|e| match e {
         HeightMapError::Spacing { .. } => input(format!("{SPACING}: {e}")),
-        e => input(format!("{HEIGHT_MAP}: {e}")),
+        e => input(format!("{param}: {e}")),
     })
 }

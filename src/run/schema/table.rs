@@ -135,6 +135,42 @@ pub const SPACING: &Spec = &spec(
     Chosen("none: required with a height map"),
     "Height map: the spacing of its nodes.",
 );
+/// Roughness added to a base shape.
+pub const ROUGHNESS: &Spec = &spec(
+    "roughness",
+    "--roughness",
+    Scene,
+    "length",
+    Kind::File,
+    Chosen("none"),
+    "Roughness added to the indenter (an ellipsoid, power law or flat punch): a height map \
+     (.npy or text, as ⟨height_map⟩; from Python also a 2-D array) of node spacing ⟨spacing⟩, \
+     centred on the apex, its mean taken off. The base shape still normalises the results. The \
+     map must cover the domain. A rough shape is pressed on (⟨preload_depth⟩).",
+);
+/// The window of a height map that is the domain, along x.
+pub const WINDOW_X: &Spec = &spec(
+    "window_x",
+    "--window-x",
+    Scene,
+    "length",
+    Kind::Pair(Range::closed(-MAX_INPUT, MAX_INPUT)),
+    Chosen("the whole map"),
+    "Height map: the domain's extent along x, x0,x1, in the map's coordinates (its first \
+     node at 0). With ⟨window_y⟩; the default is the whole map, unless the map is convex about \
+     its lowest node and holds the first contact of c̄0 (then the domain is that contact and \
+     its margin, as for an ellipsoid).",
+);
+/// The window of a height map that is the domain, along y.
+pub const WINDOW_Y: &Spec = &spec(
+    "window_y",
+    "--window-y",
+    Scene,
+    "length",
+    Kind::Pair(Range::closed(-MAX_INPUT, MAX_INPUT)),
+    Chosen("the whole map"),
+    "Height map: the domain's extent along y, y0,y1 (see ⟨window_x⟩).",
+);
 /// Nx.
 pub const GRID: &Spec = &spec(
     "grid",
@@ -236,6 +272,46 @@ pub const MARGIN: &Spec = &spec(
     Kind::Real(Range::closed(0.0, MAX_MARGIN)),
     Chosen("0.08, or at least one element on each side: 0.143 on a 16-element grid"),
     "Free margin around the initial contact, relative to its half-axes.",
+);
+/// The loading phase's depth.
+pub const PRELOAD_DEPTH: &Spec = &spec(
+    "preload_depth",
+    "--preload-depth",
+    Model,
+    "length",
+    Kind::Real(Range::closed(-MAX_INPUT, MAX_INPUT)),
+    Chosen(
+        "none: a smooth shape starts from its first contact of c̄0 built in one piece; a \
+            height map or rough shape is pressed to that approach, or to ⟨preload_area⟩ 0.1",
+    ),
+    "Press the indenter on to this approach d (the states' d, from the apex or the map's \
+     lowest node), elements attaching where their gap closes, then pull it off. One of \
+     ⟨preload_depth⟩, ⟨preload_force⟩, ⟨preload_area⟩.",
+);
+/// The loading phase's force.
+pub const PRELOAD_FORCE: &Spec = &spec(
+    "preload_force",
+    "--preload-force",
+    Model,
+    "force",
+    INPUT,
+    Chosen("none"),
+    "Press on until the compressive force reaches this (the user's force unit), then pull off.",
+);
+/// The loading phase's contact area.
+pub const PRELOAD_AREA: &Spec = &spec(
+    "preload_area",
+    "--preload-area",
+    Model,
+    "fraction of the domain",
+    Kind::Real(Range {
+        lo: 0.0,
+        hi: 1.0,
+        lo_open: true,
+        hi_open: true,
+    }),
+    Chosen("none"),
+    "Press on until the contact covers this fraction of the domain, then pull off.",
 );
 /// The mesh angle.
 pub const MESH_ANGLE: &Spec = &spec(
@@ -462,6 +538,9 @@ pub const SPECS: &[&Spec] = &[
     SCALE,
     HEIGHT_MAP,
     SPACING,
+    ROUGHNESS,
+    WINDOW_X,
+    WINDOW_Y,
     GRID,
     GRID_Y,
     START_RADIUS,
@@ -471,6 +550,9 @@ pub const SPECS: &[&Spec] = &[
     REGRID,
     FINAL_D,
     MARGIN,
+    PRELOAD_DEPTH,
+    PRELOAD_FORCE,
+    PRELOAD_AREA,
     MESH_ANGLE,
     APEX_OFFSET,
     CG_TOLERANCE,

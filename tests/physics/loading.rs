@@ -1,0 +1,91 @@
+//! The loading phase: a surface pressed on from its first touch, elements attaching where
+//! their gap closes, then pulled off.
+
+use crate::common;
+
+use jkrbem::model::{ModelOptions, Preload};
+use jkrbem::solver::{self, Phase, State};
+
+/// The states after the first contact: the pull-off, from the state at d0 on.
+fn from_d0(states: &[State]) -> Vec<&State> {
+    let k = states
+        .iter()
+        .position(|s| s.phase != Phase::Loading)
+        .expect("a pull-off");
+    // The press's own state (the one-piece approach, or the last loading step) is where the
+    // pull-off starts; compare from the first pull-off state on.
+    states[k..]
+        .iter()
+        .filter(|s| s.phase != Phase::Approach)
+        .collect()
+}
+
+#[test]
+fn a_sphere_pressed_on_to_d0_pulls_off_as_the_one_piece_press_does() {
+    for (ratio, nx) in [(1.0, 64), (3.0, 64)] {
+        let options = ModelOptions {
+            nx,
+            ..Default::default()
+        };
+        let today = common::model_for(ratio, options.clone());
+        let pressed = common::model_for(
+            ratio,
+            ModelOptions {
+                preload: Some(Preload::StartRadius),
+                ..options
+            },
+        );
+        let loading = pressed.loading.expect("a loading phase");
+        assert!(loading.d_touch >= 0.0 && loading.d_touch < 1e-2 * today.load.d0);
+        let run = |m: &jkrbem::model::Model| {
+            let out = solver::run(&mut common::cpu_backend(m), m, &mut |_| {});
+            assert!(out.complete(), "{:?}", out.error);
+            out
+        };
+        let (a, b) = (run(&today), run(&pressed));
+        let loading_states: Vec<&State> = b
+            .states
+            .iter()
+            .filter(|s| s.phase == Phase::Loading)
+            .collect();
+        assert!(loading_states.len() >= 2);
+        // The press rises monotonically to d0, in contact from the first step.
+        assert!(loading_states.windows(2).all(|w| w[1].d > w[0].d));
+        let last = loading_states.last().unwrap();
+        assert_eq!(last.d, today.load.d0);
+        let press = &a.states[0];
+        assert_eq!(press.phase, Phase::Approach);
+        println!(
+            "{ratio}:1 at {nx}²: pressed on in {} steps to d̄ = {:.4}: {} elements, F̄ = {:.6} \
+             (one-piece press {} elements, F̄ = {:.6})",
+            loading_states.len(),
+            last.d_bar,
+            last.n_contact,
+            last.f_bar,
+            press.n_contact,
+            press.f_bar
+        );
+        assert_eq!(last.n_contact, press.n_contact, "the same contact at d0");
+        assert!((last.force / press.force - 1.0).abs() < 1e-6);
+        let (pa, pb) = (from_d0(&a.states), from_d0(&b.states));
+        assert_eq!(pa.len(), pb.len());
+        for (x, y) in pa.iter().zip(&pb) {
+            assert_eq!((x.phase, x.n_contact), (y.phase, y.n_contact));
+            assert!(
+                (x.d - y.d).abs() <= 1e-6 * x.d.abs().max(1.0),
+                "{x:?} {y:?}"
+            );
+            assert!(
+                (x.force - y.force).abs() <= 1e-6 * x.force.abs().max(press.force.abs() * 1e-3),
+                "{x:?}\n{y:?}"
+            );
+        }
+        let (fa, fb) = (a.force_minimum().unwrap(), b.force_minimum().unwrap());
+        assert!(
+            (fa.f_bar / fb.f_bar - 1.0).abs() < 1e-6,
+            "{} vs {}",
+            fa.f_bar,
+            fb.f_bar
+        );
+    }
+}
