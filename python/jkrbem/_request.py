@@ -71,25 +71,28 @@ def _fields(value: Any) -> Optional[str]:
     return "states:" + ",".join(str(i) for i in items)
 
 
-def _heights(value: Any) -> Optional[Tuple[bytes, int, int]]:
-    """A height map given as a 2-D array: its heights as f64 bytes, and its shape."""
+def _heights(name: str, value: Any) -> Optional[Tuple[bytes, int, int]]:
+    """A height map (or roughness) given as a 2-D array: its heights as f64 bytes, and its shape."""
     if not isinstance(value, np.ndarray):
         return None
     if value.ndim != 2:
-        raise InputError(f"height_map is invalid: a 2-D array of heights (rows along y), not {value.ndim}-D")
+        raise InputError(f"{name} is invalid: a 2-D array of heights (rows along y), not {value.ndim}-D")
     a = np.ascontiguousarray(value, dtype=np.float64)
     return a.tobytes(), a.shape[0], a.shape[1]
 
 
 def request(params: Dict[str, Any]) -> Tuple[str, Optional[Tuple[bytes, int, int]]]:
-    """The JSON request of the keywords given (None: not given) and a height map's array."""
+    """The JSON request of the keywords given (None: not given) and the array of a height map
+    (or of the roughness added to a base shape)."""
     given: Dict[str, Any] = {}
     heights = None
     for name, value in params.items():
         if value is None:
             continue
-        if name == "height_map" and isinstance(value, np.ndarray):
-            heights = _heights(value)
+        if name in ("height_map", "roughness") and isinstance(value, np.ndarray):
+            if heights is not None:
+                raise InputError("height_map and roughness: give one array (a height map has no base shape to add roughness to)")
+            heights = _heights(name, value)
             continue
         if name == "fields":
             value = _fields(value)

@@ -100,14 +100,15 @@ fn refusal(message: &str, wrong_type: bool) -> PyErr {
 /// A height map given as an array: its heights (native-endian f64, rows along y) and shape.
 type Heights<'py> = (Bound<'py, PyBytes>, usize, usize);
 
-/// The map of an array given as `height_map`, with the request's `spacing`.
+/// The map of an array given as `height_map` (or as the `roughness` of a base shape), with
+/// the request's `spacing`.
 fn array_map(req: &Request, heights: Option<Heights<'_>>) -> PyResult<Option<HeightMap>> {
     let Some((bytes, ny, nx)) = heights else {
         return Ok(None);
     };
     let Some(spacing) = req.spacing else {
         return Err(input_error(
-            "a height_map array needs spacing (the nodes' spacing, length)",
+            "a height_map or roughness array needs spacing (the nodes' spacing, length)",
         ));
     };
     let values: Vec<f64> = bytes
@@ -117,7 +118,14 @@ fn array_map(req: &Request, heights: Option<Heights<'_>>) -> PyResult<Option<Hei
         .collect();
     HeightMap::new(nx, ny, spacing, values)
         .map(Some)
-        .map_err(|e| input_error(format!("height_map: {e}")))
+        .map_err(|e| {
+            let name = if req.indenter == jkrbem::run::request::Shape::HeightMap {
+                "height_map"
+            } else {
+                "roughness"
+            };
+            input_error(format!("{name}: {e}"))
+        })
 }
 
 /// Shortest wall time between two "state" events a progress callback sees.

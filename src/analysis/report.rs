@@ -222,6 +222,14 @@ impl RunReport {
 /// worked on the map's facets (the check before the run predicts this from the closed form;
 /// this one measures it). `None` where the map resolves it, and for the other shapes.
 fn map_too_coarse(model: &Model, at_min: &State) -> Option<String> {
+    // Only a map at its apex stands for a smooth tip whose shape its facets approximate; a
+    // map on a window is the surface itself, facets and all, and a rough shape's map is
+    // roughness on a smooth base.
+    if model.scene.window_half().is_some()
+        || matches!(model.scene.indenter, crate::scene::Indenter::Rough(_))
+    {
+        return None;
+    }
     let spacing = model.scene.indenter.map_spacing()?;
     let width = 2.0 * at_min.b_axis;
     let across = width / spacing;

@@ -157,6 +157,9 @@ impl MeasuredSurface {
         let radius = (FIT_FRACTION * ex.min(ey)).max(MIN_FIT_NODES * map.spacing());
         let fit = map.curvature_fit(radius)?;
         let radii = fit.principal_radii()?;
+        if !explains(map, &fit, radius) {
+            return None;
+        }
         // Stationary point of the fit: K s = −g, relative to the lowest node.
         let det = fit.kxx * fit.kyy - fit.kxy * fit.kxy;
         let sx = (-fit.gx * fit.kyy + fit.gy * fit.kxy) / det;
@@ -244,6 +247,41 @@ impl MeasuredSurface {
             compact(self.map.spacing()),
         )
     }
+}
+
+/// The share of the heights' variance about their mean within `radius` of the lowest node
+/// that a quadratic fit must explain for the map to have an apex (dimensionless): a smooth
+/// tip with roughness on it passes, a nominally flat rough surface (whose lowest node is one
+/// asperity among many) does not.
+const APEX_FIT_EXPLAINS: f64 = 0.9;
+
+/// Whether `fit` explains [`APEX_FIT_EXPLAINS`] of the variance of the map's heights within
+/// `radius` (length) of its lowest node.
+fn explains(map: &HeightMap, fit: &super::height_map::QuadraticFit, radius: f64) -> bool {
+    let (lx, ly) = map.lowest_point();
+    let (nx, ny, s) = (map.nx(), map.ny(), map.spacing());
+    let (mut n, mut sum, mut sum2, mut resid) = (0.0, 0.0, 0.0, 0.0);
+    for j in 0..ny {
+        let y = (j as f64 - 0.5 * (ny - 1) as f64) * s - ly;
+        for i in 0..nx {
+            let x = (i as f64 - 0.5 * (nx - 1) as f64) * s - lx;
+            if x.hypot(y) > radius {
+                continue;
+            }
+            let h = map.heights()[j * nx + i];
+            let q = fit.c0
+                + fit.gx * x
+                + fit.gy * y
+                + 0.5 * (fit.kxx * x * x + fit.kyy * y * y)
+                + fit.kxy * x * y;
+            n += 1.0;
+            sum += h;
+            sum2 += h * h;
+            resid += (h - q) * (h - q);
+        }
+    }
+    let variance = sum2 / n - (sum / n) * (sum / n);
+    n > 0.0 && resid / n <= (1.0 - APEX_FIT_EXPLAINS) * variance
 }
 
 /// The wall beyond a window of `map` (length): [`OUTSIDE_WALL`] times its height range and

@@ -420,7 +420,9 @@ pub fn settle<B: Backend>(
             }
         }
         eq.n_contact = change.n_contact;
-        if change.at_edge > 0 {
+        // On a height map's window the domain's edge is the surface's: nothing beyond it
+        // touches, so a contact there is the problem's own, not a domain too small.
+        if change.at_edge > 0 && model.scene.window_half().is_none() {
             return Err(SolverError::ContactAtEdge {
                 d_bar,
                 elements: change.at_edge,

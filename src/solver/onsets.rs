@@ -86,9 +86,10 @@ pub(super) fn through<B: Backend>(
         if probe.t >= 1.0 {
             break;
         }
+        let mut onset_force = None;
         if record_this {
             let d_on = d_c + probe.t * (d_to - d_c);
-            record_onset(backend, run, out, walk, &probe, d_on)?;
+            onset_force = Some(record_onset(backend, run, out, walk, &probe, d_on)?);
         }
         record_this = true;
         let mut t_push = (probe.t + ONSET_PUSH).min(1.0);
@@ -115,6 +116,9 @@ pub(super) fn through<B: Backend>(
         eq.absorb(settled);
         if vanished {
             return Ok(true);
+        }
+        if let Some(before) = onset_force {
+            record_jump(backend, run, out, walk, (d_c, before), eq)?;
         }
         // The next probe starts from the state just reached, whose K p is known (a start
         // from the last probe, on the contact set left, was measured to save nothing); its
@@ -164,6 +168,7 @@ pub(super) fn first_onset_state<F, M>(
 
 /// Record the onset at fraction `probe.t` between `p_base` and the probe in `p` (an
 /// interpolation: no work of its own, the probe's residual), at approach `d_on` (length).
+/// Returns its force (force).
 pub(super) fn record_onset<B: Backend>(
     backend: &mut B,
     run: &mut Progress<B::Field, B::Mask>,
@@ -171,7 +176,7 @@ pub(super) fn record_onset<B: Backend>(
     walk: &Through,
     probe: &Probe,
     d_on: f64,
-) -> Result<(), SolverError> {
+) -> Result<f64, SolverError> {
     let f = &mut run.fields;
     backend.lerp(&f.c, &f.p_base, &f.p, probe.t, &mut f.p_onset)?;
     let mut onset = Equilibrium {
@@ -188,8 +193,44 @@ pub(super) fn record_onset<B: Backend>(
         d_on,
         &onset,
     )?;
-    run.best = run.best.min(state.force);
-    run.window.onset_found(walk.step, state.force, probe.lower);
+    let force = state.force;
+    run.best = run.best.min(force);
+    run.window.onset_found(walk.step, force, probe.lower);
     out.emit(backend, &run.fields.c, state, &mut onset, walk.hold)?;
-    Ok(())
+    Ok(force)
+}
+
+/// A cascade past an onset that changes the force by more than this fraction of it
+/// (dimensionless) is a jump (a patch snapping off): the state after it is recorded too, at
+/// the approach of the onset before it, so that the curve shows the step rather than a line
+/// smeared over the load step.
+pub const JUMP_FRACTION: f64 = 0.05;
+
+/// Record the state that a cascade just past an onset left at approach `d` (length), as
+/// [`Phase::Jump`], if the force stepped by more than [`JUMP_FRACTION`] from the onset's
+/// `before` (force).
+fn record_jump<B: Backend>(
+    backend: &mut B,
+    run: &mut Progress<B::Field, B::Mask>,
+    out: &mut Emitter,
+    walk: &Through,
+    (d, before): (f64, f64),
+    eq: &mut Equilibrium,
+) -> Result<(), SolverError> {
+    let f = &run.fields;
+    let after = force_of(backend, &run.model, &f.c, &f.p)?;
+    if (after - before).abs() <= JUMP_FRACTION * before.abs() {
+        return Ok(());
+    }
+    let (state, _) = record(
+        backend,
+        &run.model,
+        &f.c,
+        &f.p,
+        walk.step,
+        Phase::Jump,
+        d,
+        eq,
+    )?;
+    out.emit(backend, &run.fields.c, state, eq, walk.hold)
 }

@@ -24,6 +24,7 @@ use crate::backend::Backend;
 use crate::model::{Measure, Model, Onsets};
 
 pub use super::emit::{CONFIRM_D_BAR, CONFIRM_RISE};
+pub use super::onsets::JUMP_FRACTION;
 
 /// What a run produced: the states recorded so far and, if it stopped early, why.
 #[derive(Debug)]

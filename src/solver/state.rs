@@ -18,6 +18,10 @@ pub enum Phase {
     /// The state just after re-gridding: the contact carried to a finer grid and
     /// re-equilibrated at the same approach.
     Regrid,
+    /// The state a detachment cascade left just past an onset whose force it changed by
+    /// more than [`crate::solver::protocol::JUMP_FRACTION`] (a patch snapping off): with the
+    /// onset before it, the two sides of the jump at (nearly) the same approach.
+    Jump,
     /// A step of the loading phase: the indenter pressed on, elements attaching where their
     /// gap closes (the pull-off starts from its last state).
     Loading,
