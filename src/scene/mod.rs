@@ -4,6 +4,7 @@
 pub mod height_map;
 mod indenter;
 mod measured;
+pub mod roughness;
 
 pub use indenter::{
     FirstContact, Indenter, PullOffHint, DEFAULT_POWER_LAW_SCALE, MAX_EXPONENT, MIN_EXPONENT,
