@@ -51,17 +51,16 @@ impl Fft2 {
     /// The half spectrum of `heights` (`nx * ny` values, row-major, x fastest).
     pub fn forward(&self, heights: &[f64]) -> Vec<Complex<f64>> {
         let (nx, ny, half) = (self.nx, self.ny, self.half());
-        let mut spectrum = vec![Complex::new(0.0, 0.0); half * ny];
+        let mut rows = vec![Complex::new(0.0, 0.0); half * ny];
         let mut row = self.r2c.make_input_vec();
-        let mut out = self.r2c.make_output_vec();
-        for (j, values) in heights.chunks_exact(nx).enumerate() {
+        for (values, out) in heights.chunks_exact(nx).zip(rows.chunks_exact_mut(half)) {
             row.copy_from_slice(values);
             // The lengths are the plan's own, so the transform cannot fail.
-            let _ = self.r2c.process(&mut row, &mut out);
-            for (kx, &c) in out.iter().enumerate() {
-                spectrum[kx * ny + j] = c;
-            }
+            let _ = self.r2c.process(&mut row, out);
         }
+        // Row-major (ky, kx) to column-major, cache-blocked.
+        let mut spectrum = vec![Complex::new(0.0, 0.0); half * ny];
+        transpose::transpose(&rows, &mut spectrum, half, ny);
         self.forward_y.process(&mut spectrum);
         spectrum
     }
@@ -73,18 +72,20 @@ impl Fft2 {
     pub fn inverse(&self, mut spectrum: Vec<Complex<f64>>) -> Vec<f64> {
         let (nx, ny, half) = (self.nx, self.ny, self.half());
         self.inverse_y.process(&mut spectrum);
+        let mut rows = vec![Complex::new(0.0, 0.0); half * ny];
+        transpose::transpose(&spectrum, &mut rows, ny, half);
+        drop(spectrum);
         let mut heights = vec![0.0; nx * ny];
-        let mut row = self.c2r.make_input_vec();
-        for (j, values) in heights.chunks_exact_mut(nx).enumerate() {
-            for (kx, c) in row.iter_mut().enumerate() {
-                *c = spectrum[kx * ny + j];
-            }
+        for (row, values) in rows
+            .chunks_exact_mut(half)
+            .zip(heights.chunks_exact_mut(nx))
+        {
             row[0].im = 0.0;
             if nx % 2 == 0 {
                 row[half - 1].im = 0.0;
             }
             // The lengths are the plan's own and the self-conjugate entries are real.
-            let _ = self.c2r.process(&mut row, values);
+            let _ = self.c2r.process(row, values);
         }
         heights
     }
