@@ -90,6 +90,10 @@ enum Command {
     /// Time the convolution, one CG iteration and whole pull-offs per backend and grid; write
     /// a CSV and an SVG chart.
     Bench(cli::bench::Args),
+    /// Generate a random self-affine rough surface (periodic, isotropic power spectrum with a
+    /// roll-off and a cut-off, scaled exactly to an rms height or slope) and write it as a .npy
+    /// height map with a .json sidecar of its parameters and statistics. Lengths in any unit L.
+    Roughness(cli::roughness::Args),
 }
 
 /// The system allocator, except that an allocation the system refuses (a process limit such
@@ -242,6 +246,7 @@ fn main() -> ExitCode {
         Command::Crossed(a) => cli::crossed::run(a),
         Command::Devices(a) => cli::devices::run(a),
         Command::Bench(a) => cli::bench::run(a),
+        Command::Roughness(a) => cli::roughness::run(a),
     };
     // What standard output could not take (a closed pipe ends quietly; a full disk or
     // another error is a failure of the run, after its other messages).

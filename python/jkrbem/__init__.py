@@ -27,6 +27,7 @@ from ._load import load
 from ._results import STATE_COLUMNS, Fields, Result, Run
 from ._results import fields_from_raw as _fields
 from ._results import states_array as _states_array
+from ._roughness import Roughness, roughness
 from ._warnings import JkrbemWarning, warn_all
 
 __version__ = _jkrbem.__version__
@@ -43,6 +44,8 @@ __all__ = [
     "reference_table",
     "devices",
     "load",
+    "roughness",
+    "Roughness",
     "Result",
     "Run",
     "Fields",

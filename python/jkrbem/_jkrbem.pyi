@@ -52,5 +52,10 @@ def limits() -> str:
     """The library's ranges the package checks its keywords against (grid sides, load steps,
     R1/R2, closed-form points, time limit in s), as JSON."""
 
+def roughness(request: str) -> Tuple[str, bytes]:
+    """A random self-affine surface (its keywords as JSON): the generator's version, the
+    parameters with defaults filled in and the statistics as JSON, and the heights' f64 bytes
+    (native order, row-major (ny, nx))."""
+
 def _panic_for_tests() -> None:
     """Panics on purpose inside the guard every function has: raises SolveError (tests only)."""

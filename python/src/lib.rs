@@ -615,6 +615,24 @@ fn limits() -> String {
     .to_string()
 }
 
+/// A random self-affine surface from its parameters (JSON: the keywords of
+/// `jkrbem.roughness`, checked by the library, which names them): the generator's version,
+/// the parameters with their defaults filled in and the achieved statistics as JSON, and the
+/// heights as native-endian f64 bytes, row-major (ny, nx). The GIL is released meanwhile.
+#[pyfunction]
+fn roughness<'py>(py: Python<'py>, request: &str) -> PyResult<(String, Bound<'py, PyBytes>)> {
+    use jkrbem::scene::roughness::{generate, statistics, RoughnessParams, GENERATOR_VERSION};
+    guarded(|| {
+        let params: RoughnessParams = parse(request)?;
+        let resolved = params.resolved().map_err(input_error)?;
+        let map = py.detach(|| generate(&params)).map_err(input_error)?;
+        let bytes: Vec<u8> = map.heights().iter().flat_map(|h| h.to_ne_bytes()).collect();
+        let answer = json!({"generator": GENERATOR_VERSION, "params": resolved,
+                            "statistics": statistics(&map)});
+        Ok((answer.to_string(), PyBytes::new(py, &bytes)))
+    })
+}
+
 /// Panics on purpose, inside [`guarded`]: lets the tests check that a panic (a bug) reaches
 /// Python as a [`SolveError`], never as a `PanicException`.
 #[pyfunction]
@@ -744,6 +762,7 @@ fn _jkrbem(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(devices, m)?)?;
     m.add_function(wrap_pyfunction!(crossed_scene, m)?)?;
     m.add_function(wrap_pyfunction!(limits, m)?)?;
+    m.add_function(wrap_pyfunction!(roughness, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
     Ok(())
 }

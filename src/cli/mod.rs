@@ -11,6 +11,7 @@ pub mod parse;
 pub mod progress;
 pub mod reference;
 pub mod reproduce;
+pub mod roughness;
 pub mod simulate;
 pub mod stdout;
 pub mod sweep;

@@ -5,6 +5,7 @@ pub mod height_map;
 mod indenter;
 mod measured;
 mod rough;
+pub mod roughness;
 
 pub use indenter::{
     FirstContact, Indenter, PullOffHint, DEFAULT_POWER_LAW_SCALE, MAX_EXPONENT, MIN_EXPONENT,

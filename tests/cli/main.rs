@@ -16,4 +16,5 @@ mod hardening_files;
 mod hardening_inputs;
 mod hardening_reference;
 mod robustness;
+mod roughness;
 mod streams;

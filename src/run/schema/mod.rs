@@ -223,9 +223,13 @@ impl fmt::Display for Spec {
 }
 
 /// Every parameter a message can name: a simulation's ([`SPECS`]), then the other commands'
-/// ([`STUDY_SPECS`]).
+/// ([`STUDY_SPECS`]), then the roughness generator's ([`ROUGHNESS_SPECS`]).
 pub fn all() -> impl Iterator<Item = &'static Spec> {
-    SPECS.iter().chain(STUDY_SPECS).copied()
+    SPECS
+        .iter()
+        .chain(STUDY_SPECS)
+        .chain(ROUGHNESS_SPECS)
+        .copied()
 }
 
 /// The parameter of this name, if any (of [`SPECS`] or [`STUDY_SPECS`]).

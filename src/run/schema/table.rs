@@ -572,3 +572,105 @@ pub const SPECS: &[&Spec] = &[
     OUT,
     SUMMARY,
 ];
+
+// The roughness generator (`jkrbem roughness`, Python's `jkrbem.roughness`): its own parameters.
+// It shares ⟨grid⟩, ⟨grid_y⟩ (nodes, any count from 4 to 16384 there) and ⟨spacing⟩ with a
+// simulation; these are in [`ROUGHNESS_SPECS`], which no simulation takes.
+
+/// The surface's Hurst exponent.
+pub const HURST: &Spec = &spec(
+    "hurst",
+    "--hurst",
+    Study,
+    "",
+    Kind::Real(Range {
+        lo: 0.0,
+        hi: 1.0,
+        lo_open: true,
+        hi_open: false,
+    }),
+    Chosen("none: required"),
+    "Roughness: the Hurst exponent H of the self-affine surface, whose power spectrum falls as \
+     q^(−2(1+H)) between the roll-off and the cut-off (fractal dimension 3 − H).",
+);
+/// The surface's rms height.
+pub const RMS_HEIGHT: &Spec = &spec(
+    "rms_height",
+    "--rms-height",
+    Study,
+    "length",
+    INPUT,
+    Chosen("none: give it or ⟨rms_slope⟩"),
+    "Roughness: the root-mean-square height of the surface about its mean, met exactly on the \
+     grid's nodes. Not with ⟨rms_slope⟩.",
+);
+/// The surface's rms slope.
+pub const RMS_SLOPE: &Spec = &spec(
+    "rms_slope",
+    "--rms-slope",
+    Study,
+    "",
+    INPUT,
+    Chosen("none: give it or ⟨rms_height⟩"),
+    "Roughness: the root-mean-square gradient |∇h| of the surface (dimensionless), computed \
+     spectrally (of the band-limited surface through the nodes) and met exactly. Not with \
+     ⟨rms_height⟩.",
+);
+/// The roll-off wavelength λ_r.
+pub const ROLLOFF: &Spec = &spec(
+    "rolloff",
+    "--rolloff",
+    Study,
+    "length",
+    INPUT,
+    Chosen("⟨largest_wavelength⟩: a power law down to it, no plateau"),
+    "Roughness: the roll-off wavelength λ_r: the spectrum is flat for wavelengths from it up to \
+     ⟨largest_wavelength⟩ and a power law below it. At most ⟨largest_wavelength⟩, longer than \
+     ⟨cutoff⟩.",
+);
+/// The short-wavelength cut-off λ_s.
+pub const CUTOFF: &Spec = &spec(
+    "cutoff",
+    "--cutoff",
+    Study,
+    "length",
+    INPUT,
+    Chosen("4 × ⟨spacing⟩: the shortest wave sampled by 4 nodes"),
+    "Roughness: the short-wavelength cut-off λ_s: no wave shorter than it. At least 2 × \
+     ⟨spacing⟩ (the grid's Nyquist wavelength); a longer one resolves the surface's slopes \
+     and curvatures better on the grid.",
+);
+/// The largest wavelength λ_L.
+pub const LARGEST_WAVELENGTH: &Spec = &spec(
+    "largest_wavelength",
+    "--largest-wavelength",
+    Study,
+    "length",
+    INPUT,
+    Chosen("the domain: max(⟨grid⟩, ⟨grid_y⟩) × ⟨spacing⟩"),
+    "Roughness: the longest wavelength with power: no wave longer than it (the surface is \
+     periodic over the domain). At most the domain's longer side.",
+);
+/// The random seed.
+pub const SEED: &Spec = &spec(
+    "seed",
+    "--seed",
+    Study,
+    "",
+    Kind::Count(0, u64::MAX),
+    Value("0"),
+    "Roughness: the seed of the random numbers. The same seed and parameters give the same \
+     surface on every machine (to the rounding of the FFT); another seed an independent one.",
+);
+
+/// The roughness generator's own parameters (it also takes ⟨grid⟩, ⟨grid_y⟩ and ⟨spacing⟩),
+/// in the order its `--help` shows them.
+pub const ROUGHNESS_SPECS: &[&Spec] = &[
+    HURST,
+    RMS_HEIGHT,
+    RMS_SLOPE,
+    ROLLOFF,
+    CUTOFF,
+    LARGEST_WAVELENGTH,
+    SEED,
+];

@@ -6,7 +6,10 @@ use serde_json::json;
 #[test]
 fn names_and_flags_are_unique_and_spelt_alike() {
     let every: Vec<&Spec> = all().collect();
-    assert_eq!(every.len(), SPECS.len() + STUDY_SPECS.len());
+    assert_eq!(
+        every.len(),
+        SPECS.len() + STUDY_SPECS.len() + ROUGHNESS_SPECS.len()
+    );
     for (i, a) in every.iter().enumerate() {
         assert_eq!(a.name, a.flag[2..].replace('-', "_"), "{a:?}");
         assert!(!a.help.is_empty(), "{}", a.name);

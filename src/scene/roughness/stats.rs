@@ -1,0 +1,154 @@
+//! Statistics of a surface on a periodic grid: rms height, and, spectrally, rms slope, rms
+//! curvature and the radially averaged power spectral density.
+//!
+//! The spectral ones are those of the band-limited periodic surface through the nodes: with
+//! `H(k)` the unnormalised DFT of the heights on `N = nx·ny` nodes and `q(k)` the wavevector
+//! of index `k` (the FFT's symmetric convention, `|k| ≤ n/2` per axis),
+//! `⟨h²⟩ = Σ |H|² / N²`, `⟨|∇h|²⟩ = Σ |q|² |H|² / N²` and
+//! `⟨(½∇²h)²⟩ = Σ (|q|²/2)² |H|² / N²`. The power spectral density is
+//! `C(q) = Δ² |H|² / N` (length⁴, Δ the spacing), normalised so that
+//! `⟨h²⟩ = (1/A) Σ_q C(q)` over the domain's area `A = N Δ²`, i.e. `∫ C d²q / (2π)²` in the
+//! continuum limit.
+
+use super::fft2::{wavenumber, weight, Fft2};
+use crate::scene::height_map::HeightMap;
+use serde::{Deserialize, Serialize};
+
+/// A surface's statistics (every one about its mean).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Statistics {
+    /// The mean height (length).
+    pub mean: f64,
+    /// The root-mean-square height about the mean over the nodes (length).
+    pub rms_height: f64,
+    /// The root-mean-square gradient magnitude `√⟨|∇h|²⟩`, spectral (dimensionless).
+    pub rms_slope: f64,
+    /// The root-mean-square mean curvature `√⟨(½∇²h)²⟩`, spectral (1/length).
+    pub rms_curvature: f64,
+}
+
+/// One bin of a radially averaged power spectral density.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PsdBin {
+    /// The mean wavenumber `|q|` of the bin's Fourier modes (1/length).
+    pub q: f64,
+    /// The mean power spectral density `C(q)` of those modes (length⁴).
+    pub psd: f64,
+    /// How many modes of the full spectrum the bin holds (a count).
+    pub modes: usize,
+}
+
+/// One Fourier mode of the half spectrum: `|q|` (1/length), `C(q)` (length⁴) and how many
+/// modes of the full spectrum it stands for (1 or 2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Mode {
+    /// `|q|` (1/length).
+    pub q: f64,
+    /// `C(q)` (length⁴).
+    pub psd: f64,
+    /// Modes of the full spectrum it stands for.
+    pub weight: f64,
+}
+
+/// Every mode of the map's half spectrum but the mean (`q = 0`), with its PSD.
+pub(super) fn modes(map: &HeightMap) -> Vec<Mode> {
+    let (nx, ny, dx) = (map.nx(), map.ny(), map.spacing());
+    let fft = Fft2::new(nx, ny);
+    let spectrum = fft.forward(map.heights());
+    let n = (nx * ny) as f64;
+    let mut modes = Vec::with_capacity(spectrum.len());
+    for kx in 0..fft.half() {
+        let qx = wavenumber(kx, nx, dx);
+        for ky in 0..ny {
+            if kx == 0 && ky == 0 {
+                continue;
+            }
+            let qy = wavenumber(ky, ny, dx);
+            modes.push(Mode {
+                q: qx.hypot(qy),
+                psd: dx * dx * spectrum[kx * ny + ky].norm_sqr() / n,
+                weight: weight(kx, nx),
+            });
+        }
+    }
+    modes
+}
+
+/// The map's statistics, treating it as one period of a periodic surface.
+pub fn statistics(map: &HeightMap) -> Statistics {
+    let (mean, rms_height) = mean_and_rms(map.heights());
+    // ⟨q^p⟩-weighted sums: Σ w |q|^p C / A, with A = N Δ².
+    let area = map.heights().len() as f64 * map.spacing() * map.spacing();
+    let (mut slope, mut curvature) = (0.0, 0.0);
+    for m in modes(map) {
+        let q2 = m.q * m.q;
+        slope += m.weight * q2 * m.psd;
+        curvature += m.weight * 0.25 * q2 * q2 * m.psd;
+    }
+    Statistics {
+        mean,
+        rms_height,
+        rms_slope: (slope / area).sqrt(),
+        rms_curvature: (curvature / area).sqrt(),
+    }
+}
+
+/// The rms height about the mean over the map's nodes (length).
+pub fn rms_height(map: &HeightMap) -> f64 {
+    mean_and_rms(map.heights()).1
+}
+
+/// The mean of `h` and the rms of `h` about it.
+fn mean_and_rms(h: &[f64]) -> (f64, f64) {
+    let n = h.len() as f64;
+    let mean = h.iter().sum::<f64>() / n;
+    let rms = (h.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n).sqrt();
+    (mean, rms)
+}
+
+/// The rms gradient magnitude `√⟨|∇h|²⟩` of the periodic band-limited surface through the
+/// nodes, computed spectrally (dimensionless).
+pub fn rms_slope(map: &HeightMap) -> f64 {
+    statistics(map).rms_slope
+}
+
+/// The rms mean curvature `√⟨(½∇²h)²⟩` of the periodic band-limited surface through the
+/// nodes, computed spectrally (1/length).
+pub fn rms_curvature(map: &HeightMap) -> f64 {
+    statistics(map).rms_curvature
+}
+
+/// The radially averaged power spectral density `C(|q|)` of the map (periodic): the modes
+/// (all but the mean) in `bins` bins of `|q|` equally spaced in log |q| from the smallest
+/// nonzero `|q|` to the largest (the corner of the spectrum); empty bins are left out. Each
+/// bin holds the mean `|q|` and the mean `C` of its modes, each mode of the full spectrum
+/// counted once. No bins for `bins = 0`.
+pub fn radial_psd(map: &HeightMap, bins: usize) -> Vec<PsdBin> {
+    let modes = modes(map);
+    let lo = modes.iter().map(|m| m.q).fold(f64::INFINITY, f64::min);
+    let hi = modes.iter().map(|m| m.q).fold(0.0, f64::max);
+    if bins == 0 || !(lo > 0.0 && hi >= lo) {
+        return Vec::new();
+    }
+    let width = (hi / lo).ln() / bins as f64;
+    let mut sums = vec![(0.0, 0.0, 0.0); bins];
+    for m in &modes {
+        let at = if width > 0.0 {
+            ((m.q / lo).ln() / width) as usize
+        } else {
+            0
+        };
+        let s = &mut sums[at.min(bins - 1)];
+        s.0 += m.weight * m.q;
+        s.1 += m.weight * m.psd;
+        s.2 += m.weight;
+    }
+    sums.into_iter()
+        .filter(|s| s.2 > 0.0)
+        .map(|(q, psd, w)| PsdBin {
+            q: q / w,
+            psd: psd / w,
+            modes: w as usize,
+        })
+        .collect()
+}
