@@ -615,7 +615,7 @@ fn a_height_map_file_runs_and_bad_maps_are_refused() {
         String::from_utf8_lossy(&o.stderr),
     );
     assert_eq!(o.status.code(), Some(0), "{out}{err}");
-    assert!(out.contains("not normalised"), "{out}");
+    assert!(err.contains("not normalised"), "{out}{err}");
 }
 
 #[test]
