@@ -89,3 +89,65 @@ fn a_sphere_pressed_on_to_d0_pulls_off_as_the_one_piece_press_does() {
         );
     }
 }
+
+/// A rough sphere (R = 1, E* = Δγ = 1): the generator's roughness of rms slope `slope` (Hurst
+/// 0.8, cut-off 0.2) added to the sphere.
+fn rough_sphere(slope: f64, seed: u64) -> jkrbem::scene::Scene {
+    use jkrbem::scene::roughness::{generate, RoughnessParams};
+    use jkrbem::scene::{Indenter, RoughShape, Scene};
+    let params = RoughnessParams {
+        cutoff: Some(0.2),
+        seed,
+        ..RoughnessParams::with_rms_slope(256, 0.025, 0.8, slope)
+    };
+    let map = generate(&params).expect("roughness");
+    let base = Indenter::Ellipsoid { r1: 1.0, r2: 1.0 };
+    let rough = RoughShape::new(base, map, "generated").unwrap();
+    Scene::with_indenter(Indenter::Rough(std::sync::Arc::new(rough)), 1.0, 1.0).unwrap()
+}
+
+#[test]
+fn a_rough_sphere_is_pressed_on_then_pulled_off() {
+    let run = |scene: &jkrbem::scene::Scene| {
+        let model = jkrbem::model::Model::build(
+            scene,
+            &ModelOptions {
+                nx: 64,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert!(model.loading.is_some(), "a rough shape is pressed on");
+        let out = solver::run(&mut common::cpu_backend(&model), &model, &mut |_| {});
+        assert!(out.complete() && out.min_reached(), "{:?}", out.error);
+        out
+    };
+    let smooth = common::run_ratio(
+        1.0,
+        ModelOptions {
+            nx: 64,
+            ..Default::default()
+        },
+    );
+    let f_smooth = -smooth.outcome.force_minimum().unwrap().f_bar;
+    // The zero roughness of a zero slope is the smooth sphere.
+    let flat = run(&rough_sphere(1e-9, 1));
+    let f_flat = -flat.force_minimum().unwrap().f_bar;
+    assert!((f_flat / f_smooth - 1.0).abs() < 1e-4, "{f_flat} vs {f_smooth}");
+    for seed in [1, 2] {
+        let out = run(&rough_sphere(0.05, seed));
+        let phases: Vec<Phase> = out.states.iter().map(|s| s.phase).collect();
+        let first_pull = phases.iter().position(|&p| p != Phase::Loading).unwrap();
+        assert!(first_pull > 2, "loading first");
+        assert!(phases[first_pull..].iter().all(|&p| p != Phase::Loading));
+        let min = out.force_minimum().unwrap();
+        assert_ne!(min.phase, Phase::Loading);
+        println!(
+            "rough sphere 64², rms slope 0.05, seed {seed}: |min F̄| = {:.4} (smooth {f_smooth:.4}), \
+             {} loading states",
+            -min.f_bar, first_pull
+        );
+        // Roughness of slope 0.05 lowers the sphere's pull-off a little, never to nothing.
+        assert!(-min.f_bar > 0.3 * f_smooth && -min.f_bar < 1.2 * f_smooth);
+    }
+}
