@@ -424,7 +424,8 @@ pub fn generic_resolution(model: &Model) -> (f64, Option<f64>) {
 /// Whether `model` is fine enough to be the coarsest grid of a generic extrapolation.
 fn generic_resolves(model: &Model) -> bool {
     let (n_d, per_wavelength) = generic_resolution(model);
-    n_d >= GENERIC_MIN_N_D && per_wavelength.is_none_or(|w| w >= GENERIC_ELEMENTS_PER_MAP_WAVELENGTH)
+    n_d >= GENERIC_MIN_N_D
+        && per_wavelength.is_none_or(|w| w >= GENERIC_ELEMENTS_PER_MAP_WAVELENGTH)
 }
 
 /// The grids Nx of an extrapolation of a shape without a convergence law when none are given:
@@ -971,7 +972,8 @@ mod tests {
     fn generic_ladders_resolve_the_contact_and_grow_within_memory() {
         use crate::scene::Indenter;
         let base = ModelOptions::default();
-        let law = Scene::with_indenter(Indenter::PowerLaw { n: 3.0, scale: 0.5 }, 1.0, 1.0).unwrap();
+        let law =
+            Scene::with_indenter(Indenter::PowerLaw { n: 3.0, scale: 0.5 }, 1.0, 1.0).unwrap();
         let punch = Scene::with_indenter(Indenter::FlatPunch { radius: 1.0 }, 1.0, 1.0).unwrap();
         for scene in [&law, &punch] {
             let g = generic_grids(scene, &base).unwrap();

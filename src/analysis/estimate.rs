@@ -4,8 +4,8 @@
 //! model (physics §7); Johnson–Greenwood and JKR are comparisons ([`Comparison`]).
 
 use super::convergence::{self, CORNER_SCATTER, OFFSET_SCATTER, POSITION_SCATTER, POSITION_SLOPE};
-use super::line_fit::{fit_line, LineFit, Point, SlopePrior};
 use super::generic_limit::GenericLimit;
+use super::line_fit::{fit_line, LineFit, Point, SlopePrior};
 use super::report::RunReport;
 use crate::theory;
 use serde::Serialize;

@@ -337,7 +337,10 @@ impl Summary {
     /// order, and the parts of the half-width.
     fn limit_text(&self, l: &GenericLimit) -> String {
         let order = if l.order_estimated {
-            format!("order p = {:.2} ± {:.2}, estimated from the grids", l.order, l.order_sd)
+            format!(
+                "order p = {:.2} ± {:.2}, estimated from the grids",
+                l.order, l.order_sd
+            )
         } else {
             format!(
                 "order assumed first order (p = {:.2} ± {:.2}; the grids cannot fix it)",
@@ -388,11 +391,18 @@ impl Summary {
 fn run_text(r: &RunReport) -> String {
     let opt = |v: Option<f64>, p: usize| v.map_or("—".into(), |x| fixed(x, p));
     let mut s = String::new();
-    let angle = if r.mesh_angle_deg == 0.0 {
+    let mut angle = if r.mesh_angle_deg == 0.0 {
         String::new()
     } else {
         format!(" turned by {}°", r.mesh_angle_deg)
     };
+    if r.apex_offset != [0.0, 0.0] {
+        angle += &format!(
+            ", apex offset {}:{}",
+            crate::text::compact(r.apex_offset[0]),
+            crate::text::compact(r.apex_offset[1])
+        );
+    }
     s += &format!(
         "grid {}{angle}: |min F̄| = {}, Δx = {:.5e}, σ_c = {:.5e}, {} elements across the minor \
          axis at pull-off\n",

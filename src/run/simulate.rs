@@ -9,10 +9,10 @@ use super::pulloff::{pulloff, Pulloff, StatesFile};
 use super::{failed, input, provenance, RunError, Watch};
 use crate::analysis::capture::MaskObserver;
 use crate::analysis::estimate::{self, AdhesiveResult};
-use crate::analysis::generic_limit;
 use crate::analysis::fields::{
     minimum_label, FieldChoice, FieldPicks, StateFields, LOWEST_NOT_MINIMUM,
 };
+use crate::analysis::generic_limit;
 use crate::model::{Measure, Model, ModelOptions, Onsets};
 use crate::output::provenance::Provenance;
 use crate::output::summary::Summary;
@@ -799,8 +799,7 @@ fn plan_generic(req: &SimulateRequest) -> Result<Planned, RunError> {
                     apex_offset,
                     ..options.clone()
                 };
-                Model::build(&req.scene, &options)
-                    .map_err(|e| input(format!("{param} {nx}: {e}")))
+                Model::build(&req.scene, &options).map_err(|e| input(format!("{param} {nx}: {e}")))
             })
             .collect::<Result<Vec<_>, _>>()
     };
@@ -883,7 +882,9 @@ fn refine_generic(
                 l.grids.join(", "),
                 100.0 * target
             )),
-            Err(why) => watch.note(&format!("{ACCURACY}: no estimate yet ({why}): a finer grid")),
+            Err(why) => watch.note(&format!(
+                "{ACCURACY}: no estimate yet ({why}): a finer grid"
+            )),
         }
         let n = level.len();
         let next = run_grids(req, level, &outs[at..at + n], watch, deadline)?;
