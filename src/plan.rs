@@ -456,10 +456,15 @@ pub fn generic_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usize>, M
         param: EXTRAPOLATE_GRIDS,
         value: "(not given)".into(),
         expected: format!(
-            "grids that resolve the {}: no {EXTRAPOLATION_LEVELS} doubling grids up to              {MAX_GRID} start fine enough ({GENERIC_MIN_N_D} elements across the contact at the              force minimum{}); give {EXTRAPOLATE_GRIDS}, or a smaller {MARGIN} or              {START_RADIUS}",
+            "grids that resolve the {}: no {EXTRAPOLATION_LEVELS} doubling grids up to \
+             {MAX_GRID} start fine enough ({GENERIC_MIN_N_D} elements across the contact at the \
+             force minimum{}); give {EXTRAPOLATE_GRIDS}, or a smaller {MARGIN} or \
+             {START_RADIUS}",
             scene.indenter.name(),
             if scene.indenter.map_spacing().is_some() {
-                format!(", {GENERIC_ELEMENTS_PER_MAP_WAVELENGTH} per shortest wavelength of the map")
+                format!(
+                    ", {GENERIC_ELEMENTS_PER_MAP_WAVELENGTH} per shortest wavelength of the map"
+                )
             } else {
                 String::new()
             }
@@ -488,7 +493,11 @@ impl GenericPlan {
     /// What was chosen and why, for the user.
     pub fn describe(&self) -> String {
         format!(
-            "{ACCURACY} {:.3} %: no convergence law for this shape: grids {:?}, each at {} grid              phases (apex offsets), extrapolated to Δx → 0 by Richardson with the order              estimated from the grids; then finer grids one at a time while the stated              uncertainty exceeds the target ({}); {MEASURE} adhesive-force, onsets located              near the minimum",
+            "{ACCURACY} {:.3} %: no convergence law for this shape: grids {:?}, each at {} grid \
+             phases (apex offsets), extrapolated to Δx → 0 by Richardson with the order \
+             estimated from the grids; then finer grids one at a time while the stated \
+             uncertainty exceeds the target ({}); {MEASURE} adhesive-force, onsets located \
+             near the minimum",
             100.0 * self.target,
             self.grids,
             GENERIC_PHASES.len(),
@@ -550,7 +559,8 @@ pub fn generic_plan(
             param: ACCURACY,
             value: format!("{}%", compact(100.0 * target)),
             expected: format!(
-                "an accuracy this machine can reach: the first grids of the extrapolation, up                  to {finest}, need {} per run, more than the {} available",
+                "an accuracy this machine can reach: the first grids of the extrapolation, up \
+                 to {finest}, need {} per run, more than the {} available",
                 bytes_text(first.memory_estimate()),
                 bytes_text(a)
             ),

@@ -246,7 +246,7 @@ fn weighted(grids: &[GridMean]) -> Option<Weighted> {
         var += w * varp;
         pm += w * p;
     }
-    if !(sum > 0.0) {
+    if sum.is_nan() || sum <= 0.0 {
         return None;
     }
     let (v, var, pm) = (v / sum, var / sum, pm / sum);

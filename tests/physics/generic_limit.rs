@@ -90,5 +90,5 @@ fn slow_an_accuracy_run_of_the_power_law_meets_its_target_or_says_why() {
     );
     assert!(s.target_met.unwrap(), "{}", s.to_text());
     holds(&s, s.runs.len());
-    assert!(s.runs.len() >= 12 && s.runs.len() % 4 == 0);
+    assert!(s.runs.len() >= 12 && s.runs.len().is_multiple_of(4));
 }

@@ -178,7 +178,7 @@ pub const EXPONENTS: &Spec = &cli(
     "--exponents",
     "",
     Kind::Real(Range::closed(MIN_EXPONENT, MAX_EXPONENT)),
-    Value("1.5,3,8"),
+    Chosen("1.5, 3, 8"),
     "Coverage: the power law's exponents n, comma-separated.",
 );
 /// The runs of one coverage case.
