@@ -384,6 +384,217 @@ pub fn extrapolation_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usi
     })
 }
 
+/// The grid phases of a shape without a convergence law: the apex's offsets within an
+/// element (elements along x, y) each grid of its extrapolation is run at — on an element
+/// corner, a quarter along the diagonal, on an element centre, and off the diagonal — so that
+/// where the contact's edge falls between element centres is sampled, and its scatter
+/// measured ([`crate::analysis::generic_limit`]).
+pub const GENERIC_PHASES: [(f64, f64); 4] = [(0.0, 0.0), (0.25, 0.25), (0.5, 0.5), (-0.25, 0.5)];
+
+/// Elements across the contact at the force minimum (2b̄/Δx, from the shape's closed form or
+/// its apex ellipsoid's) the coarsest grid of a shape without a convergence law needs: the
+/// power law n = 3 measured first order from 64² on (28 elements), not yet on 32² (14).
+pub const GENERIC_MIN_N_D: f64 = 24.0;
+
+/// Elements per shortest wavelength of a height map (two node spacings) the coarsest grid of
+/// its extrapolation needs: a map is interpolated bilinearly, so grids at least this fine
+/// all resolve the same interpolated surface and converge to its limit, where coarser ones
+/// still alias its nodes.
+pub const GENERIC_ELEMENTS_PER_MAP_WAVELENGTH: f64 = 2.0;
+
+/// Finer grids an accuracy run of a shape without a convergence law adds at most, one at a
+/// time, beyond its first [`EXTRAPOLATION_LEVELS`], while its stated uncertainty exceeds the
+/// target.
+pub const GENERIC_MAX_EXTRA_LEVELS: usize = 3;
+
+/// What a grid of a shape without a convergence law resolves: the elements across the
+/// contact at the force minimum, and per shortest wavelength of a height map (`None` for the
+/// other shapes).
+pub fn generic_resolution(model: &Model) -> (f64, Option<f64>) {
+    let scene = &model.scene;
+    let b_bar = scene
+        .indenter
+        .pull_off_hint(scene.e_star, scene.work_of_adhesion)
+        .map_or(0.5, |h| h.b_bar_at_min);
+    let n_d = 2.0 * b_bar * scene.scales().length / model.dx;
+    let per_wavelength = scene.indenter.map_spacing().map(|s| 2.0 * s / model.dx);
+    (n_d, per_wavelength)
+}
+
+/// Whether `model` is fine enough to be the coarsest grid of a generic extrapolation.
+fn generic_resolves(model: &Model) -> bool {
+    let (n_d, per_wavelength) = generic_resolution(model);
+    n_d >= GENERIC_MIN_N_D
+        && per_wavelength.is_none_or(|w| w >= GENERIC_ELEMENTS_PER_MAP_WAVELENGTH)
+}
+
+/// The grids Nx of an extrapolation of a shape without a convergence law when none are given:
+/// the coarsest grid (from [`MIN_PLAN_GRID`], doubling) that the model accepts with `base`
+/// and that resolves the surface ([`GENERIC_MIN_N_D`] elements across the contact at the force
+/// minimum, and for a height map [`GENERIC_ELEMENTS_PER_MAP_WAVELENGTH`]), and its doublings,
+/// [`EXTRAPOLATION_LEVELS`] grids in all. Each grid runs at every [`GENERIC_PHASES`] offset.
+pub fn generic_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usize>, ModelError> {
+    let top = MAX_GRID >> (EXTRAPOLATION_LEVELS - 1);
+    let mut nx = MIN_PLAN_GRID;
+    while nx <= top {
+        let options = ModelOptions {
+            nx,
+            ny: None,
+            ..base.clone()
+        };
+        match Model::build(scene, &options) {
+            Err(ModelError::TooCoarse { .. }) => {}
+            Err(e) => return Err(e),
+            Ok(model) if generic_resolves(&model) => {
+                return Ok((0..EXTRAPOLATION_LEVELS).map(|i| nx << i).collect());
+            }
+            Ok(_) => {}
+        }
+        nx *= 2;
+    }
+    Err(ModelError::Invalid {
+        param: EXTRAPOLATE_GRIDS,
+        value: "(not given)".into(),
+        expected: format!(
+            "grids that resolve the {}: no {EXTRAPOLATION_LEVELS} doubling grids up to \
+             {MAX_GRID} start fine enough ({GENERIC_MIN_N_D} elements across the contact at the \
+             force minimum{}); give {EXTRAPOLATE_GRIDS}, or a smaller {MARGIN} or \
+             {START_RADIUS}",
+            scene.indenter.name(),
+            if scene.indenter.map_spacing().is_some() {
+                format!(
+                    ", {GENERIC_ELEMENTS_PER_MAP_WAVELENGTH} per shortest wavelength of the map"
+                )
+            } else {
+                String::new()
+            }
+        ),
+    })
+}
+
+/// What an accuracy run of a shape without a convergence law runs: its first grids (all
+/// run), then finer ones, one at a time, while the stated uncertainty exceeds the target.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GenericPlan {
+    /// The first grids Nx ([`generic_grids`]).
+    pub grids: Vec<usize>,
+    /// The finer grids that may follow, in order: those that fit in memory, up to
+    /// [`GENERIC_MAX_EXTRA_LEVELS`].
+    pub more: Vec<usize>,
+    /// The options of every run (nx and the apex offset set per run).
+    pub options: ModelOptions,
+    /// The target (relative).
+    pub target: f64,
+    /// Why no finer grid may follow (memory, or the grid limit), in words.
+    pub limit: String,
+}
+
+impl GenericPlan {
+    /// What was chosen and why, for the user.
+    pub fn describe(&self) -> String {
+        format!(
+            "{ACCURACY} {:.3} %: no convergence law for this shape: grids {:?}, each at {} grid \
+             phases (apex offsets), extrapolated to Δx → 0 by Richardson with the order \
+             estimated from the grids; then finer grids one at a time while the stated \
+             uncertainty exceeds the target ({}); {MEASURE} adhesive-force, onsets located \
+             near the minimum",
+            100.0 * self.target,
+            self.grids,
+            GENERIC_PHASES.len(),
+            if self.more.is_empty() {
+                format!("none: {}", self.limit)
+            } else {
+                format!("up to {:?}; beyond, {}", self.more, self.limit)
+            }
+        )
+    }
+}
+
+/// The plan of an accuracy run to `target` (relative) of a shape without a convergence law,
+/// from the user's `base` options (CG settings, start radius, margin kept).
+pub fn for_generic_accuracy(
+    scene: &Scene,
+    target: f64,
+    base: &ModelOptions,
+) -> Result<GenericPlan, ModelError> {
+    generic_plan(scene, target, base, available_memory()?)
+}
+
+/// [`for_generic_accuracy`] with the memory available given (bytes; `None`: unlimited).
+pub fn generic_plan(
+    scene: &Scene,
+    target: f64,
+    base: &ModelOptions,
+    available: Option<u64>,
+) -> Result<GenericPlan, ModelError> {
+    if !(target.is_finite() && target > 0.0 && target < 1.0) {
+        return Err(ModelError::Invalid {
+            param: ACCURACY,
+            value: format!("{}", 100.0 * target),
+            expected: "a percentage in (0, 100), e.g. 5% or 1%".into(),
+        });
+    }
+    let options = ModelOptions {
+        ny: None,
+        onsets: Onsets::NearMinimum,
+        measure: Measure::AdhesiveForce,
+        steps: crate::model::default_steps(Measure::AdhesiveForce, Onsets::NearMinimum, false),
+        regrid: false,
+        ..base.clone()
+    };
+    let grids = generic_grids(scene, &options)?;
+    let build = |nx: usize| {
+        Model::build(
+            scene,
+            &ModelOptions {
+                nx,
+                ..options.clone()
+            },
+        )
+    };
+    let finest = *grids.last().expect("three grids");
+    let first = build(finest)?;
+    if let Some(a) = available.filter(|&a| first.memory_estimate() > a) {
+        return Err(ModelError::Invalid {
+            param: ACCURACY,
+            value: format!("{}%", compact(100.0 * target)),
+            expected: format!(
+                "an accuracy this machine can reach: the first grids of the extrapolation, up \
+                 to {finest}, need {} per run, more than the {} available",
+                bytes_text(first.memory_estimate()),
+                bytes_text(a)
+            ),
+        });
+    }
+    let mut more = Vec::new();
+    let mut nx = finest * 2;
+    let mut limit = format!("at most {GENERIC_MAX_EXTRA_LEVELS} finer grids");
+    while more.len() < GENERIC_MAX_EXTRA_LEVELS {
+        if nx > MAX_GRID {
+            limit = format!("the grid limit {MAX_GRID}");
+            break;
+        }
+        let model = build(nx)?;
+        if let Some(a) = available.filter(|&a| model.memory_estimate() > a) {
+            limit = format!(
+                "grid {nx} needs {}, more than the {} available",
+                bytes_text(model.memory_estimate()),
+                bytes_text(a)
+            );
+            break;
+        }
+        more.push(nx);
+        nx *= 2;
+    }
+    Ok(GenericPlan {
+        grids,
+        more,
+        options,
+        target,
+        limit,
+    })
+}
+
 /// The memory this machine can give a run (bytes): the smallest of the memory available now
 /// (`MemAvailable` in /proc/meminfo), what the process's control group may still use and what
 /// its own limits leave it ([`limits_room`]); or
@@ -765,6 +976,35 @@ mod tests {
         // The sphere keeps the grids it always had.
         let sphere = extrapolation_grids(&sphere(), &base).unwrap();
         assert_eq!(sphere, vec![64, 128, 256]);
+    }
+
+    #[test]
+    fn generic_ladders_resolve_the_contact_and_grow_within_memory() {
+        use crate::scene::Indenter;
+        let base = ModelOptions::default();
+        let law =
+            Scene::with_indenter(Indenter::PowerLaw { n: 3.0, scale: 0.5 }, 1.0, 1.0).unwrap();
+        let punch = Scene::with_indenter(Indenter::FlatPunch { radius: 1.0 }, 1.0, 1.0).unwrap();
+        for scene in [&law, &punch] {
+            let g = generic_grids(scene, &base).unwrap();
+            println!("{}: {g:?}", scene.indenter.name());
+            assert_eq!(g.len(), EXTRAPOLATION_LEVELS);
+            let model = |nx| Model::build(scene, &ModelOptions { nx, ..base.clone() }).unwrap();
+            assert!(generic_resolution(&model(g[0])).0 >= GENERIC_MIN_N_D);
+            if g[0] > MIN_PLAN_GRID {
+                assert!(generic_resolution(&model(g[0] / 2)).0 < GENERIC_MIN_N_D);
+            }
+        }
+        // The power law n = 3 has 28 elements across at 64², 14 at 32².
+        assert_eq!(generic_grids(&law, &base).unwrap(), vec![64, 128, 256]);
+        let p = generic_plan(&law, 0.01, &base, None).unwrap();
+        assert_eq!(p.more.len(), GENERIC_MAX_EXTRA_LEVELS);
+        assert!(p.describe().contains("grid phases"));
+        let small = generic_plan(&law, 0.01, &base, Some(500_000_000)).unwrap();
+        assert!(small.more.len() < GENERIC_MAX_EXTRA_LEVELS, "{small:?}");
+        assert!(small.limit.contains("available"), "{}", small.limit);
+        assert!(generic_plan(&law, 0.01, &base, Some(1_000_000)).is_err());
+        assert!(generic_plan(&law, 1.5, &base, None).is_err());
     }
 
     #[test]

@@ -4,6 +4,7 @@
 //! model (physics §7); Johnson–Greenwood and JKR are comparisons ([`Comparison`]).
 
 use super::convergence::{self, CORNER_SCATTER, OFFSET_SCATTER, POSITION_SCATTER, POSITION_SLOPE};
+use super::generic_limit::GenericLimit;
 use super::line_fit::{fit_line, LineFit, Point, SlopePrior};
 use super::report::RunReport;
 use crate::theory;
@@ -68,8 +69,14 @@ pub struct AdhesiveEstimate {
     /// How the estimate and its uncertainty were made, in words.
     pub method: String,
     /// The first-order coefficient k = slope/F0 the fit found, with twice its standard
-    /// deviation (Birge-widened); from one grid it is the law's prior.
+    /// deviation (Birge-widened); from one grid it is the law's prior. For a shape without a
+    /// convergence law ([`AdhesiveEstimate::generic`]): the order p of the convergence, with
+    /// twice its standard deviation.
     pub k: Estimate,
+    /// For a shape without a convergence law: how its grids and phases were extrapolated
+    /// ([`GenericLimit`]); absent for the ellipsoid.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub generic: Option<GenericLimit>,
 }
 
 /// The estimate from one run: the same as [`from_runs`] with that run alone (its |min F̄|
@@ -205,6 +212,65 @@ impl AdhesiveResult {
             comparison,
             target: None,
             runs: vec![run],
+        }
+    }
+
+    /// The result of runs of a shape without a convergence law on several grids and grid
+    /// phases: their Δx → 0 limit `limit` (`None` where it was refused), beside the closed form
+    /// of that limit `exact` (name, |min F̄|) where one exists, as a comparison; `target` the
+    /// accuracy asked for, met where the stated relative uncertainty is within it.
+    pub fn generic(
+        runs: Vec<RunReport>,
+        limit: Option<GenericLimit>,
+        exact: Option<(&'static str, f64)>,
+        target: Option<f64>,
+    ) -> Self {
+        let finest = runs
+            .iter()
+            .filter(|r| r.f_ad_bar.is_some())
+            .max_by_key(|r| r.nx)
+            .map(|r| r.nx);
+        let own: Vec<f64> = runs
+            .iter()
+            .filter(|r| Some(r.nx) == finest)
+            .filter_map(|r| r.f_ad_bar)
+            .collect();
+        let own = (!own.is_empty()).then(|| own.iter().sum::<f64>() / own.len() as f64);
+        let comparison = Comparison {
+            jg_f_ad_bar: None,
+            jg_deviation: None,
+            jkr_error: None,
+            exact,
+            grid_error: own.zip(exact).map(|(f, e)| f / e.1 - 1.0),
+        };
+        let estimate = limit.map(|l| AdhesiveEstimate {
+            kind: EstimateKind::Extrapolated,
+            f_ad_bar: Estimate {
+                value: l.value,
+                uncertainty: l.uncertainty,
+            },
+            c_bar_at_min: None,
+            d_bar_at_min: None,
+            f_ad_bar_bias: None,
+            method: l.method(),
+            k: Estimate {
+                value: l.order,
+                uncertainty: 2.0 * l.order_sd,
+            },
+            generic: Some(l),
+        });
+        let target = target.map(|t| TargetCheck {
+            target: t,
+            met: estimate
+                .as_ref()
+                .is_some_and(|e| e.f_ad_bar.relative() <= t),
+        });
+        AdhesiveResult {
+            ratio: runs.first().map_or(1.0, |r| r.ratio),
+            estimate,
+            comparison,
+            target,
+            runs,
         }
     }
 
@@ -452,6 +518,7 @@ fn from_runs_with(runs: &[RunReport], spread: Option<f64>) -> Result<AdhesiveEst
             value: fitted_k,
             uncertainty: 2.0 * fit.slope_sd * fit.birge() / fit.intercept.abs(),
         },
+        generic: None,
     })
 }
 

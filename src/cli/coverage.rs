@@ -4,7 +4,10 @@
 use super::progress::Progress;
 use super::{no_repeats, run_error, CliError};
 use jkrbem::backend::select::BackendKind;
-use jkrbem::run::coverage::{coverage, CaseVariant, CoverageRequest, DEFAULT_MARGINS};
+use jkrbem::run::coverage::{
+    coverage, generic_coverage, generic_scenes, CaseVariant, CoverageRequest, CoverageShape,
+    CoverageSummary, GenericCoverageRequest, DEFAULT_MARGINS,
+};
 use jkrbem::run::open::BackendRequest;
 use jkrbem::run::reference::REFERENCE_RATIOS;
 use std::path::PathBuf;
@@ -12,6 +15,16 @@ use std::path::PathBuf;
 /// Arguments of `jkrbem coverage`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
+    /// Shapes, comma-separated: `ellipsoid` (single-grid cases by its convergence law, the
+    /// flags below), `flat-punch` (against Kendall's 1) and `power-law` (against its JKR
+    /// solution, one scene per --exponents): each of the last two case is an extrapolation
+    /// over the ladder --grids [default 32,64,128] at four grid phases per grid, the phase set
+    /// shifted by each --apex-offsets entry, at each --margins [default 0.08, 0.18].
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "ellipsoid")]
+    pub shapes: Vec<CoverageShape>,
+    /// The power law's exponents n, comma-separated (with --shapes power-law).
+    #[arg(long, value_delimiter = ',', default_value = "1.5,3,8")]
+    pub exponents: Vec<f64>,
     /// Ratios R1/R2, comma-separated: 1 (the sphere, against JKR's exact 1/2) or ratios of the
     /// compiled-in reference table (against its Δx → 0 value) [default: every tabled ratio].
     #[arg(long, value_delimiter = ',')]
@@ -64,6 +77,52 @@ pub struct Args {
 /// Run `jkrbem coverage`.
 pub fn run(args: Args) -> Result<(), CliError> {
     super::stdout::not_stdout("--out", &args.out, "coverage")?;
+    no_repeats("--shapes", &args.shapes)?;
+    no_repeats("--exponents", &args.exponents)?;
+    let generic: Vec<CoverageShape> = args
+        .shapes
+        .iter()
+        .copied()
+        .filter(|s| *s != CoverageShape::Ellipsoid)
+        .collect();
+    if !generic.is_empty() {
+        let mut scenes = Vec::new();
+        for &s in &generic {
+            scenes.extend(generic_scenes(s, &args.exponents).map_err(run_error)?);
+        }
+        let margins = if args.margins.is_empty() {
+            vec![0.08, 0.18]
+        } else {
+            args.margins.clone()
+        };
+        no_repeats("--margins", &margins)?;
+        no_repeats("--grids", &args.grids)?;
+        let req = GenericCoverageRequest {
+            scenes,
+            grids: if args.grids.is_empty() {
+                vec![32, 64, 128]
+            } else {
+                args.grids.clone()
+            },
+            margins,
+            phase_shifts: args.apex_offsets.clone(),
+            backend: BackendRequest {
+                kind: args.backend,
+                ..BackendRequest::default()
+            },
+            out: args.out.clone(),
+        };
+        let done = generic_coverage(&req, &Progress::new()).map_err(run_error)?;
+        print_summary("shape", &done.summary);
+        outln!(
+            "written {} and {}",
+            done.csv.display(),
+            done.summary_csv.display()
+        );
+    }
+    if !args.shapes.contains(&CoverageShape::Ellipsoid) {
+        return Ok(());
+    }
     let ratios = if args.ratios.is_empty() {
         REFERENCE_RATIOS.to_vec()
     } else {
@@ -93,8 +152,18 @@ pub fn run(args: Args) -> Result<(), CliError> {
         out: args.out,
     };
     let done = coverage(&req, &Progress::new()).map_err(run_error)?;
-    let w = done
-        .summary
+    print_summary("R1/R2", &done.summary);
+    outln!(
+        "written {} and {}",
+        done.csv.display(),
+        done.summary_csv.display()
+    );
+    Ok(())
+}
+
+/// The summary table, one line per row of `summary`, the first column headed `what`.
+fn print_summary(what: &str, summary: &[CoverageSummary]) {
+    let w = summary
         .iter()
         .map(|s| s.ratio.chars().count())
         .max()
@@ -103,9 +172,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
     outln!(
         "{:<w$}   cases  held          median width/|error|  RMS error/sd  half-widths      \
          c̄ held  d̄ held (of)",
-        "R1/R2"
+        what
     );
-    for s in &done.summary {
+    for s in summary {
         outln!(
             "{:<w$} {:>7}  {:>4} ({:>5.1} %)  {:>20.2}  {:>12.2}  {:>6.2}–{:<6.2} %  {:>6}  {:>6} ({})",
             s.ratio,
@@ -121,12 +190,6 @@ pub fn run(args: Args) -> Result<(), CliError> {
             s.position_cases
         );
     }
-    outln!(
-        "written {} and {}",
-        done.csv.display(),
-        done.summary_csv.display()
-    );
-    Ok(())
 }
 
 /// One `--apex-offsets` entry, `x:y` (elements).

@@ -135,6 +135,15 @@ pub fn grid_states(stem: &Path, nx: usize) -> PathBuf {
     stem.with_file_name(format!("{name}-n{nx}.csv"))
 }
 
+/// The states file of grid `nx` at grid phase `phase` (its index among the apex offsets run)
+/// of a several-grid run with stem `stem`: `<stem>-n<nx>-p<phase>.csv`.
+pub fn grid_phase_states(stem: &Path, nx: usize, phase: usize) -> PathBuf {
+    let name = stem
+        .file_stem()
+        .map_or("states".into(), |s| s.to_string_lossy().into_owned());
+    stem.with_file_name(format!("{name}-n{nx}-p{phase}.csv"))
+}
+
 /// The default file of a `theory` curve (`model`: hertz, jkr or jg).
 pub fn theory_default(model: &str, ratio: f64) -> PathBuf {
     PathBuf::from(format!("jkrbem-out/theory-{model}-r{ratio}.csv"))

@@ -12,6 +12,7 @@
 
 use super::OutputError;
 use crate::analysis::estimate::AdhesiveResult;
+use crate::analysis::generic_limit::GenericLimit;
 use crate::analysis::report::RunReport;
 use crate::run::schema::{FINAL_D, MEASURE, ONSETS, STEPS};
 use crate::text::fixed;
@@ -59,6 +60,20 @@ pub struct Summary {
     /// "JKR (power law)") and its value (absent where none exists).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub exact_limit: Option<ExactLimit>,
+    /// The force scale of the scene's normalisation (the user's force unit): F = F̄ × it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub force_scale: Option<f64>,
+    /// The adhesive force in the user's force unit, force_scale × f_ad_bar.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adhesive_force: Option<f64>,
+    /// Its half-width (the user's force unit).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adhesive_force_uncertainty: Option<f64>,
+    /// For a shape without a convergence law extrapolated over grids and grid phases: the
+    /// extrapolation's order, its parts of the half-width and the grids
+    /// ([`GenericLimit`]); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limit: Option<GenericLimit>,
     /// Whether every run reached the force minimum.
     pub min_reached: bool,
     /// Whether every run ran to its end.
@@ -86,8 +101,14 @@ pub struct ExactLimit {
     /// Its |min F̄| (dimensionless, in the indenter's normalisation).
     pub f_ad_bar: f64,
     /// The grid's own |min F̄| against it, f/limit − 1 (its discretisation error; null if
-    /// the run did not reach the minimum).
+    /// the run did not reach the minimum). Several grids: the finest grid's mean over its
+    /// phases.
     pub grid_error: Option<f64>,
+    /// The estimate against it, f_ad_bar/limit − 1 (a comparison: the estimate's reference
+    /// is the Δx → 0 limit of the model, of which the closed form is one account); absent
+    /// without an estimate.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub deviation: Option<f64>,
 }
 
 impl Summary {
@@ -120,7 +141,12 @@ impl Summary {
                 name,
                 f_ad_bar,
                 grid_error: c.grid_error,
+                deviation: e.map(|e| e.f_ad_bar.value / f_ad_bar - 1.0),
             }),
+            force_scale: None,
+            adhesive_force: None,
+            adhesive_force_uncertainty: None,
+            limit: e.and_then(|e| e.generic.clone()),
             min_reached: result.runs.iter().all(|r| r.min_reached),
             complete: result.runs.iter().all(|r| r.complete),
             cg_iterations: result.runs.iter().map(|r| r.cg_iterations).sum(),
@@ -129,6 +155,14 @@ impl Summary {
             runs: result.runs.clone(),
             provenance: None,
         }
+    }
+
+    /// Set the scene's force scale (the user's force unit per unit F̄) and, where there is an
+    /// estimate, the adhesive force in that unit with its half-width.
+    pub fn set_force_scale(&mut self, scale: f64) {
+        self.force_scale = Some(scale);
+        self.adhesive_force = self.f_ad_bar.map(|f| f * scale);
+        self.adhesive_force_uncertainty = self.f_ad_bar_uncertainty.map(|u| u * scale);
     }
 
     /// Write as pretty JSON ([`Summary::to_json`]), in the command line's words (see the
@@ -179,22 +213,47 @@ impl Summary {
                         }
                     );
                 }
-                s += &format!(
-                    "  at c̄ = {} ± {}, d̄ = {} ± {}\n",
-                    opt(self.c_bar_at_min, 4),
-                    opt(self.c_bar_at_min_uncertainty, 4),
-                    opt(self.d_bar_at_min, 4),
-                    opt(self.d_bar_at_min_uncertainty, 4)
-                );
-                s += &format!(
-                    "  beside Johnson–Greenwood {} (deviation from JG {})",
-                    opt(self.jg_f_ad_bar, 4),
-                    pct(self.jg_deviation)
-                );
-                if self.jkr_error.is_some() {
-                    s += &format!("; against JKR's exact 1/2: {}", pct(self.jkr_error));
+                if let (Some(a), Some(au)) = (self.adhesive_force, self.adhesive_force_uncertainty)
+                {
+                    s += &format!(
+                        "  adhesive force F = {} ± {} (your force unit: F̄ × {})\n",
+                        sig(a),
+                        sig(au),
+                        sig(self.force_scale.unwrap_or(f64::NAN))
+                    );
                 }
-                s += "\n";
+                if let Some(l) = &self.limit {
+                    s += &self.limit_text(l);
+                } else {
+                    s += &format!(
+                        "  at c̄ = {} ± {}, d̄ = {} ± {}\n",
+                        opt(self.c_bar_at_min, 4),
+                        opt(self.c_bar_at_min_uncertainty, 4),
+                        opt(self.d_bar_at_min, 4),
+                        opt(self.d_bar_at_min_uncertainty, 4)
+                    );
+                }
+                if self.indenter.is_some() {
+                    if let Some(l) = &self.exact_limit {
+                        s += &format!(
+                            "  beside {}'s exact limit {} (deviation from {} {}, a comparison)\n",
+                            l.name,
+                            fixed(l.f_ad_bar, 4),
+                            l.name,
+                            pct(l.deviation)
+                        );
+                    }
+                } else {
+                    s += &format!(
+                        "  beside Johnson–Greenwood {} (deviation from JG {})",
+                        opt(self.jg_f_ad_bar, 4),
+                        pct(self.jg_deviation)
+                    );
+                    if self.jkr_error.is_some() {
+                        s += &format!("; against JKR's exact 1/2: {}", pct(self.jkr_error));
+                    }
+                    s += "\n";
+                }
             }
             _ if self.min_reached && self.runs.iter().any(|r| r.withheld.is_some()) => {
                 let grids: Vec<&str> = self
@@ -274,6 +333,34 @@ impl Summary {
 }
 
 impl Summary {
+    /// How a shape without a convergence law was extrapolated: its grids and phases, the
+    /// order, and the parts of the half-width.
+    fn limit_text(&self, l: &GenericLimit) -> String {
+        let order = if l.order_estimated {
+            format!(
+                "order p = {:.2} ± {:.2}, estimated from the grids",
+                l.order, l.order_sd
+            )
+        } else {
+            format!(
+                "order assumed first order (p = {:.2} ± {:.2}; the grids cannot fix it)",
+                l.order, l.order_sd
+            )
+        };
+        format!(
+            "  grids {} at {} grid phases each, Richardson-extrapolated: {order}\n\
+             \x20 ± {} the grid phases, {} the extrapolation's own error, {} the order (in \
+             quadrature); the finest grid's phases {} ± {}\n",
+            l.grids.join(", "),
+            l.phases.iter().max().copied().unwrap_or(0),
+            fixed(l.phase_part, 4),
+            fixed(l.extrapolation_part, 4),
+            fixed(l.order_part, 4),
+            fixed(l.finest_mean, 4),
+            fixed(l.finest_spread, 4),
+        )
+    }
+
     /// The answer for an indenter other than the ellipsoid: the grid's own |min F̄| (no
     /// convergence law, so no estimate with an uncertainty) and its distance to the closed
     /// form of the limit, where one exists.
@@ -304,11 +391,18 @@ impl Summary {
 fn run_text(r: &RunReport) -> String {
     let opt = |v: Option<f64>, p: usize| v.map_or("—".into(), |x| fixed(x, p));
     let mut s = String::new();
-    let angle = if r.mesh_angle_deg == 0.0 {
+    let mut angle = if r.mesh_angle_deg == 0.0 {
         String::new()
     } else {
         format!(" turned by {}°", r.mesh_angle_deg)
     };
+    if r.apex_offset != [0.0, 0.0] {
+        angle += &format!(
+            ", apex offset {}:{}",
+            crate::text::compact(r.apex_offset[0]),
+            crate::text::compact(r.apex_offset[1])
+        );
+    }
     s += &format!(
         "grid {}{angle}: |min F̄| = {}, Δx = {:.5e}, σ_c = {:.5e}, {} elements across the minor \
          axis at pull-off\n",
@@ -390,6 +484,15 @@ fn refinement_line(w: &crate::solver::window::Refinement) -> String {
         w.cut_short,
         w.recomputed
     )
+}
+
+/// `v` to five significant digits ("1.2346e-3", "0.51018").
+fn sig(v: f64) -> String {
+    if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e5) {
+        format!("{v:.4e}")
+    } else {
+        format!("{v:.5}")
+    }
 }
 
 /// `v` with `decimals` decimals and its sign ("+2.05", "-0.31"), never "-0.00".

@@ -13,10 +13,11 @@ use super::reference::run_or_reuse;
 use super::{failed, input, RunError, Watch};
 use crate::analysis::convergence::{self, TableValue};
 use crate::analysis::estimate;
+use crate::analysis::generic_limit;
 use crate::model::{Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID, MAX_MARGIN};
 use crate::run::schema::{
     words, Spec, APEX_OFFSET, APEX_OFFSETS, BACKEND, GRID, GRIDS, MARGIN, MARGINS, MESH_ANGLE,
-    MESH_ANGLES, OUT, RATIOS, RUNS_PER_CASE, VARIANTS,
+    MESH_ANGLES, OUT, RATIOS, RUNS_PER_CASE, SHAPES, VARIANTS,
 };
 use crate::scene::Scene;
 use crate::solver::edge_advice;
@@ -278,8 +279,10 @@ pub const MIN_CASE_GRID: usize = crate::plan::MIN_PLAN_GRID;
 /// The parameters of `jkrbem coverage`: advice from a run that names any other (a
 /// simulation's parameter, which coverage sets to its default) is followed by what to change
 /// here.
-pub const COVERAGE_SPECS: [&Spec; 9] = [
+pub const COVERAGE_SPECS: [&Spec; 11] = [
     RATIOS,
+    SHAPES,
+    crate::run::schema::EXPONENTS,
     GRIDS,
     MARGINS,
     VARIANTS,
@@ -669,6 +672,396 @@ pub fn summarise(name: &str, cases: &[&CoverageCase]) -> Option<CoverageSummary>
         c_bar_held: cases.iter().filter(|c| c.c_bar_held == Some(true)).count(),
         d_bar_held: cases.iter().filter(|c| c.d_bar_held == Some(true)).count(),
     })
+}
+
+/// A shape whose stated uncertainties coverage checks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum CoverageShape {
+    /// The ellipsoid, by its convergence law ([`coverage`]).
+    Ellipsoid,
+    /// The flat punch, extrapolated without a law ([`generic_coverage`]), against Kendall's 1.
+    FlatPunch,
+    /// The power law, extrapolated without a law, against its JKR solution.
+    PowerLaw,
+}
+
+impl fmt::Display for CoverageShape {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            CoverageShape::Ellipsoid => "ellipsoid",
+            CoverageShape::FlatPunch => "flat-punch",
+            CoverageShape::PowerLaw => "power-law",
+        })
+    }
+}
+
+/// What a case of a shape without a convergence law is held against.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Truth {
+    /// The closed form of the Δx → 0 limit: its name and |min F̄| (Kendall's 1, the power
+    /// law's JKR solution).
+    ClosedForm(&'static str, f64),
+    /// The mean over the grid phases of the same runs on a grid twice finer than any the
+    /// case's estimate used (a shape without a closed form, e.g. a rough surface): its
+    /// half-width is the phases' spread over √P at that grid (the remaining discretisation
+    /// error of that grid is not counted: a truth only where it is far below the case's).
+    FinerGrid,
+}
+
+/// A request for the coverage study of shapes without a convergence law: each case is one
+/// extrapolation ([`generic_limit::limit`]) of a scene on a ladder of grids, each grid at the
+/// grid phases [`crate::plan::GENERIC_PHASES`] shifted by one of `phase_shifts`, held against
+/// its [`Truth`].
+#[derive(Debug, Clone)]
+pub struct GenericCoverageRequest {
+    /// The scenes, each with its truth and a name for its files and rows.
+    pub scenes: Vec<(String, Scene, Truth)>,
+    /// The ladder of grids Nx (at least two, increasing).
+    pub grids: Vec<usize>,
+    /// Domain margins: each is a case (they move where the contact's edge falls, too).
+    pub margins: Vec<f64>,
+    /// Shifts of the phase set (elements along x and y): each is a case.
+    pub phase_shifts: Vec<(f64, f64)>,
+    /// The backend.
+    pub backend: BackendRequest,
+    /// Output folder: every run, generic-coverage.csv and generic-coverage-summary.csv.
+    pub out: PathBuf,
+}
+
+/// One case of a shape without a convergence law.
+#[derive(Debug, Clone, Serialize)]
+pub struct GenericCoverageCase {
+    /// The scene's name ("flat-punch", "power-law-n3").
+    pub shape: String,
+    /// The ladder, "32,64,128".
+    pub grids: String,
+    /// The domain margin.
+    pub margin: f64,
+    /// The shift of the phase set along x (elements).
+    pub shift_x: f64,
+    /// The shift of the phase set along y (elements).
+    pub shift_y: f64,
+    /// Whether the estimate was refused (the row's numbers are then NaN and it counts as not
+    /// held).
+    pub refused: bool,
+    /// The finest grid's mean over its phases.
+    pub f_ad_bar_grid: f64,
+    /// The estimate of the limit.
+    pub f_ad_bar: f64,
+    /// Its stated half-width.
+    pub uncertainty: f64,
+    /// The order of convergence the estimate used.
+    pub order: f64,
+    /// Whether the grids estimated it (else first order was assumed).
+    pub order_estimated: bool,
+    /// The truth.
+    pub reference: f64,
+    /// The truth's own half-width (0 for a closed form).
+    pub reference_uncertainty: f64,
+    /// f_ad_bar − reference.
+    pub error: f64,
+    /// Whether |error| ≤ uncertainty + reference_uncertainty.
+    pub held: bool,
+    /// uncertainty / |error|.
+    pub width_over_error: f64,
+}
+
+/// What the generic study produced.
+#[derive(Debug, Clone)]
+pub struct GenericCoverageDone {
+    /// Every case.
+    pub cases: Vec<GenericCoverageCase>,
+    /// One line per shape, then "all".
+    pub summary: Vec<CoverageSummary>,
+    /// generic-coverage.csv.
+    pub csv: PathBuf,
+    /// generic-coverage-summary.csv.
+    pub summary_csv: PathBuf,
+}
+
+/// The scene of `shape` (a flat punch of radius 1, or the power law h = 0.5·rⁿ for each of
+/// `exponents`), E* = Δγ = 1, with its name and truth (its closed form).
+pub fn generic_scenes(
+    shape: CoverageShape,
+    exponents: &[f64],
+) -> Result<Vec<(String, Scene, Truth)>, RunError> {
+    use crate::scene::{Indenter, DEFAULT_POWER_LAW_SCALE};
+    let indenters: Vec<Indenter> = match shape {
+        CoverageShape::Ellipsoid => Vec::new(),
+        CoverageShape::FlatPunch => vec![Indenter::FlatPunch { radius: 1.0 }],
+        CoverageShape::PowerLaw => exponents
+            .iter()
+            .map(|&n| Indenter::PowerLaw {
+                n,
+                scale: DEFAULT_POWER_LAW_SCALE,
+            })
+            .collect(),
+    };
+    indenters
+        .into_iter()
+        .map(|i| {
+            let scene = Scene::with_indenter(i, 1.0, 1.0).map_err(input)?;
+            let truth = match scene.indenter.exact_adhesive_force(1.0, 1.0) {
+                Some((name, f)) => Truth::ClosedForm(name, f),
+                None => Truth::FinerGrid,
+            };
+            Ok((scene.tag(), scene, truth))
+        })
+        .collect()
+}
+
+/// `v` wrapped into [−0.5, 0.5] (an apex offset, elements).
+fn wrap_offset(v: f64) -> f64 {
+    let w = v - v.round();
+    if w < -0.5 {
+        w + 1.0
+    } else {
+        w
+    }
+}
+
+/// The runs of one scene on grid `nx` at `margin`, at every phase of the set shifted by
+/// `shift` (run or reused from `req.out`).
+fn generic_runs(
+    req: &GenericCoverageRequest,
+    (name, scene): (&str, &Scene),
+    nx: usize,
+    margin: f64,
+    shift: (f64, f64),
+    watch: &dyn Watch,
+) -> Result<Vec<crate::analysis::report::RunReport>, RunError> {
+    crate::plan::GENERIC_PHASES
+        .iter()
+        .map(|&(x, y)| {
+            let apex_offset = (wrap_offset(x + shift.0), wrap_offset(y + shift.1));
+            let options = ModelOptions {
+                nx,
+                margin,
+                apex_offset,
+                measure: Measure::AdhesiveForce,
+                onsets: Onsets::NearMinimum,
+                steps: crate::model::default_steps(
+                    Measure::AdhesiveForce,
+                    Onsets::NearMinimum,
+                    false,
+                ),
+                ..ModelOptions::default()
+            };
+            let file = format!(
+                "{name}-n{nx}-m{}-o{}_{}",
+                crate::text::compact(margin),
+                crate::text::compact(apex_offset.0),
+                crate::text::compact(apex_offset.1)
+            );
+            run_or_reuse(scene, options, req.backend, &req.out, &file, watch)
+                .map_err(in_coverage_words)
+        })
+        .collect()
+}
+
+/// Run (or reuse) every case of shapes without a convergence law, extrapolate each and hold
+/// it against its truth. Every grid is checked to build before any work.
+pub fn generic_coverage(
+    req: &GenericCoverageRequest,
+    watch: &dyn Watch,
+) -> Result<GenericCoverageDone, RunError> {
+    if req.scenes.is_empty() || req.margins.is_empty() || req.phase_shifts.is_empty() {
+        return Err(input(format!(
+            "{SHAPES}, {MARGINS} and {APEX_OFFSETS}: give at least one of each"
+        )));
+    }
+    if req.grids.len() < 2 || req.grids.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(input(format!(
+            "{GRIDS}: the shapes without a convergence law take a ladder of two or more \
+             increasing grids, e.g. 32,64,128"
+        )));
+    }
+    req.backend.check()?;
+    for (name, scene, truth) in &req.scenes {
+        let finer = matches!(truth, Truth::FinerGrid).then(|| req.grids[req.grids.len() - 1] * 2);
+        for nx in req.grids.iter().copied().chain(finer) {
+            for &margin in &req.margins {
+                let options = ModelOptions {
+                    nx,
+                    margin,
+                    ..ModelOptions::default()
+                };
+                Model::build(scene, &options)
+                    .map_err(|e| input(format!("{GRIDS} {nx} for {name}: {e}")))?;
+            }
+        }
+    }
+    let csv = req.out.join("generic-coverage.csv");
+    let summary_csv = req.out.join("generic-coverage-summary.csv");
+    let _claimed = Outputs::claim(&named(OUT, [&csv, &summary_csv]))?;
+    let mut cases = Vec::new();
+    for (name, scene, truth) in &req.scenes {
+        for &margin in &req.margins {
+            for &shift in &req.phase_shifts {
+                let mut runs = Vec::new();
+                for &nx in &req.grids {
+                    runs.extend(generic_runs(req, (name, scene), nx, margin, shift, watch)?);
+                }
+                let (reference, reference_uncertainty) = match *truth {
+                    Truth::ClosedForm(_, f) => (f, 0.0),
+                    Truth::FinerGrid => {
+                        let nx = req.grids[req.grids.len() - 1] * 2;
+                        let fine = generic_runs(req, (name, scene), nx, margin, shift, watch)?;
+                        let v: Vec<f64> = fine.iter().filter_map(|r| r.f_ad_bar).collect();
+                        if v.len() < 2 {
+                            return Err(failed(format!(
+                                "{name}: the finer grid {nx} did not reach the force minimum"
+                            )));
+                        }
+                        let n = v.len() as f64;
+                        let mean = v.iter().sum::<f64>() / n;
+                        let sd =
+                            (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+                        (mean, sd / n.sqrt())
+                    }
+                };
+                let limit = generic_limit::grids_of(&runs).and_then(|g| generic_limit::limit(&g));
+                let finest = req.grids[req.grids.len() - 1];
+                let own: Vec<f64> = runs
+                    .iter()
+                    .filter(|r| r.nx == finest)
+                    .filter_map(|r| r.f_ad_bar)
+                    .collect();
+                let own = own.iter().sum::<f64>() / own.len().max(1) as f64;
+                let grids = req
+                    .grids
+                    .iter()
+                    .map(|g| g.to_string())
+                    .collect::<Vec<_>>()
+                    .join(",");
+                let case = match limit {
+                    Ok(l) => {
+                        let error = l.value - reference;
+                        GenericCoverageCase {
+                            shape: name.clone(),
+                            grids,
+                            margin,
+                            shift_x: shift.0,
+                            shift_y: shift.1,
+                            refused: false,
+                            f_ad_bar_grid: own,
+                            f_ad_bar: l.value,
+                            uncertainty: l.uncertainty,
+                            order: l.order,
+                            order_estimated: l.order_estimated,
+                            reference,
+                            reference_uncertainty,
+                            error,
+                            held: error.abs() <= l.uncertainty + reference_uncertainty,
+                            width_over_error: if error == 0.0 {
+                                f64::INFINITY
+                            } else {
+                                l.uncertainty / error.abs()
+                            },
+                        }
+                    }
+                    Err(why) => {
+                        watch.warning(&format!("{name}, margin {margin}: refused: {why}"));
+                        GenericCoverageCase {
+                            shape: name.clone(),
+                            grids,
+                            margin,
+                            shift_x: shift.0,
+                            shift_y: shift.1,
+                            refused: true,
+                            f_ad_bar_grid: own,
+                            f_ad_bar: f64::NAN,
+                            uncertainty: f64::NAN,
+                            order: f64::NAN,
+                            order_estimated: false,
+                            reference,
+                            reference_uncertainty,
+                            error: f64::NAN,
+                            held: false,
+                            width_over_error: f64::NAN,
+                        }
+                    }
+                };
+                cases.push(case);
+            }
+        }
+    }
+    let mut summary: Vec<CoverageSummary> = req
+        .scenes
+        .iter()
+        .filter_map(|(name, _, _)| {
+            let mine: Vec<&GenericCoverageCase> =
+                cases.iter().filter(|c| &c.shape == name).collect();
+            summarise_generic(name, &mine)
+        })
+        .collect();
+    summary.extend(summarise_generic("all", &cases.iter().collect::<Vec<_>>()));
+    crate::output::file::write_csv(&csv, None, &cases).map_err(write_error(OUT))?;
+    crate::output::file::write_csv(&summary_csv, None, &summary).map_err(write_error(OUT))?;
+    Ok(GenericCoverageDone {
+        cases,
+        summary,
+        csv,
+        summary_csv,
+    })
+}
+
+/// The summary line of generic cases (`None` if there are none): as [`summarise`], a refused
+/// case counted as not held and left out of the widths.
+pub fn summarise_generic(name: &str, cases: &[&GenericCoverageCase]) -> Option<CoverageSummary> {
+    if cases.is_empty() {
+        return None;
+    }
+    let answered: Vec<CoverageCase> = cases
+        .iter()
+        .filter(|c| !c.refused)
+        .map(|c| CoverageCase {
+            ratio: 1.0,
+            grid: c.grids.clone(),
+            margin: c.margin,
+            runs: 1,
+            variant: "fixed",
+            mesh_angle_deg: 0.0,
+            apex_offset_x: c.shift_x,
+            apex_offset_y: c.shift_y,
+            n_d: None,
+            f_ad_bar_grid: c.f_ad_bar_grid,
+            f_ad_bar: c.f_ad_bar,
+            uncertainty: c.uncertainty,
+            reference: c.reference,
+            reference_uncertainty: c.reference_uncertainty,
+            error: c.error,
+            held: c.held,
+            width_over_error: c.width_over_error,
+            c_bar_at_min: None,
+            c_bar_uncertainty: None,
+            c_bar_reference: None,
+            c_bar_reference_uncertainty: None,
+            c_bar_held: None,
+            d_bar_at_min: None,
+            d_bar_uncertainty: None,
+            d_bar_reference: None,
+            d_bar_reference_uncertainty: None,
+            d_bar_held: None,
+        })
+        .collect();
+    let refs: Vec<&CoverageCase> = answered.iter().collect();
+    let mut s = summarise(name, &refs).unwrap_or(CoverageSummary {
+        ratio: name.to_string(),
+        cases: 0,
+        held: 0,
+        held_fraction: 0.0,
+        median_width_over_error: f64::NAN,
+        rms_error_over_sd: f64::NAN,
+        half_width_min: f64::NAN,
+        half_width_max: f64::NAN,
+        position_cases: 0,
+        c_bar_held: 0,
+        d_bar_held: 0,
+    });
+    s.cases = cases.len();
+    s.held_fraction = s.held as f64 / s.cases as f64;
+    Some(s)
 }
 
 #[cfg(test)]

@@ -12,13 +12,14 @@ use crate::analysis::estimate::{self, AdhesiveResult};
 use crate::analysis::fields::{
     minimum_label, FieldChoice, FieldPicks, StateFields, LOWEST_NOT_MINIMUM,
 };
+use crate::analysis::generic_limit;
 use crate::model::{Measure, Model, ModelOptions, Onsets};
 use crate::output::provenance::Provenance;
 use crate::output::summary::Summary;
 use crate::output::{fields_npz, names, pressure_chart, NamedBy};
 use crate::plan;
 use crate::run::schema::{
-    Spec, ACCURACY, EXTRAPOLATE, EXTRAPOLATE_GRIDS, FIELDS, GRID, OUT, SUMMARY, TIME_LIMIT,
+    Spec, ACCURACY, EXTRAPOLATE_GRIDS, FIELDS, GRID, OUT, SUMMARY, TIME_LIMIT,
 };
 use crate::scene::Scene;
 use std::path::PathBuf;
@@ -168,7 +169,7 @@ pub fn planned_outputs(req: &SimulateRequest) -> Result<Vec<(PathBuf, NamedBy)>,
     check_memory(req, &planned.models)?;
     match &req.sink {
         Sink::Files { out, summary } => {
-            let outs = output_paths(req, out, &planned.models)?;
+            let outs = output_paths(req, out, &planned.all_models())?;
             Ok(targets(req, &outs, summary))
         }
         Sink::OneRunReturned { .. } | Sink::Memory => Ok(Vec::new()),
@@ -209,17 +210,20 @@ fn targets(
 /// Run the request: check every input, claim the outputs, run, estimate, write the summary.
 pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, RunError> {
     req.backend.check()?;
+    let planned = plan_models(req)?;
+    let all = planned.all_models();
     let Planned {
         models,
         target,
         note: plan_note,
         fallback,
-    } = plan_models(req)?;
+        more,
+    } = planned;
     let planned_runs = models.len();
     check_memory(req, &models)?;
     let (outs, _claimed) = match &req.sink {
         Sink::Files { out, summary } => {
-            let outs = output_paths(req, out, &models)?;
+            let outs = output_paths(req, out, &all)?;
             let targets = targets(req, &outs, summary);
             Outputs::check(&targets)?;
             let claimed = Outputs::claim(&targets)?;
@@ -233,11 +237,17 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
                 .collect();
             Outputs::check(&targets)?;
             let claimed = Outputs::claim(&targets)?;
-            (vec![None; models.len()], Some(claimed))
+            (vec![None; all.len()], Some(claimed))
         }
-        Sink::Memory => (vec![None; models.len()], None),
+        Sink::Memory => (vec![None; all.len()], None),
     };
-    let mut ran = run_grids(req, models, &outs, watch)?;
+    // A limit past what a clock holds (centuries) is no limit.
+    let deadline = req.time_limit.and_then(|t| Instant::now().checked_add(t));
+    let first = models.len();
+    let mut ran = run_grids(req, models, &outs[..first], watch, deadline)?;
+    if !more.is_empty() {
+        ran = refine_generic(req, ran, more, &outs[first..], watch, deadline)?;
+    }
     let reports: Vec<_> = ran.runs.iter().map(|r| r.report.clone()).collect();
     let mut provenance = provenance::provenance(
         &req.scene,
@@ -366,10 +376,24 @@ fn output_paths(
                     stem.display()
                 )));
             }
-            models
-                .iter()
-                .map(|m| names::grid_states(&stem, m.nx))
-                .collect()
+            if req.scene.is_ellipsoid() {
+                models
+                    .iter()
+                    .map(|m| names::grid_states(&stem, m.nx))
+                    .collect()
+            } else {
+                // Several grid phases per grid: one file per grid and phase.
+                models
+                    .iter()
+                    .map(|m| {
+                        let phase = plan::GENERIC_PHASES
+                            .iter()
+                            .position(|&o| o == m.apex_offset)
+                            .unwrap_or(0);
+                        names::grid_phase_states(&stem, m.nx, phase)
+                    })
+                    .collect()
+            }
         }
     })
 }
@@ -392,9 +416,8 @@ fn run_grids(
     models: Vec<Model>,
     outs: &[Option<PathBuf>],
     watch: &dyn Watch,
+    deadline: Option<Instant>,
 ) -> Result<Ran, RunError> {
-    // A limit past what a clock holds (centuries) is no limit.
-    let deadline = req.time_limit.and_then(|t| Instant::now().checked_add(t));
     let mut runs = Vec::new();
     let mut kept = Vec::new();
     let mut failure = None;
@@ -572,12 +595,29 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
     }
     // One run (one grid, or the one grid an accuracy plan chose): its single-grid estimate.
     let one_grid = !matches!(req.mode, Mode::Extrapolate(_));
-    let result = if !req.scene.is_ellipsoid() && reports.len() == 1 {
-        let exact = req
-            .scene
-            .indenter
-            .exact_adhesive_force(req.scene.e_star, req.scene.work_of_adhesion);
+    let exact = req
+        .scene
+        .indenter
+        .exact_adhesive_force(req.scene.e_star, req.scene.work_of_adhesion);
+    let result = if !req.scene.is_ellipsoid() && req.mode == Mode::Single && reports.len() == 1 {
         AdhesiveResult::beside_limit(reports.into_iter().next().expect("one run"), exact)
+    } else if !req.scene.is_ellipsoid() {
+        // No convergence law: the grids and their phases extrapolated (every run, the
+        // accuracy loop's finer grids included).
+        let limit = generic_limit::grids_of(&reports).and_then(|g| generic_limit::limit(&g));
+        if let (Err(why), None) = (&limit, &failure) {
+            failure = Some(format!("no extrapolation: {why}"));
+        }
+        let result = AdhesiveResult::generic(reports, limit.ok(), exact, target);
+        if let (Some(t), None, Some(note)) = (result.target, &failure, &plan_note) {
+            if !t.met && timed_out.is_none() {
+                failure = Some(format!(
+                    "{ACCURACY} {}%: not reached within this machine's limits ({note})",
+                    crate::text::compact(100.0 * t.target)
+                ));
+            }
+        }
+        result
     } else if reports.len() == 1 && one_grid {
         AdhesiveResult::single(reports.into_iter().next().expect("one run"), target)
     } else {
@@ -588,6 +628,7 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
         AdhesiveResult::assemble(req.scene.ratio(), est.ok(), target, reports)
     };
     let mut summary = Summary::new(&result);
+    summary.set_force_scale(req.scene.scales().force);
     summary.provenance = Some(provenance);
     if let (Some(why), false) = (&timed_out, summary.runs.is_empty()) {
         let limit = req.time_limit.unwrap_or_default().as_secs_f64();
@@ -637,6 +678,22 @@ struct Planned {
     /// Leading models that are only a fallback (the coarse grid a time-limited accuracy run
     /// takes first): their runs count only if the planned grids do not all finish.
     fallback: usize,
+    /// A shape without a convergence law run to an accuracy: the finer grids (each its runs
+    /// at every grid phase) added one at a time while the stated uncertainty exceeds the
+    /// target.
+    more: Vec<Vec<Model>>,
+}
+
+impl Planned {
+    /// Every model the request may run: the planned ones, then the finer grids that may
+    /// follow.
+    fn all_models(&self) -> Vec<Model> {
+        self.models
+            .iter()
+            .chain(self.more.iter().flatten())
+            .cloned()
+            .collect()
+    }
 }
 
 /// The models the request runs.
@@ -662,11 +719,7 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
             .collect::<Result<Vec<_>, _>>()
     };
     if !req.scene.is_ellipsoid() && req.mode != Mode::Single {
-        return Err(input(format!(
-            "{ACCURACY} and {EXTRAPOLATE} need a convergence law, and the {} has none yet \
-             (they are for the ellipsoid): run one grid with {GRID} N and refine it",
-            req.scene.indenter.name()
-        )));
+        return plan_generic(req);
     }
     match &req.mode {
         Mode::Single => Ok(Planned {
@@ -674,6 +727,7 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
             target: None,
             note: None,
             fallback: 0,
+            more: Vec::new(),
         }),
         Mode::Extrapolate(grids) => {
             let grids = match grids {
@@ -691,6 +745,7 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
                 target: None,
                 note: None,
                 fallback: 0,
+                more: Vec::new(),
             })
         }
         Mode::Accuracy(target) => {
@@ -723,9 +778,124 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
                 target: Some(*target),
                 note: Some(note),
                 fallback,
+                more: Vec::new(),
             })
         }
     }
+}
+
+/// The models of a shape without a convergence law ([`generic_limit`]): every grid of an
+/// extrapolation (given, or [`plan::generic_grids`]) or of an accuracy plan
+/// ([`plan::for_generic_accuracy`]) at every grid phase ([`plan::GENERIC_PHASES`]), grid by
+/// grid; for an accuracy, the finer grids that may follow.
+fn plan_generic(req: &SimulateRequest) -> Result<Planned, RunError> {
+    let phases = |nx: usize, options: &ModelOptions, param: &'static Spec| {
+        plan::GENERIC_PHASES
+            .iter()
+            .map(|&apex_offset| {
+                let options = ModelOptions {
+                    nx,
+                    ny: None,
+                    apex_offset,
+                    ..options.clone()
+                };
+                Model::build(&req.scene, &options).map_err(|e| input(format!("{param} {nx}: {e}")))
+            })
+            .collect::<Result<Vec<_>, _>>()
+    };
+    match &req.mode {
+        Mode::Single => Err(input(format!(
+            "{GRID}: one grid of the {} has no uncertainty to extrapolate",
+            req.scene.indenter.name()
+        ))),
+        Mode::Extrapolate(grids) => {
+            let grids = match grids {
+                Some(g) => g.clone(),
+                None => plan::generic_grids(&req.scene, &req.options).map_err(input)?,
+            };
+            if !(2..=8).contains(&grids.len()) || grids.windows(2).any(|w| w[1] <= w[0]) {
+                return Err(input(format!(
+                    "{EXTRAPOLATE_GRIDS}: give 2 to 8 increasing grids, e.g. 64,128,256"
+                )));
+            }
+            let mut models = Vec::new();
+            for &nx in &grids {
+                models.extend(phases(nx, &req.options, EXTRAPOLATE_GRIDS)?);
+            }
+            Ok(Planned {
+                models,
+                target: None,
+                note: None,
+                fallback: 0,
+                more: Vec::new(),
+            })
+        }
+        Mode::Accuracy(target) => {
+            let p = plan::for_generic_accuracy(&req.scene, *target, &req.options).map_err(input)?;
+            let mut models = Vec::new();
+            for &nx in &p.grids {
+                models.extend(phases(nx, &p.options, ACCURACY)?);
+            }
+            let more = p
+                .more
+                .iter()
+                .map(|&nx| phases(nx, &p.options, ACCURACY))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(Planned {
+                models,
+                target: Some(*target),
+                note: Some(p.describe()),
+                fallback: 0,
+                more,
+            })
+        }
+    }
+}
+
+/// The accuracy loop of a shape without a convergence law: while the runs so far finished,
+/// and their extrapolation states more than the target (or is refused), run the next finer
+/// grid at every phase (`more`, with their states files `outs`), within the deadline.
+fn refine_generic(
+    req: &SimulateRequest,
+    mut ran: Ran,
+    more: Vec<Vec<Model>>,
+    outs: &[Option<PathBuf>],
+    watch: &dyn Watch,
+    deadline: Option<Instant>,
+) -> Result<Ran, RunError> {
+    let Mode::Accuracy(target) = req.mode else {
+        return Ok(ran);
+    };
+    let mut at = 0;
+    for level in more {
+        if ran.failure.is_some() || ran.timed_out.is_some() || ran.stopped {
+            break;
+        }
+        let reports: Vec<_> = ran.runs.iter().map(|r| r.report.clone()).collect();
+        let stated = generic_limit::grids_of(&reports).and_then(|g| generic_limit::limit(&g));
+        match &stated {
+            Ok(l) if l.relative() <= target => break,
+            Ok(l) => watch.note(&format!(
+                "{ACCURACY}: ± {:.2} % stated from grids {}, more than the target ± {:.2} %: \
+                 a finer grid",
+                100.0 * l.relative(),
+                l.grids.join(", "),
+                100.0 * target
+            )),
+            Err(why) => watch.note(&format!(
+                "{ACCURACY}: no estimate yet ({why}): a finer grid"
+            )),
+        }
+        let n = level.len();
+        let next = run_grids(req, level, &outs[at..at + n], watch, deadline)?;
+        at += n;
+        ran.runs.extend(next.runs);
+        ran.kept.extend(next.kept);
+        ran.failure = next.failure;
+        ran.timed_out = next.timed_out;
+        ran.stopped = next.stopped;
+    }
+    Ok(ran)
 }
 
 /// ", mesh turned by θ°" for a rotated mesh, else nothing.

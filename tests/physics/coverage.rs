@@ -218,3 +218,122 @@ fn stated_intervals_hold_on_turned_meshes_and_offset_apexes() {
     assert!(10 * c >= 9 * p, "c̄: only {c} of {p} intervals hold");
     assert!(10 * d >= 9 * p, "d̄: only {d} of {p} intervals hold");
 }
+
+/// The generic study of `shapes` (power-law exponents `exponents`) on the ladder `grids` at
+/// `margins`, the phase set shifted by each of `shifts`, on the CPU; prints every case.
+fn generic_study(
+    shapes: &[jkrbem::run::coverage::CoverageShape],
+    exponents: &[f64],
+    grids: &[usize],
+    margins: &[f64],
+    shifts: &[(f64, f64)],
+    out: &std::path::Path,
+) -> jkrbem::run::coverage::GenericCoverageDone {
+    use jkrbem::run::coverage::{generic_coverage, generic_scenes, GenericCoverageRequest};
+    let mut scenes = Vec::new();
+    for &s in shapes {
+        scenes.extend(generic_scenes(s, exponents).unwrap());
+    }
+    let req = GenericCoverageRequest {
+        scenes,
+        grids: grids.to_vec(),
+        margins: margins.to_vec(),
+        phase_shifts: shifts.to_vec(),
+        backend: BackendRequest {
+            kind: BackendKind::Cpu,
+            ..BackendRequest::default()
+        },
+        out: out.to_path_buf(),
+    };
+    let done = generic_coverage(&req, &Quiet).unwrap();
+    for c in &done.cases {
+        println!(
+            "{:16} {:10} {:5} {:5}:{:<5} {:.5} ± {:.5} (p {:.2}{}) against {:.5}: {:+.3} %",
+            c.shape,
+            c.grids,
+            c.margin,
+            c.shift_x,
+            c.shift_y,
+            c.f_ad_bar,
+            c.uncertainty,
+            c.order,
+            if c.order_estimated { ", estimated" } else { "" },
+            c.reference,
+            100.0 * c.error / c.reference
+        );
+    }
+    done
+}
+
+#[test]
+fn the_coverage_command_checks_shapes_without_a_law() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        "coverage",
+        "--shapes",
+        "flat-punch",
+        "--grids",
+        "32,64",
+        "--margins",
+        "0.08",
+        "--backend",
+        "cpu",
+        "--out",
+        "cov",
+    ];
+    let o = jkrbem(&args, dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(dir.path().join("cov/generic-coverage.csv")).unwrap();
+    let mut lines = text.lines();
+    assert!(lines
+        .next()
+        .unwrap()
+        .starts_with("shape,grids,margin,shift_x,shift_y,refused,"));
+    let row = lines.next().unwrap();
+    assert!(
+        row.starts_with("flat-punch,\"32,64\",0.08,0.0,0.0,false,"),
+        "{row}"
+    );
+    assert_eq!(lines.count(), 0);
+    // No ellipsoid asked for: no ellipsoid study.
+    assert!(!dir.path().join("cov/coverage.csv").exists());
+    // A ladder of one grid is refused before any work.
+    let one = jkrbem(
+        &[
+            "coverage",
+            "--shapes",
+            "power-law",
+            "--grids",
+            "64",
+            "--out",
+            "c1",
+        ],
+        dir.path(),
+    );
+    assert_eq!(one.status.code(), Some(2), "{}", stderr(&one));
+    assert!(stderr(&one).contains("--grids"), "{}", stderr(&one));
+}
+
+#[test]
+#[ignore = "slow tier: 240 pull-offs up to 128², about 10 minutes on 2 cores"]
+fn slow_generic_intervals_hold_their_closed_forms_nine_times_in_ten() {
+    use jkrbem::run::coverage::CoverageShape;
+    let dir = tempfile::tempdir().unwrap();
+    let done = generic_study(
+        &[CoverageShape::FlatPunch, CoverageShape::PowerLaw],
+        &[1.5, 3.0, 5.0, 8.0],
+        &[32, 64, 128],
+        &[0.08],
+        &[(0.0, 0.0), (0.125, 0.0), (0.1, 0.3)],
+        dir.path(),
+    );
+    let all = done.summary.last().unwrap();
+    println!("held {} of {}", all.held, all.cases);
+    assert_eq!(all.cases, 15);
+    assert!(
+        10 * all.held >= 9 * all.cases,
+        "only {} of {}",
+        all.held,
+        all.cases
+    );
+}

@@ -11,6 +11,7 @@ mod analysis;
 mod coverage;
 mod ellipsoid;
 mod fields;
+mod generic_limit;
 mod hertz;
 mod in_memory;
 mod indenters;

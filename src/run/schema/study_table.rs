@@ -11,7 +11,7 @@
 use super::{cli_only, spec, Fallback, Fronts, Group, Kind, Range, Spec};
 use crate::analysis::crossed::MIN_POISSON;
 use crate::model::{MAX_MARGIN, MAX_MESH_ANGLE, MIN_GRID};
-use crate::scene::{MAX_INPUT, MAX_RATIO, MIN_INPUT};
+use crate::scene::{MAX_EXPONENT, MAX_INPUT, MAX_RATIO, MIN_EXPONENT, MIN_INPUT};
 
 /// Most pull-offs a command runs at the same time (`--jobs`).
 pub const MAX_JOBS: usize = 256;
@@ -160,6 +160,26 @@ pub const APEX_OFFSETS: &Spec = &cli(
     Chosen("0:0, the apex on an element corner"),
     "Coverage: apex offsets within the element grid, comma-separated `x:y` pairs; every case \
      runs at each.",
+);
+/// The shapes of coverage's cases.
+pub const SHAPES: &Spec = &cli(
+    "shapes",
+    "--shapes",
+    "",
+    Kind::Choice(&["ellipsoid", "flat-punch", "power-law"]),
+    Value("ellipsoid"),
+    "Coverage: the shapes, comma-separated: `ellipsoid` (its convergence law, against JKR or \
+     the reference table), `flat-punch` (against Kendall's 1) and `power-law` (against its JKR \
+     solution), the last two extrapolated over grids and grid phases without a law.",
+);
+/// The power-law exponents of coverage's cases.
+pub const EXPONENTS: &Spec = &cli(
+    "exponents",
+    "--exponents",
+    "",
+    Kind::Real(Range::closed(MIN_EXPONENT, MAX_EXPONENT)),
+    Chosen("1.5, 3, 8"),
+    "Coverage: the power law's exponents n, comma-separated.",
 );
 /// The runs of one coverage case.
 pub const RUNS_PER_CASE: &Spec = &cli(
@@ -339,6 +359,8 @@ pub const STUDY_SPECS: &[&Spec] = &[
     MESH_ANGLES,
     APEX_OFFSETS,
     RUNS_PER_CASE,
+    SHAPES,
+    EXPONENTS,
     BACKENDS,
     SHARD,
     ALLOW_MISSING,

@@ -27,8 +27,9 @@ pub const INDENTER: &Spec = &spec(
     Value("ellipsoid"),
     "The indenter's shape: `ellipsoid` (⟨ratio⟩ or ⟨r1⟩, ⟨r2⟩), `flat-punch` (⟨radius⟩), \
      `power-law` (h = s·rⁿ: ⟨exponent⟩, ⟨scale⟩) or `height-map` (⟨height_map⟩, ⟨spacing⟩). The \
-     ellipsoid has a convergence law (⟨accuracy⟩, ⟨extrapolate⟩); the others run one grid, set beside the closed \
-     form of their Δx → 0 limit where one exists (Kendall; the power law's JKR solution).",
+     ellipsoid has a convergence law; the others run one grid by default, set beside the closed \
+     form of their Δx → 0 limit where one exists (Kendall; the power law's JKR solution), and \
+     ⟨accuracy⟩ or ⟨extrapolate⟩ extrapolate them over grids and grid phases without a law.",
 );
 /// R1/R2 of the ellipsoid.
 pub const RATIO: &Spec = &spec(
