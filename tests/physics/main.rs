@@ -15,6 +15,7 @@ mod hertz;
 mod in_memory;
 mod indenters;
 mod jkr_sphere;
+mod johnson_wave;
 mod mesh_angle;
 mod pulloff_answers;
 mod pulloff_cost;
