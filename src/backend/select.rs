@@ -52,11 +52,35 @@ pub struct Opened {
 /// lavapipe, saying so) and fails if there is none or the grid does not fit; `auto` takes a
 /// hardware GPU whose limits hold the grid, and otherwise the CPU backend, saying why.
 pub fn open(kind: BackendKind, setup: &GridSetup) -> Result<Opened, BackendError> {
+    open_with(kind, setup, false)
+}
+
+/// [`open`] with the padded convolution (`periodic` false: an isolated contact) or the
+/// periodic one (a surface periodic over the domain: [`crate::backend::kernel`]'s notes):
+/// [`CpuBackend::new_periodic`] or `GpuBackend::new_periodic`, chosen as [`open`] chooses.
+pub fn open_with(
+    kind: BackendKind,
+    setup: &GridSetup,
+    periodic: bool,
+) -> Result<Opened, BackendError> {
     let cpu = |why: String| -> Result<Opened, BackendError> {
+        let backend = if periodic {
+            CpuBackend::new_periodic(setup)?
+        } else {
+            CpuBackend::new(setup)?
+        };
         Ok(Opened {
-            backend: AnyBackend::Cpu(Box::new(CpuBackend::new(setup)?)),
+            backend: AnyBackend::Cpu(Box::new(backend)),
             note: why,
         })
+    };
+    #[cfg(feature = "gpu")]
+    let gpu = |ctx: GpuContext| {
+        if periodic {
+            GpuBackend::new_periodic(ctx, setup)
+        } else {
+            GpuBackend::new(ctx, setup)
+        }
     };
     match kind {
         BackendKind::Cpu => cpu("cpu (f64, rustfft)".into()),
@@ -78,7 +102,7 @@ pub fn open(kind: BackendKind, setup: &GridSetup) -> Result<Opened, BackendError
                     crate::run::schema::BACKEND
                 ));
             }
-            let backend = GpuBackend::new(ctx, setup)?;
+            let backend = gpu(ctx)?;
             Ok(Opened {
                 backend: AnyBackend::Gpu(Box::new(backend)),
                 note,
@@ -88,7 +112,7 @@ pub fn open(kind: BackendKind, setup: &GridSetup) -> Result<Opened, BackendError
         BackendKind::Auto => match GpuContext::new(AdapterPreference::Best) {
             Ok(ctx) if ctx.is_hardware() => {
                 let summary = ctx.adapter_summary();
-                match GpuBackend::new(ctx, setup) {
+                match gpu(ctx) {
                     Ok(b) => Ok(Opened {
                         backend: AnyBackend::Gpu(Box::new(b)),
                         note: format!("gpu (f32, wgpu) on {summary} (auto: hardware GPU found)"),
@@ -125,7 +149,7 @@ macro_rules! with_backend {
 }
 
 impl AnyBackend {
-    /// Short name of the backend ("cpu", "gpu", "cpu-periodic").
+    /// Short name of the backend ("cpu", "gpu", "cpu-periodic", "gpu-periodic").
     pub fn name(&self) -> &'static str {
         use super::Device;
         match self {

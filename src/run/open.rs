@@ -3,11 +3,9 @@
 //! between CG residual reads.
 
 use super::{failed, input, RunError};
-use crate::backend::cpu::CpuBackend;
 use crate::backend::select::{self, AnyBackend, BackendKind};
 use crate::backend::BackendError;
 use crate::model::Model;
-use crate::run::schema::{BACKEND, CONVOLUTION};
 
 /// How the displacements u = K ∗ p are convolved.
 #[derive(
@@ -23,11 +21,13 @@ use crate::run::schema::{BACKEND, CONVOLUTION};
 )]
 #[serde(rename_all = "kebab-case")]
 pub enum Convolution {
-    /// Zero-padded to 2Nx × 2Ny: the exact non-periodic sum (physics §4).
+    /// Zero-padded to 2Nx × 2Ny: the exact non-periodic sum (physics §4), for an isolated
+    /// contact.
     #[default]
     Padded,
-    /// Unpadded Nx × Ny: the contact feels its periodic images. Wrong on purpose, to show what
-    /// padding removes; CPU only.
+    /// Unpadded Nx × Ny, Love's kernel summed over the periodic images with a zero-mean
+    /// displacement (`backend::kernel`): for a surface periodic over the domain (a nominally
+    /// flat rough surface, a wave). Wrong for an isolated contact, which then feels its images.
     Periodic,
 }
 
@@ -36,21 +36,23 @@ pub enum Convolution {
 pub struct BackendRequest {
     /// cpu, gpu or auto.
     pub kind: BackendKind,
-    /// Padded (exact) or periodic (only to show its error).
+    /// Padded (an isolated contact) or periodic (a surface periodic over the domain).
     pub convolution: Convolution,
     /// CG residual reads every this many iterations; `None`: the backend's own interval.
     pub check_every: Option<usize>,
 }
 
 impl BackendRequest {
-    /// Refuse a combination no backend offers (checked before any output is claimed).
+    /// Refuse a combination no backend offers (checked before any output is claimed): every
+    /// backend offers both convolutions now, so none is refused here (whether a scene is
+    /// periodic is the scene's to check).
     pub fn check(&self) -> Result<(), RunError> {
-        if self.convolution == Convolution::Periodic && self.kind == BackendKind::Gpu {
-            return Err(input(format!(
-                "{CONVOLUTION} periodic runs on the CPU backend only: use {BACKEND} cpu"
-            )));
-        }
         Ok(())
+    }
+
+    /// Whether the convolution asked for is the periodic one.
+    pub fn periodic(&self) -> bool {
+        self.convolution == Convolution::Periodic
     }
 }
 
@@ -76,15 +78,16 @@ pub fn backend_error(e: BackendError) -> RunError {
 pub fn open_for(request: &BackendRequest, model: &mut Model) -> Result<OpenedFor, RunError> {
     request.check()?;
     let setup = model.grid_setup();
-    let (backend, note) = match request.convolution {
-        Convolution::Padded => {
-            let o = select::open(request.kind, &setup).map_err(backend_error)?;
-            (o.backend, o.note)
-        }
-        Convolution::Periodic => (
-            AnyBackend::Cpu(Box::new(CpuBackend::new_periodic(&setup))),
-            "cpu (f64, rustfft) with a PERIODIC convolution (no padding: wrong on purpose)".into(),
-        ),
+    let opened =
+        select::open_with(request.kind, &setup, request.periodic()).map_err(backend_error)?;
+    let backend = opened.backend;
+    let note = if request.periodic() {
+        format!(
+            "{} with a PERIODIC convolution (the surface repeats over the domain)",
+            opened.note
+        )
+    } else {
+        opened.note
     };
     // Refuse a model whose scales the backend's arithmetic (the GPU's f32) cannot hold.
     if backend.precision() == "f32" {

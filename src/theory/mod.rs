@@ -5,6 +5,7 @@ pub mod elliptic;
 pub mod hertz;
 pub mod jg;
 pub mod jkr;
+pub mod johnson_wave;
 pub mod power_law;
 mod solve;
 

@@ -9,5 +9,6 @@ mod common;
 
 mod convolution;
 mod failure_cg;
+mod periodic;
 #[cfg(feature = "gpu")]
 mod shaders;

@@ -183,10 +183,6 @@ fn mesh_angle_and_periodic_convolution_are_checked_and_reported() {
     for (args, flag) in [
         (&["--mesh-angle", "NaN"][..], "--mesh-angle"),
         (&["--mesh-angle", "inf"][..], "--mesh-angle"),
-        (
-            &["--convolution", "periodic", "--backend", "gpu"][..],
-            "--convolution",
-        ),
     ] {
         let dir = tempfile::tempdir().unwrap();
         let mut full = vec!["simulate", "--out", "out/s.csv"];

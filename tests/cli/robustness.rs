@@ -158,12 +158,6 @@ pub const CASES: &[Case] = &[
     (SIM, &["--cg-accept", "1"], "--cg-accept", NONE),
     (SIM, &["--cg-check-every", "0"], "--cg-check-every", NONE),
     (SIM, &["--backend", "quantum"], "--backend", NONE),
-    (
-        SIM,
-        &["--convolution", "periodic", "--backend", "gpu"],
-        "--convolution",
-        NONE,
-    ),
     (SIM, &["--accuracy", "0%"], "--accuracy", NONE),
     (SIM, &["--accuracy", "200%"], "--accuracy", NONE),
     (SIM, &["--accuracy", "abc"], "--accuracy", NONE),

@@ -42,7 +42,7 @@ fn padded_and_periodic(c0: f64) -> (Errors, Errors) {
         }
     };
     let padded = solver::run(&mut common::cpu_backend(&model), &model, &mut |_| {});
-    let mut periodic_backend = CpuBackend::new_periodic(&model.grid_setup());
+    let mut periodic_backend = CpuBackend::new_periodic(&model.grid_setup()).unwrap();
     let periodic = solver::run(&mut periodic_backend, &model, &mut |_| {});
     let (p, q) = (errors(padded), errors(periodic));
     println!(

@@ -1,5 +1,5 @@
 //! The tests on libtest-mimic (`harness = false`): the backend contract on every backend
-//! (`conformance`: cpu, cpu-periodic and gpu) and the tests that need a GPU adapter. Where no
+//! (`conformance`: cpu, cpu-periodic, gpu and gpu-periodic) and the tests that need a GPU adapter. Where no
 //! adapter exists, those are reported as ignored with the reason, never as passed; with
 //! `JKRBEM_REQUIRE_GPU=1` that is a failure instead. Without the `gpu` feature only the CPU
 //! backends' conformance runs. One test binary; each former file is a module, its tests named
@@ -19,6 +19,8 @@ mod failure_cg_gpu;
 mod gpu_backend;
 #[cfg(feature = "gpu")]
 mod gpu_fft;
+#[cfg(feature = "gpu")]
+mod gpu_periodic;
 #[cfg(feature = "gpu")]
 mod gpu_pulloff;
 #[cfg(feature = "gpu")]
@@ -40,6 +42,7 @@ fn main() {
         all.extend(failure_cg_gpu::trials(missing));
         all.extend(gpu_backend::trials(missing));
         all.extend(gpu_fft::trials(missing));
+        all.extend(gpu_periodic::trials(missing));
         all.extend(gpu_pulloff::trials(missing));
         all.extend(gpu_traffic::trials(missing));
     }

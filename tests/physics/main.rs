@@ -16,6 +16,7 @@ mod hertz;
 mod in_memory;
 mod indenters;
 mod jkr_sphere;
+mod johnson_wave;
 mod loading;
 mod mesh_angle;
 mod pulloff_answers;

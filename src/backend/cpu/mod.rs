@@ -1,9 +1,16 @@
 //! The CPU backend: f64 fields in host memory, `rustfft`/`realfft` transforms, rayon
 //! across the cores. It is also the reference ("CPU twin") for every GPU kernel.
+//!
+//! Its convolution is the padded one (an isolated contact) or the periodic one (a surface
+//! periodic over the domain: [`crate::backend::kernel`] derives it). On the periodic one the
+//! preconditioner is the same stiffness E*|q|/2 (there the exact inverse of the continuum
+//! symbol, a positive multiplier at q = 0), the residual floor is f64's as for the padded
+//! one, the certified detachments are off (their bound is the plane's) and no contact is
+//! reported at the edge (the domain has none).
 
 pub mod spectral;
 
-use super::kernel::{padded_kernel, stiffness_spectrum};
+use super::kernel::{padded_kernel, periodic_symbol, stiffness_spectrum};
 use super::measure::{self, ChordAxes, ContactMeasure};
 use super::rules::{self, Flip};
 use super::{
@@ -36,28 +43,32 @@ pub struct CpuBackend {
 impl CpuBackend {
     /// Build the backend: plan the transforms and compute the kernel spectrum once.
     pub fn new(setup: &GridSetup) -> Result<Self, BackendError> {
-        let (nx, ny) = (setup.nx, setup.ny);
-        if setup.profile.len() != nx * ny {
-            return Err(BackendError::Unavailable(format!(
-                "profile has {} values, grid needs {}",
-                setup.profile.len(),
-                nx * ny
-            )));
-        }
+        check_profile(setup)?;
         Ok(Self::with_periodic(setup, false))
     }
 
-    /// Like [`CpuBackend::new`] but with a periodic (unpadded, nx × ny) convolution: the
-    /// wrong method that physics §4 warns against, kept to show what padding removes.
-    pub fn new_periodic(setup: &GridSetup) -> Self {
-        Self::with_periodic(setup, true)
+    /// Like [`CpuBackend::new`] but with the periodic convolution: Love's element kernel
+    /// summed over the domain's periodic images, unpadded (nx × ny), with a zero-mean
+    /// displacement ([`crate::backend::kernel::periodic_symbol`]), for a surface periodic over
+    /// the domain (a nominally flat rough surface, a wave). The detachments certified before a
+    /// solve are not taken on it (their bound is the plane's), and a contact at the domain's
+    /// edges meets its images, not the edge: such a backend reports none at the edge.
+    pub fn new_periodic(setup: &GridSetup) -> Result<Self, BackendError> {
+        check_profile(setup)?;
+        if setup.nx < 2 || setup.ny < 1 {
+            return Err(BackendError::Unavailable(format!(
+                "a periodic convolution needs at least 2 × 1 elements, not {} × {}",
+                setup.nx, setup.ny
+            )));
+        }
+        Ok(Self::with_periodic(setup, true))
     }
 
     fn with_periodic(setup: &GridSetup, periodic: bool) -> Self {
         let (nx, ny, dx, e) = (setup.nx, setup.ny, setup.dx, setup.e_star);
         let convolution = if periodic {
             let mut f = SpectralFilter::new(nx, ny, nx, ny);
-            f.set_symbol_from_kernel(&periodic_kernel(nx, ny, dx, e));
+            f.set_symbol(&periodic_symbol(nx, ny, dx, e));
             f
         } else {
             let mut f = SpectralFilter::new(nx, ny, 2 * nx, 2 * ny);
@@ -85,6 +96,11 @@ impl CpuBackend {
         }
     }
 
+    /// Whether the convolution is the periodic one.
+    pub fn is_periodic(&self) -> bool {
+        self.periodic
+    }
+
     fn ratio(&self, num: Slot, den: Slot) -> f64 {
         let d = self.slots[den.index()];
         if d == 0.0 {
@@ -95,23 +111,17 @@ impl CpuBackend {
     }
 }
 
-/// The kernel laid out periodically on nx × ny (offsets wrap at ±n/2): only for showing
-/// the error of an unpadded convolution.
-fn periodic_kernel(nx: usize, ny: usize, dx: f64, e: f64) -> Vec<f64> {
-    let off = |k: usize, n: usize| {
-        if k <= n / 2 {
-            k as f64
-        } else {
-            k as f64 - n as f64
-        }
-    };
-    let mut out = vec![0.0; nx * ny];
-    for j in 0..ny {
-        for i in 0..nx {
-            out[j * nx + i] = super::kernel::influence(off(i, nx) * dx, off(j, ny) * dx, dx, e);
-        }
+/// Refuse a setup whose profile is not one value per element.
+fn check_profile(setup: &GridSetup) -> Result<(), BackendError> {
+    let (nx, ny) = (setup.nx, setup.ny);
+    if setup.profile.len() != nx * ny {
+        return Err(BackendError::Unavailable(format!(
+            "profile has {} values, grid needs {}",
+            setup.profile.len(),
+            nx * ny
+        )));
     }
-    out
+    Ok(())
 }
 
 impl Device for CpuBackend {
@@ -132,7 +142,7 @@ impl Device for CpuBackend {
     }
     fn sibling(&self, setup: &GridSetup) -> Result<Self, BackendError> {
         if self.periodic {
-            Ok(Self::new_periodic(setup))
+            Self::new_periodic(setup)
         } else {
             Self::new(setup)
         }
@@ -298,7 +308,10 @@ impl ContactKernels for CpuBackend {
         eps: f64,
     ) -> Result<Option<usize>, BackendError> {
         if self.periodic {
-            // The bound is the plane's: a periodic convolution is only for showing.
+            // The bound is the balayage onto the plane less a hole, in the plane's inverse
+            // influence (backend::certify): not proven for the periodic operator, whose
+            // inverse differs (its images, its zero mean). Not taken: the states are the same,
+            // only the solves more.
             return Ok(None);
         }
         let (nx, ny) = (self.nx, self.ny);
@@ -352,7 +365,12 @@ impl ContactKernels for CpuBackend {
         let on = |x: usize, y: usize| mask[y * nx + x] as usize;
         let rows_edge: usize = (0..nx).map(|x| on(x, 0) + on(x, ny - 1)).sum();
         let cols_edge: usize = (1..ny - 1).map(|y| on(0, y) + on(nx - 1, y)).sum();
-        let at_edge = rows_edge + cols_edge;
+        // A periodic domain has no edge: a contact there meets its own images.
+        let at_edge = if self.periodic {
+            0
+        } else {
+            rows_edge + cols_edge
+        };
         Ok(ContactChange {
             detached,
             attached,

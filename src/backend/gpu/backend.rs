@@ -18,7 +18,7 @@ use super::slots::{self, scalars_bytes, SLOTS};
 use super::spectral::{largest_buffer_bytes, GpuSpectralFilter, SpectralKernels};
 use super::traffic;
 use crate::backend::cpu::spectral::SpectralFilter;
-use crate::backend::kernel::{padded_kernel, stiffness_spectrum};
+use crate::backend::kernel::{padded_kernel, periodic_symbol, stiffness_spectrum};
 use crate::backend::{
     BackendError, CgKernels, CgStop, ChordAxes, ContactChange, ContactKernels, ContactMeasure,
     Counters, Device, ElasticOperator, GridSetup, Preconditioner, Scalars, Slot,
@@ -234,6 +234,8 @@ pub struct GpuBackend {
     ny: usize,
     kernels: Kernels,
     convolution: GpuSpectralFilter,
+    /// Whether the convolution is the periodic one (unpadded, images summed).
+    periodic: bool,
     preconditioner: Option<GpuSpectralFilter>,
     profile: wgpu::Buffer,
     /// The detachment shares (f32, `backend::shares::detachment_shares`).
@@ -322,6 +324,24 @@ impl GpuBackend {
     /// the kernel spectra (computed in f64 on the CPU). Refuses, before allocating anything,
     /// a grid whose buffers exceed the adapter's limits.
     pub fn new(ctx: GpuContext, setup: &GridSetup) -> Result<Self, BackendError> {
+        Self::with_convolution(ctx, setup, false)
+    }
+
+    /// Like [`GpuBackend::new`] but with the periodic convolution of
+    /// [`crate::backend::cpu::CpuBackend::new_periodic`] (the same symbol,
+    /// [`crate::backend::kernel::periodic_symbol`], on the unpadded nx × ny transform that the
+    /// preconditioner also uses), for a surface periodic over the domain. As there, the
+    /// certified detachments are not taken and no contact is reported at the edge.
+    pub fn new_periodic(ctx: GpuContext, setup: &GridSetup) -> Result<Self, BackendError> {
+        Self::with_convolution(ctx, setup, true)
+    }
+
+    /// [`GpuBackend::new`] with the padded (`periodic` false) or periodic convolution.
+    fn with_convolution(
+        ctx: GpuContext,
+        setup: &GridSetup,
+        periodic: bool,
+    ) -> Result<Self, BackendError> {
         let (nx, ny) = (setup.nx, setup.ny);
         if setup.profile.len() != nx * ny {
             return Err(BackendError::Unavailable(format!(
@@ -341,8 +361,15 @@ impl GpuBackend {
         check_fits(ctx.limits(), nx, ny)?;
         let (dx, e) = (setup.dx, setup.e_star);
         let kernels = Kernels::new(&ctx);
-        let mut conv = SpectralFilter::new(nx, ny, 2 * nx, 2 * ny);
-        conv.set_symbol_from_kernel(&padded_kernel(nx, ny, dx, e));
+        let conv = if periodic {
+            let mut f = SpectralFilter::new(nx, ny, nx, ny);
+            f.set_symbol(&periodic_symbol(nx, ny, dx, e));
+            f
+        } else {
+            let mut f = SpectralFilter::new(nx, ny, 2 * nx, 2 * ny);
+            f.set_symbol_from_kernel(&padded_kernel(nx, ny, dx, e));
+            f
+        };
         let convolution = GpuSpectralFilter::new(&ctx, &kernels.spectral, &conv, nx, ny)?;
         drop(conv);
         let preconditioner = match setup.preconditioner {
@@ -379,6 +406,7 @@ impl GpuBackend {
         let backend = GpuBackend {
             nx,
             ny,
+            periodic,
             kernels,
             convolution,
             preconditioner,
@@ -707,7 +735,11 @@ impl Device for GpuBackend {
     type Field = GpuField;
     type Mask = GpuMask;
     fn name(&self) -> &'static str {
-        "gpu"
+        if self.periodic {
+            "gpu-periodic"
+        } else {
+            "gpu"
+        }
     }
     fn precision(&self) -> &'static str {
         "f32"
@@ -716,7 +748,7 @@ impl Device for GpuBackend {
         (self.nx, self.ny)
     }
     fn sibling(&self, setup: &GridSetup) -> Result<Self, BackendError> {
-        GpuBackend::new(self.ctx.clone(), setup)
+        GpuBackend::with_convolution(self.ctx.clone(), setup, self.periodic)
     }
     fn field(&mut self) -> Result<GpuField, BackendError> {
         let buffer = storage(&self.ctx, "field", self.n() as u64 * 4);
@@ -1043,7 +1075,8 @@ impl ContactKernels for GpuBackend {
             detached: n[0] as usize,
             attached: n[1] as usize,
             n_contact: n[2] as usize,
-            at_edge: n[3] as usize,
+            // A periodic domain has no edge: a contact there meets its own images.
+            at_edge: if self.periodic { 0 } else { n[3] as usize },
         })
     }
     fn spread_detached(
@@ -1087,6 +1120,11 @@ impl ContactKernels for GpuBackend {
         use crate::backend::certify::{
             CANDIDATE_REACH, ERROR_MARGIN, HOLE_REACH, JACOBI_STEPS, ROUNDING_SAFETY, TRUNCATION,
         };
+        if self.periodic {
+            // The bound is the plane's (backend::certify), not proven for the periodic
+            // operator: not taken, as on the CPU backend.
+            return Ok(None);
+        }
         let n = self.n();
         let bufs = self
             .certify

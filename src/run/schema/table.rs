@@ -434,8 +434,10 @@ pub const CONVOLUTION: &Spec = &spec(
     "",
     Kind::Choice(&["padded", "periodic"]),
     Value("padded"),
-    "Convolution: `padded` (exact) or `periodic` (no padding, so the contact feels its periodic \
-     images: only to see the error padding removes; CPU only).",
+    "Convolution: `padded` (an isolated contact: zero padding, the exact non-periodic sum) or \
+     `periodic` (a surface periodic over the domain, such as a nominally flat rough surface or \
+     a wave: the elements' influence summed over the periodic images, the approach measured \
+     from the elastic surface's mean plane; an isolated contact would feel its images).",
 );
 /// Extrapolation.
 pub const EXTRAPOLATE: &Spec = &spec(
