@@ -8,9 +8,9 @@
 use super::open::{BackendRequest, Convolution};
 use super::schema::{self, values, Fallback, Spec, SPECS};
 use super::schema::{
-    ACCURACY, EXTRAPOLATE, EXTRAPOLATE_GRIDS, FINAL_D, GRID, GRID_Y, HEIGHT_MAP, INDENTER, MEASURE,
-    ONSETS, PRELOAD_AREA, PRELOAD_DEPTH, PRELOAD_FORCE, R1, RATIO, REGRID, ROUGHNESS, SPACING,
-    START_RADIUS, STEPS, TIME_LIMIT, WINDOW_X, WINDOW_Y,
+    ACCURACY, CONVOLUTION, EXTRAPOLATE, EXTRAPOLATE_GRIDS, FINAL_D, GRID, GRID_Y, HEIGHT_MAP,
+    INDENTER, MEASURE, ONSETS, PRELOAD_AREA, PRELOAD_DEPTH, PRELOAD_FORCE, R1, RATIO, REGRID,
+    ROUGHNESS, SPACING, START_RADIUS, STEPS, TIME_LIMIT, WINDOW_X, WINDOW_Y,
 };
 use super::simulate::{Mode, SimulateRequest, Sink};
 use super::{input, RunError};
@@ -457,8 +457,17 @@ impl Request {
             })?),
             None => None,
         };
+        let scene = self.scene(map)?;
+        if self.convolution == Convolution::Periodic && scene.window_half().is_none() {
+            return Err(input(format!(
+                "{CONVOLUTION} periodic is for a surface periodic over the domain, a height map \
+                 on its window (a nominally flat rough or a wavy surface): the {} is an isolated \
+                 contact, which needs {CONVOLUTION} padded",
+                scene.indenter.name()
+            )));
+        }
         Ok(SimulateRequest {
-            scene: self.scene(map)?,
+            scene,
             options: self.options(),
             backend: self.backend(),
             mode,

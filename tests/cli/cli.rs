@@ -210,15 +210,12 @@ fn mesh_angle_and_periodic_convolution_are_checked_and_reported() {
             "cpu",
             "--mesh-angle",
             "-45",
-            "--convolution",
-            "periodic",
             "--summary",
             "s.json",
         ],
         dir.path(),
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains("PERIODIC"), "{}", stderr(&o));
     assert!(dir
         .path()
         .join("jkrbem-out/simulate-r5-n32-a-45.csv")
@@ -227,7 +224,26 @@ fn mesh_angle_and_periodic_convolution_are_checked_and_reported() {
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
     assert_eq!(s["runs"][0]["mesh_angle_deg"], -45.0);
     assert_eq!(s["runs"][0]["ny"], 32);
-    assert_eq!(s["runs"][0]["backend"], "cpu-periodic");
+    assert_eq!(s["runs"][0]["backend"], "cpu");
+    // An isolated contact is not periodic: the periodic convolution is refused for it.
+    let o = jkrbem(
+        &[
+            "simulate",
+            "--ratio",
+            "5",
+            "--grid",
+            "32",
+            "--convolution",
+            "periodic",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--convolution periodic is for"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]

@@ -133,7 +133,10 @@ fn a_rough_sphere_is_pressed_on_then_pulled_off() {
     // The zero roughness of a zero slope is the smooth sphere.
     let flat = run(&rough_sphere(1e-9, 1));
     let f_flat = -flat.force_minimum().unwrap().f_bar;
-    assert!((f_flat / f_smooth - 1.0).abs() < 1e-4, "{f_flat} vs {f_smooth}");
+    assert!(
+        (f_flat / f_smooth - 1.0).abs() < 1e-4,
+        "{f_flat} vs {f_smooth}"
+    );
     for seed in [1, 2] {
         let out = run(&rough_sphere(0.05, seed));
         let phases: Vec<Phase> = out.states.iter().map(|s| s.phase).collect();
