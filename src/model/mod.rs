@@ -6,7 +6,7 @@
 use crate::run::schema::{
     APEX_OFFSET, BACKEND, CG_ACCEPT, CG_MAX_ITERATIONS, CG_TOLERANCE, E_STAR, GRID, GRID_Y,
     HEIGHT_MAP, INDENTER, MARGIN, MESH_ANGLE, PRELOAD_AREA, PRELOAD_DEPTH, PRELOAD_FORCE,
-    START_RADIUS, STEPS, WORK_OF_ADHESION,
+    ROUGHNESS, START_RADIUS, STEPS, WORK_OF_ADHESION,
 };
 use crate::scene::{FirstContact, Indenter, PullOffHint, Scene};
 use crate::setup::Preconditioner;
@@ -629,8 +629,12 @@ fn check_covered(
     if scene.indenter.covers(ex, ey) {
         return Ok(());
     }
+    let param = match scene.indenter {
+        Indenter::Rough(_) => ROUGHNESS,
+        _ => HEIGHT_MAP,
+    };
     Err(invalid(
-        HEIGHT_MAP,
+        param,
         scene.indenter.describe(),
         format!(
             "the domain (±{} × ±{} about the apex, the first contact of c̄0 = {} and its margin) \
