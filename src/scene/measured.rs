@@ -32,6 +32,10 @@ pub const MIN_FIT_NODES: f64 = 3.0;
 /// half-space can close there, so that nothing outside the window ever touches.
 const OUTSIDE_WALL: f64 = 1e3;
 
+/// A map's apex: its position in the map's coordinates (length), its fitted height from the
+/// map's minimum (length) and the fit's principal radii (length).
+type Apex = ((f64, f64), f64, (f64, f64));
+
 /// How a map is placed against the grid.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Placement {
@@ -152,7 +156,7 @@ impl MeasuredSurface {
     /// it, take the fit's stationary point (the lowest node if that point lies outside the
     /// fit's disc); with the fitted height there (from the map's minimum) and the principal
     /// radii. `None` where no convex quadratic fits.
-    fn apex_of(map: &HeightMap) -> Option<((f64, f64), f64, (f64, f64))> {
+    fn apex_of(map: &HeightMap) -> Option<Apex> {
         let (ex, ey) = map.extent();
         let radius = (FIT_FRACTION * ex.min(ey)).max(MIN_FIT_NODES * map.spacing());
         let fit = map.curvature_fit(radius)?;

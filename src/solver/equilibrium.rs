@@ -76,6 +76,9 @@ fn round_solved<B: Backend>(
     Ok((exact, Some(eps), margin))
 }
 
+/// The fields a phase leaves and the state it ended on (where the next phase starts).
+pub type Reached<F, M> = (Fields<F, M>, crate::solver::state::State);
+
 /// The result of equilibrating one approach.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Equilibrium {

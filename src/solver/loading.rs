@@ -6,7 +6,7 @@
 //! today's; a rough one keeps what formed on the way in.
 
 use super::emit::{record, Emitter};
-use super::equilibrium::{equilibrate, Fields};
+use super::equilibrium::{equilibrate, Fields, Reached};
 use super::state::{Phase, State};
 use super::SolverError;
 use crate::backend::Backend;
@@ -26,7 +26,7 @@ pub(super) fn press<B: Backend>(
     backend: &mut B,
     model: &Model,
     out: &mut Emitter,
-) -> Result<(Fields<B::Field, B::Mask>, State), SolverError> {
+) -> Result<Reached<B::Field, B::Mask>, SolverError> {
     let loading = model.loading.expect("a model that presses on");
     let profile = model.profile();
     // The first touch: the elements at the least height.

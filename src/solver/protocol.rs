@@ -13,7 +13,7 @@
 
 use super::cost::CostAccount;
 use super::emit::{record, Emitter, Progress};
-use super::equilibrium::{equilibrate, settle, Equilibrium, Fields, Held};
+use super::equilibrium::{equilibrate, settle, Equilibrium, Fields, Held, Reached};
 use super::onsets;
 use super::probe::Through;
 use super::retry::{self, CgRetry};
@@ -255,13 +255,13 @@ fn run_inner<B: Backend>(
     result
 }
 
-/// 1. The non-adhesive press to d0, the first contact built in one piece from the model's
-/// initial guess; returns the fields and the state there.
+/// The non-adhesive press to d0 (the protocol's first part), the first contact built in
+/// one piece from the model's initial guess; returns the fields and the state there.
 fn first_contact<B: Backend>(
     backend: &mut B,
     model: &Model,
     out: &mut Emitter,
-) -> Result<(Fields<B::Field, B::Mask>, State), SolverError> {
+) -> Result<Reached<B::Field, B::Mask>, SolverError> {
     let mut c = backend.mask()?;
     backend.upload_mask(&mut c, &model.initial_contact())?;
     let mut fields = Fields::new(backend, c)?;
