@@ -110,10 +110,6 @@ impl Affine {
     fn at(&self, i: usize, d: f64) -> f64 {
         self.p0[i] + d * self.p1[i]
     }
-    /// The approach at which p̄ = `mean`.
-    fn d_for_mean(&self, mean: f64) -> f64 {
-        (mean - self.mean0) / self.mean1
-    }
     /// The approach at which element `i` carries `p`.
     fn d_for(&self, i: usize, p: f64) -> f64 {
         (p - self.p0[i]) / self.p1[i]
