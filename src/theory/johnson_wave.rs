@@ -18,7 +18,7 @@
 //!
 //! p̄/p* = sin² ψ − α √(tan ψ),   α = √(2λΔγ / (π² E* Δ²)),
 //!
-//! which at Δγ = 0 is Westergaard's p̄ = p* sin² ψ. [`stress_intensity`] is K for any
+//! which at Δγ = 0 is Westergaard's p̄ = p* sin² ψ. [`Wave::stress_intensity`] is K for any
 //! (a, p̄); the tests take it from the profile's edge instead and check G = Δγ, and check K
 //! against the energy released by the punches' compliance (Irwin).
 //!
@@ -35,14 +35,14 @@
 //!
 //! Stability and pull-off. Under load control a state is stable where p̄(a) rises with a.
 //! f(ψ) = sin² ψ − α√(tan ψ) falls from 0, has a minimum at ψ₁ (the pull-off: the most
-//! tensile mean pressure, [`pull_off_mean_pressure`]) and a maximum at ψ₂, then falls to −∞
+//! tensile mean pressure, [`Wave::pull_off_mean_pressure`]) and a maximum at ψ₂, then falls to −∞
 //! at full contact, provided α < α_c = 3^{3/4} 5^{5/4}/16 ≈ 1.065 (f′ = 0 ⇔ α = 4 sin^{3/2} ψ
 //! cos^{5/2} ψ, largest at tan² ψ = 3/5). Beyond α_c no partial contact is stable. At zero load
 //! the surfaces jump spontaneously into full contact once f(ψ₂) < 0, i.e. for α > α₀ = 3^{3/4}/4
 //! ≈ 0.570 (f = f′ = 0 at ψ = π/3), Johnson's 0.57. For α → 0 the pull-off tends to that of
 //! an isolated JKR cylinder of the crest's radius R = λ²/(4π²Δ): p̄λ → −3(πE*RΔγ²/16)^{1/3}.
 //! Under displacement control the contact jumps off at the smallest d(ψ) on the adhesive
-//! branch ([`jump_off_approach`]).
+//! branch ([`Wave::jump_off_approach`]).
 
 use std::f64::consts::PI;
 

@@ -179,7 +179,7 @@ fn theory_writes_curves_and_refuses_jkr_for_an_ellipsoid() {
 }
 
 #[test]
-fn mesh_angle_and_periodic_convolution_are_checked_and_reported() {
+fn mesh_angle_is_checked_and_reported() {
     for (args, flag) in [
         (&["--mesh-angle", "NaN"][..], "--mesh-angle"),
         (&["--mesh-angle", "inf"][..], "--mesh-angle"),
