@@ -30,7 +30,7 @@ pub const MIN_FIT_NODES: f64 = 3.0;
 /// Height of the domain's part outside a window, above the map's highest node, in the
 /// window's size plus the map's height range (dimensionless): far beyond any gap the
 /// half-space can close there, so that nothing outside the window ever touches.
-const OUTSIDE_WALL: f64 = 1e3;
+pub const OUTSIDE_WALL: f64 = 1e3;
 
 /// A map's apex: its position in the map's coordinates (length), its fitted height from the
 /// map's minimum (length) and the fit's principal radii (length).
