@@ -70,7 +70,7 @@ pub struct MeasuredSurface {
     pub radii: Option<(f64, f64)>,
     /// How the map is placed.
     pub placement: Placement,
-    /// The height of the domain outside a window (length; see [`OUTSIDE_WALL`]).
+    /// The height of the domain outside a window (length: a thousand times the map's height range and size).
     wall: f64,
 }
 
@@ -196,7 +196,7 @@ impl MeasuredSurface {
     }
 
     /// Height (length) at (x, y) (length) from the origin; `None` outside the map. On a
-    /// window, the domain's part outside it stands a wall ([`OUTSIDE_WALL`]) above the map:
+    /// window, the domain's part outside it stands a wall far above the map:
     /// nothing there touches.
     pub fn height(&self, x: f64, y: f64) -> Option<f64> {
         if let Placement::Window { half, .. } = self.placement {
