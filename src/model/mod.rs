@@ -196,7 +196,29 @@ impl Model {
         check_resolution(scene, opt, hint, initial.b, dx)?;
         check_map_resolution(scene, hint)?;
         check_covered(scene, &mesh, opt, (opt.nx, ny), dx)?;
+        let model = Model::assemble(scene, opt, mesh, (ny, dx), initial, load);
+        let preload = opt
+            .preload
+            .or_else(|| scene.presses_on().then_some(Preload::StartRadius));
         let model = Model {
+            loading: preload.map(|p| model.loading_to(p)).transpose()?,
+            ..model
+        };
+        model.check_scales("f64", F64_SAFE_RANGE)?;
+        Ok(model)
+    }
+
+    /// The model of `scene` on an Nx × `ny` grid of element side `dx` (length) with its
+    /// first contact and load path, every other setting as `opt` chooses; no loading phase.
+    fn assemble(
+        scene: &Scene,
+        opt: &ModelOptions,
+        mesh: MeshAngle,
+        (ny, dx): (usize, f64),
+        initial: FirstContact,
+        load: LoadPath,
+    ) -> Model {
+        Model {
             scene: scene.clone(),
             nx: opt.nx,
             ny,
@@ -224,16 +246,7 @@ impl Model {
             apex_offset: opt.apex_offset,
             loading: None,
             confirm_minimum: true,
-        };
-        let preload = opt
-            .preload
-            .or_else(|| scene.presses_on().then_some(Preload::StartRadius));
-        let model = Model {
-            loading: preload.map(|p| model.loading_to(p)).transpose()?,
-            ..model
-        };
-        model.check_scales("f64", F64_SAFE_RANGE)?;
-        Ok(model)
+        }
     }
 
     /// The model of a height map placed on a window of half-widths `half` (length): the
@@ -251,45 +264,23 @@ impl Model {
         let dx = 2.0 * half_x / opt.nx as f64;
         let need_y = ((2.0 * half_y / dx - 1e-9).ceil() as usize).max(1);
         let ny = opt.ny.unwrap_or(need_y.next_power_of_two().max(MIN_GRID));
+        let unknown = FirstContact {
+            a: 0.0,
+            b: 0.0,
+            d: 0.0,
+            force: 0.0,
+            p0: 0.0,
+        };
+        let unsized_path = LoadPath {
+            d0: 0.0,
+            d_step: 0.0,
+            d_final: 0.0,
+            d_end: 0.0,
+        };
         let mut model = Model {
-            scene: scene.clone(),
-            nx: opt.nx,
-            ny,
-            dx,
-            sigma_c: critical_stress(scene, dx),
-            initial: FirstContact {
-                a: 0.0,
-                b: 0.0,
-                d: 0.0,
-                force: 0.0,
-                p0: 0.0,
-            },
-            load: LoadPath {
-                d0: 0.0,
-                d_step: 0.0,
-                d_final: 0.0,
-                d_end: 0.0,
-            },
-            cg: CgSettings {
-                tolerance: opt.cg_tolerance,
-                max_iterations: opt.cg_max_iterations,
-                check_every: opt.cg_check_every.max(1),
-                accept: opt.cg_accept,
-            },
-            preconditioner: opt.preconditioner,
-            max_sweeps: opt.max_sweeps,
-            margin: opt.margin,
-            onsets: opt.onsets,
-            loose_rounds: opt.loose_rounds,
-            spread_detached: opt.loose_rounds,
-            certify_detached: opt.loose_rounds,
-            tighten_stalls: opt.loose_rounds,
-            measure: opt.measure,
             regrid: false,
-            mesh,
-            apex_offset: opt.apex_offset,
-            loading: None,
             confirm_minimum: scene.is_normalised(),
+            ..Model::assemble(scene, opt, mesh, (ny, dx), unknown, unsized_path)
         };
         let mut heights: Vec<f64> = model
             .profile()
