@@ -396,10 +396,13 @@ pub const GENERIC_PHASES: [(f64, f64); 4] = [(0.0, 0.0), (0.25, 0.25), (0.5, 0.5
 /// power law n = 3 measured first order from 64² on (28 elements), not yet on 32² (14).
 pub const GENERIC_MIN_N_D: f64 = 24.0;
 
-/// Elements per shortest wavelength of a height map (two node spacings) the coarsest grid of
-/// its extrapolation needs: a map is interpolated bilinearly, so grids at least this fine
-/// all resolve the same interpolated surface and converge to its limit, where coarser ones
-/// still alias its nodes.
+/// Elements per shortest wavelength of a height map or a rough shape's roughness (the
+/// wavelength below which it holds a hundredth of its mean-square slope,
+/// [`crate::scene::HeightMap::shortest_wavelength`]: two node spacings for a map rough down to
+/// its nodes, the cut-off of a band-limited one) the coarsest grid of its extrapolation needs:
+/// grids at least this fine all see the surface's shortest features and converge to the
+/// limit of the same interpolated surface, where coarser ones alias them. The rough spheres of
+/// `coverage` run their coarsest grid at this resolution.
 pub const GENERIC_ELEMENTS_PER_MAP_WAVELENGTH: f64 = 2.0;
 
 /// Finer grids an accuracy run of a shape without a convergence law adds at most, one at a
@@ -408,8 +411,8 @@ pub const GENERIC_ELEMENTS_PER_MAP_WAVELENGTH: f64 = 2.0;
 pub const GENERIC_MAX_EXTRA_LEVELS: usize = 3;
 
 /// What a grid of a shape without a convergence law resolves: the elements across the
-/// contact at the force minimum, and per shortest wavelength of a height map (`None` for the
-/// other shapes).
+/// contact at the force minimum, and per shortest wavelength of a height map or roughness
+/// (`None` for the other shapes).
 pub fn generic_resolution(model: &Model) -> (f64, Option<f64>) {
     let scene = &model.scene;
     let b_bar = scene
@@ -417,7 +420,7 @@ pub fn generic_resolution(model: &Model) -> (f64, Option<f64>) {
         .pull_off_hint(scene.e_star, scene.work_of_adhesion)
         .map_or(0.5, |h| h.b_bar_at_min);
     let n_d = 2.0 * b_bar * scene.scales().length / model.dx;
-    let per_wavelength = scene.indenter.map_spacing().map(|s| 2.0 * s / model.dx);
+    let per_wavelength = scene.indenter.shortest_wavelength().map(|l| l / model.dx);
     (n_d, per_wavelength)
 }
 
@@ -463,7 +466,9 @@ pub fn generic_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usize>, M
             scene.indenter.name(),
             if scene.indenter.map_spacing().is_some() {
                 format!(
-                    ", {GENERIC_ELEMENTS_PER_MAP_WAVELENGTH} per shortest wavelength of the map"
+                    ", {GENERIC_ELEMENTS_PER_MAP_WAVELENGTH} per shortest wavelength of the \
+                     map, {}",
+                    compact(scene.indenter.shortest_wavelength().unwrap_or(f64::NAN))
                 )
             } else {
                 String::new()

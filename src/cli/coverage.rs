@@ -17,7 +17,8 @@ use std::path::PathBuf;
 pub struct Args {
     /// Shapes, comma-separated: `ellipsoid` (single-grid cases by its convergence law, the
     /// flags below), `flat-punch` (against Kendall's 1) and `power-law` (against its JKR
-    /// solution, one scene per --exponents): each of the last two case is an extrapolation
+    /// solution, one scene per --exponents) and `rough-sphere` (one scene per --seeds, against
+    /// a grid twice finer than --grids' finest): each case of the last three is an extrapolation
     /// over the ladder --grids [default 32,64,128] at four grid phases per grid, the phase set
     /// shifted by each --apex-offsets entry, at each --margins [default 0.08, 0.18].
     #[arg(long, value_enum, value_delimiter = ',', default_value = "ellipsoid")]
@@ -25,6 +26,12 @@ pub struct Args {
     /// The power law's exponents n, comma-separated (with --shapes power-law).
     #[arg(long, value_delimiter = ',', default_value = "1.5,3,8")]
     pub exponents: Vec<f64>,
+    /// Seeds of the rough spheres' roughness, comma-separated (with --shapes rough-sphere:
+    /// R = 1, rms slope 0.1, Hurst 0.8, cut-off 0.4, roll-off 1, pressed on to the sphere's
+    /// first contact; each held against the same runs on a grid twice finer than --grids'
+    /// finest).
+    #[arg(long, value_delimiter = ',', default_value = "1,2,3")]
+    pub seeds: Vec<u64>,
     /// Ratios R1/R2, comma-separated: 1 (the sphere, against JKR's exact 1/2) or ratios of the
     /// compiled-in reference table (against its Δx → 0 value) [default: every tabled ratio].
     #[arg(long, value_delimiter = ',')]
@@ -79,6 +86,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     super::stdout::not_stdout("--out", &args.out, "coverage")?;
     no_repeats("--shapes", &args.shapes)?;
     no_repeats("--exponents", &args.exponents)?;
+    no_repeats("--seeds", &args.seeds)?;
     let generic: Vec<CoverageShape> = args
         .shapes
         .iter()
@@ -88,7 +96,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     if !generic.is_empty() {
         let mut scenes = Vec::new();
         for &s in &generic {
-            scenes.extend(generic_scenes(s, &args.exponents).map_err(run_error)?);
+            scenes.extend(generic_scenes(s, &args.exponents, &args.seeds).map_err(run_error)?);
         }
         let margins = if args.margins.is_empty() {
             vec![0.08, 0.18]

@@ -683,6 +683,9 @@ pub enum CoverageShape {
     FlatPunch,
     /// The power law, extrapolated without a law, against its JKR solution.
     PowerLaw,
+    /// A generated rough sphere ([`rough_sphere`], one scene per seed), extrapolated without
+    /// a law, against the same runs on a grid twice finer than any its estimate used.
+    RoughSphere,
 }
 
 impl fmt::Display for CoverageShape {
@@ -691,6 +694,7 @@ impl fmt::Display for CoverageShape {
             CoverageShape::Ellipsoid => "ellipsoid",
             CoverageShape::FlatPunch => "flat-punch",
             CoverageShape::PowerLaw => "power-law",
+            CoverageShape::RoughSphere => "rough-sphere",
         })
     }
 }
@@ -779,11 +783,55 @@ pub struct GenericCoverageDone {
     pub summary_csv: PathBuf,
 }
 
-/// The scene of `shape` (a flat punch of radius 1, or the power law h = 0.5·rⁿ for each of
-/// `exponents`), E* = Δγ = 1, with its name and truth (its closed form).
+/// The roughness of coverage's rough spheres: rms slope (dimensionless).
+pub const ROUGH_SPHERE_SLOPE: f64 = 0.1;
+/// Their Hurst exponent.
+pub const ROUGH_SPHERE_HURST: f64 = 0.8;
+/// Their short-wavelength cut-off λ_s (length, R = 1): 2 elements at 32² on the default
+/// margin's domain (Δx ≈ 0.19), 16 at 256², so that every grid of the ladder sees the same surface and
+/// the coarsest resolves its shortest wavelength.
+pub const ROUGH_SPHERE_CUTOFF: f64 = 0.4;
+/// Their roll-off wavelength λ_r (length).
+pub const ROUGH_SPHERE_ROLLOFF: f64 = 1.0;
+/// Nodes of their roughness map along each side, at spacing [`ROUGH_SPHERE_SPACING`]
+/// (length): the map spans ±4, past the domain (±3.1 at margin 0.08) of every margin up
+/// to 0.38.
+pub const ROUGH_SPHERE_NODES: usize = 640;
+/// The spacing of their roughness map (length).
+pub const ROUGH_SPHERE_SPACING: f64 = 0.0125;
+
+/// A rough sphere of coverage (R = 1, E* = Δγ = 1): the generator's roughness
+/// ([`ROUGH_SPHERE_SLOPE`], [`ROUGH_SPHERE_HURST`], [`ROUGH_SPHERE_CUTOFF`],
+/// [`ROUGH_SPHERE_ROLLOFF`]) of `seed` added to the sphere; pressed on to the sphere's first
+/// contact before its pull-off (a rough shape's default).
+pub fn rough_sphere(seed: u64) -> Result<Scene, RunError> {
+    use crate::scene::roughness::{generate, RoughnessParams};
+    use crate::scene::{Indenter, RoughShape};
+    let params = RoughnessParams {
+        cutoff: Some(ROUGH_SPHERE_CUTOFF),
+        rolloff: Some(ROUGH_SPHERE_ROLLOFF),
+        seed,
+        ..RoughnessParams::with_rms_slope(
+            ROUGH_SPHERE_NODES,
+            ROUGH_SPHERE_SPACING,
+            ROUGH_SPHERE_HURST,
+            ROUGH_SPHERE_SLOPE,
+        )
+    };
+    let map = generate(&params).map_err(input)?;
+    let base = Indenter::Ellipsoid { r1: 1.0, r2: 1.0 };
+    let source = format!("generated, seed {seed}");
+    let rough = RoughShape::new(base, map, &source).map_err(input)?;
+    Scene::with_indenter(Indenter::Rough(std::sync::Arc::new(rough)), 1.0, 1.0).map_err(input)
+}
+
+/// The scenes of `shape`, E* = Δγ = 1, each with its name and truth: a flat punch of radius 1
+/// or the power law h = 0.5·rⁿ for each of `exponents` (their closed forms), or a rough sphere
+/// for each of `seeds` ([`rough_sphere`], against a finer grid).
 pub fn generic_scenes(
     shape: CoverageShape,
     exponents: &[f64],
+    seeds: &[u64],
 ) -> Result<Vec<(String, Scene, Truth)>, RunError> {
     use crate::scene::{Indenter, DEFAULT_POWER_LAW_SCALE};
     let indenters: Vec<Indenter> = match shape {
@@ -796,6 +844,18 @@ pub fn generic_scenes(
                 scale: DEFAULT_POWER_LAW_SCALE,
             })
             .collect(),
+        CoverageShape::RoughSphere => {
+            return seeds
+                .iter()
+                .map(|&seed| {
+                    Ok((
+                        format!("rough-sphere-s{seed}"),
+                        rough_sphere(seed)?,
+                        Truth::FinerGrid,
+                    ))
+                })
+                .collect();
+        }
     };
     indenters
         .into_iter()

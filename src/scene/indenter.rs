@@ -220,6 +220,16 @@ impl Indenter {
         }
     }
 
+    /// The shortest wavelength a height map or a rough shape's roughness holds (length,
+    /// [`HeightMap::shortest_wavelength`]); `None` for the other shapes.
+    pub fn shortest_wavelength(&self) -> Option<f64> {
+        match *self {
+            Indenter::HeightMap(ref m) => Some(m.map.shortest_wavelength()),
+            Indenter::Rough(ref r) => Some(r.map.shortest_wavelength()),
+            _ => None,
+        }
+    }
+
     /// Whether the shape's height is known over the rectangle |x| ≤ `half_x`, |y| ≤ `half_y`
     /// (length) about the apex, in its own axes: everywhere but for a height map.
     pub fn covers(&self, half_x: f64, half_y: f64) -> bool {

@@ -232,7 +232,7 @@ fn generic_study(
     use jkrbem::run::coverage::{generic_coverage, generic_scenes, GenericCoverageRequest};
     let mut scenes = Vec::new();
     for &s in shapes {
-        scenes.extend(generic_scenes(s, exponents).unwrap());
+        scenes.extend(generic_scenes(s, exponents, &[1]).unwrap());
     }
     let req = GenericCoverageRequest {
         scenes,

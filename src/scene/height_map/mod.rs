@@ -112,6 +112,9 @@ pub struct HeightMap {
     min: f64,
     /// Row-major index of the first node holding `min`.
     lowest: usize,
+    /// The shortest wavelength the map holds (length), computed on first use
+    /// ([`HeightMap::shortest_wavelength`]).
+    shortest: std::sync::OnceLock<f64>,
 }
 
 impl HeightMap {
@@ -203,7 +206,19 @@ impl HeightMap {
             heights,
             min,
             lowest,
+            shortest: std::sync::OnceLock::new(),
         })
+    }
+
+    /// The shortest wavelength the map holds (length): that of the smallest |q| beyond which
+    /// the map's spectrum holds at most [`crate::scene::roughness::SLOPE_TAIL`] of its
+    /// mean-square slope, the map windowed so that its edges add no power
+    /// ([`crate::scene::roughness::shortest_wavelength`]). Two spacings for a map
+    /// rough down to its nodes; the cut-off of a band-limited one. Computed once.
+    pub fn shortest_wavelength(&self) -> f64 {
+        *self
+            .shortest
+            .get_or_init(|| crate::scene::roughness::shortest_wavelength(self))
     }
 
     /// Reads a map from `path`, with lattice spacing `spacing` (length, the

@@ -74,6 +74,58 @@ pub(super) fn modes(map: &HeightMap) -> Vec<Mode> {
     modes
 }
 
+/// The fraction of a map's mean-square slope that its modes beyond its shortest wavelength
+/// may hold ([`shortest_wavelength`]): a hundredth, so that bilinear interpolation on a grid
+/// resolving that wavelength misses at most a tenth of the rms slope.
+pub const SLOPE_TAIL: f64 = 0.01;
+
+/// The shortest wavelength `map` holds (length): 2π/q_s, with q_s the smallest |q| beyond which
+/// the modes hold at most [`SLOPE_TAIL`] of the mean-square slope. The map, less its mean, is
+/// first multiplied by a Hann window along x and y, so that the jump between opposite edges
+/// of a map that is not periodic adds no spurious power at short wavelengths. At least two
+/// spacings (the shortest a lattice holds).
+pub fn shortest_wavelength(map: &HeightMap) -> f64 {
+    let (nx, ny, dx) = (map.nx(), map.ny(), map.spacing());
+    let floor = 2.0 * dx;
+    let mean = map.heights().iter().sum::<f64>() / map.heights().len() as f64;
+    let hann = |i: usize, n: usize| {
+        (std::f64::consts::PI * (i as f64 + 0.5) / n as f64)
+            .sin()
+            .powi(2)
+    };
+    let wx: Vec<f64> = (0..nx).map(|i| hann(i, nx)).collect();
+    let wy: Vec<f64> = (0..ny).map(|j| hann(j, ny)).collect();
+    let windowed: Vec<f64> = map
+        .heights()
+        .iter()
+        .enumerate()
+        .map(|(k, &h)| (h - mean) * wx[k % nx] * wy[k / nx])
+        .collect();
+    let Ok(windowed) = HeightMap::new(nx, ny, dx, windowed) else {
+        // A map flat after the window (e.g. a single sloped plane of two nodes): nothing short.
+        return floor;
+    };
+    let mut slope: Vec<(f64, f64)> = modes(&windowed)
+        .into_iter()
+        .map(|m| (m.q, m.weight * m.q * m.q * m.psd))
+        .collect();
+    let total: f64 = slope.iter().map(|s| s.1).sum();
+    if !(total > 0.0) {
+        return floor;
+    }
+    slope.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut tail = 0.0;
+    let mut q_s = slope[0].0;
+    for &(q, s) in &slope {
+        if tail + s > SLOPE_TAIL * total {
+            q_s = q;
+            break;
+        }
+        tail += s;
+    }
+    (2.0 * std::f64::consts::PI / q_s).max(floor)
+}
+
 /// The map's statistics, treating it as one period of a periodic surface.
 pub fn statistics(map: &HeightMap) -> Statistics {
     let (mean, rms_height) = mean_and_rms(map.heights());

@@ -441,3 +441,38 @@ fn the_surface_round_trips_through_npy_and_its_sidecar_says_what_it_is() {
     let achieved: Statistics = serde_json::from_value(meta["statistics"].clone()).unwrap();
     assert!(rel(achieved.rms_slope, 0.05) < 1e-9);
 }
+
+#[test]
+fn the_shortest_wavelength_is_the_cut_off_of_a_band_and_long_for_a_smooth_tip() {
+    // Band-limited surfaces: their cut-off within a tenth (the window spreads each mode over
+    // a few neighbours, so a band's edge blurs by that much), whatever H.
+    for (hurst, cutoff) in [(0.8, 4.0), (0.8, 16.0), (0.3, 8.0), (1.0, 8.0)] {
+        let params = RoughnessParams {
+            cutoff: Some(cutoff),
+            seed: 5,
+            ..band_256(hurst, 5)
+        };
+        let l = shortest_wavelength(&generate(&params).unwrap());
+        assert!(
+            (0.9 * cutoff..=1.1 * cutoff).contains(&l),
+            "H = {hurst}, cut-off {cutoff}: shortest wavelength {l}"
+        );
+    }
+    // A paraboloid sampled as a map (not periodic: its edges jump) holds nothing short: the
+    // window keeps the jump out of the spectrum.
+    let n = 129;
+    let h: Vec<f64> = (0..n * n)
+        .map(|k| {
+            let (x, y) = ((k % n) as f64 - 64.0, (k / n) as f64 - 64.0);
+            (x * x + 2.0 * y * y) / 200.0
+        })
+        .collect();
+    let tip = HeightMap::new(n, n, 1.0, h).unwrap();
+    let l = tip.shortest_wavelength();
+    assert!(l > 20.0, "paraboloid: shortest wavelength {l} spacings");
+    // Noise on every node: two spacings.
+    let mut noise = super::noise::Normals::new(3);
+    let h: Vec<f64> = (0..64 * 64).map(|_| noise.pair().0).collect();
+    let l = shortest_wavelength(&HeightMap::new(64, 64, 0.5, h).unwrap());
+    assert!((1.0..1.5).contains(&l), "white noise: {l}");
+}
