@@ -5,8 +5,10 @@
 //! ends on the contact that the one-piece non-adhesive press builds, so its pull-off is
 //! today's; a rough one keeps what formed on the way in.
 
-use super::emit::{record, Emitter};
-use super::equilibrium::{equilibrate, Fields, Reached};
+use super::cost::Work;
+use super::emit::{force_of, record, Emitter};
+use super::equilibrium::{settle, solve_fixed, Equilibrium, Fields, Held, Reached};
+use super::onsets::JUMP_FRACTION;
 use super::state::{Phase, State};
 use super::SolverError;
 use crate::backend::Backend;
@@ -19,9 +21,24 @@ const TARGET_TOLERANCE: f64 = 1e-3;
 /// stops here with an error).
 const MAX_LOADING_STEPS: usize = 100_000;
 
+/// Halvings of a loading step at most, while its cascade moves the force from that of the
+/// contact it started from by more than [`JUMP_FRACTION`]: a jump (a patch snapping in or
+/// off) is then located within 1/64 of a step, and both its sides are recorded.
+pub const JUMP_HALVINGS: u32 = 6;
+
+/// The range of the part of a step's force discrepancy (the cascade's change of the force)
+/// that its first half shows when the change is spread over the step (a contact growing
+/// smoothly, about half): below it the change lies in the step's second half, above it in
+/// its first (a jump).
+const SMOOTH_PART: (f64, f64) = (0.2, 0.8);
+
 /// Press on from the first touch to the model's preload, recording each loading step's
 /// state ([`Phase::Loading`]); returns the fields and the last state, where the pull-off
-/// starts.
+/// starts. A step whose cascade (attachments where the gap closed, detachments beyond σ_c)
+/// moves the force by more than [`JUMP_FRACTION`] (of the largest force so far) from the force
+/// of the contact set it started from, solved at the step's end, is taken again in halves, up to [`JUMP_HALVINGS`]
+/// times: a smooth growth of the contact then falls below the fraction, while a jump does
+/// not, and is recorded as [`Phase::LoadingJump`] within 1/64 of a step of the state before it.
 pub(super) fn press<B: Backend>(
     backend: &mut B,
     model: &Model,
@@ -34,31 +51,109 @@ pub(super) fn press<B: Backend>(
     let mut c = backend.mask()?;
     backend.upload_mask(&mut c, &touch)?;
     let mut fields = Fields::new(backend, c)?;
+    // The state a step starts from, to take the step again in halves.
+    let mut saved_c = backend.mask()?;
+    let mut saved_p = backend.field()?;
     let domain = (model.nx * model.ny) as f64 * model.dx * model.dx;
     let mut last: Option<State> = None;
     let mut before: Option<(f64, f64)> = None;
-    for step in 1..=MAX_LOADING_STEPS {
+    let mut d_from = loading.d_touch;
+    let mut recorded = 0;
+    // The largest |F| of the loading's states so far (force).
+    let mut seen: f64 = 0.0;
+    // The depth schedule's next step (it moves on once a step lands on it whole).
+    let mut planned = 1;
+    for _ in 1..=MAX_LOADING_STEPS {
         if !out.go_on() {
             return Err(SolverError::Interrupted);
         }
-        let d = match loading.target {
-            LoadTarget::Depth(d_pre) => loading.depth_approach(step, d_pre),
+        let d_planned = match loading.target {
+            LoadTarget::Depth(d_pre) => loading.depth_approach(planned, d_pre),
             LoadTarget::Force(goal) => aimed(&loading, last.as_ref(), before, goal, |s| s.force),
             LoadTarget::AreaFraction(goal) => {
                 aimed(&loading, last.as_ref(), before, goal * domain, |s| s.area)
             }
         };
-        let mut eq = equilibrate(backend, model, &mut fields, d, model.sigma_c)?;
-        let (state, _) = record(
-            backend,
-            model,
-            &fields.c,
-            &fields.p,
-            step,
-            Phase::Loading,
-            d,
-            &eq,
-        )?;
+        // Sub-steps towards the planned approach: a step whose cascade moves the force too
+        // far is taken again in half. If the half moves it by a middling part of what the
+        // whole did (SMOOTH_PART), the change is spread over the step (the contact grows
+        // smoothly) and the whole step is taken after all; if by nearly all of it, the jump
+        // lies in the half, which is halved again, down to 1/2^JUMP_HALVINGS of the step; if
+        // by little, the half is kept and the jump sought in the rest.
+        let full = d_planned - d_from;
+        let mut halvings = 0;
+        // The discrepancy of the try twice as long as this one (force), and whether the next
+        // try is taken whole without the test.
+        let mut parent: Option<f64> = None;
+        let mut whole = false;
+        // The work of the tries taken again.
+        let mut spent = Work::default();
+        let (state, mut eq) = loop {
+            let d = if halvings == 0 {
+                d_planned
+            } else {
+                d_from + full / f64::from(1u32 << halvings)
+            };
+            backend.copy_mask(&fields.c, &mut saved_c)?;
+            backend.copy(&fields.p, &mut saved_p)?;
+            let mut eq = Equilibrium::default();
+            eq.add_solve(solve_fixed(backend, model, &mut fields, d)?);
+            let kept = force_of(backend, model, &fields.c, &fields.p)?;
+            eq.absorb(settle(
+                backend,
+                model,
+                &mut fields,
+                d,
+                model.sigma_c,
+                Held::Solved,
+            )?);
+            let (state, _) = record(
+                backend,
+                model,
+                &fields.c,
+                &fields.p,
+                recorded + 1,
+                Phase::Loading,
+                d,
+                &eq,
+            )?;
+            // Measured against the largest force of the loading so far, so that a force
+            // passing through zero does not count as a jump.
+            let size = state.force.abs().max(kept.abs()).max(seen);
+            let moved = (state.force - kept).abs();
+            let jumped = !whole && moved > JUMP_FRACTION * size;
+            let smooth = parent.is_some_and(|whole_moved| {
+                moved > SMOOTH_PART.0 * whole_moved && moved < SMOOTH_PART.1 * whole_moved
+            });
+            if !jumped || halvings == JUMP_HALVINGS || smooth {
+                if !smooth || !jumped {
+                    let phase = if jumped {
+                        Phase::LoadingJump
+                    } else {
+                        Phase::Loading
+                    };
+                    eq.work.add(spent);
+                    break (State { phase, ..state }, eq);
+                }
+                // Spread over the step: take the try twice as long, whole.
+                halvings -= 1;
+                whole = true;
+            } else {
+                halvings += 1;
+            }
+            spent.add(eq.work);
+            parent = Some(moved);
+            backend.copy_mask(&saved_c, &mut fields.c)?;
+            backend.copy(&saved_p, &mut fields.p)?;
+            fields.u_valid = false;
+        };
+        recorded += 1;
+        let d = state.d;
+        d_from = d;
+        seen = seen.max(state.force.abs());
+        if halvings == 0 {
+            planned += 1;
+        }
         let done = match loading.target {
             LoadTarget::Depth(d_pre) => d >= d_pre,
             LoadTarget::Force(goal) => state.force >= goal * (1.0 - TARGET_TOLERANCE),

@@ -75,7 +75,7 @@ impl Outcome {
         let last_dx = self.states.last()?.dx;
         self.states
             .iter()
-            .filter(|s| s.dx == last_dx && s.phase != Phase::Loading)
+            .filter(|s| s.dx == last_dx && !s.phase.is_loading())
             .min_by(|a, b| a.force.total_cmp(&b.force))
     }
 

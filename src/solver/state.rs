@@ -25,6 +25,20 @@ pub enum Phase {
     /// A step of the loading phase: the indenter pressed on, elements attaching where their
     /// gap closes (the pull-off starts from its last state).
     Loading,
+    /// A step of the loading phase whose cascade moved the force by more than
+    /// [`crate::solver::protocol::JUMP_FRACTION`] however short it was taken (a patch snapping
+    /// in, the first touch snapping to a finite contact): with the loading state before it,
+    /// within 1/64 of a load step, the two sides of the jump.
+    #[serde(rename = "loading-jump")]
+    LoadingJump,
+}
+
+impl Phase {
+    /// Whether the state belongs to the loading phase ([`Phase::Loading`] or
+    /// [`Phase::LoadingJump`]).
+    pub fn is_loading(self) -> bool {
+        matches!(self, Phase::Loading | Phase::LoadingJump)
+    }
 }
 
 /// One converged state. Dimensional values are in the scene's units; `*_bar` values are

@@ -10,7 +10,7 @@ use jkrbem::solver::{self, Phase, State};
 fn from_d0(states: &[State]) -> Vec<&State> {
     let k = states
         .iter()
-        .position(|s| s.phase != Phase::Loading)
+        .position(|s| !s.phase.is_loading())
         .expect("a pull-off");
     // The press's own state (the one-piece approach, or the last loading step) is where the
     // pull-off starts; compare from the first pull-off state on.
@@ -43,11 +43,8 @@ fn a_sphere_pressed_on_to_d0_pulls_off_as_the_one_piece_press_does() {
             out
         };
         let (a, b) = (run(&today), run(&pressed));
-        let loading_states: Vec<&State> = b
-            .states
-            .iter()
-            .filter(|s| s.phase == Phase::Loading)
-            .collect();
+        let loading_states: Vec<&State> =
+            b.states.iter().filter(|s| s.phase.is_loading()).collect();
         assert!(loading_states.len() >= 2);
         // The press rises monotonically to d0, in contact from the first step.
         assert!(loading_states.windows(2).all(|w| w[1].d > w[0].d));
@@ -140,11 +137,11 @@ fn a_rough_sphere_is_pressed_on_then_pulled_off() {
     for seed in [1, 2] {
         let out = run(&rough_sphere(0.05, seed));
         let phases: Vec<Phase> = out.states.iter().map(|s| s.phase).collect();
-        let first_pull = phases.iter().position(|&p| p != Phase::Loading).unwrap();
+        let first_pull = phases.iter().position(|&p| !p.is_loading()).unwrap();
         assert!(first_pull > 2, "loading first");
-        assert!(phases[first_pull..].iter().all(|&p| p != Phase::Loading));
+        assert!(phases[first_pull..].iter().all(|&p| !p.is_loading()));
         let min = out.force_minimum().unwrap();
-        assert_ne!(min.phase, Phase::Loading);
+        assert!(!min.phase.is_loading());
         println!(
             "rough sphere 64², rms slope 0.05, seed {seed}: |min F̄| = {:.4} (smooth {f_smooth:.4}), \
              {} loading states",

@@ -20,6 +20,7 @@ pub fn progress_message(model: &Model, s: &State, held: bool, count: &StepCount)
         Phase::Onset => "onset",
         Phase::Regrid => "re-grid",
         Phase::Loading => "loading",
+        Phase::LoadingJump => "loading, a jump",
         Phase::Jump => "jump",
     };
     format!(
