@@ -919,6 +919,29 @@ fn generic_runs(
         .collect()
 }
 
+/// The [`Truth::FinerGrid`] of a case: the mean over the grid phases of the same runs on a
+/// grid twice finer than the ladder's finest, and the phases' spread over √P.
+fn finer_grid_truth(
+    req: &GenericCoverageRequest,
+    (name, scene): (&str, &Scene),
+    margin: f64,
+    shift: (f64, f64),
+    watch: &dyn Watch,
+) -> Result<(f64, f64), RunError> {
+    let nx = req.grids[req.grids.len() - 1] * 2;
+    let fine = generic_runs(req, (name, scene), nx, margin, shift, watch)?;
+    let v: Vec<f64> = fine.iter().filter_map(|r| r.f_ad_bar).collect();
+    if v.len() < 2 {
+        return Err(failed(format!(
+            "{name}: the finer grid {nx} did not reach the force minimum"
+        )));
+    }
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let sd = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+    Ok((mean, sd / n.sqrt()))
+}
+
 /// Run (or reuse) every case of shapes without a convergence law, extrapolate each and hold
 /// it against its truth. Every grid is checked to build before any work.
 pub fn generic_coverage(
@@ -958,27 +981,28 @@ pub fn generic_coverage(
     for (name, scene, truth) in &req.scenes {
         for &margin in &req.margins {
             for &shift in &req.phase_shifts {
-                let mut runs = Vec::new();
-                for &nx in &req.grids {
-                    runs.extend(generic_runs(req, (name, scene), nx, margin, shift, watch)?);
-                }
-                let (reference, reference_uncertainty) = match *truth {
-                    Truth::ClosedForm(_, f) => (f, 0.0),
-                    Truth::FinerGrid => {
-                        let nx = req.grids[req.grids.len() - 1] * 2;
-                        let fine = generic_runs(req, (name, scene), nx, margin, shift, watch)?;
-                        let v: Vec<f64> = fine.iter().filter_map(|r| r.f_ad_bar).collect();
-                        if v.len() < 2 {
-                            return Err(failed(format!(
-                                "{name}: the finer grid {nx} did not reach the force minimum"
-                            )));
-                        }
-                        let n = v.len() as f64;
-                        let mean = v.iter().sum::<f64>() / n;
-                        let sd =
-                            (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
-                        (mean, sd / n.sqrt())
+                // A run that fails (a contact at the domain's edge, say) makes its case a
+                // refusal, counted as not held, rather than ending the study.
+                let ran = (|| -> Result<_, RunError> {
+                    let mut runs = Vec::new();
+                    for &nx in &req.grids {
+                        runs.extend(generic_runs(req, (name, scene), nx, margin, shift, watch)?);
                     }
+                    let truth = match *truth {
+                        Truth::ClosedForm(_, f) => (f, 0.0),
+                        Truth::FinerGrid => {
+                            finer_grid_truth(req, (name, scene), margin, shift, watch)?
+                        }
+                    };
+                    Ok((runs, truth))
+                })();
+                let (runs, (reference, reference_uncertainty)) = match ran {
+                    Ok(r) => r,
+                    Err(RunError::Failed(why)) => {
+                        watch.warning(&format!("{name}, margin {margin}: a run failed: {why}"));
+                        (Vec::new(), (f64::NAN, f64::NAN))
+                    }
+                    Err(e) => return Err(e),
                 };
                 let limit = generic_limit::grids_of(&runs).and_then(|g| generic_limit::limit(&g));
                 let finest = req.grids[req.grids.len() - 1];
@@ -987,7 +1011,7 @@ pub fn generic_coverage(
                     .filter(|r| r.nx == finest)
                     .filter_map(|r| r.f_ad_bar)
                     .collect();
-                let own = own.iter().sum::<f64>() / own.len().max(1) as f64;
+                let own = own.iter().sum::<f64>() / own.len() as f64;
                 let grids = req
                     .grids
                     .iter()
