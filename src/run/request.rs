@@ -465,8 +465,8 @@ impl Request {
         if self.convolution == Convolution::Periodic && scene.window_half().is_none() {
             return Err(input(format!(
                 "{CONVOLUTION} periodic is for a surface periodic over the domain, a height map \
-                 on its window (a nominally flat rough or a wavy surface): the {} is an isolated \
-                 contact, which needs {CONVOLUTION} padded",
+                 that is one period of it (a nominally flat rough or a wavy surface): the {} is \
+                 an isolated contact, which needs {CONVOLUTION} padded",
                 scene.indenter.name()
             )));
         }
