@@ -14,7 +14,7 @@
 //!   period is n·s × m·s (node n wraps onto node 0), not the nodes' hull (n − 1)·s × (m − 1)·s,
 //!   and the heights between the last node and the first are interpolated across that seam.
 //!   The domain is the whole period (a window given must be one). A map whose seam jumps by
-//!   far more than its steps between neighbouring nodes ([`SEAM_STEP_LIMIT`]) is not periodic
+//!   far more than its steps between neighbouring nodes (`SEAM_STEP_LIMIT`) is not periodic
 //!   and is refused.
 //!
 //! Heights are measured from the map's lowest node (so a height map's approach d is too)
@@ -163,7 +163,7 @@ impl MeasuredSurface {
     /// interpolated across the seam), the domain is that whole period. `x`, `y` (x0,x1 and
     /// y0,y1 in the map's centred coordinates, length; `None`: the period centred on the map)
     /// may move the period's origin but must span the period. Refused, naming the map's
-    /// parameter, where the map is not periodic ([`SEAM_STEP_LIMIT`]), and naming the
+    /// parameter, where the map is not periodic (`SEAM_STEP_LIMIT`), and naming the
     /// window's where a window given is not one period long.
     pub fn on_period(
         map: HeightMap,
