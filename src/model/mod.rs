@@ -4,8 +4,8 @@
 //! module builds the model.
 
 use crate::run::schema::{
-    APEX_OFFSET, BACKEND, CG_ACCEPT, CG_MAX_ITERATIONS, CG_TOLERANCE, E_STAR, GRID, GRID_Y,
-    HEIGHT_MAP, INDENTER, MARGIN, MESH_ANGLE, PRELOAD_AREA, PRELOAD_DEPTH, PRELOAD_FORCE,
+    APEX_OFFSET, BACKEND, CG_ACCEPT, CG_MAX_ITERATIONS, CG_TOLERANCE, CONVOLUTION, E_STAR, GRID,
+    GRID_Y, HEIGHT_MAP, INDENTER, MARGIN, MESH_ANGLE, PRELOAD_AREA, PRELOAD_DEPTH, PRELOAD_FORCE,
     ROUGHNESS, START_RADIUS, STEPS, WORK_OF_ADHESION,
 };
 use crate::scene::{FirstContact, Indenter, PullOffHint, Scene};
@@ -250,7 +250,8 @@ impl Model {
     }
 
     /// The model of a height map placed on a window of half-widths `half` (length): the
-    /// window is the domain (Δx = its width / Nx, Ny fitted to its aspect unless given), the
+    /// window is the domain (Δx = its width / Nx, Ny fitted to its aspect unless given; on a
+    /// periodic map's period, Ny spans the period exactly: [`periodic_rows`]), the
     /// surface is pressed on from its first touch (to [`DEFAULT_PRELOAD_AREA`] of the domain
     /// unless a preload is given), and the load steps are sized from the approach at which
     /// the indenter's height falls below the approach over twice that area (the bearing
@@ -262,8 +263,13 @@ impl Model {
         (half_x, half_y): (f64, f64),
     ) -> Result<Self, ModelError> {
         let dx = 2.0 * half_x / opt.nx as f64;
-        let need_y = ((2.0 * half_y / dx - 1e-9).ceil() as usize).max(1);
-        let ny = opt.ny.unwrap_or(need_y.next_power_of_two().max(MIN_GRID));
+        let ny = match periodic_map(scene) {
+            Some(m) => periodic_rows(m, opt, &mesh, dx)?,
+            None => {
+                let need_y = ((2.0 * half_y / dx - 1e-9).ceil() as usize).max(1);
+                opt.ny.unwrap_or(need_y.next_power_of_two().max(MIN_GRID))
+            }
+        };
         let unknown = FirstContact {
             a: 0.0,
             b: 0.0,
@@ -534,6 +540,78 @@ impl Model {
             }
         }
         m
+    }
+}
+
+/// The map of `scene` where it is one period of a periodic surface
+/// ([`crate::scene::MeasuredSurface::on_period`]).
+fn periodic_map(scene: &Scene) -> Option<&crate::scene::MeasuredSurface> {
+    match scene.indenter {
+        Indenter::HeightMap(ref m) if m.is_periodic() => Some(m),
+        _ => None,
+    }
+}
+
+/// The rows of a periodic map's domain at the element side `dx` (length, the period along x
+/// over Nx): the period along y in elements, which must be a whole power of two in
+/// [[`MIN_GRID`], [`MAX_GRID`]] (the periodic convolution's domain is the period along both
+/// axes, with square elements), and ⟨grid_y⟩, if given, that number. The mesh must not be
+/// turned: a turned grid does not repeat with the map.
+fn periodic_rows(
+    map: &crate::scene::MeasuredSurface,
+    opt: &ModelOptions,
+    mesh: &MeshAngle,
+    dx: f64,
+) -> Result<usize, ModelError> {
+    if !mesh.is_aligned() {
+        return Err(invalid(
+            MESH_ANGLE,
+            compact(opt.mesh_angle_deg),
+            format!(
+                "0 under {CONVOLUTION} periodic: the domain is the map's period, which a grid \
+                 turned against the map does not repeat"
+            ),
+        ));
+    }
+    let (px, py) = map.period();
+    let rows = py / dx;
+    let whole = rows.round();
+    let fits = (rows - whole).abs() <= 1e-6 * rows.max(1.0) && {
+        let n = whole as usize;
+        (MIN_GRID..=MAX_GRID).contains(&n) && n.is_power_of_two()
+    };
+    if !fits {
+        return Err(invalid(
+            GRID,
+            opt.nx,
+            format!(
+                "under {CONVOLUTION} periodic the domain is the map's period along both axes \
+                 ({} × {}), in square elements: Δx = {}/{} leaves {} elements along y, which \
+                 must be a power of two from {MIN_GRID} to {MAX_GRID}; give a grid that does \
+                 (the map's sides' ratio must be a power of two, and its shorter side at least \
+                 {MIN_GRID} elements)",
+                compact(px),
+                compact(py),
+                compact(px),
+                opt.nx,
+                crate::text::compact_digits(rows, 4),
+            ),
+        ));
+    }
+    let rows = whole as usize;
+    match opt.ny {
+        Some(ny) if ny != rows => Err(invalid(
+            GRID_Y,
+            ny,
+            format!(
+                "{rows} under {CONVOLUTION} periodic at {GRID} {}: the domain is the map's \
+                 period along y, {} long, in elements of Δx = {} (leave it out to take that)",
+                opt.nx,
+                compact(py),
+                compact(dx)
+            ),
+        )),
+        _ => Ok(rows),
     }
 }
 

@@ -302,7 +302,8 @@ impl Request {
     }
 
     /// The measured surface: `map` if given, else read from [`Request::height_map`]; placed
-    /// on the window asked for, else at its apex where it has one, else on the whole map.
+    /// on its period under the periodic convolution, else on the window asked for, else at
+    /// its apex where it has one, else on the whole map.
     fn height_map_indenter(&self, map: Option<HeightMap>) -> Result<Indenter, RunError> {
         let (map, name) = match (map, &self.height_map) {
             (Some(map), _) => (map, "the array given".to_string()),
@@ -323,7 +324,10 @@ impl Request {
                 )))
             }
         };
-        let surface = if self.window_x.is_some() || self.window_y.is_some() {
+        let surface = if self.convolution == Convolution::Periodic {
+            // One period of a periodic surface: the domain is its period.
+            MeasuredSurface::on_period(map, &name, self.window_x, self.window_y)
+        } else if self.window_x.is_some() || self.window_y.is_some() {
             MeasuredSurface::on_window(map, &name, self.window_x, self.window_y)
         } else {
             MeasuredSurface::new(map, &name)
@@ -461,8 +465,8 @@ impl Request {
         if self.convolution == Convolution::Periodic && scene.window_half().is_none() {
             return Err(input(format!(
                 "{CONVOLUTION} periodic is for a surface periodic over the domain, a height map \
-                 on its window (a nominally flat rough or a wavy surface): the {} is an isolated \
-                 contact, which needs {CONVOLUTION} padded",
+                 that is one period of it (a nominally flat rough or a wavy surface): the {} is \
+                 an isolated contact, which needs {CONVOLUTION} padded",
                 scene.indenter.name()
             )));
         }

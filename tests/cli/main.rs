@@ -15,6 +15,7 @@ mod hardening_collect;
 mod hardening_files;
 mod hardening_inputs;
 mod hardening_reference;
+mod periodic_map;
 mod robustness;
 mod roughness;
 mod streams;

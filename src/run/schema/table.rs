@@ -157,10 +157,11 @@ pub const WINDOW_X: &Spec = &spec(
     "length",
     Kind::Pair(Range::closed(-MAX_INPUT, MAX_INPUT)),
     Chosen("the whole map"),
-    "Height map: the domain's extent along x, x0,x1, in the map's coordinates (its first \
-     node at 0). With ⟨window_y⟩; the default is the whole map, unless the map is convex about \
+    "Height map: the domain's extent along x, x0,x1, in the map's coordinates (centred on \
+     the map). With ⟨window_y⟩; the default is the whole map, unless the map is convex about \
      its lowest node and holds the first contact of c̄0 (then the domain is that contact and \
-     its margin, as for an ellipsoid).",
+     its margin, as for an ellipsoid). Under ⟨convolution⟩ periodic the domain is the map's \
+     whole period (n nodes at spacing s: n·s), the default; a window given must span it.",
 );
 /// The window of a height map that is the domain, along y.
 pub const WINDOW_Y: &Spec = &spec(
@@ -437,7 +438,9 @@ pub const CONVOLUTION: &Spec = &spec(
     "Convolution: `padded` (an isolated contact: zero padding, the exact non-periodic sum) or \
      `periodic` (a surface periodic over the domain, such as a nominally flat rough surface or \
      a wave: the elements' influence summed over the periodic images, the approach measured \
-     from the elastic surface's mean plane; an isolated contact would feel its images).",
+     from the elastic surface's mean plane; an isolated contact would feel its images). \
+     Periodic is for a height map that is one period of its surface: the domain is its period \
+     n·s × m·s (heights wrap across the seam), and a map that is not periodic is refused.",
 );
 /// Extrapolation.
 pub const EXTRAPOLATE: &Spec = &spec(

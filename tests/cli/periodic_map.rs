@@ -1,0 +1,138 @@
+//! `--convolution periodic` on a height map, as the command line words it: the map is one
+//! period (its domain the period n·s, not the nodes' hull), a map that is not periodic is
+//! refused naming `--height-map`, and a window, a grid or a turned mesh that does not repeat
+//! with the map is refused naming its flag, before any work.
+
+use crate::common::{jkrbem, stderr};
+use std::f64::consts::PI;
+use std::path::Path;
+
+/// Nodes along x (one wavelength) and y, and their spacing (length).
+const NX: usize = 64;
+const NY: usize = 16;
+const SPACING: &str = "0.015625";
+
+/// A text grid of NX × NY nodes of `f(i, j)`, written to `dir/name`.
+fn write_map(dir: &Path, name: &str, f: impl Fn(usize, usize) -> f64) {
+    let text: String = (0..NY)
+        .map(|j| {
+            let row: Vec<String> = (0..NX).map(|i| format!("{:.12e}", f(i, j))).collect();
+            row.join(" ") + "\n"
+        })
+        .collect();
+    std::fs::write(dir.join(name), text).unwrap();
+}
+
+/// A wave of one wavelength along x (λ = 1, amplitude 0.02), uniform along y: periodic.
+fn wave(i: usize, _j: usize) -> f64 {
+    0.02 * (1.0 - (2.0 * PI * (i as f64 + 0.5) / NX as f64).cos())
+}
+
+/// `simulate` of the map `name` with the periodic convolution and `extra` flags.
+fn run(dir: &Path, name: &str, extra: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "simulate",
+        "--indenter",
+        "height-map",
+        "--height-map",
+        name,
+        "--spacing",
+        SPACING,
+        "--e-star",
+        "1",
+        "--work-of-adhesion",
+        "1.7765e-4",
+        "--convolution",
+        "periodic",
+        "--backend",
+        "cpu",
+        "--preload-area",
+        "0.4",
+    ];
+    args.extend_from_slice(extra);
+    jkrbem(&args, dir)
+}
+
+/// The run was refused before any work (exit 2) naming `flag` and saying each of `words`.
+fn refused(o: &std::process::Output, flag: &str, words: &[&str]) {
+    let err = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains(flag), "{flag} not named: {err}");
+    for w in words {
+        assert!(err.contains(w), "{w:?} not said: {err}");
+    }
+}
+
+#[test]
+fn a_periodic_map_runs_on_its_period() {
+    let dir = tempfile::tempdir().unwrap();
+    write_map(dir.path(), "wave.txt", wave);
+    let o = run(
+        dir.path(),
+        "wave.txt",
+        &["--grid", "64", "--summary", "s.json"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
+    // The domain is the period: 64 × 16 elements of the map's spacing, not the hull's
+    // 63/64 of it.
+    assert_eq!(s["runs"][0]["nx"], 64, "{s}");
+    assert_eq!(s["runs"][0]["ny"], 16, "{s}");
+    // The same window given explicitly, or moved by half a period, runs too.
+    for window in ["-0.5,0.5", "0,1"] {
+        let o = run(
+            dir.path(),
+            "wave.txt",
+            &["--grid", "64", "--window-x", window, "--steps", "20"],
+        );
+        assert!(o.status.success(), "{window}: {}", stderr(&o));
+    }
+}
+
+#[test]
+fn what_does_not_repeat_is_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write_map(d, "wave.txt", wave);
+    // A tilted map: its seam jumps by its whole rise.
+    write_map(d, "tilt.txt", |i, j| {
+        0.001 * i as f64 + 1e-4 * ((i + j) % 3) as f64
+    });
+    refused(
+        &run(d, "tilt.txt", &["--grid", "64"]),
+        "--height-map",
+        &[
+            "is not periodic along x",
+            "one period",
+            "--convolution padded",
+        ],
+    );
+    // The nodes' hull is not the period.
+    refused(
+        &run(
+            d,
+            "wave.txt",
+            &["--grid", "64", "--window-x", "-0.4921875,0.4921875"],
+        ),
+        "--window-x",
+        &["is not a period of", "give a window 1 long, e.g. -0.5,0.5"],
+    );
+    // Rows that are not the period along y, a grid that leaves 4 rows, a turned mesh.
+    refused(
+        &run(d, "wave.txt", &["--grid", "64", "--grid-y", "32"]),
+        "--grid-y",
+        &["--grid-y = 32 is invalid: 16 under --convolution periodic"],
+    );
+    refused(
+        &run(d, "wave.txt", &["--grid", "16"]),
+        "--grid",
+        &["leaves 4 elements along y"],
+    );
+    refused(
+        &run(d, "wave.txt", &["--grid", "64", "--mesh-angle", "45"]),
+        "--mesh-angle",
+        &["does not repeat"],
+    );
+    assert!(!d.join("jkrbem-out").exists(), "nothing written");
+}
