@@ -39,6 +39,7 @@
 //! that also stands out), or an order the data put outside [[`MIN_ORDER`], [`MAX_ORDER`]]
 //! (the best order on [0.05, 8] fits better than every plausible one by Δχ² > 4).
 
+use super::line_fit::{fit_free_line, Point};
 use serde::Serialize;
 
 /// Smallest plausible order of convergence (dimensionless).
@@ -167,30 +168,19 @@ struct GridMean {
     sd: f64,
 }
 
-/// The weighted least-squares line m = v + k·x through the grids at one order: (v, var v,
-/// χ²).
+/// The weighted least-squares line m = v + k·x, x = h^p, through the grids at one order
+/// ([`fit_free_line`], weights 1/se²): (v, var v, χ²).
 fn fit_at(grids: &[GridMean], p: f64) -> Option<(f64, f64, f64)> {
-    let (mut s, mut sx, mut sxx, mut sy, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
-    for g in grids {
-        let w = 1.0 / (g.se * g.se);
-        let x = g.h.powf(p);
-        s += w;
-        sx += w * x;
-        sxx += w * x * x;
-        sy += w * g.mean;
-        sxy += w * x * g.mean;
-    }
-    let det = s * sxx - sx * sx;
-    if !(det.is_finite() && det > 0.0) {
-        return None;
-    }
-    let k = (s * sxy - sx * sy) / det;
-    let v = (sxx * sy - sx * sxy) / det;
-    let chi2 = grids
+    let points: Vec<Point> = grids
         .iter()
-        .map(|g| ((g.mean - v - k * g.h.powf(p)) / g.se).powi(2))
-        .sum();
-    Some((v, sxx / det, chi2))
+        .map(|g| Point {
+            x: g.h.powf(p),
+            y: g.mean,
+            sd: g.se,
+        })
+        .collect();
+    let f = fit_free_line(&points)?;
+    Some((f.intercept, f.intercept_sd * f.intercept_sd, f.chi2))
 }
 
 /// The orders from `lo` to `hi` in [`ORDER_STEP`]s.

@@ -1,22 +1,11 @@
 //! The padded FFT convolution against the direct O(N⁴) influence sum (physics §4).
 
 use crate::common;
+use crate::common::flat_setup as setup;
 
+use jkrbem::backend::cpu::CpuBackend;
 use jkrbem::backend::kernel::direct_convolution;
 use jkrbem::backend::prelude::*;
-use jkrbem::backend::Preconditioner;
-use jkrbem::backend::{cpu::CpuBackend, GridSetup};
-
-fn setup(nx: usize, ny: usize, dx: f64, e_star: f64) -> GridSetup {
-    GridSetup {
-        nx,
-        ny,
-        dx,
-        e_star,
-        profile: vec![0.0; nx * ny],
-        preconditioner: Preconditioner::None,
-    }
-}
 
 /// A deterministic pseudo-random pressure field in [−1, 1).
 fn pressure(n: usize, seed: u64) -> Vec<f64> {

@@ -2,21 +2,10 @@
 //! gets the continuum displacement 2/(E*|q|) within the element's discretisation error, and a
 //! compact patch far from the edges the padded (isolated) displacement plus its images'.
 
+use crate::common::flat_setup as setup;
 use jkrbem::backend::cpu::CpuBackend;
 use jkrbem::backend::prelude::*;
-use jkrbem::backend::{GridSetup, Preconditioner};
 use std::f64::consts::PI;
-
-fn setup(nx: usize, ny: usize, dx: f64, e_star: f64) -> GridSetup {
-    GridSetup {
-        nx,
-        ny,
-        dx,
-        e_star,
-        profile: vec![0.0; nx * ny],
-        preconditioner: Preconditioner::None,
-    }
-}
 
 fn convolve(b: &mut CpuBackend, p: &[f64]) -> Vec<f64> {
     let mut f = b.field().unwrap();

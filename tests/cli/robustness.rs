@@ -9,26 +9,11 @@
 use crate::common;
 use crate::common::SHORT;
 
-use common::{names_in, stderr, wait_for};
+use common::{bin, names_in, output_in as run_in, stderr, wait_for};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::Duration;
-
-fn bin() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_jkrbem"));
-    c.env_remove("JKRBEM_MEMORY_LIMIT");
-    c
-}
-
-fn run_in(dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Output {
-    let mut c = bin();
-    c.args(args).current_dir(dir);
-    for (k, v) in env {
-        c.env(k, v);
-    }
-    c.output().expect("the binary runs")
-}
 
 /// Every file and folder under `dir`, hidden ones included, as relative paths.
 fn listing(dir: &Path) -> BTreeSet<PathBuf> {

@@ -22,10 +22,40 @@ pub fn cpu_backend(model: &Model) -> CpuBackend {
     CpuBackend::new(&model.grid_setup()).expect("grid setup is consistent")
 }
 
+/// A grid of `nx` × `ny` elements of side `dx` (length) on a half-space of contact modulus
+/// `e_star` (force/length²), with a flat profile and no preconditioner: the backends'
+/// convolution alone.
+pub fn flat_setup(nx: usize, ny: usize, dx: f64, e_star: f64) -> jkrbem::backend::GridSetup {
+    jkrbem::backend::GridSetup {
+        nx,
+        ny,
+        dx,
+        e_star,
+        profile: vec![0.0; nx * ny],
+        preconditioner: jkrbem::backend::Preconditioner::None,
+    }
+}
+
 /// The model of R1/R2 = `ratio` (R2 = E* = Δγ = 1).
 pub fn model_for(ratio: f64, options: ModelOptions) -> Model {
     let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).unwrap();
     Model::build(&scene, &options).unwrap()
+}
+
+/// A rough sphere (R = 1, E* = Δγ = 1): the generator's roughness of rms slope `slope` (Hurst
+/// 0.8, cut-off 0.2) added to the sphere.
+pub fn rough_sphere(slope: f64, seed: u64) -> Scene {
+    use jkrbem::scene::roughness::{generate, RoughnessParams};
+    use jkrbem::scene::{Indenter, RoughShape};
+    let params = RoughnessParams {
+        cutoff: Some(0.2),
+        seed,
+        ..RoughnessParams::with_rms_slope(256, 0.025, 0.8, slope)
+    };
+    let map = generate(&params).expect("roughness");
+    let base = Indenter::Ellipsoid { r1: 1.0, r2: 1.0 };
+    let rough = RoughShape::new(base, map, "generated").unwrap();
+    Scene::with_indenter(Indenter::Rough(std::sync::Arc::new(rough)), 1.0, 1.0).unwrap()
 }
 
 /// Run the pull-off of R1/R2 = `ratio` (R2 = E* = Δγ = 1) on the CPU.
@@ -114,17 +144,33 @@ pub fn stdout(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
-/// Run the binary in `dir` with `args` and the environment variables `env`, the memory
-/// limit of the caller's environment removed.
-pub fn run_in(dir: &std::path::Path, args: &[&str], env: &[(&str, &str)]) -> std::process::Output {
+/// The binary as a command, the memory limit of the caller's environment removed.
+pub fn bin() -> std::process::Command {
     let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"));
-    c.env_remove("JKRBEM_MEMORY_LIMIT")
-        .args(args)
-        .current_dir(dir);
+    c.env_remove("JKRBEM_MEMORY_LIMIT");
+    c
+}
+
+/// Run the binary ([`bin`]) in `dir` with `args` and the environment variables `env`; its
+/// output as it came, with no check of its wording (see [`run_in`]).
+pub fn output_in(
+    dir: &std::path::Path,
+    args: &[&str],
+    env: &[(&str, &str)],
+) -> std::process::Output {
+    let mut c = bin();
+    c.args(args).current_dir(dir);
     for (k, v) in env {
         c.env(k, v);
     }
-    let o = c.output().expect("the binary runs");
+    c.output().expect("the binary runs")
+}
+
+/// Run the binary in `dir` with `args` and the environment variables `env`, the memory
+/// limit of the caller's environment removed, and check that it worded every parameter it
+/// names ([`worded`]).
+pub fn run_in(dir: &std::path::Path, args: &[&str], env: &[(&str, &str)]) -> std::process::Output {
+    let o = output_in(dir, args, env);
     worded(&o);
     o
 }

@@ -24,6 +24,8 @@ mod gpu_periodic;
 #[cfg(feature = "gpu")]
 mod gpu_pulloff;
 #[cfg(feature = "gpu")]
+mod gpu_rough;
+#[cfg(feature = "gpu")]
 mod gpu_traffic;
 
 fn main() {
@@ -44,6 +46,7 @@ fn main() {
         all.extend(gpu_fft::trials(missing));
         all.extend(gpu_periodic::trials(missing));
         all.extend(gpu_pulloff::trials(missing));
+        all.extend(gpu_rough::trials(missing));
         all.extend(gpu_traffic::trials(missing));
     }
     libtest_mimic::run(&args, all).exit()

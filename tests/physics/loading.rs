@@ -87,22 +87,6 @@ fn a_sphere_pressed_on_to_d0_pulls_off_as_the_one_piece_press_does() {
     }
 }
 
-/// A rough sphere (R = 1, E* = Δγ = 1): the generator's roughness of rms slope `slope` (Hurst
-/// 0.8, cut-off 0.2) added to the sphere.
-fn rough_sphere(slope: f64, seed: u64) -> jkrbem::scene::Scene {
-    use jkrbem::scene::roughness::{generate, RoughnessParams};
-    use jkrbem::scene::{Indenter, RoughShape, Scene};
-    let params = RoughnessParams {
-        cutoff: Some(0.2),
-        seed,
-        ..RoughnessParams::with_rms_slope(256, 0.025, 0.8, slope)
-    };
-    let map = generate(&params).expect("roughness");
-    let base = Indenter::Ellipsoid { r1: 1.0, r2: 1.0 };
-    let rough = RoughShape::new(base, map, "generated").unwrap();
-    Scene::with_indenter(Indenter::Rough(std::sync::Arc::new(rough)), 1.0, 1.0).unwrap()
-}
-
 #[test]
 fn a_rough_sphere_is_pressed_on_then_pulled_off() {
     let run = |scene: &jkrbem::scene::Scene| {
@@ -128,14 +112,14 @@ fn a_rough_sphere_is_pressed_on_then_pulled_off() {
     );
     let f_smooth = -smooth.outcome.force_minimum().unwrap().f_bar;
     // The zero roughness of a zero slope is the smooth sphere.
-    let flat = run(&rough_sphere(1e-9, 1));
+    let flat = run(&common::rough_sphere(1e-9, 1));
     let f_flat = -flat.force_minimum().unwrap().f_bar;
     assert!(
         (f_flat / f_smooth - 1.0).abs() < 1e-4,
         "{f_flat} vs {f_smooth}"
     );
     for seed in [1, 2] {
-        let out = run(&rough_sphere(0.05, seed));
+        let out = run(&common::rough_sphere(0.05, seed));
         let phases: Vec<Phase> = out.states.iter().map(|s| s.phase).collect();
         let first_pull = phases.iter().position(|&p| !p.is_loading()).unwrap();
         assert!(first_pull > 2, "loading first");
