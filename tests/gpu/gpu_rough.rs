@@ -1,5 +1,5 @@
 //! A generated rough sphere (rms slope 0.1, Hurst 0.8, cut-off 0.2) pressed on and pulled off
-//! on one 64² grid (`--measure adhesive-force`) on the GPU backend (f32) and the CPU backend
+//! on one 32² grid (`--measure adhesive-force`) on the GPU backend (f32) and the CPU backend
 //! (f64; no backend has another precision): |min F̄| must agree within 1e-5 (relative), and the
 //! states around each run's minimum, offset by offset, must be the same states (load step,
 //! phase, contact elements) with F̄ within 1e-5 of |min F̄| and d̄ within 1e-5 of |d̄| at the
@@ -14,7 +14,7 @@ use crate::common;
 
 use common::{gpu_backend, rough_sphere, run_model};
 use jkrbem::model::{Measure, Model, ModelOptions};
-use jkrbem::solver::{self, Outcome, Phase, State};
+use jkrbem::solver::{self, Outcome, State};
 
 /// How many states on each side of the force minimum are compared.
 const AROUND: usize = 5;
@@ -24,7 +24,7 @@ fn slow_rough_sphere_pulloff_matches_cpu() {
     let model = Model::build(
         &scene,
         &ModelOptions {
-            nx: 64,
+            nx: 32,
             measure: Measure::AdhesiveForce,
             ..ModelOptions::default()
         },
@@ -39,7 +39,7 @@ fn slow_rough_sphere_pulloff_matches_cpu() {
     let c = run_model(model.clone()).outcome;
     assert!(c.complete() && c.min_reached(), "CPU run: {:?}", c.error);
     let (fg, fc) = (g.force_minimum().unwrap(), c.force_minimum().unwrap());
-    assert_ne!(fc.phase, Phase::Loading, "the minimum is on the pull-off");
+    assert!(!fc.phase.is_loading(), "the minimum is on the pull-off");
     let rel = (fg.f_bar / fc.f_bar - 1.0).abs();
     // The states around each run's minimum, offset by offset: the same load step, phase and
     // contact set (its element count), and F̄ and d̄ within 1e-5 of |min F̄| and |d̄| there.
@@ -87,7 +87,7 @@ fn slow_rough_sphere_pulloff_matches_cpu() {
     let loading = |o: &Outcome| {
         o.states
             .iter()
-            .filter(|s| s.phase == Phase::Loading)
+            .filter(|s| s.phase.is_loading())
             .count()
     };
     println!(
