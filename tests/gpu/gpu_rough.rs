@@ -3,10 +3,10 @@
 //! (f64; no backend has another precision): |min F̄| must agree within 1e-5 (relative), and the
 //! states around each run's minimum, offset by offset, must be the same states (load step,
 //! phase, contact elements) with F̄ within 1e-5 of |min F̄| and d̄ within 1e-5 of |d̄| at the
-//! minimum. Measured on lavapipe: |min F̄| within 4.7e-7, the 11 states around it within 1.0e-6
-//! in F̄ and 2.0e-6 in d̄ (an onset's approach is located to f32's resolution), and every one of
-//! the 467 states the same on both backends. About 7 minutes on a software adapter on two
-//! cores, hence `slow_`.
+//! minimum. Measured on lavapipe at 32²: |min F̄| within 8.8e-7, the 11 states around it within
+//! 8.8e-7 in F̄ and 1.6e-6 in d̄ (an onset's approach is located to f32's resolution), and every
+//! one of the 450 states the same on both backends (at 64²: 4.7e-7, 1.0e-6, 2.0e-6, 467
+//! states, but 7 minutes on a software adapter). About 40 s on two cores, hence `slow_`.
 //!
 //! Skips with a message when no GPU adapter exists, unless `JKRBEM_REQUIRE_GPU=1`.
 
@@ -84,12 +84,7 @@ fn slow_rough_sphere_pulloff_matches_cpu() {
         .iter()
         .zip(&c.states)
         .position(|(a, b)| (a.step, a.phase, a.n_contact) != (b.step, b.phase, b.n_contact));
-    let loading = |o: &Outcome| {
-        o.states
-            .iter()
-            .filter(|s| s.phase.is_loading())
-            .count()
-    };
+    let loading = |o: &Outcome| o.states.iter().filter(|s| s.phase.is_loading()).count();
     println!(
         "rough sphere (rms slope 0.1, Hurst 0.8) {}×{}: |min F̄| GPU (f32) {:.7} vs CPU (f64) \
          {:.7}, relative difference {rel:.2e}; the {} states around the minimum differ by at \
