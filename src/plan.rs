@@ -398,7 +398,7 @@ pub const GENERIC_MIN_N_D: f64 = 24.0;
 
 /// Elements per shortest wavelength of a height map or a rough shape's roughness (the
 /// wavelength below which it holds a hundredth of its mean-square slope,
-/// [`crate::scene::HeightMap::shortest_wavelength`]: two node spacings for a map rough down to
+/// [`crate::scene::height_map::HeightMap::shortest_wavelength`]: two node spacings for a map rough down to
 /// its nodes, the cut-off of a band-limited one) the coarsest grid of its extrapolation needs:
 /// grids at least this fine all see the surface's shortest features and converge to the
 /// limit of the same interpolated surface, where coarser ones alias them. The rough spheres of

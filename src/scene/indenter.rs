@@ -221,7 +221,7 @@ impl Indenter {
     }
 
     /// The shortest wavelength a height map or a rough shape's roughness holds (length,
-    /// [`HeightMap::shortest_wavelength`]); `None` for the other shapes.
+    /// [`crate::scene::height_map::HeightMap::shortest_wavelength`]); `None` for the other shapes.
     pub fn shortest_wavelength(&self) -> Option<f64> {
         match *self {
             Indenter::HeightMap(ref m) => Some(m.map.shortest_wavelength()),

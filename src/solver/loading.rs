@@ -58,12 +58,11 @@ pub(super) fn press<B: Backend>(
     let mut last: Option<State> = None;
     let mut before: Option<(f64, f64)> = None;
     let mut d_from = loading.d_touch;
-    let mut recorded = 0;
     // The largest |F| of the loading's states so far (force).
     let mut seen: f64 = 0.0;
     // The depth schedule's next step (it moves on once a step lands on it whole).
     let mut planned = 1;
-    for _ in 1..=MAX_LOADING_STEPS {
+    for recorded in 0..MAX_LOADING_STEPS {
         if !out.go_on() {
             return Err(SolverError::Interrupted);
         }
@@ -147,7 +146,6 @@ pub(super) fn press<B: Backend>(
             backend.copy(&saved_p, &mut fields.p)?;
             fields.u_valid = false;
         };
-        recorded += 1;
         let d = state.d;
         d_from = d;
         seen = seen.max(state.force.abs());

@@ -110,7 +110,7 @@ pub fn shortest_wavelength(map: &HeightMap) -> f64 {
         .map(|m| (m.q, m.weight * m.q * m.q * m.psd))
         .collect();
     let total: f64 = slope.iter().map(|s| s.1).sum();
-    if !(total > 0.0) {
+    if total.is_nan() || total <= 0.0 {
         return floor;
     }
     slope.sort_by(|a, b| b.0.total_cmp(&a.0));
