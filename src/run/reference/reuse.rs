@@ -154,9 +154,11 @@ fn report_differences(run: &RunReport, asked: &RunSettings, kind: BackendKind) -
     if run.nx != asked.options.nx || asked.options.ny.is_some_and(|ny| ny != run.ny) {
         why.push(format!("its report's grid is {}", run.grid));
     }
+    // A shape without radii (a power law, a punch, a map, a rough shape) reports the ratio 1;
+    // which shape it is, the recorded settings say.
     let ratio = match (asked.r1, asked.r2) {
         (Some(r1), Some(r2)) => r1 / r2,
-        _ => f64::NAN,
+        _ => run.ratio,
     };
     for (what, got, want) in [
         ("ratio", run.ratio, ratio),
