@@ -390,3 +390,16 @@ pub trait ContactKernels: Device {
 pub trait Backend: CgKernels + ContactKernels {}
 
 impl<B: CgKernels + ContactKernels> Backend for B {}
+
+/// Refuse a setup whose profile is not one value per element.
+pub(crate) fn check_profile(setup: &crate::setup::GridSetup) -> Result<(), BackendError> {
+    let (nx, ny) = (setup.nx, setup.ny);
+    if setup.profile.len() != nx * ny {
+        return Err(BackendError::Unavailable(format!(
+            "profile has {} values, grid needs {}",
+            setup.profile.len(),
+            nx * ny
+        )));
+    }
+    Ok(())
+}

@@ -10,7 +10,7 @@
 
 pub mod spectral;
 
-use super::kernel::{padded_kernel, periodic_symbol, stiffness_spectrum};
+use super::kernel::stiffness_spectrum;
 use super::measure::{self, ChordAxes, ContactMeasure};
 use super::rules::{self, Flip};
 use super::{
@@ -43,7 +43,7 @@ pub struct CpuBackend {
 impl CpuBackend {
     /// Build the backend: plan the transforms and compute the kernel spectrum once.
     pub fn new(setup: &GridSetup) -> Result<Self, BackendError> {
-        check_profile(setup)?;
+        super::check_profile(setup)?;
         Ok(Self::with_periodic(setup, false))
     }
 
@@ -54,7 +54,7 @@ impl CpuBackend {
     /// solve are not taken on it (their bound is the plane's), and a contact at the domain's
     /// edges meets its images, not the edge: such a backend reports none at the edge.
     pub fn new_periodic(setup: &GridSetup) -> Result<Self, BackendError> {
-        check_profile(setup)?;
+        super::check_profile(setup)?;
         if setup.nx < 2 || setup.ny < 1 {
             return Err(BackendError::Unavailable(format!(
                 "a periodic convolution needs at least 2 × 1 elements, not {} × {}",
@@ -66,15 +66,7 @@ impl CpuBackend {
 
     fn with_periodic(setup: &GridSetup, periodic: bool) -> Self {
         let (nx, ny, dx, e) = (setup.nx, setup.ny, setup.dx, setup.e_star);
-        let convolution = if periodic {
-            let mut f = SpectralFilter::new(nx, ny, nx, ny);
-            f.set_symbol(&periodic_symbol(nx, ny, dx, e));
-            f
-        } else {
-            let mut f = SpectralFilter::new(nx, ny, 2 * nx, 2 * ny);
-            f.set_symbol_from_kernel(&padded_kernel(nx, ny, dx, e));
-            f
-        };
+        let convolution = SpectralFilter::influence(nx, ny, dx, e, periodic);
         let preconditioner = match setup.preconditioner {
             Preconditioner::None => None,
             Preconditioner::Stiffness => {
@@ -109,19 +101,6 @@ impl CpuBackend {
             self.slots[num.index()] / d
         }
     }
-}
-
-/// Refuse a setup whose profile is not one value per element.
-fn check_profile(setup: &GridSetup) -> Result<(), BackendError> {
-    let (nx, ny) = (setup.nx, setup.ny);
-    if setup.profile.len() != nx * ny {
-        return Err(BackendError::Unavailable(format!(
-            "profile has {} values, grid needs {}",
-            setup.profile.len(),
-            nx * ny
-        )));
-    }
-    Ok(())
 }
 
 impl Device for CpuBackend {

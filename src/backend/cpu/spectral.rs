@@ -36,6 +36,23 @@ pub struct SpectralFilter {
 }
 
 impl SpectralFilter {
+    /// The elastic operator u = K p of an nx × ny grid of elements of side `dx` (length) on a
+    /// half-space of modulus `e_star` (stress): Love's element kernel, zero-padded to
+    /// 2nx × 2ny (an isolated contact), or summed over the periodic images, unpadded
+    /// (`periodic`; [`crate::backend::kernel::periodic_symbol`]).
+    pub fn influence(nx: usize, ny: usize, dx: f64, e_star: f64, periodic: bool) -> Self {
+        use crate::backend::kernel::{padded_kernel, periodic_symbol};
+        if periodic {
+            let mut f = SpectralFilter::new(nx, ny, nx, ny);
+            f.set_symbol(&periodic_symbol(nx, ny, dx, e_star));
+            f
+        } else {
+            let mut f = SpectralFilter::new(nx, ny, 2 * nx, 2 * ny);
+            f.set_symbol_from_kernel(&padded_kernel(nx, ny, dx, e_star));
+            f
+        }
+    }
+
     /// Plan a filter of transform size mx × my for data of nx × ny (nx ≤ mx, ny ≤ my), with
     /// a unit symbol. Set the symbol with [`Self::set_symbol`] or [`Self::set_symbol_from_kernel`].
     pub fn new(nx: usize, ny: usize, mx: usize, my: usize) -> Self {

@@ -18,7 +18,7 @@ use super::slots::{self, scalars_bytes, SLOTS};
 use super::spectral::{largest_buffer_bytes, GpuSpectralFilter, SpectralKernels};
 use super::traffic;
 use crate::backend::cpu::spectral::SpectralFilter;
-use crate::backend::kernel::{padded_kernel, periodic_symbol, stiffness_spectrum};
+use crate::backend::kernel::stiffness_spectrum;
 use crate::backend::{
     BackendError, CgKernels, CgStop, ChordAxes, ContactChange, ContactKernels, ContactMeasure,
     Counters, Device, ElasticOperator, GridSetup, Preconditioner, Scalars, Slot,
@@ -342,14 +342,8 @@ impl GpuBackend {
         setup: &GridSetup,
         periodic: bool,
     ) -> Result<Self, BackendError> {
+        crate::backend::check_profile(setup)?;
         let (nx, ny) = (setup.nx, setup.ny);
-        if setup.profile.len() != nx * ny {
-            return Err(BackendError::Unavailable(format!(
-                "profile has {} values, grid needs {}",
-                setup.profile.len(),
-                nx * ny
-            )));
-        }
         if !nx.is_power_of_two() || !ny.is_power_of_two() || nx < 4 || ny < 4 {
             return Err(BackendError::GridTooLarge {
                 nx,
@@ -361,15 +355,7 @@ impl GpuBackend {
         check_fits(ctx.limits(), nx, ny)?;
         let (dx, e) = (setup.dx, setup.e_star);
         let kernels = Kernels::new(&ctx);
-        let conv = if periodic {
-            let mut f = SpectralFilter::new(nx, ny, nx, ny);
-            f.set_symbol(&periodic_symbol(nx, ny, dx, e));
-            f
-        } else {
-            let mut f = SpectralFilter::new(nx, ny, 2 * nx, 2 * ny);
-            f.set_symbol_from_kernel(&padded_kernel(nx, ny, dx, e));
-            f
-        };
+        let conv = SpectralFilter::influence(nx, ny, dx, e, periodic);
         let convolution = GpuSpectralFilter::new(&ctx, &kernels.spectral, &conv, nx, ny)?;
         drop(conv);
         let preconditioner = match setup.preconditioner {
