@@ -224,6 +224,9 @@ fn install_signal_handlers() {
     });
 }
 
+/// Stack size of the pool thread that runs a command (bytes): the main thread's usual 8 MiB.
+const MAIN_STACK_BYTES: usize = 8 << 20;
+
 fn main() -> ExitCode {
     // First, while this is the only thread: the environment may be changed only now.
     #[cfg(feature = "gpu")]
@@ -233,7 +236,13 @@ fn main() -> ExitCode {
     let command = values_may_start_with_a_hyphen(Cli::command());
     let cli = Cli::from_arg_matches(&command.get_matches()).unwrap_or_else(|e| e.exit());
     jkrbem::output::file::set_force(cli.force);
-    let result = match cli.command {
+    // The command runs on a thread of rayon's pool (with the main thread's stack size): the
+    // CPU backend's parallel passes then start from a worker, not by handing each call over
+    // from outside the pool (a cost that dominated small grids).
+    let _ = rayon::ThreadPoolBuilder::new()
+        .stack_size(MAIN_STACK_BYTES)
+        .build_global();
+    let result = rayon::scope(move |_| match cli.command {
         Command::Simulate(a) => cli::simulate::run(*a),
         Command::Theory(a) => cli::theory::run(a),
         Command::Sweep(a) => cli::sweep::run(a),
@@ -247,7 +256,7 @@ fn main() -> ExitCode {
         Command::Devices(a) => cli::devices::run(a),
         Command::Bench(a) => cli::bench::run(a),
         Command::Roughness(a) => cli::roughness::run(a),
-    };
+    });
     // What standard output could not take (a closed pipe ends quietly; a full disk or
     // another error is a failure of the run, after its other messages).
     let stdout_error = cli::finish_stdout();

@@ -17,6 +17,7 @@ mod grid;
 mod limits;
 mod options;
 pub mod steps;
+mod window_path;
 
 pub use error::ModelError;
 use grid::{check_grid, check_resolution, invalid};
@@ -24,6 +25,7 @@ pub use grid::{critical_stress, kappa, memory_estimate, MeshAngle};
 pub use limits::*;
 pub use options::{CgSettings, Measure, ModelOptions, Onsets, Preload};
 pub use steps::{LoadPath, LoadTarget, Loading};
+use window_path::WindowGeometry;
 
 /// The numerical model of a scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -253,9 +255,8 @@ impl Model {
     /// window is the domain (Δx = its width / Nx, Ny fitted to its aspect unless given; on a
     /// periodic map's period, Ny spans the period exactly: [`periodic_rows`]), the
     /// surface is pressed on from its first touch (to [`DEFAULT_PRELOAD_AREA`] of the domain
-    /// unless a preload is given), and the load steps are sized from the approach at which
-    /// the indenter's height falls below the approach over twice that area (the bearing
-    /// area; an elastic contact covers about half of it).
+    /// unless a preload is given), and the load steps are sized from the geometry and the
+    /// adhesion (see `window_path`).
     fn on_window(
         scene: &Scene,
         opt: &ModelOptions,
@@ -294,35 +295,37 @@ impl Model {
             .filter(|h| h.is_finite())
             .collect();
         heights.sort_by(f64::total_cmp);
-        let Some(&d_touch) = heights.first() else {
+        if heights.is_empty() {
             return Err(invalid(
                 INDENTER,
                 scene.indenter.describe(),
                 "a surface that the half-space can touch somewhere in the domain",
             ));
+        }
+        let geometry = WindowGeometry {
+            heights: &heights,
+            window: (half_x * half_y * 4.0 / (dx * dx)).round().max(1.0) as usize,
+            dx,
+            e_star: scene.e_star,
+            work_of_adhesion: scene.work_of_adhesion,
         };
-        let window = (half_x * half_y * 4.0 / (dx * dx)).round().max(1.0) as usize;
-        let k = ((2.0 * DEFAULT_PRELOAD_AREA * window as f64) as usize).min(heights.len() - 1);
-        let depth = (heights[k] - d_touch).max(f64::MIN_POSITIVE);
-        let steps = opt.steps as f64;
-        model.load = LoadPath {
-            d0: d_touch + depth,
-            d_step: depth * (1.0 + WINDOW_PULL_BELOW) / steps,
-            d_final: d_touch - WINDOW_FINAL_BELOW * depth,
-            d_end: d_touch - WINDOW_PULL_BELOW * depth,
-        };
+        let path = geometry.path(opt.steps, opt.preload);
+        model.load = path.load;
         model.initial = FirstContact {
             a: 0.0,
             b: 0.0,
-            d: d_touch + depth,
+            d: path.load.d0,
             force: 0.0,
-            // The pressure a contact of the domain's size pressed by `depth` carries.
-            p0: scene.e_star * depth / (2.0 * half_x),
+            // The pressure a contact of the domain's size pressed by the depth carries.
+            p0: scene.e_star * path.depth / (2.0 * half_x),
         };
         let preload = opt
             .preload
             .unwrap_or(Preload::AreaFraction(DEFAULT_PRELOAD_AREA));
-        model.loading = Some(model.loading_to(preload)?);
+        model.loading = Some(Loading {
+            d_step: path.loading_step,
+            ..model.loading_to(preload)?
+        });
         model.check_scales("f64", F64_SAFE_RANGE)?;
         Ok(model)
     }

@@ -135,3 +135,55 @@ fn a_rough_sphere_is_pressed_on_then_pulled_off() {
         assert!(-min.f_bar > 0.3 * f_smooth && -min.f_bar < 1.2 * f_smooth);
     }
 }
+
+/// A wavy map h = 0.02 (1 − cos 2πx)(1 + 0.3 cos πy) (lengths in the map's unit), 4 × 4 at
+/// node spacing 1/32: its crests' minima lie along lines, so it has no apex and is placed on
+/// its whole extent.
+fn wavy_map() -> jkrbem::scene::Indenter {
+    let (n, s) = (129, 1.0 / 32.0);
+    let mut heights = Vec::with_capacity(n * n);
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (i as f64 * s - 2.0, j as f64 * s - 2.0);
+            let wave = 1.0 - (2.0 * std::f64::consts::PI * x).cos();
+            heights.push(0.02 * wave * (1.0 + 0.3 * (std::f64::consts::PI * y).cos()));
+        }
+    }
+    let map = jkrbem::scene::height_map::HeightMap::new(n, n, s, heights).unwrap();
+    let surface = jkrbem::scene::MeasuredSurface::new(map, "wavy map").unwrap();
+    jkrbem::scene::Indenter::HeightMap(std::sync::Arc::new(surface))
+}
+
+#[test]
+fn a_strongly_adhesive_map_on_a_window_pulls_off_in_its_planned_steps() {
+    // E* = Δγ = 1 in the map's units: the press is some 1e-3 deep, the pull-off runs to
+    // approaches of order Kendall's √(2π Δγ a / E*) ≈ 2 for the pressed contact's radius a.
+    // Steps sized from the press alone would take ~1e5 of them.
+    let scene = jkrbem::scene::Scene::with_indenter(wavy_map(), 1.0, 1.0).unwrap();
+    let options = ModelOptions {
+        nx: 32,
+        ..Default::default()
+    };
+    let model = jkrbem::model::Model::build(&scene, &options).unwrap();
+    let loading = model.loading.expect("a map on a window is pressed on");
+    let depth = model.load.d0 - loading.d_touch;
+    let out = solver::run(&mut common::cpu_backend(&model), &model, &mut |_| {});
+    assert!(out.complete(), "{:?}", out.error);
+    let min = out.force_minimum().expect("a force minimum");
+    let last = out.states.last().unwrap();
+    println!(
+        "wavy map 32²: depth {depth:.3e}, load step {:.3e}, {} states; min F = {:.4} at d = {:.4}; \
+         last state d = {:.4} with {} elements",
+        model.load.d_step,
+        out.states.len(),
+        min.force,
+        min.d,
+        last.d,
+        last.n_contact
+    );
+    assert!(out.min_reached());
+    // The pull-off is adhesive: it ends far below the first touch, within the planned path.
+    assert!(loading.d_touch - min.d > 100.0 * depth);
+    assert!(min.d > model.load.d_end && min.force < 0.0);
+    assert!(out.states.len() < 2 * options.steps + 100);
+}

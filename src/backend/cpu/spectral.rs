@@ -12,8 +12,15 @@ use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 use std::sync::Arc;
 
-/// Below this many values a pass runs on one thread (rayon's overhead would dominate).
+/// The fewest rows (or columns) one thread takes in a pass.
 const PAR_MIN_ROWS: usize = 8;
+
+/// Rows (or columns) of transform length `len` that one thread takes at the least: at least
+/// [`PAR_MIN_ROWS`] and [`super::PAR_MIN`] values, so that a small grid's pass runs on the
+/// calling thread (rayon's hand-over to another thread costs more than such a pass).
+fn min_rows(len: usize) -> usize {
+    (super::PAR_MIN / len.max(1)).max(PAR_MIN_ROWS)
+}
 
 /// A planned 2-D real-to-complex filter of transform size mx × my acting on nx × ny data.
 pub struct SpectralFilter {
@@ -113,11 +120,11 @@ impl SpectralFilter {
 
     /// Forward transform of `src` (nx × ny, zero-padded to mx × my) into `self.cols`.
     fn forward(&mut self, src: &[f64]) {
-        let (nx, ny, my, hx) = (self.nx, self.ny, self.my, self.hx);
+        let (nx, ny, mx, my, hx) = (self.nx, self.ny, self.mx, self.my, self.hx);
         let r2c = &self.r2c;
         self.rows[..ny * hx]
             .par_chunks_mut(hx)
-            .with_min_len(PAR_MIN_ROWS)
+            .with_min_len(min_rows(mx))
             .zip(src.par_chunks(nx))
             .for_each_init(
                 || (r2c.make_input_vec(), r2c.make_scratch_vec()),
@@ -132,7 +139,7 @@ impl SpectralFilter {
         let fwd = &self.col_fwd;
         self.cols
             .par_chunks_mut(my)
-            .with_min_len(PAR_MIN_ROWS)
+            .with_min_len(min_rows(my))
             .enumerate()
             .for_each_init(
                 || vec![Complex::default(); fwd.get_inplace_scratch_len()],
@@ -151,14 +158,14 @@ impl SpectralFilter {
 
     /// dst = crop(IFFT(symbol · FFT(pad(src)))), both nx × ny row-major.
     pub fn apply(&mut self, src: &[f64], dst: &mut [f64]) {
-        let (nx, ny, my, hx) = (self.nx, self.ny, self.my, self.hx);
+        let (nx, ny, mx, my, hx) = (self.nx, self.ny, self.mx, self.my, self.hx);
         assert!(src.len() == nx * ny && dst.len() == nx * ny);
         self.forward(src);
         let inv = &self.col_inv;
         let symbol = &self.symbol;
         self.cols
             .par_chunks_mut(my)
-            .with_min_len(PAR_MIN_ROWS)
+            .with_min_len(min_rows(my))
             .zip(symbol.par_chunks(my))
             .for_each_init(
                 || vec![Complex::default(); inv.get_inplace_scratch_len()],
@@ -172,7 +179,7 @@ impl SpectralFilter {
         let cols = &self.cols;
         let c2r = &self.c2r;
         dst.par_chunks_mut(nx)
-            .with_min_len(PAR_MIN_ROWS)
+            .with_min_len(min_rows(mx))
             .enumerate()
             .for_each_init(
                 || {
