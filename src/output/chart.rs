@@ -1,30 +1,21 @@
 //! Line charts on log–log axes, written as SVG with `plotters`: any number of labelled series
 //! of (x, y) points, each drawn as a line through markers. Ticks sit at the series' own x
 //! values when there are few of them (grid sizes), otherwise on a 1–2–5 sequence. The legend
-//! sits in a panel to the right of the plot, so that it never covers data, and shows each
-//! series as it is drawn (the helpers here serve the linear charts too).
+//! sits inside the plot in a corner free of data, or below it (`legend`), and shows each
+//! series as it is drawn; the style is `figure_style`'s (the helpers here serve the linear
+//! charts too).
 
+use super::figure_style::{
+    colour, draw_markers, AXIS_FONT, DASH, LABEL_FONT, LINE_WIDTH, MARGIN, MARKER_RADIUS,
+    PAGE_HEIGHT, PAGE_WIDTH, TITLE_FONT, X_LABEL_AREA, Y_LABEL_AREA,
+};
+use super::legend::{render_with_legend, Legend, PlotFrame, Sample};
 use super::OutputError;
 use plotters::prelude::*;
 use std::path::Path;
 
-/// Dash and gap (pixels) of dashed series, in the plot and in the legend alike.
-pub(crate) const DASH: (u32, u32) = (9, 6);
-
 /// Most distinct x values that still get one tick each.
 const MAX_DATA_TICKS: usize = 12;
-
-/// Colours of series groups (the "tab10" palette), picked by a series' colour index.
-pub(crate) const PALETTE: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(23, 190, 207),
-];
 
 /// One labelled series of points.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,7 +42,8 @@ pub struct LogLogChart {
     pub y_label: String,
     /// The series, drawn in order.
     pub series: Vec<Series>,
-    /// Size of the picture (pixels).
+    /// Size of the plot and its axes (px); a legend that fits in no corner of the plot is
+    /// added below.
     pub size: (u32, u32),
     /// Put x ticks at the data's own x values when there are few (grid sizes); otherwise on
     /// a 1–2–5 sequence (times).
@@ -59,7 +51,7 @@ pub struct LogLogChart {
 }
 
 impl LogLogChart {
-    /// An empty 900 × 600 chart.
+    /// An empty chart of the page's width ([`PAGE_WIDTH`] × [`PAGE_HEIGHT`]).
     pub fn new(
         title: impl Into<String>,
         x_label: impl Into<String>,
@@ -70,7 +62,7 @@ impl LogLogChart {
             x_label: x_label.into(),
             y_label: y_label.into(),
             series: Vec::new(),
-            size: (900, 600),
+            size: (PAGE_WIDTH, PAGE_HEIGHT),
             x_data_ticks: true,
         }
     }
@@ -80,35 +72,31 @@ impl LogLogChart {
         self.series.push(series);
     }
 
-    /// The chart as an SVG document: the plot at [`LogLogChart::size`], with the legend in a
-    /// panel to its right.
+    /// The chart as an SVG document: the plot at [`LogLogChart::size`], the legend inside it
+    /// or below.
     pub fn to_svg(&self) -> Result<String, String> {
-        let width = legend_width(self.series.iter().map(|s| s.label.as_str()));
-        let lines = legend_line_count(self.series.iter().map(|s| s.label.as_str()));
-        let size = with_legend(self.size, width, lines);
-        render_svg(size, |root| {
-            root.fill(&WHITE).map_err(|e| e.to_string())?;
-            let (plot, legend) = root.split_horizontally(size.0 - width);
-            self.draw(&plot).map_err(|e| e.to_string())?;
-            draw_legend(&legend, &self.legend_entries()).map_err(|e| e.to_string())
+        render_with_legend(self.size, &self.legend(), |root| {
+            self.draw(root).map_err(|e| e.to_string())
         })
     }
 
-    /// The legend's entries: a line through a marker, dashed and hollow for dashed series.
-    fn legend_entries(&self) -> Vec<(String, Sample)> {
-        self.series
-            .iter()
-            .map(|s| {
-                (
-                    s.label.clone(),
-                    Sample {
-                        color: PALETTE[s.color % PALETTE.len()],
-                        line: Some(s.dashed.then_some(DASH)),
-                        marker: Some((4, !s.dashed)),
-                    },
-                )
-            })
-            .collect()
+    /// The legend: a line through a marker, dashed and hollow for dashed series.
+    fn legend(&self) -> Legend {
+        Legend::new(
+            self.series
+                .iter()
+                .map(|s| {
+                    (
+                        s.label.clone(),
+                        Sample {
+                            colour: s.color,
+                            line: Some(s.dashed.then_some(DASH)),
+                            marker: Some(!s.dashed),
+                        },
+                    )
+                })
+                .collect(),
+        )
     }
 
     /// Write the chart as SVG to `path`, creating its folder.
@@ -123,16 +111,15 @@ impl LogLogChart {
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
-    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-        root.fill(&WHITE)?;
+    ) -> Result<PlotFrame, DrawingAreaErrorKind<DB::ErrorType>> {
         let (xs, ys): (Vec<f64>, Vec<f64>) = self.points().unzip();
         let (x_range, x_ticks) = axis(&xs, self.x_data_ticks);
         let (y_range, y_ticks) = axis(&ys, false);
         let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, ("sans-serif", 20))
-            .margin(20)
-            .x_label_area_size(50)
-            .y_label_area_size(75)
+            .caption(&self.title, ("sans-serif", TITLE_FONT))
+            .margin(MARGIN)
+            .x_label_area_size(X_LABEL_AREA)
+            .y_label_area_size(Y_LABEL_AREA)
             .build_cartesian_2d(
                 x_range.log_scale().with_key_points(x_ticks),
                 y_range.log_scale().with_key_points(y_ticks),
@@ -144,167 +131,43 @@ impl LogLogChart {
             .y_desc(self.y_label.as_str())
             .x_label_formatter(&tick)
             .y_label_formatter(&tick)
-            .label_style(("sans-serif", 14))
-            .axis_desc_style(("sans-serif", 16))
-            .bold_line_style(BLACK.mix(0.12))
+            .label_style(("sans-serif", LABEL_FONT))
+            .axis_desc_style(("sans-serif", AXIS_FONT))
+            .bold_line_style(BLACK.mix(0.1))
+            .light_line_style(TRANSPARENT)
             .draw()?;
+        let mut frame = plot_frame(&chart);
         for s in &self.series {
-            let color = PALETTE[s.color % PALETTE.len()];
-            let line = color.stroke_width(2);
+            let line = colour(s.color).stroke_width(LINE_WIDTH);
             let pts: Vec<(f64, f64)> = plottable(&s.points).collect();
+            draw_markers(
+                chart.plotting_area(),
+                &pts,
+                s.color,
+                MARKER_RADIUS,
+                !s.dashed,
+            )?;
             if s.dashed {
                 chart.draw_series(DashedLineSeries::new(pts.clone(), DASH.0, DASH.1, line))?;
             } else {
                 chart.draw_series(LineSeries::new(pts.clone(), line))?;
             }
-            let marker = if s.dashed { line } else { color.filled() };
-            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, marker)))?;
+            let pixels: Vec<(i32, i32)> = pts.iter().map(|p| chart.backend_coord(p)).collect();
+            frame.mark_line(&pixels);
         }
-        Ok(())
+        Ok(frame)
     }
 }
 
-/// How a legend entry shows its series, drawn exactly as the series is: a line (solid, or
-/// dashed with the series' own dash and gap), a marker (filled or hollow), or both.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Sample {
-    /// The series' colour.
-    pub color: RGBColor,
-    /// A line, solid (`None`) or dashed (dash, gap in pixels).
-    pub line: Option<Option<(u32, u32)>>,
-    /// A marker of this radius (pixels), filled or hollow.
-    pub marker: Option<(u32, bool)>,
-}
-
-/// Height of one legend row (pixels).
-const LEGEND_ROW: i32 = 20;
-
-/// Width of a legend's line sample (pixels).
-const LEGEND_SAMPLE: i32 = 36;
-
-/// Legend font size (pixels).
-const LEGEND_FONT: u32 = 14;
-
-/// Most characters on one line of a legend label; a longer label wraps onto further lines.
-const LEGEND_LINE_CHARS: usize = 56;
-
-/// `label` cut into lines of at most [`LEGEND_LINE_CHARS`] characters, at spaces where it can
-/// be (a longer word is cut where it must), so that a long label (a sweep's list of grids, say)
-/// stays inside the picture.
-pub(crate) fn legend_lines(label: &str) -> Vec<String> {
-    let mut lines: Vec<String> = Vec::new();
-    let mut line = String::new();
-    for word in label.split(' ') {
-        let mut word: Vec<char> = word.chars().collect();
-        let used = line.chars().count();
-        if used > 0 && used + 1 + word.len() <= LEGEND_LINE_CHARS {
-            line.push(' ');
-            line.extend(word.iter());
-            continue;
-        }
-        if used > 0 {
-            lines.push(std::mem::take(&mut line));
-        }
-        while word.len() > LEGEND_LINE_CHARS {
-            lines.push(word.drain(..LEGEND_LINE_CHARS).collect());
-        }
-        line = word.into_iter().collect();
+/// The plot area of `chart` in the picture's pixels, with nothing marked yet.
+pub(crate) fn plot_frame<DB: DrawingBackend, CT: plotters::coord::CoordTranslate>(
+    chart: &ChartContext<'_, DB, CT>,
+) -> PlotFrame {
+    let (x, y) = chart.plotting_area().get_pixel_range();
+    PlotFrame {
+        area: (x.start, y.start, x.end, y.end),
+        occupied: Vec::new(),
     }
-    if !line.is_empty() || lines.is_empty() {
-        lines.push(line);
-    }
-    lines
-}
-
-/// The lines a legend of `labels` takes (see [`legend_lines`]).
-pub(crate) fn legend_line_count<'a>(labels: impl Iterator<Item = &'a str>) -> usize {
-    labels.map(|l| legend_lines(l).len()).sum()
-}
-
-/// The width (pixels) of a legend panel holding `labels`: the sample, and the text (its longest
-/// line, see [`legend_lines`]) at an estimate of 0.5 em per character of a sans-serif font (a
-/// little above its mean).
-pub(crate) fn legend_width<'a>(labels: impl Iterator<Item = &'a str>) -> u32 {
-    let chars = labels
-        .flat_map(legend_lines)
-        .map(|l| l.chars().count())
-        .max()
-        .unwrap_or(0);
-    if chars == 0 {
-        return 0;
-    }
-    let text = (chars as f64 * 0.5 * LEGEND_FONT as f64).ceil() as u32;
-    12 + LEGEND_SAMPLE as u32 + 8 + text + 16
-}
-
-/// The picture's size for a chart area of `size` with a legend panel of `width` beside it,
-/// tall enough for `lines` legend lines ([`legend_line_count`]).
-pub(crate) fn with_legend(size: (u32, u32), width: u32, lines: usize) -> (u32, u32) {
-    let needed = 40 + LEGEND_ROW as u32 * lines as u32 + 20;
-    (size.0 + width, size.1.max(needed))
-}
-
-/// Draw the legend in its own panel `area`, to the right of the plot, so that it never covers
-/// data: one row per entry (more for a long label, see [`legend_lines`]), the sample drawn as
-/// the series is, then its label.
-pub(crate) fn draw_legend<DB: DrawingBackend>(
-    area: &DrawingArea<DB, plotters::coord::Shift>,
-    entries: &[(String, Sample)],
-) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-    if entries.is_empty() {
-        return Ok(());
-    }
-    let (w, _) = area.dim_in_pixel();
-    let top = 40;
-    let lines = legend_line_count(entries.iter().map(|e| e.0.as_str()));
-    let bottom = top + LEGEND_ROW * lines as i32 + 8;
-    area.draw(&Rectangle::new(
-        [(4, top - 8), (w as i32 - 6, bottom)],
-        BLACK.mix(0.4).stroke_width(1),
-    ))?;
-    let mut row = 0;
-    for (label, sample) in entries {
-        let y = top + LEGEND_ROW * row + LEGEND_ROW / 2 - 4;
-        let x0 = 12;
-        let style = sample.color.stroke_width(2);
-        match sample.line {
-            Some(None) => {
-                area.draw(&PathElement::new(
-                    vec![(x0, y), (x0 + LEGEND_SAMPLE, y)],
-                    style,
-                ))?;
-            }
-            Some(Some((dash, gap))) => {
-                let mut x = x0;
-                while x < x0 + LEGEND_SAMPLE {
-                    let end = (x + dash as i32).min(x0 + LEGEND_SAMPLE);
-                    area.draw(&PathElement::new(vec![(x, y), (end, y)], style))?;
-                    x = end + gap as i32;
-                }
-            }
-            None => {}
-        }
-        if let Some((r, filled)) = sample.marker {
-            let at = (x0 + LEGEND_SAMPLE / 2, y);
-            if filled {
-                area.draw(&Circle::new(at, r, sample.color.filled()))?;
-            } else {
-                area.draw(&Circle::new(at, r, style))?;
-            }
-        }
-        for (k, line) in legend_lines(label).into_iter().enumerate() {
-            area.draw(&Text::new(
-                line,
-                (
-                    x0 + LEGEND_SAMPLE + 8,
-                    y + LEGEND_ROW * k as i32 - LEGEND_FONT as i32 / 2 + 1,
-                ),
-                ("sans-serif", LEGEND_FONT).into_font(),
-            ))?;
-            row += 1;
-        }
-    }
-    Ok(())
 }
 
 /// Render a chart drawn by `draw` into an SVG document of `size` pixels.
@@ -445,15 +308,6 @@ mod tests {
         // Before: a 30-ratio sweep's label ran past the picture's right edge.
         let grids = vec!["32"; 30].join(", ");
         let label = format!("jkrbem at Δx → 0, ± stated uncertainty (Nx = {grids})");
-        let lines = legend_lines(&label);
-        assert!(lines.len() > 1, "{lines:?}");
-        assert!(lines.iter().all(|l| l.chars().count() <= LEGEND_LINE_CHARS));
-        assert_eq!(lines.join(" "), label, "wrapping keeps every word");
-        let long_word = "x".repeat(130);
-        let cut = legend_lines(&long_word);
-        assert_eq!(cut.concat(), long_word);
-        assert!(cut.iter().all(|l| l.chars().count() <= LEGEND_LINE_CHARS));
-        assert_eq!(legend_lines("short"), vec!["short"]);
         let mut c = LogLogChart::new("t", "x", "y");
         c.push(Series {
             label,
@@ -480,7 +334,7 @@ mod tests {
                 .split("</text>")
                 .next()
                 .unwrap();
-            let right = x + text.trim().chars().count() as f64 * 0.5 * LEGEND_FONT as f64;
+            let right = x + crate::output::figure_style::text_width(text.trim(), LABEL_FONT) as f64;
             assert!(right <= width, "{text:?} ends at {right} > {width}");
         }
     }

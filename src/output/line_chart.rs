@@ -1,12 +1,15 @@
 //! Charts on linear axes (optionally a logarithmic x axis), written as SVG with `plotters`:
-//! simulated states as markers, closed forms and fits as lines, each with a legend entry drawn
-//! as its curve is, in a panel beside the plot (never over the data). Shapes (contours) can be
-//! drawn with equal scales on both axes.
+//! simulated states as markers, closed forms and fits as lines drawn over them, each with a
+//! legend entry drawn as its curve is, inside the plot where a corner is free of data, else
+//! below it (never over the data). Shapes (contours) can be drawn with equal scales on both
+//! axes.
 
-use super::chart::{
-    draw_legend, legend_line_count, legend_width, linear_tick_label, render_svg, with_legend,
-    write_svg_document, Sample, PALETTE,
+use super::chart::{linear_tick_label, plot_frame, write_svg_document};
+use super::figure_style::{
+    colour, draw_markers, AXIS_FONT, DASH, LABEL_FONT, LINE_WIDTH, MARGIN, MARKER_RADIUS,
+    PAGE_HEIGHT, PAGE_WIDTH, TITLE_FONT, X_LABEL_AREA, Y_LABEL_AREA,
 };
+use super::legend::{render_with_legend, Legend, PlotFrame, Sample};
 use super::OutputError;
 use plotters::prelude::*;
 use std::path::Path;
@@ -50,23 +53,20 @@ pub struct LineChart {
     pub x_log: bool,
     /// The curves, drawn in order.
     pub curves: Vec<Curve>,
-    /// Size of the plot (pixels); the legend panel is added to its right.
+    /// Size of the plot and its axes (px); a legend that fits in no corner of the plot is
+    /// added below.
     pub size: (u32, u32),
     /// Draw x and y on the same scale (one unit is as long on both axes), for shapes such as
     /// contours; the ranges are widened to fill the plot.
     pub equal_scales: bool,
 }
 
-/// Dash and gap (pixels) of [`Style::Dashed`] curves, in the plot and in the legend alike.
-const DASH: (u32, u32) = (8, 5);
-
-/// Margin around the plot, and the widths of the axis label areas (pixels).
-const MARGIN: u32 = 20;
-const X_LABELS: u32 = 50;
-const Y_LABELS: u32 = 70;
+/// The least height (px) of the plot of a chart with equal scales.
+const MIN_EQUAL_HEIGHT: u32 = 150;
 
 impl LineChart {
-    /// An empty 900 × 600 chart with linear axes.
+    /// An empty chart of the page's width ([`PAGE_WIDTH`] × [`PAGE_HEIGHT`]) with linear
+    /// axes.
     pub fn new(title: &str, x_label: &str, y_label: &str) -> Self {
         LineChart {
             title: title.into(),
@@ -74,7 +74,7 @@ impl LineChart {
             y_label: y_label.into(),
             x_log: false,
             curves: Vec::new(),
-            size: (900, 600),
+            size: (PAGE_WIDTH, PAGE_HEIGHT),
             equal_scales: false,
         }
     }
@@ -108,41 +108,36 @@ impl LineChart {
         });
     }
 
-    /// The chart as an SVG document: the plot at [`LineChart::size`], with the legend in a
-    /// panel to its right.
+    /// The chart as an SVG document: the plot at [`LineChart::size`], the legend inside it
+    /// or below.
     pub fn to_svg(&self) -> Result<String, String> {
-        let width = legend_width(self.curves.iter().map(|c| c.label.as_str()));
-        let lines = legend_line_count(self.curves.iter().map(|c| c.label.as_str()));
-        let size = with_legend(self.size, width, lines);
-        render_svg(size, |root| {
-            root.fill(&WHITE).map_err(|e| e.to_string())?;
-            let (plot, legend) = root.split_horizontally(size.0 - width);
-            self.draw(&plot).map_err(|e| e.to_string())?;
-            draw_legend(&legend, &self.legend_entries()).map_err(|e| e.to_string())
+        render_with_legend(self.fitted_size(), &self.legend(), |root| {
+            self.draw(root).map_err(|e| e.to_string())
         })
     }
 
-    /// The legend's entries, each drawn as its curve is.
-    fn legend_entries(&self) -> Vec<(String, Sample)> {
-        self.curves
-            .iter()
-            .map(|c| {
-                let color = PALETTE[c.color % PALETTE.len()];
-                let (line, marker) = match c.style {
-                    Style::Line => (Some(None), None),
-                    Style::Dashed => (Some(Some(DASH)), None),
-                    Style::Markers => (None, Some((4, true))),
-                };
-                (
-                    c.label.clone(),
-                    Sample {
-                        color,
-                        line,
-                        marker,
-                    },
-                )
-            })
-            .collect()
+    /// The legend, each entry drawn as its curve is.
+    fn legend(&self) -> Legend {
+        Legend::new(
+            self.curves
+                .iter()
+                .map(|c| {
+                    let (line, marker) = match c.style {
+                        Style::Line => (Some(None), None),
+                        Style::Dashed => (Some(Some(DASH)), None),
+                        Style::Markers => (None, Some(true)),
+                    };
+                    (
+                        c.label.clone(),
+                        Sample {
+                            colour: c.color,
+                            line,
+                            marker,
+                        },
+                    )
+                })
+                .collect(),
+        )
     }
 
     /// Widen `xr` and `yr` so that one unit spans as many pixels on both axes of a plot of
@@ -212,18 +207,17 @@ impl LineChart {
             .collect()
     }
 
-    fn draw<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, plotters::coord::Shift>,
-    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-        root.fill(&WHITE)?;
-        // Every point, and the ends of its error bar, must be in range.
-        let all: Vec<(f64, f64)> = self
-            .curves
+    /// Every point, and the ends of its error bar: what must be in range.
+    fn extent(&self) -> Vec<(f64, f64)> {
+        self.curves
             .iter()
             .flat_map(|c| self.plotted_with_errors(c))
             .flat_map(|((x, y), e)| [(x, y - e), (x, y + e)])
-            .collect();
+            .collect()
+    }
+
+    /// The linear ranges of x and y that hold `points`, padded by 5 % either side.
+    fn ranges(points: &[(f64, f64)]) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
         let range = |v: Vec<f64>| {
             let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
             let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -233,10 +227,36 @@ impl LineChart {
             let pad = ((hi - lo) * 0.05).max(1e-9 * lo.abs().max(1.0));
             lo - pad..hi + pad
         };
-        let (xr, yr) = (
-            range(all.iter().map(|p| p.0).collect()),
-            range(all.iter().map(|p| p.1).collect()),
-        );
+        (
+            range(points.iter().map(|p| p.0).collect()),
+            range(points.iter().map(|p| p.1).collect()),
+        )
+    }
+
+    /// The size of the plot and its axes (px): [`LineChart::size`], or with equal scales its
+    /// height fitted to the data's aspect (at least [`MIN_EQUAL_HEIGHT`] px of plot), so that a
+    /// slender shape fills the plot's width rather than a corner of a square.
+    fn fitted_size(&self) -> (u32, u32) {
+        if !self.equal_scales || self.x_log {
+            return self.size;
+        }
+        let (xr, yr) = Self::ranges(&self.extent());
+        let around = 2 * MARGIN + X_LABEL_AREA + TITLE_FONT + 10;
+        let width = self.size.0.saturating_sub(2 * MARGIN + Y_LABEL_AREA) as f64;
+        let aspect = (yr.end - yr.start) / (xr.end - xr.start);
+        let height = (width * aspect).clamp(MIN_EQUAL_HEIGHT as f64, 4.0 * width);
+        (
+            self.size.0,
+            (height.ceil() as u32 + around).min(self.size.1),
+        )
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<PlotFrame, DrawingAreaErrorKind<DB::ErrorType>> {
+        let all = self.extent();
+        let (xr, yr) = Self::ranges(&all);
         if self.x_log {
             // The data's own extent, padded by a factor (a linear pad could reach x ≤ 0).
             let lo = all.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
@@ -253,13 +273,13 @@ impl LineChart {
         } else if self.equal_scales {
             // The plot's size in pixels: the area less the title, margins and label areas.
             let (w, h) = root.dim_in_pixel();
-            let font: TextStyle = ("sans-serif", 20).into();
+            let font: TextStyle = ("sans-serif", TITLE_FONT).into();
             let title = root
                 .estimate_text_size(&self.title, &font)
                 .map_or(24, |(_, th)| th + 2 * (th / 2).min(5));
             let pixels = (
-                w.saturating_sub(2 * MARGIN + Y_LABELS),
-                h.saturating_sub(2 * MARGIN + X_LABELS + title),
+                w.saturating_sub(2 * MARGIN + Y_LABEL_AREA),
+                h.saturating_sub(2 * MARGIN + X_LABEL_AREA + title),
             );
             let (xr, yr) = Self::equalised(xr, yr, pixels);
             self.draw_on(root, plotters::coord::types::RangedCoordf64::from(xr), yr)
@@ -273,16 +293,16 @@ impl LineChart {
         root: &DrawingArea<DB, plotters::coord::Shift>,
         xr: X,
         yr: std::ops::Range<f64>,
-    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>
+    ) -> Result<PlotFrame, DrawingAreaErrorKind<DB::ErrorType>>
     where
         X: plotters::coord::ranged1d::Ranged<ValueType = f64>
             + plotters::coord::ranged1d::ValueFormatter<f64>,
     {
         let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, ("sans-serif", 20))
+            .caption(&self.title, ("sans-serif", TITLE_FONT))
             .margin(MARGIN)
-            .x_label_area_size(X_LABELS)
-            .y_label_area_size(Y_LABELS)
+            .x_label_area_size(X_LABEL_AREA)
+            .y_label_area_size(Y_LABEL_AREA)
             .build_cartesian_2d(xr, yr)?;
         let x_fmt = |v: &f64| linear_tick_label(*v);
         let y_fmt = |v: &f64| linear_tick_label(*v);
@@ -292,38 +312,61 @@ impl LineChart {
             .y_desc(self.y_label.as_str())
             .x_label_formatter(&x_fmt)
             .y_label_formatter(&y_fmt)
-            .label_style(("sans-serif", 14))
-            .axis_desc_style(("sans-serif", 16))
-            .bold_line_style(BLACK.mix(0.12))
+            .label_style(("sans-serif", LABEL_FONT))
+            .axis_desc_style(("sans-serif", AXIS_FONT))
+            .bold_line_style(BLACK.mix(0.1))
+            .light_line_style(TRANSPARENT)
             .draw()?;
-        for c in &self.curves {
-            let color = PALETTE[c.color % PALETTE.len()];
-            let line = color.stroke_width(2);
+        let mut frame = plot_frame(&chart);
+        // Markers (the data) first, then the lines they are compared with, on top.
+        let markers = self.curves.iter().filter(|c| c.style == Style::Markers);
+        let lines = self.curves.iter().filter(|c| c.style != Style::Markers);
+        for c in markers.chain(lines) {
+            let line = colour(c.color).stroke_width(LINE_WIDTH);
             let pts = self.plotted(c);
+            let pixels: Vec<(i32, i32)> = pts.iter().map(|p| chart.backend_coord(p)).collect();
             match c.style {
-                Style::Line => chart.draw_series(LineSeries::new(pts, line))?,
+                Style::Line => {
+                    chart.draw_series(LineSeries::new(pts, line))?;
+                    frame.mark_line(&pixels);
+                }
                 Style::Dashed => {
-                    chart.draw_series(DashedLineSeries::new(pts, DASH.0, DASH.1, line))?
+                    chart.draw_series(DashedLineSeries::new(pts, DASH.0, DASH.1, line))?;
+                    frame.mark_line(&pixels);
                 }
                 Style::Markers => {
-                    let bars = self
+                    let bars: Vec<((f64, f64), f64)> = self
                         .plotted_with_errors(c)
                         .into_iter()
-                        .filter(|(_, e)| *e > 0.0);
-                    chart.draw_series(bars.map(|((x, y), e)| {
-                        ErrorBar::new_vertical(x, y - e, y, y + e, color.stroke_width(1), 6)
+                        .filter(|(_, e)| *e > 0.0)
+                        .collect();
+                    chart.draw_series(bars.iter().map(|&((x, y), e)| {
+                        ErrorBar::new_vertical(
+                            x,
+                            y - e,
+                            y,
+                            y + e,
+                            colour(c.color).stroke_width(1),
+                            6,
+                        )
                     }))?;
-                    chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))?
+                    for &((x, y), e) in &bars {
+                        let ends = [(x, y - e), (x, y + e)].map(|p| chart.backend_coord(&p));
+                        frame.mark_line(&ends);
+                    }
+                    draw_markers(chart.plotting_area(), &pts, c.color, MARKER_RADIUS, true)?;
+                    pixels.iter().for_each(|&p| frame.mark(p));
                 }
             };
         }
-        Ok(())
+        Ok(frame)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::output::figure_style::PALETTE;
 
     #[test]
     fn a_chart_with_lines_and_markers_renders_to_svg() {
@@ -344,7 +387,8 @@ mod tests {
         );
         let svg = c.to_svg().unwrap();
         assert!(svg.contains("<svg") && svg.contains("JKR") && svg.contains("simulated"));
-        assert!(svg.matches("<circle").count() >= 2);
+        // The second colour's markers are squares: two in the plot, one in the legend.
+        assert!(svg.matches("<polygon").count() >= 3);
         // Error bars: three lines each (the bar and its two caps), within the range a line
         // already fixes; a bar beyond it widens the range.
         let frame = || {
@@ -415,28 +459,48 @@ mod tests {
     }
 
     #[test]
-    fn the_legend_sits_beside_the_plot_never_on_the_data() {
-        // Before: the legend box was drawn in a corner of the plot, over data points.
+    fn the_legend_never_covers_data() {
+        // Before: the legend box was drawn in a corner of the plot, over data points; then
+        // in a panel beside the plot that took 40 % of the figure's width.
+        let legend_text = |c: &LineChart, label: &str| {
+            texts(&c.to_svg().unwrap())
+                .into_iter()
+                .find(|t| t.2 == label)
+                .unwrap_or_else(|| panic!("no legend text {label}"))
+        };
+        // Data everywhere: the legend goes below the plot.
         let mut c = LineChart::new("t", "x", "y");
         let pts: Vec<(f64, f64)> = (0..=20)
             .flat_map(|i| (0..=20).map(move |j| (i as f64, j as f64)))
             .collect();
         c.push("everywhere", pts, 0, Style::Markers);
         c.push("a line", vec![(0.0, 0.0), (20.0, 20.0)], 1, Style::Line);
-        let svg = c.to_svg().unwrap();
-        let plot_right = c.size.0 as f64;
         for label in ["everywhere", "a line"] {
-            let (x, _, _) = texts(&svg)
-                .into_iter()
-                .find(|t| t.2 == label)
-                .unwrap_or_else(|| panic!("no legend text {label}"));
-            assert!(
-                x > plot_right,
-                "{label} at x = {x}, inside the plot (< {plot_right})"
-            );
+            let (_, y, _) = legend_text(&c, label);
+            assert!(y > c.size.1 as f64, "{label} at y = {y}, inside the plot");
         }
-        // Every data marker lies left of the panel.
-        assert!(circles(&svg, 3).iter().all(|&(x, _)| x < plot_right));
+        assert!(
+            circles(&c.to_svg().unwrap(), MARKER_RADIUS as u32)
+                .iter()
+                .filter(|&&(_, y)| y < c.size.1 as f64)
+                .count()
+                >= 441
+        );
+        // Data in the lower left only: the legend sits inside, in the top right.
+        let mut c = LineChart::new("t", "x", "y");
+        c.push(
+            "low",
+            vec![(0.0, 0.0), (1.0, 0.5), (2.0, 0.2)],
+            0,
+            Style::Markers,
+        );
+        c.push("frame", vec![(0.0, 0.0), (10.0, 0.3)], 1, Style::Line);
+        c.push("top", vec![(0.0, 4.0)], 2, Style::Markers);
+        let (x, y, _) = legend_text(&c, "low");
+        assert!(
+            x > 0.5 * c.size.0 as f64 && y < 0.5 * c.size.1 as f64,
+            "{x}, {y}"
+        );
     }
 
     #[test]
@@ -446,8 +510,9 @@ mod tests {
         c.push("solid", vec![(0.0, 0.0), (1.0, 1.0)], 0, Style::Line);
         c.push("dashed", vec![(0.0, 1.0), (1.0, 0.0)], 1, Style::Dashed);
         let svg = c.to_svg().unwrap();
-        let right = c.size.0 as f64;
-        // Line pieces in the legend panel, by colour.
+        // The lines cross every corner, so the legend is below the plot.
+        let below = c.size.1 as f64;
+        // Line pieces in the legend, by colour.
         let pieces = |color: RGBColor| {
             let hex = format!("#{:02X}{:02X}{:02X}", color.0, color.1, color.2);
             svg.split("<polyline ")
@@ -455,9 +520,9 @@ mod tests {
                 .filter(|p| p.contains(&hex))
                 .filter(|p| {
                     p.split_once("points=\"")
-                        .and_then(|(_, r)| r.split(',').next())
-                        .and_then(|x| x.trim().parse::<f64>().ok())
-                        .is_some_and(|x| x > right)
+                        .and_then(|(_, r)| r.split([',', ' ']).nth(1))
+                        .and_then(|y| y.trim().parse::<f64>().ok())
+                        .is_some_and(|y| y > below)
                 })
                 .count()
         };
@@ -515,8 +580,9 @@ mod tests {
         );
         c.equal_scales = true;
         let svg = c.to_svg().unwrap();
-        let p = circles(&svg, 3);
-        assert_eq!(p.len(), 4, "{p:?}");
+        // The four markers, then the legend's.
+        let p = circles(&svg, MARKER_RADIUS as u32);
+        assert_eq!(p.len(), 5, "{p:?}");
         let along_x = p[1].0 - p[0].0;
         let along_y = p[0].1 - p[2].1;
         assert!(along_x > 20.0, "{along_x}");
@@ -525,7 +591,7 @@ mod tests {
             "one unit is {along_x} px along x and {along_y} px along y"
         );
         c.equal_scales = false;
-        let p = circles(&c.to_svg().unwrap(), 3);
+        let p = circles(&c.to_svg().unwrap(), MARKER_RADIUS as u32);
         assert!(((p[1].0 - p[0].0) - (p[0].1 - p[2].1)).abs() > 10.0);
     }
 }

@@ -1,18 +1,26 @@
 //! A heat map of one state's contact pressure, written as SVG with `plotters`: the region
 //! around the contact (its cells averaged in blocks where the grid is finer than the picture),
-//! compression red and tension blue on a scale symmetric about zero, the contact's outline
-//! (the element sides between contact and no contact), and a colour bar in force/length².
+//! compression red and tension blue on a scale symmetric about zero and set by the contact's
+//! interior (the edge's tension singularity would leave the interior white; cells beyond the
+//! scale are drawn at its ends, and the colour bar says so), the contact's outline (the
+//! element sides between contact and no contact), and a colour bar in force/length².
 
-use super::chart::{linear_tick_label, render_svg, write_svg_document};
+use super::chart::{linear_tick_label, plot_frame, render_svg, write_svg_document};
+use super::figure_style::{AXIS_FONT, LABEL_FONT, MARGIN, PAGE_WIDTH, TITLE_FONT};
 use super::OutputError;
 use crate::analysis::fields::StateFields;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::Path;
 
 /// The most cells the picture draws along a side.
 const MAX_CELLS: usize = 160;
-/// The colour bar's width (pixels).
-const BAR_WIDTH: u32 = 150;
+/// The width of the colour bar's zone: the bar, its labels and its title (px).
+const BAR_ZONE: u32 = 135;
+/// The colour bar's own width (px).
+const BAR_WIDTH: i32 = 16;
+/// The share of the interior's |p| below the colour scale's end (dimensionless).
+const SCALE_QUANTILE: f64 = 0.98;
 /// The free border around the contact's box (relative to its size).
 const BORDER: f64 = 0.15;
 
@@ -53,34 +61,32 @@ fn window(f: &StateFields) -> (usize, usize, usize, usize) {
 pub fn pressure_svg(f: &StateFields, title: &str) -> Result<String, String> {
     let (i0, i1, j0, j1) = window(f);
     let block = (i1 - i0).max(j1 - j0).div_ceil(MAX_CELLS).max(1);
-    let scale = f
-        .pressure
-        .iter()
-        .fold(0.0f64, |m, p| m.max(p.abs()))
-        .max(f64::MIN_POSITIVE);
+    let (scale, peak) = colour_scale(f);
     let half = 0.5 * f.dx;
     let (x0, x1) = (f.x[i0] - half, f.x[i1 - 1] + half);
     let (y0, y1) = (f.y[j0] - half, f.y[j1 - 1] + half);
     // Equal scales on x and y: the plot's height follows the window's aspect (within limits).
-    let (plot_w, extra_w, extra_h) = (560.0, 84.0, 98.0);
-    let plot_h = (plot_w * (y1 - y0) / (x1 - x0)).clamp(160.0, 800.0);
-    let map_w = (plot_w + extra_w) as u32;
-    let size = (map_w + BAR_WIDTH, (plot_h + extra_h) as u32);
+    let (x_labels, y_labels) = (40, 60);
+    let map_w = PAGE_WIDTH - BAR_ZONE;
+    let plot_w = (map_w - 2 * MARGIN - y_labels) as f64;
+    let plot_h = (plot_w * (y1 - y0) / (x1 - x0)).clamp(160.0, 1.4 * plot_w);
+    let extra_h = 2 * MARGIN + x_labels + TITLE_FONT + 12;
+    let size = (PAGE_WIDTH, plot_h as u32 + extra_h);
     render_svg(size, |root| {
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let (map, bar) = root.split_horizontally(map_w);
+        let (map, _) = root.split_horizontally(map_w);
         let mut chart = ChartBuilder::on(&map)
-            .caption(title, ("sans-serif", 16))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
+            .caption(title, ("sans-serif", TITLE_FONT))
+            .margin(MARGIN)
+            .x_label_area_size(x_labels)
+            .y_label_area_size(y_labels)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(|e| e.to_string())?;
         chart
             .configure_mesh()
             .disable_mesh()
-            .label_style(("sans-serif", 13))
-            .axis_desc_style(("sans-serif", 13))
+            .label_style(("sans-serif", LABEL_FONT))
+            .axis_desc_style(("sans-serif", AXIS_FONT))
             .x_desc("x (length)")
             .y_desc("y (length)")
             .x_label_formatter(&|v| linear_tick_label(*v))
@@ -129,44 +135,107 @@ pub fn pressure_svg(f: &StateFields, title: &str) -> Result<String, String> {
                     .map(|s| PathElement::new(s, BLACK.stroke_width(1))),
             )
             .map_err(|e| e.to_string())?;
-        draw_colour_bar(&bar, scale)
+        let (_, top, _, bottom) = plot_frame(&chart).area;
+        draw_colour_bar(root, (map_w as i32 + 8, top, bottom), scale, peak)
     })
 }
 
-/// The colour bar: p from −scale to +scale (force/length²), with five labels.
+/// The colour scale of `f`'s map and the largest |p| (force/length²): the
+/// [`SCALE_QUANTILE`] quantile of |p| over the contact's interior elements (those whose four
+/// neighbours are in contact too), or the largest |p| where there is no interior.
+fn colour_scale(f: &StateFields) -> (f64, f64) {
+    let peak = f
+        .pressure
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.abs()))
+        .max(f64::MIN_POSITIVE);
+    let c = |i: usize, j: usize| f.contact[j * f.nx + i];
+    let mut interior: Vec<f64> = Vec::new();
+    for j in 1..f.ny.saturating_sub(1) {
+        for i in 1..f.nx.saturating_sub(1) {
+            if c(i, j) && c(i - 1, j) && c(i + 1, j) && c(i, j - 1) && c(i, j + 1) {
+                interior.push(f.pressure[j * f.nx + i].abs());
+            }
+        }
+    }
+    if interior.is_empty() {
+        return (peak, peak);
+    }
+    interior.sort_by(f64::total_cmp);
+    let k = ((interior.len() - 1) as f64 * SCALE_QUANTILE).round() as usize;
+    (interior[k].max(f64::MIN_POSITIVE).min(peak), peak)
+}
+
+/// The colour bar at `(x, top, bottom)` (px in `root`): p from −scale to +scale
+/// (force/length²), five labels to its right and its title beside them; where `peak` lies
+/// beyond the scale, two lines above the bar say that the colours are clipped there.
 fn draw_colour_bar(
-    area: &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    root: &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    (x, top, bottom): (i32, i32, i32),
     scale: f64,
+    peak: f64,
 ) -> Result<(), String> {
-    let mut chart = ChartBuilder::on(area)
-        .margin_top(40)
-        .margin_bottom(52)
-        .margin_right(30)
-        .y_label_area_size(72)
-        .build_cartesian_2d(0.0..1.0, -scale..scale)
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .disable_x_axis()
-        .y_labels(5)
-        .y_desc("p (force/length²)")
-        .label_style(("sans-serif", 13))
-        .axis_desc_style(("sans-serif", 13))
-        .y_label_formatter(&|v| linear_tick_label(*v))
-        .draw()
-        .map_err(|e| e.to_string())?;
+    let err = |e: DrawingAreaErrorKind<_>| e.to_string();
+    let label = TextStyle::from(("sans-serif", LABEL_FONT).into_font())
+        .pos(Pos::new(HPos::Left, VPos::Center));
+    // Where the colours are clipped, two lines above the bar say so; the bar starts below.
+    let line = LABEL_FONT as i32 + 4;
+    let top = if peak > scale * (1.0 + 1e-9) {
+        let note = [
+            format!("clipped at ±{}", linear_tick_label(scale)),
+            format!("(|p| up to {})", linear_tick_label(peak)),
+        ];
+        for (k, text) in note.into_iter().enumerate() {
+            root.draw(&Text::new(
+                text,
+                (x, top + line * k as i32 + line / 2),
+                label.clone(),
+            ))
+            .map_err(err)?;
+        }
+        top + 2 * line + 6
+    } else {
+        top
+    };
     let steps = 100;
-    let band = 2.0 * scale / steps as f64;
-    chart
-        .draw_series((0..steps).map(|k| {
-            let lo = -scale + k as f64 * band;
-            Rectangle::new(
-                [(0.0, lo), (1.0, lo + band)],
-                colour((lo + 0.5 * band) / scale).filled(),
-            )
-        }))
-        .map_err(|e| e.to_string())?;
+    let height = (bottom - top).max(1) as f64;
+    for k in 0..steps {
+        // Band k from the bottom (−scale) up.
+        let (lo, hi) = (k as f64 / steps as f64, (k + 1) as f64 / steps as f64);
+        let y = |t: f64| bottom - (t * height).round() as i32;
+        root.draw(&Rectangle::new(
+            [(x, y(hi)), (x + BAR_WIDTH, y(lo))],
+            colour(2.0 * (lo + hi) / 2.0 - 1.0).filled(),
+        ))
+        .map_err(err)?;
+    }
+    root.draw(&Rectangle::new(
+        [(x, top), (x + BAR_WIDTH, bottom)],
+        BLACK.mix(0.5).stroke_width(1),
+    ))
+    .map_err(err)?;
+    for k in 0..=4 {
+        let t = k as f64 / 4.0;
+        let y = bottom - (t * height).round() as i32;
+        root.draw(&PathElement::new(
+            vec![(x + BAR_WIDTH, y), (x + BAR_WIDTH + 4, y)],
+            BLACK.stroke_width(1),
+        ))
+        .map_err(err)?;
+        let value = linear_tick_label(scale * (2.0 * t - 1.0)).replace('-', "−");
+        root.draw(&Text::new(value, (x + BAR_WIDTH + 7, y), label.clone()))
+            .map_err(err)?;
+    }
+    let title = "p (force/length²)";
+    let vertical = TextStyle::from(("sans-serif", AXIS_FONT).into_font())
+        .transform(FontTransform::Rotate270)
+        .pos(Pos::new(HPos::Center, VPos::Center));
+    root.draw(&Text::new(
+        title,
+        (x + BAR_WIDTH + 7 + 58, (top + bottom) / 2),
+        vertical,
+    ))
+    .map_err(err)?;
     Ok(())
 }
 

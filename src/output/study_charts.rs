@@ -169,8 +169,8 @@ pub fn coefficients_chart(series: &[CoefficientSeries]) -> LineChart {
 pub fn contour_chart(ratio: f64, rows: &[crate::analysis::capture::ContourRow]) -> LineChart {
     let mut chart = LineChart::new(
         &format!(
-            "Quarter contours during pull-off, R1/R2 = {ratio} (x, y in c_r, equal scales; \
-             lines: ellipses ā, b̄)"
+            "Quarter contours during pull-off, R1/R2 = {ratio} (equal scales; lines: \
+             ellipses of the same ā, b̄)"
         ),
         "x / c_r",
         "y / c_r",
@@ -181,13 +181,18 @@ pub fn contour_chart(ratio: f64, rows: &[crate::analysis::capture::ContourRow]) 
     for (i, label) in labels.iter().enumerate() {
         let group: Vec<_> = rows.iter().filter(|r| r.label == *label).collect();
         let first = group[0];
+        // The capture's own label ("c̄ ≤ 1.4") says only where it was taken; the state's c̄
+        // says it better. The force minimum keeps its name.
+        let minimum = label.starts_with("force minimum");
         chart.push(
             &format!(
-                "{label}: c̄ = {:.2}, F̄ = {:.3}, departure rms {:.1} %",
+                "{}c̄ = {:.2}, F̄ = {:.3}; r/r_e − 1: {:.1} % rms",
+                if minimum { "force minimum: " } else { "" },
                 first.c_bar,
                 first.f_bar,
                 100.0 * first.departure_rms
-            ),
+            )
+            .replace('-', "−"),
             group.iter().map(|r| (r.x_bar, r.y_bar)).collect(),
             i,
             Style::Markers,
@@ -196,7 +201,13 @@ pub fn contour_chart(ratio: f64, rows: &[crate::analysis::capture::ContourRow]) 
             .map(|k| k as f64 / CURVE_POINTS as f64 * std::f64::consts::FRAC_PI_2)
             .map(|t| (first.a_bar * t.cos(), first.b_bar * t.sin()))
             .collect();
-        chart.push(&format!("ellipse {label}"), ellipse, i, Style::Line);
+        // One legend entry for the ellipses: each has its contour's colour.
+        let entry = if i == 0 {
+            "ellipses of the same ā, b̄"
+        } else {
+            ""
+        };
+        chart.push(entry, ellipse, i, Style::Line);
     }
     chart
 }
