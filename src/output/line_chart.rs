@@ -23,6 +23,9 @@ pub enum Style {
     Dashed,
     /// Markers only (simulated states).
     Markers,
+    /// Hollow markers only: points set apart from the filled ones (from grids too coarse to
+    /// be answers, say), with error bars like [`Style::Markers`].
+    Hollow,
 }
 
 /// One labelled curve.
@@ -108,6 +111,23 @@ impl LineChart {
         });
     }
 
+    /// Add hollow markers ([`Style::Hollow`]) with error bars as [`LineChart::push_with_errors`].
+    pub fn push_hollow_with_errors(
+        &mut self,
+        label: &str,
+        points: Vec<(f64, f64)>,
+        errors: Vec<f64>,
+        color: usize,
+    ) {
+        self.curves.push(Curve {
+            label: label.into(),
+            points,
+            color,
+            style: Style::Hollow,
+            errors,
+        });
+    }
+
     /// The chart as an SVG document: the plot at [`LineChart::size`], the legend inside it
     /// or below.
     pub fn to_svg(&self) -> Result<String, String> {
@@ -126,6 +146,7 @@ impl LineChart {
                         Style::Line => (Some(None), None),
                         Style::Dashed => (Some(Some(DASH)), None),
                         Style::Markers => (None, Some(true)),
+                        Style::Hollow => (None, Some(false)),
                     };
                     (
                         c.label.clone(),
@@ -319,8 +340,9 @@ impl LineChart {
             .draw()?;
         let mut frame = plot_frame(&chart);
         // Markers (the data) first, then the lines they are compared with, on top.
-        let markers = self.curves.iter().filter(|c| c.style == Style::Markers);
-        let lines = self.curves.iter().filter(|c| c.style != Style::Markers);
+        let is_markers = |c: &&Curve| matches!(c.style, Style::Markers | Style::Hollow);
+        let markers = self.curves.iter().filter(is_markers);
+        let lines = self.curves.iter().filter(|c| !is_markers(c));
         for c in markers.chain(lines) {
             let line = colour(c.color).stroke_width(LINE_WIDTH);
             let pts = self.plotted(c);
@@ -334,7 +356,7 @@ impl LineChart {
                     chart.draw_series(DashedLineSeries::new(pts, DASH.0, DASH.1, line))?;
                     frame.mark_line(&pixels);
                 }
-                Style::Markers => {
+                Style::Markers | Style::Hollow => {
                     let bars: Vec<((f64, f64), f64)> = self
                         .plotted_with_errors(c)
                         .into_iter()
@@ -354,7 +376,8 @@ impl LineChart {
                         let ends = [(x, y - e), (x, y + e)].map(|p| chart.backend_coord(&p));
                         frame.mark_line(&ends);
                     }
-                    draw_markers(chart.plotting_area(), &pts, c.color, MARKER_RADIUS, true)?;
+                    let filled = c.style == Style::Markers;
+                    draw_markers(chart.plotting_area(), &pts, c.color, MARKER_RADIUS, filled)?;
                     pixels.iter().for_each(|&p| frame.mark(p));
                 }
             };

@@ -5,6 +5,7 @@ use super::line_chart::{LineChart, Style};
 use super::series::{LawCurve, Named};
 use super::sweep_csv::SweepRow;
 use super::OutputError;
+use crate::analysis::convergence::{answer_too_coarse, COARSE_N_D};
 use std::path::Path;
 
 /// What a sweep's charts draw beside its rows' own numbers, gathered and computed by the
@@ -85,10 +86,6 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow], curves: &SweepCurves) -> LineChar
         1,
         Style::Line,
     );
-    let sim: Vec<(f64, f64)> = rows
-        .iter()
-        .filter_map(|r| Some((r.ratio, r.f_ad_bar?)))
-        .collect();
     if let Some(law) = &curves.fit {
         let [k1, k2, k3] = law.k;
         chart.push(
@@ -102,21 +99,52 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow], curves: &SweepCurves) -> LineChar
             Style::Dashed,
         );
     }
-    let errors = rows
+    // Answers, and the points of grids too coarse to be answers (hollow, not fitted).
+    let (coarse, resolved): (Vec<&SweepRow>, Vec<&SweepRow>) = rows
         .iter()
         .filter(|r| r.f_ad_bar.is_some())
-        .map(|r| r.f_ad_bar_uncertainty.unwrap_or(0.0))
-        .collect();
-    chart.push_with_errors(
-        &format!(
-            "jkrbem at Δx → 0, ± stated uncertainty (Nx = {})",
-            grids_text(rows)
-        ),
-        sim,
-        errors,
-        0,
-    );
+        .partition(|r| too_coarse(r));
+    let points = |rows: &[&SweepRow]| -> (Vec<(f64, f64)>, Vec<f64>) {
+        rows.iter()
+            .filter_map(|r| {
+                let e = r.f_ad_bar_uncertainty.unwrap_or(0.0);
+                Some(((r.ratio, r.f_ad_bar?), e))
+            })
+            .unzip()
+    };
+    if !resolved.is_empty() {
+        let (sim, errors) = points(&resolved);
+        let owned: Vec<SweepRow> = resolved.iter().map(|r| (*r).clone()).collect();
+        chart.push_with_errors(
+            &format!(
+                "jkrbem at Δx → 0, ± stated uncertainty (Nx = {})",
+                grids_text(&owned)
+            ),
+            sim,
+            errors,
+            0,
+        );
+    }
+    if !coarse.is_empty() {
+        let (sim, errors) = points(&coarse);
+        chart.push_hollow_with_errors(
+            &format!(
+                "coarse grid (< {COARSE_N_D:.0} elements across the contact): not an answer, \
+                 not fitted"
+            ),
+            sim,
+            errors,
+            0,
+        );
+    }
     chart
+}
+
+/// Whether a row's answer rests on a grid too coarse for its estimate (fewer than
+/// [`COARSE_N_D`] elements across the contact's minor axis at the minimum): drawn apart and
+/// left out of the fit.
+pub fn too_coarse(r: &SweepRow) -> bool {
+    answer_too_coarse(r.n_d)
 }
 
 /// The grids Nx of a sweep's rows in a few words: each distinct one ("64, 128") when there are

@@ -50,7 +50,9 @@ fn log_range(hi: f64, n: usize) -> impl Iterator<Item = f64> {
 
 /// A sweep's charts' curves: each row's `pulloffs` (its (d̄, F̄) points, or why there are
 /// none), its closed form on the adhesive branch up to its last approach (1 where it has no
-/// points), JG's adhesive force over the sweep's ratios, and the law fitted to its forces.
+/// points), JG's adhesive force over the sweep's ratios, and the law fitted to its forces
+/// (those of rows not too coarse for their estimate: `sweep_charts::too_coarse`; more than
+/// three, as the law has three coefficients), over the ratios fitted.
 pub fn sweep_curves(
     rows: &[SweepRow],
     pulloffs: Vec<Result<Vec<(f64, f64)>, String>>,
@@ -79,13 +81,19 @@ pub fn sweep_curves(
     let jg_force = log_range(hi, RATIO_POINTS)
         .filter_map(|ratio| Some((ratio, theory::reference_adhesive_force(ratio).ok()?)))
         .collect();
+    // Only answers are fitted: a grid too coarse for its estimate is drawn apart.
     let (x, y): (Vec<f64>, Vec<f64>) = rows
         .iter()
+        .filter(|r| !crate::output::sweep_charts::too_coarse(r))
         .filter_map(|r| Some((r.ratio, r.f_ad_bar?)))
         .unzip();
-    let fit = crate::analysis::fit_power_law(&x, &y)
-        .ok()
-        .map(|law| law_curve(&law, log_range(hi, RATIO_POINTS)));
+    // A law of three coefficients through three points or fewer says nothing: no fit then.
+    // It is drawn over the ratios it was fitted to, not beyond.
+    let fitted_hi = x.iter().copied().fold(1.0, f64::max);
+    let fit = (x.len() > 3)
+        .then(|| crate::analysis::fit_power_law(&x, &y).ok())
+        .flatten()
+        .map(|law| law_curve(&law, log_range(fitted_hi, RATIO_POINTS)));
     SweepCurves {
         pulloffs,
         references,
@@ -184,15 +192,30 @@ mod tests {
 
     #[test]
     fn a_sweep_gets_its_closed_forms_jg_and_the_law_fitted_to_its_forces() {
-        let rows: Vec<SweepRow> = [1.0, 2.0, 5.0, 10.0, 25.0, 50.0]
+        let mut rows: Vec<SweepRow> = [1.0, 2.0, 5.0, 10.0, 25.0, 50.0]
             .iter()
             .map(|&r: &f64| row(r, 0.3 + 0.25 * r.powf(-0.4)))
             .collect();
+        // A grid too coarse for its estimate (10 elements across the contact) over-predicts:
+        // it is drawn apart and not fitted, so the law still comes back.
+        rows.push(SweepRow {
+            n_d: Some(10.0),
+            ..row(100.0, 0.6)
+        });
         let pulloffs = rows
             .iter()
             .map(|_| Ok(vec![(0.5, -0.1), (-0.3, -0.5)]))
             .collect();
         let c = sweep_curves(&rows, pulloffs);
+        let chart = crate::output::sweep_charts::force_vs_ratio_chart(&rows, &c);
+        let hollow: Vec<_> = chart
+            .curves
+            .iter()
+            .filter(|k| k.style == crate::output::line_chart::Style::Hollow)
+            .collect();
+        assert_eq!(hollow.len(), 1);
+        assert_eq!(hollow[0].points, vec![(100.0, 0.6)]);
+        assert!(hollow[0].label.starts_with("coarse grid"));
         // JKR for the sphere, JG otherwise, each cut at the run's last approach (d̄ ≤ 0.5).
         assert_eq!(c.references[0].name, "JKR");
         assert_eq!(c.references[1].name, "JG");
@@ -203,12 +226,17 @@ mod tests {
         // JG's force from 1 to the largest ratio; JKR's 1/2 at 1.
         assert_eq!(c.jg_force.len(), RATIO_POINTS + 1);
         assert!((c.jg_force[0].1 - 0.5).abs() < 1e-9, "{:?}", c.jg_force[0]);
-        assert!((c.jg_force.last().unwrap().0 - 50.0).abs() < 1e-9);
+        assert!((c.jg_force.last().unwrap().0 - 100.0).abs() < 1e-9);
         // The law the points were made from comes back.
         let law = c.fit.expect("a fitted law");
         let [k1, k2, k3] = law.k;
         assert!((k1 - 0.25).abs() < 1e-6 && (k2 + 0.4).abs() < 1e-6 && (k3 - 0.3).abs() < 1e-6);
         assert!(law.r_squared > 0.999_999);
+        // Over the ratios fitted (to 50), not to the coarse row's 100.
+        assert!((law.points.last().unwrap().0 - 50.0).abs() < 1e-9);
+        // Three answers fit no law of three coefficients.
+        let three = sweep_curves(&rows[..3], vec![Err("none".into()); 3]);
+        assert!(three.fit.is_none());
         assert!(law
             .points
             .iter()
