@@ -83,6 +83,7 @@ fn slow_the_flat_punch_extrapolated_holds_kendall() {
 }
 
 #[test]
+#[ignore = "slow tier: an accuracy run of 12 pull-offs and more, about 3 minutes on 2 cores"]
 fn slow_an_accuracy_run_of_the_power_law_meets_its_target_or_says_why() {
     let s = extrapolated(
         Indenter::PowerLaw { n: 2.5, scale: 0.5 },
