@@ -178,11 +178,27 @@ pub fn crossed(
     })
 }
 
+/// The unit a force axis reads best in for forces up to `largest` (N): N, mN, µN or nN, and
+/// how many of it make a newton.
+fn force_unit(largest: f64) -> (&'static str, f64) {
+    [("N", 1.0), ("mN", 1e3), ("µN", 1e6), ("nN", 1e9)]
+        .into_iter()
+        .find(|&(_, k)| largest * k >= 1.0)
+        .unwrap_or(("nN", 1e9))
+}
+
 /// Adhesive force against crossing angle: the runs (with their uncertainty) beside JG over
-/// (θ_min, 90°]. The title gives the inputs in SI units (the documented use: m, Pa, J/m², so
-/// forces in N); other consistent units work the same, as the y label says.
+/// (θ_min, 90°], in N or the SI prefix that reads best ([`force_unit`]); runs too coarse for
+/// their estimate are drawn hollow, apart from the answers. The title gives the inputs in SI
+/// units (the documented use: m, Pa, J/m², so forces in N).
 fn chart(req: &CrossedRequest, rows: &[CrossedRow]) -> LineChart {
+    use crate::analysis::convergence::{answer_too_coarse, COARSE_N_D};
     use crate::text::compact;
+    let largest = rows
+        .iter()
+        .filter_map(|r| r.f_ad)
+        .fold(0.0f64, |m, f| m.max(f.abs()));
+    let (unit, per_newton) = force_unit(largest);
     let mut chart = LineChart::new(
         &format!(
             "Crossed cylinders: R = {} m, E = {} Pa, ν = {}, Δγ = {} J/m²",
@@ -192,7 +208,7 @@ fn chart(req: &CrossedRequest, rows: &[CrossedRow]) -> LineChart {
             compact(req.work_of_adhesion)
         ),
         "crossing angle θ (degrees)",
-        "adhesive force |F_min| (N; in the unit of E·R² for non-SI inputs)",
+        &format!("adhesive force |F_min| ({unit})"),
     );
     let lo = rows.iter().map(|r| r.angle_deg).fold(90.0, f64::min);
     let jg: Vec<(f64, f64)> = (0..=200)
@@ -200,25 +216,67 @@ fn chart(req: &CrossedRequest, rows: &[CrossedRow]) -> LineChart {
         .filter_map(|a| {
             let c = req.pair(a);
             let ratio = c.scene().ok()?.ratio();
-            Some((a, jg_force_bar(ratio)? * c.force_scale().ok()?))
+            Some((a, jg_force_bar(ratio)? * c.force_scale().ok()? * per_newton))
         })
         .collect();
     chart.push("Johnson–Greenwood", jg, 1, Style::Line);
-    let (sim, errors): (Vec<(f64, f64)>, Vec<f64>) = rows
-        .iter()
-        .filter_map(|r| Some(((r.angle_deg, r.f_ad?), r.f_ad_uncertainty.unwrap_or(0.0))))
-        .unzip();
-    chart.push_with_errors(
-        &format!(
-            "jkrbem at Δx → 0, ± stated uncertainty (Nx = {})",
-            rows.iter()
-                .map(|r| r.grid.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-        sim,
-        errors,
-        0,
-    );
+    let (coarse, resolved): (Vec<&CrossedRow>, Vec<&CrossedRow>) =
+        rows.iter().partition(|r| answer_too_coarse(r.n_d));
+    let points = |rows: &[&CrossedRow]| -> (Vec<(f64, f64)>, Vec<f64>) {
+        rows.iter()
+            .filter_map(|r| {
+                let e = r.f_ad_uncertainty.unwrap_or(0.0) * per_newton;
+                Some(((r.angle_deg, r.f_ad? * per_newton), e))
+            })
+            .unzip()
+    };
+    let grids = |rows: &[&CrossedRow]| {
+        let mut g: Vec<usize> = rows.iter().map(|r| r.grid).collect();
+        g.sort_unstable();
+        g.dedup();
+        g.iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if !resolved.is_empty() {
+        let (sim, errors) = points(&resolved);
+        chart.push_with_errors(
+            &format!(
+                "jkrbem at Δx → 0, ± stated uncertainty (Nx = {})",
+                grids(&resolved)
+            ),
+            sim,
+            errors,
+            0,
+        );
+    }
+    if !coarse.is_empty() {
+        let (sim, errors) = points(&coarse);
+        chart.push_hollow_with_errors(
+            &format!(
+                "coarse grid (< {COARSE_N_D:.0} elements across the contact, Nx = {}): not an \
+                 answer",
+                grids(&coarse)
+            ),
+            sim,
+            errors,
+            0,
+        );
+    }
     chart
+}
+
+#[cfg(test)]
+mod tests {
+    use super::force_unit;
+
+    #[test]
+    fn a_force_axis_reads_in_the_prefix_that_keeps_its_numbers_above_one() {
+        // Before: the study's 0.002 … 0.008 N read as such.
+        assert_eq!(force_unit(0.0073), ("mN", 1e3));
+        assert_eq!(force_unit(2.5), ("N", 1.0));
+        assert_eq!(force_unit(4e-5), ("µN", 1e6));
+        assert_eq!(force_unit(0.0), ("nN", 1e9));
+    }
 }
