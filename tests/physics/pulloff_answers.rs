@@ -23,6 +23,7 @@ fn sphere_curves_keep_every_state_and_the_minimum() {
 }
 
 #[test]
+#[ignore = "slow tier (about 3 minutes): cargo test --release -- --ignored"]
 fn slow_an_ellipsoid_and_a_turned_mesh_keep_every_state_and_the_minimum() {
     compare("5:1 256×128", 5.0, 256, Some(128), ModelOptions::default());
     compare(
@@ -95,6 +96,7 @@ fn larger_grids_keep_the_minimum() {
 }
 
 #[test]
+#[ignore = "slow tier (about 2 minutes): cargo test --release -- --ignored"]
 fn slow_loose_rounds_give_the_exact_rounds_states() {
     // The same onsets policy, every cascade round exact or only the last: the same states.
     for (ratio, nx, ny) in [(1.0, 128, None), (5.0, 256, Some(128))] {
