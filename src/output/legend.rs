@@ -284,9 +284,11 @@ pub fn render_with_legend(
     draw: impl Fn(&DrawingArea<SVGBackend, Shift>) -> Result<PlotFrame, String>,
 ) -> Result<String, String> {
     let mut inside = true;
+    let mut area = (0, 0, 0, 0);
     let svg = super::chart::render_svg(size, |root| {
         root.fill(&WHITE).map_err(|e| e.to_string())?;
         let frame = draw(root)?;
+        area = frame.area;
         match legend.free_corner(&frame) {
             Some(at) => legend.draw(root, at).map_err(|e| e.to_string()),
             None => {
@@ -296,7 +298,7 @@ pub fn render_with_legend(
         }
     })?;
     if inside {
-        return Ok(svg);
+        return Ok(with_plot_area(svg, area));
     }
     // Below the plot, from the plot's left edge, in as many columns as the width holds.
     let left = (MARGIN + Y_LABEL_AREA) as i32;
@@ -308,12 +310,29 @@ pub fn render_with_legend(
         .unwrap_or_else(|| legend.clone());
     let (_, h) = legend.size();
     let below = (size.0, size.1 + h + 8);
-    super::chart::render_svg(below, |root| {
+    let svg = super::chart::render_svg(below, |root| {
         root.fill(&WHITE).map_err(|e| e.to_string())?;
         let (plot, rest) = root.split_vertically(size.1);
-        draw(&plot)?;
+        area = draw(&plot)?.area;
         legend.draw(&rest, (left, 0)).map_err(|e| e.to_string())
-    })
+    })?;
+    Ok(with_plot_area(svg, area))
+}
+
+/// How an SVG written here records its plot area (left, top, right, bottom; px), in a comment
+/// before its end, for checks of the layout.
+pub const PLOT_AREA_NOTE: &str = "plot-area";
+
+/// `svg` with its plot area `area` recorded (see [`PLOT_AREA_NOTE`]).
+pub fn with_plot_area(svg: String, (l, t, r, b): (i32, i32, i32, i32)) -> String {
+    match svg.rfind("</svg>") {
+        Some(end) => format!(
+            "{}<!-- {PLOT_AREA_NOTE} {l} {t} {r} {b} -->\n{}",
+            &svg[..end],
+            &svg[end..]
+        ),
+        None => svg,
+    }
 }
 
 #[cfg(test)]

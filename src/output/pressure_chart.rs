@@ -6,6 +6,7 @@
 //! element sides between contact and no contact), and a colour bar in force/length².
 
 use super::chart::{linear_tick_label, plot_frame, render_svg, write_svg_document};
+use super::legend::with_plot_area;
 use super::figure_style::{AXIS_FONT, LABEL_FONT, MARGIN, PAGE_WIDTH, TITLE_FONT};
 use super::OutputError;
 use crate::analysis::fields::StateFields;
@@ -16,7 +17,7 @@ use std::path::Path;
 /// The most cells the picture draws along a side.
 const MAX_CELLS: usize = 160;
 /// The width of the colour bar's zone: the bar, its labels and its title (px).
-const BAR_ZONE: u32 = 135;
+const BAR_ZONE: u32 = 125;
 /// The colour bar's own width (px).
 const BAR_WIDTH: i32 = 16;
 /// The share of the interior's |p| below the colour scale's end (dimensionless).
@@ -72,7 +73,8 @@ pub fn pressure_svg(f: &StateFields, title: &str) -> Result<String, String> {
     let plot_h = (plot_w * (y1 - y0) / (x1 - x0)).clamp(160.0, 1.4 * plot_w);
     let extra_h = 2 * MARGIN + x_labels + TITLE_FONT + 12;
     let size = (PAGE_WIDTH, plot_h as u32 + extra_h);
-    render_svg(size, |root| {
+    let mut area = (0, 0, 0, 0);
+    let svg = render_svg(size, |root| {
         root.fill(&WHITE).map_err(|e| e.to_string())?;
         let (map, _) = root.split_horizontally(map_w);
         let mut chart = ChartBuilder::on(&map)
@@ -135,9 +137,11 @@ pub fn pressure_svg(f: &StateFields, title: &str) -> Result<String, String> {
                     .map(|s| PathElement::new(s, BLACK.stroke_width(1))),
             )
             .map_err(|e| e.to_string())?;
-        let (_, top, _, bottom) = plot_frame(&chart).area;
+        area = plot_frame(&chart).area;
+        let (_, top, _, bottom) = area;
         draw_colour_bar(root, (map_w as i32 + 8, top, bottom), scale, peak)
-    })
+    })?;
+    Ok(with_plot_area(svg, area))
 }
 
 /// The colour scale of `f`'s map and the largest |p| (force/length²): the
