@@ -6,6 +6,7 @@ pub mod batch_csv;
 pub mod bench;
 pub mod chart;
 pub mod fields_npz;
+pub mod figure;
 pub mod file;
 pub mod line_chart;
 pub mod names;
@@ -13,6 +14,7 @@ pub mod pressure_chart;
 #[cfg(feature = "gpu")]
 pub mod profile;
 pub mod provenance;
+pub mod render;
 pub mod series;
 pub mod states_csv;
 pub mod study_charts;
