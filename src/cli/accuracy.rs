@@ -35,6 +35,8 @@ pub struct Args {
     /// Output folder: states per run, accuracy.csv and accuracy.svg.
     #[arg(long, default_value = "jkrbem-out/accuracy")]
     pub out: PathBuf,
+    #[command(flatten)]
+    pub figures: super::figures::FigureArgs,
 }
 
 /// Run `jkrbem accuracy`.
@@ -54,6 +56,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         backends: args.backends,
         variants: args.variants,
         out: args.out,
+        figures: args.figures.figure_format,
     };
     let done = accuracy(&req, &Progress::new()).map_err(run_error)?;
     outln!("reference: {}", done.reference);
@@ -70,6 +73,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
             r.wall_s
         );
     }
-    outln!("written {} and {}", done.csv.display(), done.svg.display());
+    outln!(
+        "written {} and {}",
+        done.csv.display(),
+        args.figures.figure_format.shown(&done.svg)
+    );
     failures("runs", &done.failures, "")
 }

@@ -49,6 +49,8 @@ pub struct Args {
     /// Folder for bench.csv and bench.svg (and profile.csv).
     #[arg(long, default_value = "jkrbem-out/bench")]
     pub out: PathBuf,
+    #[command(flatten)]
+    pub figures: super::figures::FigureArgs,
 }
 
 /// Run `jkrbem bench`.
@@ -65,6 +67,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         margin: args.margin,
         profile: args.profile,
         out: args.out,
+        figures: args.figures.figure_format,
     };
     let done = bench(&req, &Progress::new()).map_err(run_error)?;
     for p in &done.profiles {

@@ -22,19 +22,22 @@ pub struct Args {
     /// in, sweep.csv or batch.csv, and the exit code is 0.
     #[arg(long)]
     pub allow_missing: bool,
+    #[command(flatten)]
+    pub figures: super::figures::FigureArgs,
 }
 
 /// Run `jkrbem collect`.
 pub fn run(args: Args) -> Result<(), CliError> {
-    match collect(&args.dir, args.allow_missing).map_err(run_error)? {
-        Collected::Sweep(m) => sweep(&m),
+    let formats = args.figures.figure_format;
+    match collect(&args.dir, args.allow_missing, formats).map_err(run_error)? {
+        Collected::Sweep(m) => sweep(&m, formats),
         Collected::Batch(m) => batch(&m),
     }
     Ok(())
 }
 
 /// What merging a sweep did.
-fn sweep(m: &Merged) {
+fn sweep(m: &Merged, formats: jkrbem::output::figure::FigureFormats) {
     outln!(
         "merged {} ratio(s) from {} of {} shard(s) into {}",
         m.rows,
@@ -50,8 +53,8 @@ fn sweep(m: &Merged) {
     }
     outln!(
         "charts written to {} and {}",
-        m.charts[0].display(),
-        m.charts[1].display()
+        formats.shown(&m.charts[0]),
+        formats.shown(&m.charts[1])
     );
 }
 

@@ -56,6 +56,8 @@ pub struct Args {
     /// Output folder: per angle states and summary, crossed.csv and crossed.svg.
     #[arg(long, default_value = "jkrbem-out/crossed")]
     pub out: PathBuf,
+    #[command(flatten)]
+    pub figures: super::figures::FigureArgs,
 }
 
 /// The parameter of this command that sets each of the analysis layer's (its flag is the one
@@ -92,6 +94,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         },
         jobs: args.jobs,
         out: args.out.clone(),
+        figures: args.figures.figure_format,
     };
     let done = crossed(&request, &flag, &Progress::new()).map_err(run_error)?;
     outln!("θ (deg)  R1/R2    F_ad                    JG F_ad    n_d");
@@ -115,7 +118,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     outln!(
         "written {} and {}",
         done.files[0].display(),
-        done.files[1].display()
+        args.figures.figure_format.shown(&done.files[1])
     );
     super::failures("pull-offs", &done.failures, "")
 }

@@ -7,6 +7,7 @@ pub mod collect;
 pub mod coverage;
 pub mod crossed;
 pub mod devices;
+pub mod figures;
 pub mod parse;
 pub mod progress;
 pub mod reference;

@@ -28,6 +28,9 @@ pub struct Args {
     /// Pull-offs run at the same time (1 to 256).
     #[arg(long, default_value_t = 1, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_JOBS as u64))]
     pub jobs: usize,
+    // The formats of the charts besides SVG (which index.html shows, and is always written).
+    #[command(flatten)]
+    pub figures: super::figures::FigureArgs,
 }
 
 /// Run `jkrbem reproduce`.
@@ -41,6 +44,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             ..BackendRequest::default()
         },
         jobs: args.jobs,
+        figures: args.figures.figure_format,
     };
     let done = study(&req, &Progress::new()).map_err(run_error)?;
     outln!(

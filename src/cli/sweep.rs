@@ -52,6 +52,8 @@ pub struct Args {
     /// ratio, and sweep.csv (or sweep-shard-K-of-N.json) with the charts.
     #[arg(long, default_value = "jkrbem-out/sweep")]
     pub out: PathBuf,
+    #[command(flatten)]
+    pub figures: super::figures::FigureArgs,
 }
 
 /// Run `jkrbem sweep`.
@@ -78,6 +80,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         shard,
         jobs: args.jobs,
         out: args.out.clone(),
+        figures: args.figures.figure_format,
     };
     let done = sweep(&request, &Progress::new()).map_err(run_error)?;
     outln!("ratio   |min F̄|            JG      n_d    wall (s)");
@@ -106,7 +109,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
     outln!("summary written to {}", done.summary_path.display());
     if let Some([a, b]) = &done.charts {
-        outln!("charts written to {} and {}", a.display(), b.display());
+        let formats = args.figures.figure_format;
+        outln!(
+            "charts written to {} and {}",
+            formats.shown(a),
+            formats.shown(b)
+        );
     }
     let pulloffs = super::failures(
         "pull-offs",

@@ -10,6 +10,7 @@ use super::figure_style::{
     PAGE_HEIGHT, PAGE_WIDTH, TITLE_FONT, X_LABEL_AREA, Y_LABEL_AREA,
 };
 use super::legend::{render_with_legend, Legend, PlotFrame, Sample};
+use super::figure::{write_figure, FigureFormats, PlotPoint};
 use super::OutputError;
 use plotters::prelude::*;
 use std::path::Path;
@@ -99,9 +100,32 @@ impl LogLogChart {
         )
     }
 
-    /// Write the chart as SVG to `path`, creating its folder.
-    pub fn write_svg(&self, path: &Path) -> Result<(), OutputError> {
-        write_svg_document(path, self.to_svg())
+    /// Write the chart to `path` (its SVG path) in each of `formats`, and the points it draws
+    /// to `<stem>.plot.csv` ([`write_figure`]), creating the folder.
+    pub fn write_figure(&self, path: &Path, formats: FigureFormats) -> Result<(), OutputError> {
+        write_figure(path, self.to_svg(), &self.plot_points(), formats)
+    }
+
+    /// Every point the chart draws, series by series: those with a place on log axes (x and
+    /// y finite and positive), each drawn as a marker on the series' line.
+    pub fn plot_points(&self) -> Vec<PlotPoint> {
+        self.series
+            .iter()
+            .flat_map(|s| {
+                let style = if s.dashed {
+                    "dashed+markers"
+                } else {
+                    "line+markers"
+                };
+                plottable(&s.points).map(move |(x, y)| PlotPoint {
+                    series: s.label.clone(),
+                    style,
+                    x,
+                    y,
+                    error: None,
+                })
+            })
+            .collect()
     }
 
     fn points(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
@@ -182,19 +206,6 @@ pub(crate) fn render_svg(
         root.present().map_err(|e| e.to_string())?;
     }
     Ok(svg)
-}
-
-/// Write a rendered SVG document (or the renderer's error) to `path`, creating its folder.
-pub(crate) fn write_svg_document(
-    path: &Path,
-    svg: Result<String, String>,
-) -> Result<(), OutputError> {
-    let svg = svg.map_err(|reason| OutputError::Chart {
-        path: path.display().to_string(),
-        param: None,
-        reason,
-    })?;
-    super::file::write_text(path, &svg)
 }
 
 /// The points of a series that have a place on log axes.
@@ -366,6 +377,22 @@ mod tests {
         });
         let svg = c.to_svg().unwrap();
         assert!(svg.starts_with("<svg"), "{}", &svg[..50]);
+        // Its data: every point drawn, the one at y < 0 (no place on a log axis) left out.
+        let points = c.plot_points();
+        let drawn: Vec<(&str, &str, f64, f64)> = points
+            .iter()
+            .map(|p| (p.series.as_str(), p.style, p.x, p.y))
+            .collect();
+        assert_eq!(
+            drawn,
+            [
+                ("a", "line+markers", 16.0, 0.1),
+                ("a", "line+markers", 32.0, 0.4),
+                ("b", "dashed+markers", 16.0, 0.2),
+                ("b", "dashed+markers", 32.0, 0.9)
+            ]
+        );
+        assert!(c.plot_points().iter().all(|p| p.error.is_none()));
         assert!(svg.contains("y (ms)") && svg.contains("\n32\n</text>"));
     }
 }

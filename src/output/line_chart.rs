@@ -4,12 +4,13 @@
 //! below it (never over the data). Shapes (contours) can be drawn with equal scales on both
 //! axes.
 
-use super::chart::{linear_tick_label, plot_frame, write_svg_document};
+use super::chart::{linear_tick_label, plot_frame};
 use super::figure_style::{
     colour, draw_markers, AXIS_FONT, DASH, LABEL_FONT, LINE_WIDTH, MARGIN, MARKER_RADIUS,
     PAGE_HEIGHT, PAGE_WIDTH, TITLE_FONT, X_LABEL_AREA, Y_LABEL_AREA,
 };
 use super::legend::{render_with_legend, Legend, PlotFrame, Sample};
+use super::figure::{write_figure, FigureFormats, PlotPoint};
 use super::OutputError;
 use plotters::prelude::*;
 use std::path::Path;
@@ -176,9 +177,37 @@ impl LineChart {
         )
     }
 
-    /// Write the chart as SVG to `path`, creating its folder.
-    pub fn write_svg(&self, path: &Path) -> Result<(), OutputError> {
-        write_svg_document(path, self.to_svg())
+    /// Write the chart to `path` (its SVG path) in each of `formats`, and the points it draws
+    /// to `<stem>.plot.csv` ([`write_figure`]), creating the folder.
+    pub fn write_figure(&self, path: &Path, formats: FigureFormats) -> Result<(), OutputError> {
+        write_figure(path, self.to_svg(), &self.plot_points(), formats)
+    }
+
+    /// Every point the chart draws, curve by curve: a line's vertices or the markers, those
+    /// with a place on the axes (finite; positive x on a log axis), each marker with the
+    /// half-width of its error bar where one is drawn.
+    pub fn plot_points(&self) -> Vec<PlotPoint> {
+        self.curves
+            .iter()
+            .flat_map(|c| {
+                let style = match c.style {
+                    Style::Line => "line",
+                    Style::Dashed => "dashed",
+                    Style::Markers => "markers",
+                    Style::Hollow => "hollow markers",
+                };
+                let bars = matches!(c.style, Style::Markers | Style::Hollow);
+                self.plotted_with_errors(c)
+                    .into_iter()
+                    .map(move |((x, y), e)| PlotPoint {
+                        series: c.label.clone(),
+                        style,
+                        x,
+                        y,
+                        error: (bars && e > 0.0).then_some(e),
+                    })
+            })
+            .collect()
     }
 
     /// x ticks: on a log axis log10 of 1, 2, 5 × 10^k inside the range; on a linear axis
@@ -429,6 +458,29 @@ mod tests {
             count(&bars.to_svg().unwrap()),
         );
         assert_eq!(n1, n0 + 6, "{n0} → {n1}");
+        // The data drawn: the line's vertices without bars, each marker with its bar's
+        // half-width; the simulated curve's NaN point is not drawn, so not listed.
+        let rows: Vec<(String, &str, f64, f64, Option<f64>)> = bars
+            .plot_points()
+            .into_iter()
+            .map(|p| (p.series, p.style, p.x, p.y, p.error))
+            .collect();
+        assert_eq!(
+            rows,
+            [
+                ("frame".into(), "line", 0.0, 0.0, None),
+                ("frame".into(), "line", 4.0, 1.0, None),
+                ("m".into(), "markers", 1.0, 0.2, Some(0.05)),
+                ("m".into(), "markers", 3.0, 0.25, Some(0.1)),
+            ]
+        );
+        let simulated: Vec<(f64, f64)> = c
+            .plot_points()
+            .iter()
+            .filter(|p| p.series == "simulated")
+            .map(|p| (p.x, p.y))
+            .collect();
+        assert_eq!(simulated, [(0.5, 0.1), (2.0, 0.3)]);
         let mut wide = frame();
         wide.push_with_errors("m", vec![(1.0, 0.2)], vec![3.0], 1);
         let ticks: Vec<String> = texts(&wide.to_svg().unwrap())

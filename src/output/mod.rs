@@ -6,6 +6,7 @@ pub mod batch_csv;
 pub mod bench;
 pub mod chart;
 pub mod fields_npz;
+pub mod figure;
 pub mod figure_style;
 pub mod file;
 pub mod legend;
@@ -15,6 +16,7 @@ pub mod pressure_chart;
 #[cfg(feature = "gpu")]
 pub mod profile;
 pub mod provenance;
+pub mod render;
 pub mod series;
 pub mod states_csv;
 pub mod study_charts;

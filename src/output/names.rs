@@ -1,6 +1,7 @@
 //! Every file name a run writes, in one place: the commands, the session layer and the
 //! charts all take their names from here.
 
+use super::figure::FigureFormat;
 use crate::text::compact;
 use std::fmt::Display;
 use std::path::{Path, PathBuf};
@@ -99,6 +100,19 @@ pub fn fields_npz(states: &Path) -> PathBuf {
 /// `<stem>.pressure.svg`.
 pub fn pressure_chart(states: &Path) -> PathBuf {
     beside(states, "pressure.svg")
+}
+
+/// The file of the chart named `chart` (its SVG path) in `format`: the same stem, the
+/// format's extension (`f_of_d.pdf`).
+pub fn figure_file(chart: &Path, format: FigureFormat) -> PathBuf {
+    chart.with_extension(format.name())
+}
+
+/// The data file of the chart named `chart` (its SVG path): `<stem>.plot.csv` beside it. The
+/// `.plot` keeps it apart from every other CSV a run writes (`<stem>.csv`, the states and the
+/// tables, and `<stem>.contours.csv`).
+pub fn plot_csv(chart: &Path) -> PathBuf {
+    chart.with_extension("plot.csv")
 }
 
 /// The summary JSON beside a states file: `<stem>.json`.
@@ -240,5 +254,11 @@ mod tests {
         assert_eq!(parse_batch_manifest("batch.json"), Some(None));
         assert_eq!(parse_batch_manifest("batch-shard-x-of-4.json"), None);
         assert_eq!(parse_batch_manifest("batch.csv"), None);
+        let chart = pressure_chart(Path::new("r/a.csv"));
+        assert_eq!(
+            figure_file(&chart, FigureFormat::Png),
+            Path::new("r/a.pressure.png")
+        );
+        assert_eq!(plot_csv(&chart), Path::new("r/a.pressure.plot.csv"));
     }
 }

@@ -5,9 +5,10 @@
 //! scale are drawn at its ends, and the colour bar says so), the contact's outline (the
 //! element sides between contact and no contact), and a colour bar in force/length².
 
-use super::chart::{linear_tick_label, plot_frame, render_svg, write_svg_document};
+use super::chart::{linear_tick_label, plot_frame, render_svg};
 use super::legend::with_plot_area;
 use super::figure_style::{AXIS_FONT, LABEL_FONT, MARGIN, PAGE_WIDTH, TITLE_FONT};
+use super::figure::{write_figure, FigureFormats, PlotRecord};
 use super::OutputError;
 use crate::analysis::fields::StateFields;
 use plotters::prelude::*;
@@ -58,10 +59,61 @@ fn window(f: &StateFields) -> (usize, usize, usize, usize) {
     (i0, i1, j0, j1)
 }
 
+/// One cell the heat map draws: a block of elements (one element where the grid is no finer
+/// than the picture; narrower at the window's edge) and its mean pressure, as
+/// `<stem>.plot.csv` records it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct PressureCell {
+    /// The block's centre along x (length).
+    pub x: f64,
+    /// The block's centre along y (length).
+    pub y: f64,
+    /// The block's mean pressure (force/length²; p < 0 tensile).
+    pub p: f64,
+    /// The block's width along x (length).
+    pub width: f64,
+    /// The block's height along y (length).
+    pub height: f64,
+}
+
+impl PlotRecord for PressureCell {
+    const HEADER: &'static str = "x,y,p,width,height";
+}
+
+/// The cells the heat map of `f` draws, row by row from the lowest y: the window around the
+/// contact (its bounding box and a border of 15 %), its elements averaged in square blocks so
+/// that at most 160 cells lie along a side.
+pub fn pressure_cells(f: &StateFields) -> Vec<PressureCell> {
+    let (i0, i1, j0, j1) = window(f);
+    let block = (i1 - i0).max(j1 - j0).div_ceil(MAX_CELLS).max(1);
+    let half = 0.5 * f.dx;
+    let mut cells = Vec::new();
+    for jb in (j0..j1).step_by(block) {
+        for ib in (i0..i1).step_by(block) {
+            let (ie, je) = ((ib + block).min(i1), (jb + block).min(j1));
+            let mut sum = 0.0;
+            for j in jb..je {
+                for i in ib..ie {
+                    sum += f.pressure[j * f.nx + i];
+                }
+            }
+            let (xa, xb) = (f.x[ib] - half, f.x[ie - 1] + half);
+            let (ya, yb) = (f.y[jb] - half, f.y[je - 1] + half);
+            cells.push(PressureCell {
+                x: 0.5 * (xa + xb),
+                y: 0.5 * (ya + yb),
+                p: sum / ((ie - ib) * (je - jb)) as f64,
+                width: xb - xa,
+                height: yb - ya,
+            });
+        }
+    }
+    cells
+}
+
 /// The SVG heat map of `f`'s pressure, titled `title`.
 pub fn pressure_svg(f: &StateFields, title: &str) -> Result<String, String> {
     let (i0, i1, j0, j1) = window(f);
-    let block = (i1 - i0).max(j1 - j0).div_ceil(MAX_CELLS).max(1);
     let (scale, peak) = colour_scale(f);
     let half = 0.5 * f.dx;
     let (x0, x1) = (f.x[i0] - half, f.x[i1 - 1] + half);
@@ -95,26 +147,13 @@ pub fn pressure_svg(f: &StateFields, title: &str) -> Result<String, String> {
             .y_label_formatter(&|v| linear_tick_label(*v))
             .draw()
             .map_err(|e| e.to_string())?;
-        let mut cells = Vec::new();
-        for jb in (j0..j1).step_by(block) {
-            for ib in (i0..i1).step_by(block) {
-                let (ie, je) = ((ib + block).min(i1), (jb + block).min(j1));
-                let mut sum = 0.0;
-                for j in jb..je {
-                    for i in ib..ie {
-                        sum += f.pressure[j * f.nx + i];
-                    }
-                }
-                let mean = sum / ((ie - ib) * (je - jb)) as f64;
-                cells.push(Rectangle::new(
-                    [
-                        (f.x[ib] - half, f.y[jb] - half),
-                        (f.x[ie - 1] + half, f.y[je - 1] + half),
-                    ],
-                    colour(mean / scale).filled(),
-                ));
-            }
-        }
+        let cells = pressure_cells(f).into_iter().map(|c| {
+            let (hw, hh) = (0.5 * c.width, 0.5 * c.height);
+            Rectangle::new(
+                [(c.x - hw, c.y - hh), (c.x + hw, c.y + hh)],
+                colour(c.p / scale).filled(),
+            )
+        });
         chart.draw_series(cells).map_err(|e| e.to_string())?;
         // The outline: every element side between a contact element and one out of contact.
         let c = |i: usize, j: usize| f.contact[j * f.nx + i];
@@ -243,7 +282,13 @@ fn draw_colour_bar(
     Ok(())
 }
 
-/// Write [`pressure_svg`] to `path`.
-pub fn write_pressure_svg(path: &Path, f: &StateFields, title: &str) -> Result<(), OutputError> {
-    write_svg_document(path, pressure_svg(f, title))
+/// Write [`pressure_svg`] to `path` (its SVG path) in each of `formats`, and its cells
+/// ([`pressure_cells`]) to `<stem>.plot.csv`.
+pub fn write_pressure_chart(
+    path: &Path,
+    f: &StateFields,
+    title: &str,
+    formats: FigureFormats,
+) -> Result<(), OutputError> {
+    write_figure(path, pressure_svg(f, title), &pressure_cells(f), formats)
 }

@@ -1,6 +1,7 @@
 //! The charts of a sweep (physics §8.1 and §8.6): the pull-off curves F̄(d̄) of every ratio beside
 //! JKR/JG, and the adhesive force |min F̄| against R1/R2 beside JG.
 
+use super::figure::FigureFormats;
 use super::line_chart::{LineChart, Style};
 use super::series::{LawCurve, Named};
 use super::sweep_csv::SweepRow;
@@ -164,17 +165,19 @@ fn grids_text(rows: &[SweepRow]) -> String {
     }
 }
 
-/// Write `force_vs_ratio.svg` and `pulloff_curves.svg` into `dir`; returns one line per ratio
-/// whose pull-off curve could not be drawn (see [`pulloff_curves_chart`]).
+/// Write `force_vs_ratio` and `pulloff_curves` into `dir` in each of `formats`, each with its
+/// `.plot.csv`; returns one line per ratio whose pull-off curve could not be drawn (see
+/// [`pulloff_curves_chart`]).
 pub fn write_sweep_charts(
     dir: &Path,
     rows: &[SweepRow],
     curves: &SweepCurves,
+    formats: FigureFormats,
 ) -> Result<Vec<String>, OutputError> {
     let [force_svg, curves_svg] = super::names::sweep_charts(dir);
-    force_vs_ratio_chart(rows, curves).write_svg(&force_svg)?;
+    force_vs_ratio_chart(rows, curves).write_figure(&force_svg, formats)?;
     let (chart, notes) = pulloff_curves_chart(rows, curves);
-    chart.write_svg(&curves_svg)?;
+    chart.write_figure(&curves_svg, formats)?;
     Ok(notes)
 }
 

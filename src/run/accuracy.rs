@@ -15,6 +15,7 @@ use crate::analysis::report::RunReport;
 use crate::backend::select::BackendKind;
 use crate::model::{Measure, Model, ModelOptions};
 use crate::output::chart::{LogLogChart, Series};
+use crate::output::figure::FigureFormats;
 use crate::run::schema::{BACKENDS, GRIDS, MEASURE, OUT, REGRID, VARIANTS};
 use crate::scene::Scene;
 use serde::Serialize;
@@ -84,6 +85,8 @@ pub struct AccuracyRequest {
     pub variants: Vec<Variant>,
     /// Output folder: states per run, accuracy.csv and accuracy.svg.
     pub out: PathBuf,
+    /// The formats of the chart, with its `accuracy.plot.csv`.
+    pub figures: FigureFormats,
 }
 
 /// The header of accuracy.csv, one column per [`AccuracyRow`] field.
@@ -126,7 +129,8 @@ pub struct AccuracyDone {
     pub reference: String,
     /// accuracy.csv.
     pub csv: PathBuf,
-    /// accuracy.svg.
+    /// The chart, by its SVG path (its files in the formats asked for:
+    /// [`FigureFormats::files`]).
     pub svg: PathBuf,
     /// The runs that failed, in words.
     pub failures: Vec<String>,
@@ -189,7 +193,8 @@ pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone
         .iter()
         .flat_map(|p| p.2.iter().flat_map(|j| run_files(&j.out)))
         .collect();
-    targets.extend([csv.clone(), svg.clone()]);
+    targets.push(csv.clone());
+    targets.extend(req.figures.files(&svg));
     let _claimed = Outputs::claim(&named(OUT, &targets))?;
     let mut series = Vec::new();
     let mut failures = Vec::new();
@@ -214,7 +219,14 @@ pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone
     }
     let (reference, reference_text) = reference(req.ratio, &series);
     let rows = chart_rows(&series, reference);
-    write_chart(req.ratio, &series, &rows, &reference_text, &svg)?;
+    write_chart(
+        req.ratio,
+        &series,
+        &rows,
+        &reference_text,
+        &svg,
+        req.figures,
+    )?;
     crate::output::file::write_csv(&csv, Some(ROW_HEADER), &rows).map_err(write_error(OUT))?;
     Ok(AccuracyDone {
         rows,
@@ -303,6 +315,7 @@ fn write_chart(
     rows: &[AccuracyRow],
     reference: &str,
     svg: &std::path::Path,
+    figures: FigureFormats,
 ) -> Result<(), RunError> {
     let mut chart = LogLogChart::new(
         format!("R1/R2 = {ratio}: error of |min F̄| against cost ({reference})"),
@@ -348,5 +361,5 @@ fn write_chart(
             });
         }
     }
-    chart.write_svg(svg).map_err(write_error(OUT))
+    chart.write_figure(svg, figures).map_err(write_error(OUT))
 }

@@ -12,6 +12,7 @@ use crate::backend::select::{self, BackendKind, Opened};
 use crate::bench::{self, BenchOptions, GridProfile, Measurement};
 use crate::model::{Model, ModelOptions, MIN_GRID};
 use crate::output::bench::{timing_chart, write_csv, BenchRow};
+use crate::output::figure::FigureFormats;
 #[cfg(feature = "gpu")]
 use crate::output::profile::{self, ProfileRow};
 use crate::run::schema::{BACKENDS, CG_ITERATIONS, GRIDS, OUT, PROFILE, REPEATS};
@@ -42,6 +43,8 @@ pub struct BenchRequest {
     pub profile: bool,
     /// Folder for bench.csv, bench.svg (and profile.csv).
     pub out: PathBuf,
+    /// The formats of the chart, with its `bench.plot.csv`.
+    pub figures: FigureFormats,
 }
 
 /// What the timing produced.
@@ -107,7 +110,8 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
     let csv = args.out.join("bench.csv");
     let svg = args.out.join("bench.svg");
     let profile_csv = args.out.join("profile.csv");
-    let mut targets = vec![csv.clone(), svg.clone()];
+    let mut targets = vec![csv.clone()];
+    targets.extend(args.figures.files(&svg));
     if args.profile {
         if cfg!(not(feature = "gpu")) {
             return Err(input(format!(
@@ -149,7 +153,8 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
 
     write_csv(&csv, &rows).map_err(write_error(OUT))?;
     #[cfg_attr(not(feature = "gpu"), allow(unused_mut))]
-    let mut files = vec![csv.clone(), svg.clone()];
+    let mut files = vec![csv.clone()];
+    files.extend(args.figures.files(&svg));
     #[cfg(feature = "gpu")]
     if args.profile {
         profile::write_csv(&profile_csv, &profile_rows).map_err(write_error(OUT))?;
@@ -161,7 +166,7 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
         args.repeats
     );
     timing_chart(&rows, &title)
-        .write_svg(&svg)
+        .write_figure(&svg, args.figures)
         .map_err(write_error(OUT))?;
     Ok(BenchDone {
         rows,

@@ -6,6 +6,7 @@ use super::scenes::collect::{collect_batch, records_in, BatchMerged};
 use super::schema::OUT;
 use super::sweep::{collect_shards, Merged};
 use super::{input, RunError};
+use crate::output::figure::FigureFormats;
 use std::path::Path;
 
 /// What `collect` merged.
@@ -29,9 +30,13 @@ fn has_sweep_shards(dir: &Path) -> bool {
 }
 
 /// Merge what `dir` holds: a batch where it holds a batch's records, else a sweep's shards
-/// (whose own checks name what is missing). A folder with both is refused: each run needs a
+/// (whose own checks name what is missing), its charts in `figures`. A folder with both is refused: each run needs a
 /// folder of its own.
-pub fn collect(dir: &Path, allow_missing: bool) -> Result<Collected, RunError> {
+pub fn collect(
+    dir: &Path,
+    allow_missing: bool,
+    figures: FigureFormats,
+) -> Result<Collected, RunError> {
     match (records_in(dir).is_empty(), has_sweep_shards(dir)) {
         (false, true) => Err(input(format!(
             "{} holds both a sweep's shard files (sweep-shard-K-of-N.json) and a batch's \
@@ -40,6 +45,6 @@ pub fn collect(dir: &Path, allow_missing: bool) -> Result<Collected, RunError> {
             dir.display()
         ))),
         (false, false) => collect_batch(dir, allow_missing).map(Collected::Batch),
-        (true, _) => collect_shards(dir, allow_missing).map(Collected::Sweep),
+        (true, _) => collect_shards(dir, allow_missing, figures).map(Collected::Sweep),
     }
 }

@@ -9,6 +9,7 @@ use super::Watch;
 use super::{input, RunError};
 use crate::analysis::CrossedCylinders;
 use crate::model::{Model, ModelOptions};
+use crate::output::figure::FigureFormats;
 use crate::output::line_chart::{LineChart, Style};
 use crate::run::schema::{Spec, ANGLE, GRID, OUT};
 use crate::theory;
@@ -40,6 +41,8 @@ pub struct CrossedRequest {
     pub jobs: usize,
     /// Output folder.
     pub out: PathBuf,
+    /// The formats of the chart, with its `crossed.plot.csv`.
+    pub figures: FigureFormats,
 }
 
 /// One angle's result (forces in the inputs' force unit, e.g. N).
@@ -73,7 +76,8 @@ pub struct CrossedRow {
 pub struct CrossedDone {
     /// One row per angle, largest angle first.
     pub rows: Vec<CrossedRow>,
-    /// crossed.csv and crossed.svg.
+    /// crossed.csv and the chart, by its SVG path crossed.svg (its files in the formats asked
+    /// for: [`FigureFormats::files`]).
     pub files: [PathBuf; 2],
     /// Why pull-offs failed, one line each.
     pub failures: Vec<String>,
@@ -137,7 +141,8 @@ pub fn crossed(
     crate::plan::check_memory(&refs, req.jobs, GRID).map_err(input)?;
     let files = [req.out.join("crossed.csv"), req.out.join("crossed.svg")];
     let mut targets: Vec<PathBuf> = jobs.iter().flat_map(|j| run_files(&j.out)).collect();
-    targets.extend(files.iter().cloned());
+    targets.push(files[0].clone());
+    targets.extend(req.figures.files(&files[1]));
     let _claimed = Outputs::claim(&named(OUT, &targets))?;
     let results = run_jobs(jobs, req.jobs, req.backend, watch);
     let failures = results.iter().filter_map(|r| r.error.clone()).collect();
@@ -168,7 +173,7 @@ pub fn crossed(
     rows.sort_by(|a, b| b.angle_deg.total_cmp(&a.angle_deg));
     crate::output::file::write_csv(&files[0], None, &rows).map_err(write_error(OUT))?;
     chart(req, &rows)
-        .write_svg(&files[1])
+        .write_figure(&files[1], req.figures)
         .map_err(write_error(OUT))?;
     Ok(CrossedDone {
         rows,

@@ -17,6 +17,7 @@ use super::{input, RunError};
 use crate::analysis::fields::FieldChoice;
 use crate::backend::select::BackendKind;
 use crate::model::{Measure, ModelOptions, Onsets, Preload};
+use crate::output::figure::{FigureFormat, FigureFormats};
 use crate::scene::height_map::HeightMap;
 use crate::scene::{Indenter, MeasuredSurface, RoughShape, Scene};
 use crate::setup::Preconditioner;
@@ -103,8 +104,16 @@ pub struct Request {
     /// Seconds.
     pub time_limit: Option<f64>,
     pub fields: String,
+    /// The formats of the charts; a request recorded before it existed wrote SVG.
+    #[serde(default = "svg_only")]
+    pub figure_format: Vec<FigureFormat>,
     pub out: Option<PathBuf>,
     pub summary: Option<PathBuf>,
+}
+
+/// [`FigureFormats::SVG`] as a request's list.
+fn svg_only() -> Vec<FigureFormat> {
+    vec![FigureFormat::Svg]
 }
 
 /// Nx of a one-grid run that names no grid.
@@ -479,6 +488,7 @@ impl Request {
             fields,
             time_limit,
             request: Some(self.to_json()),
+            figures: FigureFormats::of(&self.figure_format),
         })
     }
 }

@@ -14,6 +14,7 @@ use crate::analysis::fields::{
 };
 use crate::analysis::generic_limit;
 use crate::model::{Measure, Model, ModelOptions, Onsets};
+use crate::output::figure::FigureFormats;
 use crate::output::provenance::Provenance;
 use crate::output::summary::Summary;
 use crate::output::{fields_npz, names, pressure_chart, NamedBy};
@@ -89,6 +90,9 @@ pub struct SimulateRequest {
     /// The request this was built from, as JSON ([`super::request::Request::to_json`]),
     /// recorded in the summary's provenance where given.
     pub request: Option<serde_json::Value>,
+    /// The formats of the pressure map drawn beside each states file where fields are kept
+    /// (with [`Sink::Files`]); its data goes to `<stem>.plot.csv` whatever they are.
+    pub figures: FigureFormats,
 }
 
 /// Where a simulation's results go besides memory.
@@ -198,7 +202,9 @@ fn targets(
     if !req.fields.is_none() {
         for o in outs {
             targets.push((names::fields_npz(o), FIELDS.into()));
-            targets.push((names::pressure_chart(o), FIELDS.into()));
+            for file in req.figures.files(&names::pressure_chart(o)) {
+                targets.push((file, FIELDS.into()));
+            }
         }
     }
     if let Some(p) = summary {
@@ -255,7 +261,7 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
         provenance::backend_json(&req.backend, &reports),
     );
     provenance.request = req.request.clone();
-    let (field_files, unwritten) = write_fields(&ran.kept, &outs, &provenance);
+    let (field_files, unwritten) = write_fields(&ran.kept, &outs, &provenance, req.figures);
     if !unwritten.is_empty() {
         let e = unwritten.join("\n  ");
         ran.failure = Some(match ran.failure.take() {
@@ -298,12 +304,14 @@ fn one_run_returned(req: &SimulateRequest, models: &[Model]) -> Result<(), RunEr
 }
 
 /// Write each run's fields beside its states file (where it has a file and fields): the
-/// `.npz` archive, and the pressure at the force minimum as a picture. Returns the files
-/// written and why each one that could not be was not (the others are still written).
+/// `.npz` archive, and the pressure at the force minimum as a picture in each of `figures`
+/// with its data. Returns the files written and why each one that could not be was not (the
+/// others are still written).
 fn write_fields(
     runs: &[GridRun],
     outs: &[Option<PathBuf>],
     provenance: &Provenance,
+    figures: FigureFormats,
 ) -> (Vec<PathBuf>, Vec<String>) {
     let mut written = Vec::new();
     let mut unwritten = Vec::new();
@@ -336,8 +344,8 @@ fn write_fields(
                 "p at {what} (state {}): F̄ = {:.4}, c̄ = {:.3}, {}×{}",
                 min.index, min.state.f_bar, min.state.c_bar, run.grid.0, run.grid.1
             );
-            match pressure_chart::write_pressure_svg(&chart, min, &title) {
-                Ok(()) => written.push(chart),
+            match pressure_chart::write_pressure_chart(&chart, min, &title, figures) {
+                Ok(()) => written.extend(figures.files(&chart)),
                 Err(e) => unwritten.push(e.with_param(FIELDS).to_string()),
             }
         }

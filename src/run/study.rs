@@ -15,6 +15,7 @@ use crate::analysis::study_fits::{
     branch_fits, coefficient_laws, limit_fits, BranchFits, CoefficientLaw, RatioRun,
 };
 use crate::model::{Model, ModelOptions};
+use crate::output::figure::{FigureFormat, FigureFormats};
 use crate::output::line_chart::LineChart;
 use crate::output::names::sweep_states as states_path;
 use crate::output::study_charts::{
@@ -59,6 +60,9 @@ pub struct StudyRequest {
     pub backend: BackendRequest,
     /// Pull-offs at the same time.
     pub jobs: usize,
+    /// The formats of the charts besides SVG, which the index shows and is always written;
+    /// each chart's data goes to `<stem>.plot.csv`.
+    pub figures: FigureFormats,
 }
 
 /// What the study produced.
@@ -73,10 +77,13 @@ pub struct StudyDone {
     pub failures: Vec<String>,
 }
 
-/// The files `reproduce` writes in its --out folder itself (beside sweep/ and crossed/).
-const FILES: [&str; 14] = [
-    "fits.csv",
-    "coefficient_laws.csv",
+/// The files `reproduce` writes in its --out folder itself (beside sweep/ and crossed/),
+/// besides its charts ([`CHARTS`]).
+const FILES: [&str; 3] = ["fits.csv", "coefficient_laws.csv", "index.html"];
+
+/// The charts `reproduce` writes in its --out folder, by their SVG names (each also in the
+/// other formats asked for, with its `.plot.csv`: [`FigureFormats::files`]).
+const CHARTS: [&str; 11] = [
     "pulloff_curves.svg",
     "axis_ratio.svg",
     "d_of_c.svg",
@@ -88,8 +95,12 @@ const FILES: [&str; 14] = [
     "contours_r5.svg",
     "contours_r25.svg",
     "crossed.svg",
-    "index.html",
 ];
+
+/// The formats of the study's charts: those asked for, and SVG, which index.html shows.
+fn chart_formats(args: &StudyRequest) -> FigureFormats {
+    args.figures.with(FigureFormat::Svg)
+}
 
 /// Run the study: the sweep, the fits, the crossed cylinders, the charts and the index.
 /// `watch` receives progress notes.
@@ -102,6 +113,11 @@ pub fn study(args: &StudyRequest, watch: &dyn Watch) -> Result<StudyDone, RunErr
     let mut targets: Vec<PathBuf> = work.iter().flat_map(|j| run_files(&j.out)).collect();
     targets.push(sweep_csv::sweep_csv_path(&sweep_dir));
     targets.extend(FILES.iter().map(|file| args.out.join(file)));
+    targets.extend(
+        CHARTS
+            .iter()
+            .flat_map(|chart| chart_formats(args).files(&args.out.join(chart))),
+    );
     let _claimed = Outputs::claim(&named(OUT, &targets))?;
     announce(args, watch);
     let results = run_study_jobs(work, args, watch);
@@ -119,7 +135,7 @@ pub fn study(args: &StudyRequest, watch: &dyn Watch) -> Result<StudyDone, RunErr
     write_fit_tables(&args.out, &fits, &laws)?;
     let what = caption_tail(args, &rows);
     let backend = rows.first().map_or("?".to_string(), |r| r.backend.clone());
-    let mut figures = Figures::new(&args.out);
+    let mut figures = Figures::new(&args.out, chart_formats(args));
     draw_study_charts(&mut figures, &results, &rows, &runs, &fits, &laws, &what)?;
     draw_contours(&mut figures, &results, &rows, &backend)?;
     crossed_step(
@@ -356,21 +372,24 @@ fn caption_tail(args: &StudyRequest, rows: &[SweepRow]) -> String {
 /// caption for the index.
 struct Figures<'a> {
     out: &'a Path,
+    formats: FigureFormats,
     figures: Vec<Figure>,
 }
 
 impl<'a> Figures<'a> {
-    fn new(out: &'a Path) -> Self {
+    fn new(out: &'a Path, formats: FigureFormats) -> Self {
         Figures {
             out,
+            formats,
             figures: Vec::new(),
         }
     }
 
-    /// Write `chart` as `file` and list it with `caption`.
+    /// Write `chart` as `file` (its SVG name, and in the other formats) and list it with
+    /// `caption`.
     fn add(&mut self, file: &str, chart: LineChart, caption: String) -> Result<(), RunError> {
         chart
-            .write_svg(&self.out.join(file))
+            .write_figure(&self.out.join(file), self.formats)
             .map_err(write_error(OUT))?;
         self.figures.push(Figure {
             file: file.into(),
@@ -554,6 +573,7 @@ fn crossed_step(
         backend: args.backend,
         jobs: args.jobs,
         out: crossed_dir.clone(),
+        figures: figures.formats,
     };
     let t = Instant::now();
     match crossed(&crossed_req, &|p| p, watch) {
@@ -577,11 +597,17 @@ fn crossed_step(
     }
     let crossed_svg = crossed_dir.join("crossed.svg");
     if crossed_svg.exists() {
-        let svg = std::fs::read(&crossed_svg)
-            .map_err(|e| failed(format!("cannot read {}: {e}", crossed_svg.display())))?;
-        // A copy of a file already written in the command line's words.
-        crate::output::file::write_bytes(&args.out.join("crossed.svg"), &svg)
-            .map_err(write_error(OUT))?;
+        // A copy of each of its files (already written in the command line's words).
+        let copies = figures
+            .formats
+            .files(&crossed_svg)
+            .into_iter()
+            .zip(figures.formats.files(&args.out.join("crossed.svg")));
+        for (from, to) in copies {
+            let bytes = std::fs::read(&from)
+                .map_err(|e| failed(format!("cannot read {}: {e}", from.display())))?;
+            crate::output::file::write_bytes(&to, &bytes).map_err(write_error(OUT))?;
+        }
         figures.figures.push(Figure {
             file: "crossed.svg".into(),
             caption: format!(

@@ -9,6 +9,7 @@ use super::open::BackendRequest;
 use super::Watch;
 use super::{input, RunError};
 use crate::model::{Model, ModelOptions};
+use crate::output::figure::FigureFormats;
 use crate::output::sweep_charts::write_sweep_charts;
 use crate::output::sweep_csv::{self, Shard, SweepRow, SweepSettings};
 use crate::output::NamedBy;
@@ -37,6 +38,8 @@ pub struct SweepRequest {
     pub jobs: usize,
     /// Output folder.
     pub out: PathBuf,
+    /// The formats of the charts (a whole sweep's), each with its `.plot.csv`.
+    pub figures: FigureFormats,
 }
 
 /// What a sweep produced.
@@ -45,7 +48,8 @@ pub struct SweepDone {
     pub rows: Vec<SweepRow>,
     /// The summary CSV or shard file.
     pub summary_path: PathBuf,
-    /// The charts, for a whole sweep (not a shard).
+    /// The charts, for a whole sweep (not a shard), by their SVG paths (their files in the
+    /// formats asked for: [`FigureFormats::files`]).
     pub charts: Option<[PathBuf; 2]>,
     /// The ratios this run took.
     pub ran: usize,
@@ -60,6 +64,14 @@ pub struct SweepDone {
 pub use crate::output::names::sweep_states as states_path;
 
 pub use crate::output::names::sweep_charts as chart_files;
+
+/// Every file of a sweep's charts in `dir` ([`chart_files`]) in `formats`, with their data.
+pub fn figure_files(dir: &Path, formats: FigureFormats) -> Vec<PathBuf> {
+    chart_files(dir)
+        .iter()
+        .flat_map(|c| formats.files(c))
+        .collect()
+}
 
 /// The model of one ratio (R2 = E* = Δγ = 1: the normalised results do not depend on them)
 /// and the accuracy it is held to.
@@ -98,7 +110,7 @@ pub fn sweep(req: &SweepRequest, watch: &dyn Watch) -> Result<SweepDone, RunErro
     let mut targets: Vec<PathBuf> = jobs.iter().flat_map(|j| run_files(&j.out)).collect();
     targets.push(summary_path.clone());
     if req.shard.is_none() {
-        targets.extend(chart_files(&req.out));
+        targets.extend(figure_files(&req.out, req.figures));
     }
     let _claimed = Outputs::claim(&named(OUT, &targets))?;
     watch.note(&format!(
@@ -129,6 +141,7 @@ pub fn sweep(req: &SweepRequest, watch: &dyn Watch) -> Result<SweepDone, RunErro
             &req.out,
             &sorted,
             &chart_data::sweep_curves(&sorted, row_curves(&results, &sorted)),
+            req.figures,
         ) {
             Ok(w) => {
                 warnings.extend(w);
@@ -203,7 +216,8 @@ pub struct Merged {
     pub shards: usize,
     /// sweep.csv.
     pub path: PathBuf,
-    /// The charts.
+    /// The charts, by their SVG paths (their files in the formats asked for:
+    /// [`FigureFormats::files`]).
     pub charts: [PathBuf; 2],
     /// What is missing or incomplete (merged anyway with `allow_missing`).
     pub problems: Vec<String>,
@@ -277,10 +291,14 @@ fn listed(ratios: &[f64]) -> String {
 /// `collect`'s folder, which names its outputs (an argument, not a parameter).
 const DIR: NamedBy = NamedBy::Argument("DIR");
 
-/// Merge the shard files in `dir` into `dir/sweep.csv` and its charts, after checking that
-/// they are of one sweep with no ratio twice. Missing or incomplete ratios stop the merge
-/// (naming them) unless `allow_missing`.
-pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunError> {
+/// Merge the shard files in `dir` into `dir/sweep.csv` and its charts (in `figures`), after
+/// checking that they are of one sweep with no ratio twice. Missing or incomplete ratios stop
+/// the merge (naming them) unless `allow_missing`.
+pub fn collect_shards(
+    dir: &Path,
+    allow_missing: bool,
+    figures: FigureFormats,
+) -> Result<Merged, RunError> {
     use crate::output::sweep_csv::CollectError;
     let c = sweep_csv::collect(dir).map_err(|e| match e {
         CollectError::Empty(_) | CollectError::Io(..) => input(e),
@@ -321,7 +339,7 @@ pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunErro
     let path = sweep_csv::sweep_csv_path(dir);
     let charts = chart_files(dir);
     let mut targets = vec![path.clone()];
-    targets.extend(charts.iter().cloned());
+    targets.extend(figure_files(dir, figures));
     note_read_files(dir, &c);
     let _claimed = Outputs::claim(&named(DIR, &targets))?;
     sweep_csv::write_rows(&path, &c.rows).map_err(write_error(DIR))?;
@@ -340,7 +358,7 @@ pub fn collect_shards(dir: &Path, allow_missing: bool) -> Result<Merged, RunErro
         ));
     }
     let curves = chart_data::sweep_curves(&c.rows, sweep_curves(dir, &c.rows));
-    warnings.extend(write_sweep_charts(dir, &c.rows, &curves).map_err(write_error(DIR))?);
+    warnings.extend(write_sweep_charts(dir, &c.rows, &curves, figures).map_err(write_error(DIR))?);
     Ok(Merged {
         rows: c.rows.len(),
         shards_found: c.shards - c.missing_shards.len(),

@@ -11,6 +11,7 @@ mod batch;
 mod bench;
 mod cli;
 mod cli_fuzz;
+mod figures;
 mod hardening_collect;
 mod hardening_files;
 mod hardening_inputs;

@@ -29,6 +29,7 @@ fn fields_of(ratio: f64, nx: usize, choice: FieldChoice) -> (Vec<StateFields>, u
             fields: choice,
             time_limit: None,
             request: None,
+            figures: Default::default(),
         },
         &jkrbem::run::Quiet,
     )

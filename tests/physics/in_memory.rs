@@ -27,6 +27,7 @@ fn request(sink: Sink) -> SimulateRequest {
         fields: Default::default(),
         time_limit: None,
         request: None,
+        figures: Default::default(),
     }
 }
 

@@ -1,5 +1,6 @@
 //! `jkrbem reproduce --quick`: the whole study on coarse grids writes every chart of physics §8
-//! (with data in each) and an index.html that shows them with captions, and the adhesive
+//! (with data in each; as SVG and the PNG asked for, each with its `.plot.csv`) and an
+//! index.html that shows them with captions, and the adhesive
 //! force falls with R1/R2 less steeply than Johnson–Greenwood's.
 
 use crate::common;
@@ -17,6 +18,8 @@ fn quick_reproduction_writes_every_chart_with_data_and_an_index() {
             "cpu",
             "--jobs",
             "2",
+            "--figure-format",
+            "png",
             "--out",
             "rep",
         ],
@@ -52,6 +55,12 @@ fn quick_reproduction_writes_every_chart_with_data_and_an_index() {
             svg.contains("<polyline") || svg.contains("<path"),
             "{c} has no lines"
         );
+        // The PNG asked for beside the SVG the index shows (crossed.png copied from
+        // crossed/), and the points drawn.
+        let png = std::fs::read(rep.join(c).with_extension("png")).unwrap();
+        assert!(png.starts_with(b"\x89PNG"), "{c}");
+        let data = std::fs::read_to_string(rep.join(c).with_extension("plot.csv")).unwrap();
+        assert!(data.lines().count() >= 6, "{c}: {data}");
     }
     assert_eq!(index.matches("<figcaption>").count(), charts.len());
     // The fits with their quality, per ratio and across ratios.

@@ -54,6 +54,7 @@ fn value_name(spec: &Spec) -> &'static str {
         Kind::Real(_) => "X",
         Kind::Count(..) | Kind::PowerOfTwo(..) => "N",
         Kind::Choice(_) => "NAME",
+        Kind::Choices(_) => "NAME,…",
         Kind::File => "FILE",
         Kind::Fraction(..) => "PERCENT",
         Kind::Seconds(..) => "DURATION",

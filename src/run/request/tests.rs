@@ -29,6 +29,25 @@ fn text_and_json_requests_agree() {
 }
 
 #[test]
+fn figure_formats_reach_the_session_and_old_requests_read_as_svg() {
+    use crate::output::figure::{FigureFormat, FigureFormats};
+    let r = Request::from_texts([("figure_format", "png,pdf")]).unwrap();
+    assert_eq!(r.figure_format, [FigureFormat::Png, FigureFormat::Pdf]);
+    let s = r.simulate_request(Sink::Memory, None).unwrap();
+    assert_eq!(
+        s.figures,
+        FigureFormats::of(&[FigureFormat::Pdf, FigureFormat::Png])
+    );
+    let d = Request::from_values(Map::new()).unwrap();
+    assert_eq!(d.figure_format, [FigureFormat::Svg]);
+    // A request recorded before the parameter existed (a batch's summary that resume reads)
+    // is the default's.
+    let mut old = d.to_json();
+    old.as_object_mut().unwrap().remove("figure_format");
+    assert_eq!(serde_json::from_value::<Request>(old).unwrap(), d);
+}
+
+#[test]
 fn a_bare_request_runs_to_two_per_cent() {
     let r = Request::from_values(Map::new()).unwrap();
     assert!(matches!(r.mode().unwrap(), Mode::Accuracy(a) if a == 0.02));
@@ -98,7 +117,7 @@ fn the_schemas_defaults_are_the_models() {
 #[test]
 fn every_choice_the_schema_offers_is_a_value_of_the_request() {
     for spec in SPECS {
-        if let schema::Kind::Choice(names) = spec.kind {
+        if let schema::Kind::Choice(names) | schema::Kind::Choices(names) = spec.kind {
             for name in names {
                 let r = Request::from_texts([(spec.name, *name)]);
                 assert!(r.is_ok(), "{} = {name}: {:?}", spec.name, r.err());

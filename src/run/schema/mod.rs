@@ -44,6 +44,9 @@ pub enum Kind {
     Grids(u64, u64),
     /// Which states' fields are kept: "none", "minimum", "every:K" or "states:I,J".
     States,
+    /// One or more of these names, none repeated (the CLI writes them comma-separated,
+    /// "svg,pdf"; Python a list or the same text).
+    Choices(&'static [&'static str]),
 }
 
 /// A range of real numbers, each end closed or open.
@@ -263,6 +266,10 @@ impl Spec {
                 Some(format!("2 to 8 increasing powers of two from {lo} to {hi}"))
             }
             Kind::Choice(names) => Some(format!("one of {}", names.join(", "))),
+            Kind::Choices(names) => Some(format!(
+                "one or more of {}, comma-separated",
+                names.join(", ")
+            )),
             Kind::Fraction(lo, hi) => Some(format!(
                 "a percentage in [{}, {}]",
                 crate::text::compact(lo * 100.0),

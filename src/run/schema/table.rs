@@ -506,6 +506,22 @@ pub const FIELDS: &Spec = &spec(
      at the minimum to <out>.pressure.svg. Each is the state's contact set solved again on the \
      CPU (f64).",
 );
+/// The formats every chart is written in.
+pub const FIGURE_FORMAT: &Spec = &cli_only(spec(
+    "figure_format",
+    "--figure-format",
+    Output,
+    "",
+    Kind::Choices(&["svg", "pdf", "png"]),
+    Value("svg"),
+    "The formats every chart is written in, e.g. `svg,pdf,png`, beside each other with one \
+     stem (f_of_d.svg, f_of_d.pdf, f_of_d.png): `svg`; `pdf`, one page at the picture's size \
+     (96 pixels per inch), its text in the built-in DejaVu Sans; `png`, 300 dpi on white. \
+     Whatever they are, each chart's data goes to <stem>.plot.csv beside it, one row per point \
+     drawn (series, style, x, y, error) or, for a pressure map, per cell drawn (x, y, p, \
+     width, height). Here the pressure map of ⟨fields⟩; sweep, collect, crossed, accuracy, \
+     bench and reproduce take it too.",
+));
 /// The states CSV.
 pub const OUT: &Spec = &cli_only(spec(
     "out",
@@ -575,6 +591,7 @@ pub const SPECS: &[&Spec] = &[
     ACCURACY,
     TIME_LIMIT,
     FIELDS,
+    FIGURE_FORMAT,
     OUT,
     SUMMARY,
 ];

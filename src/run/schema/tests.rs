@@ -63,6 +63,8 @@ fn text_and_json_give_the_same_canonical_values() {
         (EXTRAPOLATE_GRIDS, "64,128,256", json!([64, 128, 256])),
         (INDENTER, "flat-punch", json!("flat_punch")),
         (REGRID, "true", json!(true)),
+        (FIGURE_FORMAT, "svg,pdf,png", json!(["svg", "pdf", "png"])),
+        (FIGURE_FORMAT, " png ", json!("png")),
     ];
     for (spec, text, value) in cases {
         let a = from_text(spec, text).unwrap();
@@ -90,6 +92,10 @@ fn values_out_of_kind_or_range_are_refused_naming_the_parameter() {
         (EXTRAPOLATE_GRIDS, "64"),
         (INDENTER, "cone"),
         (FIELDS, "every:0"),
+        (FIGURE_FORMAT, "jpeg"),
+        (FIGURE_FORMAT, "svg,svg"),
+        (FIGURE_FORMAT, ""),
+        (FIGURE_FORMAT, "svg,"),
     ];
     for (spec, text) in bad {
         let e = from_text(spec, text).unwrap_err();
@@ -244,7 +250,7 @@ fn flag_in(text: &str) -> Option<String> {
 #[test]
 fn a_value_written_as_text_reads_back_as_itself() {
     use super::values::to_text;
-    let samples: [(&Spec, &str); 12] = [
+    let samples: [(&Spec, &str); 13] = [
         (RATIO, "2.5"),
         (E_STAR, "1.5e-25"),
         (E_STAR, "123456789012345678901234"),
@@ -257,6 +263,7 @@ fn a_value_written_as_text_reads_back_as_itself() {
         (REGRID, "true"),
         (ONSETS, "near_minimum"),
         (FIELDS, "every:3"),
+        (FIGURE_FORMAT, "png,svg"),
     ];
     let defaults = SPECS.iter().filter_map(|s| match s.fallback {
         Fallback::Value(text) => Some((*s, text)),

@@ -33,6 +33,11 @@ pub fn expected(spec: &Spec) -> String {
         Kind::PowerOfTwo(lo, hi) => format!("a power of two from {lo} to {hi}"),
         Kind::Switch => "true or false".to_string(),
         Kind::Choice(names) => format!("one of {}", names.join(", ")),
+        Kind::Choices(names) => format!(
+            "one or more of {}, comma-separated, none repeated (e.g. {})",
+            names.join(", "),
+            names[..names.len().min(2)].join(",")
+        ),
         Kind::File => "a file's path".to_string(),
         Kind::Fraction(lo, hi) => format!(
             "a percentage in [{}, {}] (e.g. 2% on the command line, 0.02 from Python)",
@@ -116,6 +121,38 @@ fn choice(names: &[&str], given: &str) -> Option<String> {
         .map(|n| n.to_string())
 }
 
+/// One or more of `names`, none repeated, in the order given; or why not (naming the name
+/// that is none of them, or the repeat).
+fn choices_in(
+    spec: &Spec,
+    names: &[&str],
+    given: &[&str],
+    shown_as: &str,
+) -> Result<Value, String> {
+    if given.is_empty() || given.iter().all(|g| g.trim().is_empty()) {
+        return Err(invalid(spec, shown_as, &expected(spec)));
+    }
+    let mut out: Vec<String> = Vec::new();
+    for g in given {
+        let Some(name) = choice(names, g) else {
+            return Err(invalid(
+                spec,
+                shown_as,
+                &format!("{} is not one of {}", shown(g.trim()), names.join(", ")),
+            ));
+        };
+        if out.contains(&name) {
+            return Err(invalid(
+                spec,
+                shown_as,
+                &format!("{name} is given more than once; give each once"),
+            ));
+        }
+        out.push(name);
+    }
+    Ok(Value::from(out))
+}
+
 /// A number written as text, or `None`.
 fn number(text: &str) -> Option<f64> {
     text.trim().parse::<f64>().ok().filter(|v| v.is_finite())
@@ -177,6 +214,10 @@ pub fn from_text(spec: &Spec, text: &str) -> Result<Value, String> {
         Kind::States => crate::analysis::fields::FieldChoice::parse(text)
             .map(|_| Value::from(text.trim()))
             .map_err(|_| bad()),
+        Kind::Choices(names) => {
+            let given: Vec<&str> = text.split(',').collect();
+            choices_in(spec, names, &given, &s)
+        }
     }
 }
 
@@ -220,6 +261,7 @@ pub fn to_text(spec: &Spec, value: &Value) -> String {
             .iter()
             .map(|v| match v {
                 Value::Number(n) => number_text(n),
+                Value::String(s) => s.clone(),
                 other => other.to_string(),
             })
             .collect::<Vec<_>>()
@@ -327,6 +369,11 @@ pub fn from_json(spec: &Spec, value: &Value) -> Result<Value, Refusal> {
         },
         (Kind::Grids(lo, hi), Value::Array(a)) if a.iter().all(whole) => {
             grids_in(spec, &nums(a), lo, hi, &s)
+        }
+        (Kind::Choices(_), Value::String(t)) => from_text(spec, t),
+        (Kind::Choices(names), Value::Array(a)) if a.iter().all(Value::is_string) => {
+            let given: Vec<&str> = a.iter().filter_map(Value::as_str).collect();
+            choices_in(spec, names, &given, &s)
         }
         _ => return Err(wrong()),
     };
