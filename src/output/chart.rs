@@ -5,12 +5,12 @@
 //! series as it is drawn; the style is `figure_style`'s (the helpers here serve the linear
 //! charts too).
 
+use super::figure::{write_figure, FigureFormats, PlotPoint};
 use super::figure_style::{
     colour, draw_markers, AXIS_FONT, DASH, LABEL_FONT, LINE_WIDTH, MARGIN, MARKER_RADIUS,
     PAGE_HEIGHT, PAGE_WIDTH, TITLE_FONT, X_LABEL_AREA, Y_LABEL_AREA,
 };
 use super::legend::{render_with_legend, Legend, PlotFrame, Sample};
-use super::figure::{write_figure, FigureFormats, PlotPoint};
 use super::OutputError;
 use plotters::prelude::*;
 use std::path::Path;

@@ -5,12 +5,12 @@
 //! axes.
 
 use super::chart::{linear_tick_label, plot_frame};
+use super::figure::{write_figure, FigureFormats, PlotPoint};
 use super::figure_style::{
     colour, draw_markers, AXIS_FONT, DASH, LABEL_FONT, LINE_WIDTH, MARGIN, MARKER_RADIUS,
     PAGE_HEIGHT, PAGE_WIDTH, TITLE_FONT, X_LABEL_AREA, Y_LABEL_AREA,
 };
 use super::legend::{render_with_legend, Legend, PlotFrame, Sample};
-use super::figure::{write_figure, FigureFormats, PlotPoint};
 use super::OutputError;
 use plotters::prelude::*;
 use std::path::Path;

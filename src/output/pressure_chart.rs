@@ -6,9 +6,9 @@
 //! element sides between contact and no contact), and a colour bar in force/length².
 
 use super::chart::{linear_tick_label, plot_frame, render_svg};
-use super::legend::with_plot_area;
-use super::figure_style::{AXIS_FONT, LABEL_FONT, MARGIN, PAGE_WIDTH, TITLE_FONT};
 use super::figure::{write_figure, FigureFormats, PlotRecord};
+use super::figure_style::{AXIS_FONT, LABEL_FONT, MARGIN, PAGE_WIDTH, TITLE_FONT};
+use super::legend::with_plot_area;
 use super::OutputError;
 use crate::analysis::fields::StateFields;
 use plotters::prelude::*;

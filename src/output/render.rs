@@ -85,10 +85,14 @@ fn collect_text(group: &usvg::Group, out: &mut Vec<(String, [f32; 4])>) {
             usvg::Node::Text(t) => {
                 let text: String = t.chunks().iter().map(|c| c.text()).collect();
                 // The glyphs' own outline (the layout's box would add the line's ascent and
-                // descent); none for a blank text.
+                // descent), in the text's coordinates, then through the text's transform (a
+                // y-axis title is turned); none for a blank text.
                 let flat = t.flattened();
-                if flat.has_children() {
-                    let b = flat.abs_bounding_box();
+                if let Some(b) = flat
+                    .has_children()
+                    .then(|| flat.bounding_box().transform(t.abs_transform()))
+                    .flatten()
+                {
                     out.push((text, [b.left(), b.top(), b.right(), b.bottom()]));
                 }
             }

@@ -17,6 +17,7 @@ mod hardening_files;
 mod hardening_inputs;
 mod hardening_reference;
 mod periodic_map;
+mod print_quality;
 mod robustness;
 mod roughness;
 mod streams;
