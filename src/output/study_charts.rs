@@ -26,8 +26,8 @@ pub struct AxisRatioSeries {
 pub fn axis_ratio_chart(series: &[AxisRatioSeries]) -> LineChart {
     let mut chart = LineChart::new(
         "Contact axis ratio against force (markers: jkrbem, lines: JG)",
-        "force F̄",
-        "axis ratio b_simu / a_simu",
+        "force F̄ = F/(3π Re Δγ)",
+        "contact axis ratio b/a (minor / major half-axis)",
     );
     for (i, run) in series.iter().enumerate() {
         chart.push(
@@ -140,9 +140,9 @@ pub struct CoefficientSeries {
 /// The fitted coefficients against R1/R2 (log axis) with their laws (dashed).
 pub fn coefficients_chart(series: &[CoefficientSeries]) -> LineChart {
     let mut chart = LineChart::new(
-        "Branch-law coefficients against axis ratio (dashed: k1·(R1/R2)^k2 + k3)",
+        "Coefficients of d̄ = A c̄² + B c̄^½ and F̄ = c1 c̄³ + c2 c̄^α against R1/R2",
         "R1/R2",
-        "coefficient",
+        "coefficient (dimensionless)",
     );
     chart.x_log = true;
     for (i, c) in series.iter().enumerate() {

@@ -440,7 +440,7 @@ fn draw_study_charts(
     figures.add(
         "axis_ratio.svg",
         axis_ratio_chart(&chart_data::axis_ratio_series(&r2)),
-        format!("§8.2 Axis ratio b_simu/a_simu against F̄ beside JG's g(F̄). {what}."),
+        format!("§8.2 Contact axis ratio b/a against F̄ beside JG's g(F̄). {what}."),
     )?;
     let (r3, f3) = pick(runs, fits, &[2.0, 10.0, 25.0]);
     let branches = chart_data::branch_series(&r3, &f3);
