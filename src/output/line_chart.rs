@@ -112,21 +112,30 @@ impl LineChart {
         });
     }
 
-    /// Add hollow markers ([`Style::Hollow`]) with error bars as [`LineChart::push_with_errors`].
-    pub fn push_hollow_with_errors(
+    /// Add estimates ((x, y), half-width of the stated uncertainty): `answers` as filled
+    /// markers with error bars labelled `label`, and `coarse` ones (from grids too coarse for
+    /// their estimate) as hollow markers labelled `coarse_label`; an empty group adds nothing.
+    pub fn push_estimates(
         &mut self,
-        label: &str,
-        points: Vec<(f64, f64)>,
-        errors: Vec<f64>,
+        (label, answers): (&str, Vec<((f64, f64), f64)>),
+        (coarse_label, coarse): (&str, Vec<((f64, f64), f64)>),
         color: usize,
     ) {
-        self.curves.push(Curve {
-            label: label.into(),
-            points,
-            color,
-            style: Style::Hollow,
-            errors,
-        });
+        for (label, group, style) in [
+            (label, answers, Style::Markers),
+            (coarse_label, coarse, Style::Hollow),
+        ] {
+            if !group.is_empty() {
+                let (points, errors) = group.into_iter().unzip();
+                self.curves.push(Curve {
+                    label: label.into(),
+                    points,
+                    color,
+                    style,
+                    errors,
+                });
+            }
+        }
     }
 
     /// The chart as an SVG document: the plot at [`LineChart::size`], the legend inside it

@@ -105,39 +105,34 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow], curves: &SweepCurves) -> LineChar
         .iter()
         .filter(|r| r.f_ad_bar.is_some())
         .partition(|r| too_coarse(r));
-    let points = |rows: &[&SweepRow]| -> (Vec<(f64, f64)>, Vec<f64>) {
+    let points = |rows: &[&SweepRow]| -> Vec<((f64, f64), f64)> {
         rows.iter()
             .filter_map(|r| {
-                let e = r.f_ad_bar_uncertainty.unwrap_or(0.0);
-                Some(((r.ratio, r.f_ad_bar?), e))
+                Some((
+                    (r.ratio, r.f_ad_bar?),
+                    r.f_ad_bar_uncertainty.unwrap_or(0.0),
+                ))
             })
-            .unzip()
+            .collect()
     };
-    if !resolved.is_empty() {
-        let (sim, errors) = points(&resolved);
-        let owned: Vec<SweepRow> = resolved.iter().map(|r| (*r).clone()).collect();
-        chart.push_with_errors(
+    let owned: Vec<SweepRow> = resolved.iter().map(|r| (*r).clone()).collect();
+    chart.push_estimates(
+        (
             &format!(
                 "jkrbem at Δx → 0, ± stated uncertainty (Nx = {})",
                 grids_text(&owned)
             ),
-            sim,
-            errors,
-            0,
-        );
-    }
-    if !coarse.is_empty() {
-        let (sim, errors) = points(&coarse);
-        chart.push_hollow_with_errors(
+            points(&resolved),
+        ),
+        (
             &format!(
                 "coarse grid (< {COARSE_N_D:.0} elements across the contact): not an answer, \
                  not fitted"
             ),
-            sim,
-            errors,
-            0,
-        );
-    }
+            points(&coarse),
+        ),
+        0,
+    );
     chart
 }
 

@@ -227,13 +227,13 @@ fn chart(req: &CrossedRequest, rows: &[CrossedRow]) -> LineChart {
     chart.push("Johnson–Greenwood", jg, 1, Style::Line);
     let (coarse, resolved): (Vec<&CrossedRow>, Vec<&CrossedRow>) =
         rows.iter().partition(|r| answer_too_coarse(r.n_d));
-    let points = |rows: &[&CrossedRow]| -> (Vec<(f64, f64)>, Vec<f64>) {
+    let points = |rows: &[&CrossedRow]| -> Vec<((f64, f64), f64)> {
         rows.iter()
             .filter_map(|r| {
                 let e = r.f_ad_uncertainty.unwrap_or(0.0) * per_newton;
                 Some(((r.angle_deg, r.f_ad? * per_newton), e))
             })
-            .unzip()
+            .collect()
     };
     let grids = |rows: &[&CrossedRow]| {
         let mut g: Vec<usize> = rows.iter().map(|r| r.grid).collect();
@@ -244,31 +244,24 @@ fn chart(req: &CrossedRequest, rows: &[CrossedRow]) -> LineChart {
             .collect::<Vec<_>>()
             .join(", ")
     };
-    if !resolved.is_empty() {
-        let (sim, errors) = points(&resolved);
-        chart.push_with_errors(
+    chart.push_estimates(
+        (
             &format!(
                 "jkrbem at Δx → 0, ± stated uncertainty (Nx = {})",
                 grids(&resolved)
             ),
-            sim,
-            errors,
-            0,
-        );
-    }
-    if !coarse.is_empty() {
-        let (sim, errors) = points(&coarse);
-        chart.push_hollow_with_errors(
+            points(&resolved),
+        ),
+        (
             &format!(
                 "coarse grid (< {COARSE_N_D:.0} elements across the contact, Nx = {}): not an \
                  answer",
                 grids(&coarse)
             ),
-            sim,
-            errors,
-            0,
-        );
-    }
+            points(&coarse),
+        ),
+        0,
+    );
     chart
 }
 
