@@ -65,6 +65,10 @@ pub struct LineChart {
     pub equal_scales: bool,
 }
 
+/// An estimate as a chart draws it: (x, y) and the half-width of its stated uncertainty (in
+/// y's unit).
+pub type Estimate = ((f64, f64), f64);
+
 /// The least height (px) of the plot of a chart with equal scales.
 const MIN_EQUAL_HEIGHT: u32 = 150;
 
@@ -117,8 +121,8 @@ impl LineChart {
     /// their estimate) as hollow markers labelled `coarse_label`; an empty group adds nothing.
     pub fn push_estimates(
         &mut self,
-        (label, answers): (&str, Vec<((f64, f64), f64)>),
-        (coarse_label, coarse): (&str, Vec<((f64, f64), f64)>),
+        (label, answers): (&str, Vec<Estimate>),
+        (coarse_label, coarse): (&str, Vec<Estimate>),
         color: usize,
     ) {
         for (label, group, style) in [
