@@ -33,8 +33,6 @@ pub struct WindowPath {
     /// The pull-off's path: from the default preload's depth d0, in `steps` equal steps to
     /// its expected end (lengths).
     pub load: LoadPath,
-    /// The approach of the first touch (length).
-    pub d_touch: f64,
     /// The default preload's depth above the first touch (length).
     pub depth: f64,
     /// The loading phase's step (length): the depth's share of the pull-off's steps, so that
@@ -93,7 +91,6 @@ impl WindowGeometry<'_> {
         };
         WindowPath {
             load,
-            d_touch,
             depth,
             loading_step: depth * (1.0 + WINDOW_PULL_BELOW) / steps,
         }

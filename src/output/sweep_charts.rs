@@ -115,12 +115,11 @@ pub fn force_vs_ratio_chart(rows: &[SweepRow], curves: &SweepCurves) -> LineChar
             })
             .collect()
     };
-    let owned: Vec<SweepRow> = resolved.iter().map(|r| (*r).clone()).collect();
     chart.push_estimates(
         (
             &format!(
                 "jkrbem at Δx → 0, ± stated uncertainty (Nx = {})",
-                grids_text(&owned)
+                grids_text(resolved.iter().map(|r| r.grid))
             ),
             points(&resolved),
         ),
@@ -143,10 +142,10 @@ pub fn too_coarse(r: &SweepRow) -> bool {
     answer_too_coarse(r.n_d)
 }
 
-/// The grids Nx of a sweep's rows in a few words: each distinct one ("64, 128") when there are
-/// at most four, else their range ("64 to 2048, 9 grids").
-fn grids_text(rows: &[SweepRow]) -> String {
-    let mut grids: Vec<usize> = rows.iter().map(|r| r.grid).collect();
+/// The grids Nx of a sweep's rows (`grids`) in a few words: each distinct one ("64, 128")
+/// when there are at most four, else their range ("64 to 2048, 9 grids").
+fn grids_text(grids: impl Iterator<Item = usize>) -> String {
+    let mut grids: Vec<usize> = grids.collect();
     grids.sort_unstable();
     grids.dedup();
     match grids.as_slice() {
