@@ -114,6 +114,8 @@ pub struct ContourRow {
     pub x_bar: f64,
     /// Boundary point y/c_r.
     pub y_bar: f64,
+    /// d̄ of the state (the last column, so that readers of the first ten keep working).
+    pub d_bar: f64,
 }
 
 /// The quarter contour of every snapshot as rows, with its departure from the ellipse of
@@ -140,6 +142,7 @@ pub fn contour_rows(model: &Model, snapshots: &[Snapshot]) -> Vec<ContourRow> {
             departure_max: max,
             x_bar: p.x / length,
             y_bar: p.y / length,
+            d_bar: s.state.d_bar,
         }));
     }
     rows

@@ -112,17 +112,26 @@ pub struct CoefficientLaw {
     pub name: &'static str,
     /// (R1/R2, value, half-width if known) per ratio.
     pub points: Vec<(f64, f64, Option<f64>)>,
-    /// The law (None with fewer than three ratios or a failed fit).
+    /// The law, fitted to the points of ratios not in `coarse` (None with three such ratios
+    /// or fewer, or a failed fit).
     pub law: Option<PowerLawFit>,
+    /// The ratios whose branch fits rest on grids too coarse for their estimate: drawn apart,
+    /// left out of the law.
+    pub coarse: Vec<f64>,
     /// Half-widths of (k1, k2, k3) where every point has one: each point moved by its
     /// standard deviation (half its half-width) in turn and the law refitted, the shifts
     /// added in quadrature (first-order propagation), times two.
     pub uncertainty: Option<[f64; 3]>,
 }
 
+/// Fewer points than this leave a coefficient without a law: k1·(R1/R2)^k2 + k3 has three
+/// coefficients, and through three points it says nothing about the data.
+pub const MIN_LAW_POINTS: usize = 4;
+
 /// Each coefficient's values against R1/R2 and its law, with uncertainties where the fits
-/// have them.
-pub fn coefficient_laws(fits: &[BranchFits]) -> Vec<CoefficientLaw> {
+/// have them. The ratios in `coarse` (branch fits from grids too coarse for their estimate)
+/// keep their points but are left out of the law.
+pub fn coefficient_laws(fits: &[BranchFits], coarse: &[f64]) -> Vec<CoefficientLaw> {
     COEFFICIENTS
         .iter()
         .enumerate()
@@ -131,11 +140,15 @@ pub fn coefficient_laws(fits: &[BranchFits]) -> Vec<CoefficientLaw> {
                 .iter()
                 .filter_map(|f| Some((f.ratio, get(f)?, f.uncertainty.map(|u| u[i]))))
                 .collect();
-            let x: Vec<f64> = points.iter().map(|p| p.0).collect();
-            let y: Vec<f64> = points.iter().map(|p| p.1).collect();
-            let law = fit_power_law(&x, &y).ok();
+            let fitted: Vec<&(f64, f64, Option<f64>)> =
+                points.iter().filter(|p| !coarse.contains(&p.0)).collect();
+            let x: Vec<f64> = fitted.iter().map(|p| p.0).collect();
+            let y: Vec<f64> = fitted.iter().map(|p| p.1).collect();
+            let law = (x.len() >= MIN_LAW_POINTS)
+                .then(|| fit_power_law(&x, &y).ok())
+                .flatten();
             let uncertainty = law.as_ref().and_then(|_| {
-                let sds: Vec<f64> = points
+                let sds: Vec<f64> = fitted
                     .iter()
                     .map(|p| p.2.map(|u| 0.5 * u))
                     .collect::<Option<_>>()?;
@@ -158,6 +171,11 @@ pub fn coefficient_laws(fits: &[BranchFits]) -> Vec<CoefficientLaw> {
             });
             CoefficientLaw {
                 name,
+                coarse: points
+                    .iter()
+                    .map(|p| p.0)
+                    .filter(|r| coarse.contains(r))
+                    .collect(),
                 points,
                 law,
                 uncertainty,

@@ -151,7 +151,7 @@ impl LineChart {
     }
 
     /// The legend, each entry drawn as its curve is.
-    fn legend(&self) -> Legend {
+    pub(super) fn legend(&self) -> Legend {
         Legend::new(
             self.curves
                 .iter()
@@ -176,7 +176,8 @@ impl LineChart {
     }
 
     /// Widen `xr` and `yr` so that one unit spans as many pixels on both axes of a plot of
-    /// `pixels` (width, height), keeping their lower ends.
+    /// `pixels` (width, height): a range that holds 0 inside it (a whole outline) about its
+    /// centre, any other (a quarter contour from its axes) keeping its lower end.
     fn equalised(
         xr: std::ops::Range<f64>,
         yr: std::ops::Range<f64>,
@@ -184,10 +185,15 @@ impl LineChart {
     ) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
         let (pw, ph) = (pixels.0.max(1) as f64, pixels.1.max(1) as f64);
         let per_pixel = ((xr.end - xr.start) / pw).max((yr.end - yr.start) / ph);
-        (
-            xr.start..xr.start + per_pixel * pw,
-            yr.start..yr.start + per_pixel * ph,
-        )
+        let widen = |r: std::ops::Range<f64>, span: f64| {
+            if r.start < 0.0 && r.end > 0.0 {
+                let mid = 0.5 * (r.start + r.end);
+                mid - 0.5 * span..mid + 0.5 * span
+            } else {
+                r.start..r.start + span
+            }
+        };
+        (widen(xr, per_pixel * pw), widen(yr, per_pixel * ph))
     }
 
     /// Write the chart to `path` (its SVG path) in each of `formats`, and the points it draws
@@ -314,7 +320,7 @@ impl LineChart {
         )
     }
 
-    fn draw<DB: DrawingBackend>(
+    pub(super) fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<PlotFrame, DrawingAreaErrorKind<DB::ErrorType>> {

@@ -12,6 +12,7 @@ pub mod file;
 pub mod legend;
 pub mod line_chart;
 pub mod names;
+pub mod panels;
 pub mod pressure_chart;
 #[cfg(feature = "gpu")]
 pub mod profile;

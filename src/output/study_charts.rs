@@ -1,9 +1,11 @@
-//! The charts of the study (physics §8.2, §8.4–§8.6) made from pull-off states: the axis ratio
+//! The charts of the study (physics §8.1–§8.6) made from pull-off states: the axis ratio
 //! b/a against F̄, the branch laws d̄(c̄), F̄(c̄), F̄(d̄) with their fits, the fitted
-//! coefficients against R1/R2, and the contours. The points, closed forms and fitted laws come
+//! coefficients against R1/R2, the contours, and a pull-off curve beside the contact outlines
+//! of its marked states (the study's Fig. 2b). The points, closed forms and fitted laws come
 //! computed from the session layer (`run::chart_data`); this module only draws them.
 
 use super::line_chart::{LineChart, Style};
+use super::panels::Panels;
 use super::series::LawCurve;
 
 /// Points of the ellipses beside the contours.
@@ -16,6 +18,8 @@ pub struct AxisRatioSeries {
     pub ratio: f64,
     /// Elements along x and y.
     pub grid: (usize, usize),
+    /// Whether the grid is too coarse for the ratio's estimate (drawn hollow).
+    pub coarse: bool,
     /// (F̄, b/a) of the run's pull-off states in contact.
     pub points: Vec<(f64, f64)>,
     /// (F̄, b/a) of Johnson–Greenwood's curve over the run's range of F̄.
@@ -26,15 +30,15 @@ pub struct AxisRatioSeries {
 pub fn axis_ratio_chart(series: &[AxisRatioSeries]) -> LineChart {
     let mut chart = LineChart::new(
         "Contact axis ratio against force (markers: jkrbem, lines: JG)",
-        "force F̄ = F/(3π Re Δγ)",
+        F_AXIS,
         "contact axis ratio b/a (minor / major half-axis)",
     );
     for (i, run) in series.iter().enumerate() {
         chart.push(
-            &format!("R1/R2 = {} ({}×{})", run.ratio, run.grid.0, run.grid.1),
+            &run_label(run.ratio, run.grid, run.coarse),
             run.points.clone(),
             i,
-            Style::Markers,
+            run_style(run.coarse),
         );
         chart.push(
             &format!("JG, R1/R2 = {}", run.ratio),
@@ -57,6 +61,9 @@ pub struct BranchSeries {
     pub ratio: f64,
     /// Elements along x and y.
     pub grid: (usize, usize),
+    /// Whether the grid is too coarse for the ratio's estimate: its branch is drawn hollow and
+    /// its fit is not drawn.
+    pub coarse: bool,
     /// The run's adhesive branch (its onset states).
     pub branch: Vec<BranchTriple>,
     /// The closed form's name ("JKR", "JG").
@@ -66,6 +73,13 @@ pub struct BranchSeries {
     /// The fitted laws d̄(c̄) and F̄(c̄) over that range, where both were fitted.
     pub fit: Option<Vec<BranchTriple>>,
 }
+
+/// The mean contact radius's axis, with its definition (physics §2).
+const C_AXIS: &str = "mean contact radius c̄ = √(A/π) / c_r";
+/// The approach's axis.
+const D_AXIS: &str = "approach d̄ = d·Re / c_r²";
+/// The force's axis.
+const F_AXIS: &str = "force F̄ = F / (3π Re Δγ)";
 
 /// Which law of the branch a chart shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -82,9 +96,9 @@ pub enum BranchLaw {
 /// the fitted law (dashed).
 pub fn branch_chart(series: &[BranchSeries], law: BranchLaw) -> LineChart {
     let (title, x, y) = match law {
-        BranchLaw::DOfC => ("Approach against contact radius", "c̄", "d̄"),
-        BranchLaw::FOfC => ("Force against contact radius", "c̄", "F̄"),
-        BranchLaw::FOfD => ("Force against approach", "d̄", "F̄"),
+        BranchLaw::DOfC => ("Approach against contact radius", C_AXIS, D_AXIS),
+        BranchLaw::FOfC => ("Force against contact radius", C_AXIS, F_AXIS),
+        BranchLaw::FOfD => ("Force against approach", D_AXIS, F_AXIS),
     };
     let mut chart = LineChart::new(
         &format!("{title} (markers: jkrbem, lines: JKR/JG, dashed: fit)"),
@@ -103,10 +117,10 @@ pub fn branch_chart(series: &[BranchSeries], law: BranchLaw) -> LineChart {
     };
     for (i, run) in series.iter().enumerate() {
         chart.push(
-            &format!("R1/R2 = {} ({}×{})", run.ratio, run.grid.0, run.grid.1),
+            &run_label(run.ratio, run.grid, run.coarse),
             pick(&run.branch),
             i,
-            Style::Markers,
+            run_style(run.coarse),
         );
         chart.push(
             &format!("{}, R1/R2 = {}", run.reference_name, run.ratio),
@@ -114,7 +128,7 @@ pub fn branch_chart(series: &[BranchSeries], law: BranchLaw) -> LineChart {
             i,
             Style::Line,
         );
-        if let Some(fitted) = &run.fit {
+        if let Some(fitted) = run.fit.as_ref().filter(|_| !run.coarse) {
             chart.push(
                 &format!("fit, R1/R2 = {}", run.ratio),
                 pick(fitted),
@@ -126,14 +140,40 @@ pub fn branch_chart(series: &[BranchSeries], law: BranchLaw) -> LineChart {
     chart
 }
 
+/// A run's legend label: its ratio and grid, and "coarse" where the grid is too coarse for
+/// the ratio's estimate.
+fn run_label(ratio: f64, grid: (usize, usize), coarse: bool) -> String {
+    format!(
+        "R1/R2 = {ratio} ({}×{}{})",
+        grid.0,
+        grid.1,
+        if coarse { ", coarse" } else { "" }
+    )
+}
+
+/// Filled markers for a run, hollow for one too coarse for its estimate.
+fn run_style(coarse: bool) -> Style {
+    if coarse {
+        Style::Hollow
+    } else {
+        Style::Markers
+    }
+}
+
+/// A coefficient's value at one ratio: (R1/R2, value, half-width if known).
+pub type CoefficientPoint = (f64, f64, Option<f64>);
+
 /// One fitted coefficient against R1/R2, and its law.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CoefficientSeries {
     /// The coefficient's name.
     pub name: &'static str,
     /// (R1/R2, value, half-width if known) per ratio.
-    pub points: Vec<(f64, f64, Option<f64>)>,
-    /// The law k1·(R1/R2)^k2 + k3 fitted to them, if it could be.
+    pub points: Vec<CoefficientPoint>,
+    /// The ratios whose values rest on grids too coarse for their estimate: drawn hollow,
+    /// without error bars, and left out of the law.
+    pub coarse: Vec<f64>,
+    /// The law k1·(R1/R2)^k2 + k3 fitted to the others, if it could be.
     pub law: Option<LawCurve>,
 }
 
@@ -146,10 +186,20 @@ pub fn coefficients_chart(series: &[CoefficientSeries]) -> LineChart {
     );
     chart.x_log = true;
     for (i, c) in series.iter().enumerate() {
-        let pts: Vec<(f64, f64)> = c.points.iter().map(|p| (p.0, p.1)).collect();
-        match c.points.iter().map(|p| p.2).collect::<Option<Vec<f64>>>() {
+        let (coarse, resolved): (Vec<&CoefficientPoint>, Vec<_>) =
+            c.points.iter().partition(|p| c.coarse.contains(&p.0));
+        let pts: Vec<(f64, f64)> = resolved.iter().map(|p| (p.0, p.1)).collect();
+        match resolved.iter().map(|p| p.2).collect::<Option<Vec<f64>>>() {
             Some(errors) => chart.push_with_errors(c.name, pts, errors, i),
             None => chart.push(c.name, pts, i, Style::Markers),
+        }
+        if !coarse.is_empty() {
+            chart.push(
+                &format!("{} (coarse grid, not fitted)", c.name),
+                coarse.iter().map(|p| (p.0, p.1)).collect(),
+                i,
+                Style::Hollow,
+            );
         }
         if let Some(law) = &c.law {
             let [k1, k2, k3] = law.k;
@@ -210,4 +260,74 @@ pub fn contour_chart(ratio: f64, rows: &[crate::analysis::capture::ContourRow]) 
         chart.push(entry, ellipse, i, Style::Line);
     }
     chart
+}
+
+/// A state marked on a pull-off curve, with its contact's outline (the study's Fig. 2b).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MarkedState {
+    /// d̄ of the state.
+    pub d_bar: f64,
+    /// F̄ of the state.
+    pub f_bar: f64,
+    /// c̄ of the state.
+    pub c_bar: f64,
+    /// Whether it is the force minimum.
+    pub minimum: bool,
+    /// The contact's outline, a closed loop of (x/c_r, y/c_r).
+    pub outline: Vec<(f64, f64)>,
+}
+
+/// The study's Fig. 2b: on the left the run's pull-off curve F̄(d̄) (`curve`, its states
+/// joined by a line) beside its closed form (`reference`: name and points, dashed), with `marked` states numbered 1, 2, … in
+/// their own colours; on the right the contact outlines of those states in the same colours,
+/// on equal scales.
+pub fn marked_states_figure(
+    ratio: f64,
+    grid: (usize, usize),
+    curve: Vec<(f64, f64)>,
+    reference: (&str, Vec<(f64, f64)>),
+    marked: &[MarkedState],
+) -> Panels {
+    // Colours 0–3 for the marked states' markers; the run's curve a sky-blue line (its
+    // states are too dense for markers that would leave the marks visible), the closed form
+    // black and dashed.
+    const CURVE_COLOUR: usize = 6;
+    const REFERENCE_COLOUR: usize = 4;
+    let mut left = LineChart::new(
+        &format!("Pull-off, R1/R2 = {ratio} ({}×{})", grid.0, grid.1),
+        D_AXIS,
+        F_AXIS,
+    );
+    left.push(
+        "jkrbem (its states joined)",
+        curve,
+        CURVE_COLOUR,
+        Style::Line,
+    );
+    for (k, m) in marked.iter().enumerate() {
+        left.push(
+            &format!(
+                "{}: c̄ = {:.2}, F̄ = {:.3}{}",
+                k + 1,
+                m.c_bar,
+                m.f_bar,
+                if m.minimum { " (force minimum)" } else { "" }
+            )
+            .replace('-', "−"),
+            vec![(m.d_bar, m.f_bar)],
+            k,
+            Style::Markers,
+        );
+    }
+    left.push(reference.0, reference.1, REFERENCE_COLOUR, Style::Dashed);
+    let mut right = LineChart::new(
+        &format!("Contact outlines 1–{}", marked.len()),
+        "x / c_r",
+        "y / c_r",
+    );
+    right.equal_scales = true;
+    for (k, m) in marked.iter().enumerate() {
+        right.push(&format!("{}", k + 1), m.outline.clone(), k, Style::Line);
+    }
+    Panels::new(vec![left, right])
 }

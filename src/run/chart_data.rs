@@ -4,10 +4,11 @@
 //! runs; `output` only draws what it is given.
 
 use crate::analysis::adhesive_branch;
+use crate::analysis::capture::ContourRow;
 use crate::analysis::study_fits::{BranchFits, CoefficientLaw, RatioRun};
 use crate::analysis::PowerLawFit;
 use crate::output::series::{LawCurve, Named};
-use crate::output::study_charts::{AxisRatioSeries, BranchSeries, CoefficientSeries};
+use crate::output::study_charts::{AxisRatioSeries, BranchSeries, CoefficientSeries, MarkedState};
 use crate::output::sweep_charts::SweepCurves;
 use crate::output::sweep_csv::SweepRow;
 use crate::solver::Phase;
@@ -48,6 +49,21 @@ fn log_range(hi: f64, n: usize) -> impl Iterator<Item = f64> {
     (0..=n).map(move |i| hi.powf(i as f64 / n as f64))
 }
 
+/// The closed form of `ratio` (JKR for the sphere, JG otherwise) as F̄(d̄) on the adhesive
+/// branch up to the approach `d_max`, named as the charts show it.
+pub fn reference_curve(ratio: f64, d_max: f64) -> Named {
+    let (model, name) = reference(ratio);
+    let points = theory::curve(model, ratio, SWEEP_THEORY_POINTS)
+        .map(|pts| {
+            pts.iter()
+                .filter(|p| p.d_bar <= d_max)
+                .map(|p| (p.d_bar, p.f_bar))
+                .collect()
+        })
+        .unwrap_or_default();
+    Named { name, points }
+}
+
 /// A sweep's charts' curves: each row's `pulloffs` (its (d̄, F̄) points, or why there are
 /// none), its closed form on the adhesive branch up to its last approach (1 where it has no
 /// points), JG's adhesive force over the sweep's ratios, and the law fitted to its forces
@@ -65,16 +81,7 @@ pub fn sweep_curves(
                 Some(Ok(points)) => points.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max),
                 _ => 1.0,
             };
-            let (model, name) = reference(r.ratio);
-            let points = theory::curve(model, r.ratio, SWEEP_THEORY_POINTS)
-                .map(|pts| {
-                    pts.iter()
-                        .filter(|p| p.d_bar <= d_max)
-                        .map(|p| (p.d_bar, p.f_bar))
-                        .collect()
-                })
-                .unwrap_or_default();
-            Named { name, points }
+            reference_curve(r.ratio, d_max)
         })
         .collect();
     let hi = rows.iter().map(|r| r.ratio).fold(2.0, f64::max);
@@ -103,8 +110,8 @@ pub fn sweep_curves(
 }
 
 /// Each run's (F̄, b/a) over its pull-off states in contact, beside JG's over the run's range
-/// of F̄.
-pub fn axis_ratio_series(runs: &[RatioRun]) -> Vec<AxisRatioSeries> {
+/// of F̄; the runs of the ratios in `coarse` (grids too coarse for their estimate) marked so.
+pub fn axis_ratio_series(runs: &[RatioRun], coarse: &[f64]) -> Vec<AxisRatioSeries> {
     runs.iter()
         .map(|run| {
             let points = run
@@ -122,6 +129,7 @@ pub fn axis_ratio_series(runs: &[RatioRun]) -> Vec<AxisRatioSeries> {
             AxisRatioSeries {
                 ratio: run.ratio,
                 grid: run.grid,
+                coarse: coarse.contains(&run.ratio),
                 points,
                 jg,
             }
@@ -130,8 +138,9 @@ pub fn axis_ratio_series(runs: &[RatioRun]) -> Vec<AxisRatioSeries> {
 }
 
 /// Each run's adhesive branch as (c̄, d̄, F̄), with its closed form and its fitted laws over
-/// the branch's range of c̄.
-pub fn branch_series(runs: &[RatioRun], fits: &[BranchFits]) -> Vec<BranchSeries> {
+/// the branch's range of c̄; the runs of the ratios in `coarse` marked so (their fits are not
+/// drawn).
+pub fn branch_series(runs: &[RatioRun], fits: &[BranchFits], coarse: &[f64]) -> Vec<BranchSeries> {
     runs.iter()
         .zip(fits)
         .map(|(run, fit)| {
@@ -156,6 +165,7 @@ pub fn branch_series(runs: &[RatioRun], fits: &[BranchFits]) -> Vec<BranchSeries
             BranchSeries {
                 ratio: run.ratio,
                 grid: run.grid,
+                coarse: coarse.contains(&run.ratio),
                 branch: branch.iter().map(|p| [p.c_bar, p.d_bar, p.f_bar]).collect(),
                 reference_name,
                 reference,
@@ -173,6 +183,7 @@ pub fn coefficient_series(laws: &[CoefficientLaw]) -> Vec<CoefficientSeries> {
             CoefficientSeries {
                 name: c.name,
                 points: c.points.clone(),
+                coarse: c.coarse.clone(),
                 law: c
                     .law
                     .as_ref()
@@ -180,6 +191,63 @@ pub fn coefficient_series(laws: &[CoefficientLaw]) -> Vec<CoefficientSeries> {
             }
         })
         .collect()
+}
+
+/// The states a pull-off figure marks (the study's Fig. 2b), from a run's captured contours:
+/// at most `max` of them, in the order of the pull-off (c̄ falling), the force minimum always
+/// among them and the others those farthest from it in c̄ (without a minimum: the largest
+/// c̄); each with its contact's outline, the quarter contour mirrored into a closed
+/// loop.
+pub fn marked_states(contours: &[ContourRow], max: usize) -> Vec<MarkedState> {
+    let mut labels: Vec<&str> = Vec::new();
+    for c in contours {
+        if !labels.contains(&c.label.as_str()) {
+            labels.push(&c.label);
+        }
+    }
+    let mut marked: Vec<MarkedState> = labels
+        .iter()
+        .map(|label| {
+            let group: Vec<&ContourRow> = contours.iter().filter(|c| c.label == *label).collect();
+            let first = group[0];
+            MarkedState {
+                d_bar: first.d_bar,
+                f_bar: first.f_bar,
+                c_bar: first.c_bar,
+                minimum: label.contains(crate::analysis::fields::minimum_label(true)),
+                outline: closed_outline(group.iter().map(|c| (c.x_bar, c.y_bar)).collect()),
+            }
+        })
+        .collect();
+    // The force minimum stays; of the others, the one nearest it in c̄ goes first (it would
+    // draw nearly the same outline), so that the marks spread along the curve.
+    let c_min = marked.iter().find(|m| m.minimum).map(|m| m.c_bar);
+    while marked.len() > max {
+        let nearest = marked
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| !m.minimum)
+            .min_by(|(_, a), (_, b)| {
+                let gap = |m: &MarkedState| c_min.map_or(-m.c_bar, |c| (m.c_bar - c).abs());
+                gap(a).total_cmp(&gap(b))
+            })
+            .map_or(marked.len() - 1, |(k, _)| k);
+        marked.remove(nearest);
+    }
+    marked.sort_by(|a, b| b.c_bar.total_cmp(&a.c_bar));
+    marked
+}
+
+/// A quarter contour (x, y ≥ 0) mirrored into the closed outline of the whole contact, by
+/// angle from the x axis round the four quadrants.
+fn closed_outline(mut quarter: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+    quarter.sort_by(|a, b| a.1.atan2(a.0).total_cmp(&b.1.atan2(b.0)));
+    let mut loop_ = quarter.clone();
+    loop_.extend(quarter.iter().rev().map(|&(x, y)| (-x, y)));
+    loop_.extend(quarter.iter().map(|&(x, y)| (-x, -y)));
+    loop_.extend(quarter.iter().rev().map(|&(x, y)| (x, -y)));
+    loop_.extend(quarter.first().copied());
+    loop_
 }
 
 #[cfg(test)]
@@ -250,5 +318,69 @@ mod tests {
         let jg = &c.references[0].points;
         assert!(!jg.is_empty() && jg.iter().all(|p| p.0 <= 1.0));
         assert!(c.fit.is_none(), "one point fits no law");
+    }
+
+    /// Quarter-circle contour rows of radius `c` for a capture labelled `label`.
+    fn capture(label: &str, c: f64, f: f64) -> Vec<ContourRow> {
+        (0..=8)
+            .rev()
+            .map(|k| {
+                let t = k as f64 / 8.0 * std::f64::consts::FRAC_PI_2;
+                ContourRow {
+                    label: label.into(),
+                    c_bar: c,
+                    f_bar: f,
+                    a_bar: c,
+                    b_bar: c,
+                    departure_rms: 0.0,
+                    departure_max: 0.0,
+                    x_bar: c * t.cos(),
+                    y_bar: c * t.sin(),
+                    d_bar: c * c - 1.0,
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_marked_states_keep_the_minimum_and_spread_along_the_pull_off() {
+        let mut rows = Vec::new();
+        for (label, c, f) in [
+            ("c̄ ≤ 1.4", 1.4, 0.5),
+            ("c̄ ≤ 1.1", 1.1, -0.2),
+            ("c̄ ≤ 0.8", 0.79, -0.49),
+            ("c̄ ≤ 0.5", 0.48, -0.3),
+            ("force minimum", 0.77, -0.5),
+        ] {
+            rows.extend(capture(label, c, f));
+        }
+        let marked = marked_states(&rows, 4);
+        let c: Vec<f64> = marked.iter().map(|m| m.c_bar).collect();
+        // 0.79 draws nearly the minimum's outline (0.77): it is the one left out.
+        assert_eq!(c, vec![1.4, 1.1, 0.77, 0.48]);
+        assert!(marked[2].minimum && marked.iter().filter(|m| m.minimum).count() == 1);
+        // A closed loop round the whole contact, every point at the capture's radius.
+        let o = &marked[0].outline;
+        assert_eq!(o.len(), 4 * 9 + 1);
+        assert_eq!(o.first(), o.last());
+        assert!(o.iter().all(|p| (p.0.hypot(p.1) - 1.4).abs() < 1e-12));
+        let quadrants = |sx: f64, sy: f64| {
+            o.iter()
+                .filter(|p| p.0 * sx > 0.0 && p.1 * sy > 0.0)
+                .count()
+        };
+        assert!([(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
+            .iter()
+            .all(|&(sx, sy)| quadrants(sx, sy) >= 7));
+        // The outline turns one way round: the angle never steps back by more than a step.
+        let angles: Vec<f64> = o
+            .iter()
+            .map(|p| p.1.atan2(p.0).rem_euclid(std::f64::consts::TAU))
+            .collect();
+        let backwards = angles
+            .windows(2)
+            .filter(|w| w[1] < w[0] - 1e-9 && w[0] - w[1] < 3.0)
+            .count();
+        assert_eq!(backwards, 0, "{angles:?}");
     }
 }

@@ -83,8 +83,9 @@ const FILES: [&str; 3] = ["fits.csv", "coefficient_laws.csv", "index.html"];
 
 /// The charts `reproduce` writes in its --out folder, by their SVG names (each also in the
 /// other formats asked for, with its `.plot.csv`: [`FigureFormats::files`]).
-const CHARTS: [&str; 11] = [
+const CHARTS: [&str; 12] = [
     "pulloff_curves.svg",
+    "pulloff_shapes_r5.svg",
     "axis_ratio.svg",
     "d_of_c.svg",
     "f_of_c.svg",
@@ -131,12 +132,27 @@ pub fn study(args: &StudyRequest, watch: &dyn Watch) -> Result<StudyDone, RunErr
         .into_iter()
         .filter_map(|(_, mut r)| r.pop())
         .collect();
-    let laws = coefficient_laws(&fits);
-    write_fit_tables(&args.out, &fits, &laws)?;
+    // Ratios whose answer rests on a grid too coarse for its estimate: drawn apart, not fitted.
+    let coarse: Vec<f64> = rows
+        .iter()
+        .filter(|r| crate::output::sweep_charts::too_coarse(r))
+        .map(|r| r.ratio)
+        .collect();
+    let laws = coefficient_laws(&fits, &coarse);
+    write_fit_tables(&args.out, &fits, &laws, &coarse)?;
     let what = caption_tail(args, &rows);
     let backend = rows.first().map_or("?".to_string(), |r| r.backend.clone());
     let mut figures = Figures::new(&args.out, chart_formats(args));
-    draw_study_charts(&mut figures, &results, &rows, &runs, &fits, &laws, &what)?;
+    let study = StudyData {
+        results: &results,
+        rows: &rows,
+        runs: &runs,
+        fits: &fits,
+        laws: &laws,
+        coarse: &coarse,
+    };
+    draw_study_charts(&mut figures, &study, &what)?;
+    draw_marked_states(&mut figures, &results, &rows, &backend)?;
     draw_contours(&mut figures, &results, &rows, &backend)?;
     crossed_step(
         args,
@@ -418,17 +434,29 @@ fn pick(runs: &[RatioRun], fits: &[BranchFits], want: &[f64]) -> (Vec<RatioRun>,
     (runs, fits)
 }
 
+/// What the study's charts draw from: the runs, their rows, the finest run and the branch
+/// fits of each ratio, the coefficient laws, and the ratios too coarse for their estimate.
+struct StudyData<'a> {
+    results: &'a [JobResult],
+    rows: &'a [SweepRow],
+    runs: &'a [RatioRun],
+    fits: &'a [BranchFits],
+    laws: &'a [CoefficientLaw],
+    coarse: &'a [f64],
+}
+
 /// §8.1, §8.2, §8.4, §8.5 and §8.6: the pull-off curves, the axis ratio, the branch laws,
 /// their coefficients and the adhesive force against R1/R2.
-fn draw_study_charts(
-    figures: &mut Figures,
-    results: &[JobResult],
-    rows: &[SweepRow],
-    runs: &[RatioRun],
-    fits: &[BranchFits],
-    laws: &[CoefficientLaw],
-    what: &str,
-) -> Result<(), RunError> {
+fn draw_study_charts(figures: &mut Figures, study: &StudyData, what: &str) -> Result<(), RunError> {
+    let StudyData {
+        results,
+        rows,
+        runs,
+        fits,
+        laws,
+        coarse,
+    } = *study;
+    let coarse_text = coarse_caption(coarse);
     let curves = chart_data::sweep_curves(rows, row_curves(results, rows));
     let (curves_chart, _) = pulloff_curves_chart(rows, &curves);
     figures.add(
@@ -439,11 +467,11 @@ fn draw_study_charts(
     let (r2, _) = pick(runs, fits, &[2.0, 5.0, 10.0, 25.0]);
     figures.add(
         "axis_ratio.svg",
-        axis_ratio_chart(&chart_data::axis_ratio_series(&r2)),
-        format!("§8.2 Contact axis ratio b/a against F̄ beside JG's g(F̄). {what}."),
+        axis_ratio_chart(&chart_data::axis_ratio_series(&r2, coarse)),
+        format!("§8.2 Contact axis ratio b/a against F̄ beside JG's g(F̄).{coarse_text} {what}."),
     )?;
     let (r3, f3) = pick(runs, fits, &[2.0, 10.0, 25.0]);
-    let branches = chart_data::branch_series(&r3, &f3);
+    let branches = chart_data::branch_series(&r3, &f3, coarse);
     for (law, file, name) in [
         (BranchLaw::DOfC, "d_of_c.svg", "d̄(c̄), fit d̄ = A c̄² + B c̄^½"),
         (
@@ -456,14 +484,18 @@ fn draw_study_charts(
         figures.add(
             file,
             branch_chart(&branches, law),
-            format!("§8.4 {name}, on the adhesive branch (onset states), beside JG. {what}."),
+            format!(
+                "§8.4 {name}, on the adhesive branch (onset states), beside JG.{coarse_text} \
+                 {what}."
+            ),
         )?;
     }
     figures.add(
         "coefficients.svg",
         coefficients_chart(&chart_data::coefficient_series(laws)),
         format!(
-            "§8.5 The branch-law coefficients against R1/R2 with fitted laws: {}. {what}.",
+            "§8.5 The branch-law coefficients against R1/R2 with fitted laws: {}.{coarse_text} \
+             {what}.",
             laws_text(laws)
         ),
     )?;
@@ -471,6 +503,23 @@ fn draw_study_charts(
         "force_vs_ratio.svg",
         force_vs_ratio_chart(rows, &curves),
         format!("§8.6 Adhesive force |min F̄| against R1/R2 beside JG's pull-off force, with the fitted law. {what}."),
+    )
+}
+
+/// What a caption says of the ratios too coarse for their estimate (empty where none is).
+fn coarse_caption(coarse: &[f64]) -> String {
+    if coarse.is_empty() {
+        return String::new();
+    }
+    format!(
+        " Hollow markers: R1/R2 = {}, whose grids are too coarse for their estimate (fewer \
+         than {} elements across the contact's minor axis); they are not fitted.",
+        coarse
+            .iter()
+            .map(|r| r.to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
+        crate::analysis::convergence::COARSE_N_D
     )
 }
 
@@ -487,13 +536,69 @@ fn laws_text(laws: &[CoefficientLaw]) -> String {
                 u[2]
             ),
             (Some(l), None) => format!("{} = {}", c.name, crate::text::power_law(l.k1, l.k2, l.k3)),
-            (None, _) => format!("{}: no fit", c.name),
+            (None, _) => format!(
+                "{}: no law (fewer than {} resolved ratios)",
+                c.name,
+                crate::analysis::study_fits::MIN_LAW_POINTS
+            ),
         })
         .collect::<Vec<_>>()
         .join("; ")
 }
 
-/// §8.1 snapshots and §8.3: quarter contours against ellipses, for R1/R2 = 1, 5 and 25.
+/// The ratio whose pull-off curve is drawn beside the contact outlines of its marked states.
+const MARKED_RATIO: f64 = 5.0;
+
+/// The states marked on that curve.
+const MARKED_STATES: usize = 4;
+
+/// §8.1, the study's Fig. 2b: the pull-off curve of R1/R2 = 5 with four marked states (three
+/// captured on the way down and the force minimum) beside their contact outlines.
+fn draw_marked_states(
+    figures: &mut Figures,
+    results: &[JobResult],
+    rows: &[SweepRow],
+    backend: &str,
+) -> Result<(), RunError> {
+    let Some(row) = rows.iter().find(|r| r.ratio == MARKED_RATIO) else {
+        return Ok(());
+    };
+    let Some(run) = run_of(results, row) else {
+        return Ok(());
+    };
+    let marked = chart_data::marked_states(&run.contours, MARKED_STATES);
+    let curve = super::curves::state_points(&run.states);
+    let d_max = curve.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+    let reference = chart_data::reference_curve(MARKED_RATIO, d_max);
+    let figure = crate::output::study_charts::marked_states_figure(
+        MARKED_RATIO,
+        run.grid,
+        curve,
+        (&reference.name, reference.points),
+        &marked,
+    );
+    let file = format!("pulloff_shapes_r{MARKED_RATIO}.svg");
+    figure
+        .write_figure(&figures.out.join(&file), figures.formats)
+        .map_err(write_error(OUT))?;
+    figures.figures.push(Figure {
+        file,
+        caption: format!(
+            "§8.1 (the study's Fig. 2b) Pull-off curve F̄(d̄) of R1/R2 = {MARKED_RATIO} ({}×{}) \
+             beside {}, with {} states marked; right: the contact outline of each marked state, \
+             in its colour, on equal scales (x along the major axis; lengths in c_r). Backend \
+             {backend}.",
+            run.grid.0,
+            run.grid.1,
+            reference.name,
+            marked.len()
+        ),
+    });
+    Ok(())
+}
+
+/// §8.1 snapshots and §8.3 (the study's Fig. 3b): quarter contours at marked states against
+/// the ellipses with the same half-axes, for R1/R2 = 1, 5 and 25.
 fn draw_contours(
     figures: &mut Figures,
     results: &[JobResult],
@@ -509,7 +614,8 @@ fn draw_contours(
             &format!("contours_r{ratio}.svg"),
             contour_chart(ratio, contours),
             format!(
-                "§8.1/§8.3 Quarter contours of the contact during pull-off, R1/R2 = {ratio} \
+                "§8.1/§8.3 (the study's Fig. 3b) Quarter contours of the contact during \
+                 pull-off, R1/R2 = {ratio} \
                  ({}×{}), beside the ellipses with the same half-axes. Departure r/r_e − 1: \
                  {}. Backend {backend}.",
                 row.grid,
@@ -670,6 +776,9 @@ struct FitRow {
     c2_uncertainty: Option<f64>,
     alpha_uncertainty: Option<f64>,
     grids: String,
+    /// Whether the ratio's grids are too coarse for its estimate (its fits are then left out
+    /// of the coefficient laws).
+    too_coarse: bool,
 }
 
 /// One coefficient's law k1·(R1/R2)^k2 + k3 with its quality and uncertainties.
@@ -681,6 +790,7 @@ struct LawRow {
     k3: Option<f64>,
     r_squared: Option<f64>,
     rms: Option<f64>,
+    /// The ratios the law was fitted to (those not too coarse for their estimate).
     ratios: usize,
     k1_uncertainty: Option<f64>,
     k2_uncertainty: Option<f64>,
@@ -693,6 +803,7 @@ fn write_fit_tables(
     dir: &Path,
     fits: &[BranchFits],
     laws: &[CoefficientLaw],
+    coarse: &[f64],
 ) -> Result<(), RunError> {
     write_csv(
         &dir.join("fits.csv"),
@@ -724,6 +835,7 @@ fn write_fit_tables(
                     .map(|g| g.to_string())
                     .collect::<Vec<_>>()
                     .join(";"),
+                too_coarse: coarse.contains(&f.ratio),
             }
         }),
     )?;
@@ -739,7 +851,7 @@ fn write_fit_tables(
                 k3: law.map(|l| l.k3),
                 r_squared: law.map(|l| l.quality.r_squared),
                 rms: law.map(|l| l.quality.rms_residual),
-                ratios: c.points.len(),
+                ratios: c.points.len() - c.coarse.len(),
                 k1_uncertainty: u(0),
                 k2_uncertainty: u(1),
                 k3_uncertainty: u(2),
