@@ -60,23 +60,38 @@ pub fn run(args: Args) -> Result<(), CliError> {
     };
     let done = accuracy(&req, &Progress::new()).map_err(run_error)?;
     outln!("reference: {}", done.reference);
-    outln!("variant  backend  grid                         |min F̄|   error      wall (s)");
+    outln!(
+        "variant  backend  grid                                  raw |min F̄| (error)   \
+         stated |min F̄| ± uncertainty (error)   CG its   wall (s)"
+    );
+    let percent = |e: Option<f64>| e.map_or("—".into(), |v| format!("{:+.2} %", 100.0 * v));
     for r in &done.rows {
+        let raw = match r.f_ad_bar {
+            Some(v) => format!("{v:.4} ({})", percent(r.error)),
+            None => "—".into(),
+        };
+        let stated = match (r.stated, r.stated_uncertainty) {
+            (Some(v), Some(u)) => format!("{v:.4} ± {u:.4} ({})", percent(r.stated_error)),
+            _ => "—".into(),
+        };
         outln!(
-            "{:<8} {:<8} {:<28} {:<9} {:<10} {:.2}",
+            "{:<8} {:<8} {:<37} {:<21} {:<38} {:<8} {:.2}",
             r.variant,
             r.backend,
             r.grid,
-            r.f_ad_bar.map_or("—".into(), |v| format!("{v:.4}")),
-            r.error
-                .map_or("—".into(), |v| format!("{:+.2} %", 100.0 * v)),
+            raw,
+            stated,
+            r.cg_iterations,
             r.wall_s
         );
     }
     outln!(
-        "written {} and {}",
+        "written {}, {} and {}",
         done.csv.display(),
-        args.figures.figure_format.shown(&done.svg)
+        args.figures.figure_format.shown(&done.svg),
+        args.figures
+            .figure_format
+            .shown(&jkrbem::run::accuracy::iterations_chart(&done.svg))
     );
     failures("runs", &done.failures, "")
 }

@@ -117,12 +117,14 @@ pub fn timing_chart(rows: &[BenchRow], title: &str) -> LogLogChart {
             points: of(|r| r.cg_iteration_ms),
             color,
             dashed: false,
+            errors: Vec::new(),
         });
         chart.push(Series {
             label: format!("{backend} ({precision}): one convolution"),
             points: of(|r| r.convolution_ms),
             color,
             dashed: true,
+            errors: Vec::new(),
         });
     }
     chart

@@ -30,6 +30,10 @@ pub struct Series {
     pub color: usize,
     /// Dashed line and hollow markers, to tell a second family of series apart.
     pub dashed: bool,
+    /// Half-widths of vertical error bars, one per point, in y's unit (empty: none; a
+    /// non-finite or non-positive one draws no bar). A bar whose lower end is not positive
+    /// runs down to the axis' bottom.
+    pub errors: Vec<f64>,
 }
 
 /// A chart of [`Series`] on logarithmic x and y axes.
@@ -117,19 +121,24 @@ impl LogLogChart {
                 } else {
                     "line+markers"
                 };
-                plottable(&s.points).map(move |(x, y)| PlotPoint {
+                plottable_with_errors(s).map(move |((x, y), e)| PlotPoint {
                     series: s.label.clone(),
                     style,
                     x,
                     y,
-                    error: None,
+                    error: e,
                 })
             })
             .collect()
     }
 
+    /// Every point with a place on the axes, and the top of its error bar: what the ranges
+    /// must hold.
     fn points(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
-        self.series.iter().flat_map(|s| plottable(&s.points))
+        self.series.iter().flat_map(|s| {
+            plottable_with_errors(s)
+                .flat_map(|((x, y), e)| std::iter::once((x, y)).chain(e.map(|e| (x, y + e))))
+        })
     }
 
     fn draw<DB: DrawingBackend>(
@@ -146,7 +155,7 @@ impl LogLogChart {
             .y_label_area_size(Y_LABEL_AREA)
             .build_cartesian_2d(
                 x_range.log_scale().with_key_points(x_ticks),
-                y_range.log_scale().with_key_points(y_ticks),
+                y_range.clone().log_scale().with_key_points(y_ticks),
             )?;
         let tick = |v: &f64| tick_label(*v);
         chart
@@ -177,6 +186,20 @@ impl LogLogChart {
                 chart.draw_series(LineSeries::new(pts.clone(), line))?;
             }
             let pixels: Vec<(i32, i32)> = pts.iter().map(|p| chart.backend_coord(p)).collect();
+            // Bars from y − e (or the axis' bottom, where that is not positive) to y + e.
+            let bars: Vec<((f64, f64), f64, f64)> = plottable_with_errors(s)
+                .filter_map(|((x, y), e)| {
+                    let e = e?;
+                    Some(((x, y), (y - e).max(y_range.start), y + e))
+                })
+                .collect();
+            chart.draw_series(bars.iter().map(|&((x, y), low, high)| {
+                ErrorBar::new_vertical(x, low, y, high, colour(s.color).stroke_width(1), 6)
+            }))?;
+            for &((x, _), low, high) in &bars {
+                let ends = [(x, low), (x, high)].map(|p| chart.backend_coord(&p));
+                frame.mark_line(&ends);
+            }
             frame.mark_line(&pixels);
         }
         Ok(frame)
@@ -206,6 +229,23 @@ pub(crate) fn render_svg(
         root.present().map_err(|e| e.to_string())?;
     }
     Ok(svg)
+}
+
+/// The points of a series that have a place on log axes, each with its error bar's
+/// half-width where it has one.
+fn plottable_with_errors(s: &Series) -> impl Iterator<Item = ((f64, f64), Option<f64>)> + '_ {
+    s.points
+        .iter()
+        .enumerate()
+        .filter(|(_, &(x, y))| x.is_finite() && x > 0.0 && y.is_finite() && y > 0.0)
+        .map(|(i, &p)| {
+            let e = s
+                .errors
+                .get(i)
+                .copied()
+                .filter(|e| e.is_finite() && *e > 0.0);
+            (p, e)
+        })
 }
 
 /// The points of a series that have a place on log axes.
@@ -280,6 +320,12 @@ pub fn linear_tick_label(v: f64) -> String {
     format!("{}", rounded + 0.0)
 }
 
+impl super::figure::WriteFigure for LogLogChart {
+    fn write_figure(&self, path: &Path, formats: FigureFormats) -> Result<(), OutputError> {
+        LogLogChart::write_figure(self, path, formats)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -325,6 +371,7 @@ mod tests {
             points: vec![(1.0, 1.0), (2.0, 3.0)],
             color: 0,
             dashed: false,
+            errors: Vec::new(),
         });
         let svg = c.to_svg().unwrap();
         let width: f64 = svg
@@ -368,12 +415,14 @@ mod tests {
             points: vec![(16.0, 0.1), (32.0, 0.4), (64.0, -1.0)],
             color: 0,
             dashed: false,
+            errors: Vec::new(),
         });
         c.push(Series {
             label: "b".into(),
             points: vec![(16.0, 0.2), (32.0, 0.9)],
             color: 1,
             dashed: true,
+            errors: Vec::new(),
         });
         let svg = c.to_svg().unwrap();
         assert!(svg.starts_with("<svg"), "{}", &svg[..50]);

@@ -163,6 +163,13 @@ pub struct PlotPoint {
     pub error: Option<f64>,
 }
 
+/// A chart that writes itself as a figure: its picture in each format asked for, and its
+/// data as `<stem>.plot.csv` ([`write_figure`]).
+pub trait WriteFigure {
+    /// Write the chart to `path` (its SVG path) in each of `formats`, with its plot CSV.
+    fn write_figure(&self, path: &Path, formats: FigureFormats) -> Result<(), OutputError>;
+}
+
 /// A row type of `<stem>.plot.csv`: its header, the fields' names in order.
 pub trait PlotRecord: Serialize {
     /// The CSV header.

@@ -434,6 +434,12 @@ impl LineChart {
     }
 }
 
+impl super::figure::WriteFigure for LineChart {
+    fn write_figure(&self, path: &Path, formats: FigureFormats) -> Result<(), OutputError> {
+        LineChart::write_figure(self, path, formats)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

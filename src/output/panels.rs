@@ -149,6 +149,12 @@ fn span(areas: &[(i32, i32, i32, i32)]) -> (i32, i32, i32, i32) {
     (l, t, r, b)
 }
 
+impl super::figure::WriteFigure for Panels {
+    fn write_figure(&self, path: &Path, formats: FigureFormats) -> Result<(), OutputError> {
+        Panels::write_figure(self, path, formats)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

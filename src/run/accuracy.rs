@@ -91,7 +91,8 @@ pub struct AccuracyRequest {
 
 /// The header of accuracy.csv, one column per [`AccuracyRow`] field.
 pub const ROW_HEADER: &str = "variant,backend,precision,grid,n_d,f_ad_bar,error,wall_s,\
-                              cg_iterations,reference,reference_uncertainty";
+                              cg_iterations,reference,reference_uncertainty,stated,\
+                              stated_uncertainty,stated_error";
 
 /// One point of the chart.
 #[derive(Debug, Clone, Serialize)]
@@ -118,6 +119,13 @@ pub struct AccuracyRow {
     pub reference: Option<f64>,
     /// Its uncertainty (absolute; 0 for JKR's exact 1/2).
     pub reference_uncertainty: Option<f64>,
+    /// The |min F̄| the program states from these grids: one grid's force corrected by the
+    /// convergence law, or several grids' extrapolated to Δx → 0 (dimensionless).
+    pub stated: Option<f64>,
+    /// The half-width of its stated interval (absolute).
+    pub stated_uncertainty: Option<f64>,
+    /// stated / reference − 1 (dimensionless, signed).
+    pub stated_error: Option<f64>,
 }
 
 /// What the chart request produced.
@@ -137,10 +145,13 @@ pub struct AccuracyDone {
 }
 
 /// One backend × variant: its runs, coarse to fine.
-struct RunSeries {
-    backend: String,
-    variant: Variant,
-    runs: Vec<RunReport>,
+pub(super) struct RunSeries {
+    /// The backend, as asked.
+    pub(super) backend: String,
+    /// The way each grid ran.
+    pub(super) variant: Variant,
+    /// The runs, coarse to fine.
+    pub(super) runs: Vec<RunReport>,
 }
 
 fn backend_name(kind: BackendKind) -> &'static str {
@@ -195,6 +206,7 @@ pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone
         .collect();
     targets.push(csv.clone());
     targets.extend(req.figures.files(&svg));
+    targets.extend(req.figures.files(&iterations_chart(&svg)));
     let _claimed = Outputs::claim(&named(OUT, &targets))?;
     let mut series = Vec::new();
     let mut failures = Vec::new();
@@ -219,7 +231,7 @@ pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone
     }
     let (reference, reference_text) = reference(req.ratio, &series);
     let rows = chart_rows(&series, reference);
-    write_chart(
+    write_charts(
         req.ratio,
         &series,
         &rows,
@@ -263,64 +275,102 @@ fn reference(ratio: f64, series: &[RunSeries]) -> (Option<Estimate>, String) {
     }
 }
 
-/// Every grid's point and every consecutive pair's extrapolation, per series.
-fn chart_rows(series: &[RunSeries], reference: Option<Estimate>) -> Vec<AccuracyRow> {
+/// Every grid's point, every consecutive pair's extrapolation and (from three grids) the
+/// extrapolation of all grids, per series; each with the answer the program states from
+/// those grids and its uncertainty.
+pub(super) fn chart_rows(series: &[RunSeries], reference: Option<Estimate>) -> Vec<AccuracyRow> {
     let error = |f: Option<f64>| Some(f? / reference?.value - 1.0);
+    let row = |s: &RunSeries, runs: &[RunReport], grid: String, n_d, f_ad_bar: Option<f64>| {
+        let stated = from_runs(runs).ok().map(|e| e.f_ad_bar);
+        AccuracyRow {
+            variant: s.variant.name(),
+            backend: s.backend.clone(),
+            precision: runs[0].precision.clone(),
+            grid,
+            n_d,
+            f_ad_bar,
+            error: error(f_ad_bar),
+            wall_s: runs.iter().map(|r| r.wall_s).sum(),
+            cg_iterations: runs.iter().map(|r| r.cg_iterations).sum(),
+            reference: reference.map(|e| e.value),
+            reference_uncertainty: reference.map(|e| e.uncertainty),
+            stated: stated.map(|e| e.value),
+            stated_uncertainty: stated.map(|e| e.uncertainty),
+            stated_error: error(stated.map(|e| e.value)),
+        }
+    };
     let mut rows = Vec::new();
     for s in series {
         for r in &s.runs {
-            rows.push(AccuracyRow {
-                variant: s.variant.name(),
-                backend: s.backend.clone(),
-                precision: r.precision.clone(),
-                grid: r.grid.clone(),
-                n_d: r.n_d,
-                f_ad_bar: r.f_ad_bar,
-                error: error(r.f_ad_bar),
-                wall_s: r.wall_s,
-                cg_iterations: r.cg_iterations,
-                reference: reference.map(|e| e.value),
-                reference_uncertainty: reference.map(|e| e.uncertainty),
-            });
+            rows.push(row(
+                s,
+                std::slice::from_ref(r),
+                r.grid.clone(),
+                r.n_d,
+                r.f_ad_bar,
+            ));
         }
         for pair in s.runs.windows(2) {
             let dx: Vec<f64> = pair.iter().map(|r| r.dx_at_min.unwrap_or(r.dx)).collect();
             let f: Option<Vec<f64>> = pair.iter().map(|r| r.f_ad_bar).collect();
-            let Some(x) = f.and_then(|f| extrapolate_first_order(&dx, &f)) else {
-                continue;
-            };
+            let first_order = f.and_then(|f| extrapolate_first_order(&dx, &f));
+            rows.push(row(
+                s,
+                pair,
+                format!("extrapolated from {} and {}", pair[0].nx, pair[1].nx),
+                None,
+                first_order.map(|x| x.value),
+            ));
+        }
+        if s.runs.len() >= 3 {
+            let (first, last) = (s.runs[0].nx, s.runs[s.runs.len() - 1].nx);
+            let all = row(
+                s,
+                &s.runs,
+                format!(
+                    "extrapolated from {first} to {last} ({} grids)",
+                    s.runs.len()
+                ),
+                None,
+                None,
+            );
             rows.push(AccuracyRow {
-                variant: s.variant.name(),
-                backend: s.backend.clone(),
-                precision: pair[0].precision.clone(),
-                grid: format!("extrapolated from {} and {}", pair[0].nx, pair[1].nx),
-                n_d: None,
-                f_ad_bar: Some(x.value),
-                error: error(Some(x.value)),
-                wall_s: pair[0].wall_s + pair[1].wall_s,
-                cg_iterations: pair[0].cg_iterations + pair[1].cg_iterations,
-                reference: reference.map(|e| e.value),
-                reference_uncertainty: reference.map(|e| e.uncertainty),
+                f_ad_bar: all.stated,
+                error: all.stated_error,
+                ..all
             });
         }
     }
     rows
 }
 
-/// The log–log chart of |error| against wall time: one solid series per backend × variant
-/// (one grid per point), one dashed series of its extrapolations.
-fn write_chart(
-    ratio: f64,
+/// What the cost of an answer is counted in.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Cost {
+    /// Wall time (s): what a user waits, on this machine.
+    Wall,
+    /// CG iterations: the same on every device.
+    Iterations,
+}
+
+/// The log–log chart of the error of each stated answer against its `cost`, with its stated
+/// uncertainty as a bar (relative to the reference): per backend × variant, one solid series
+/// of one-grid answers (the grid's force corrected by the convergence law) and one dashed
+/// series of the answers extrapolated from several grids.
+pub(super) fn cost_chart(
+    title: &str,
     series: &[RunSeries],
     rows: &[AccuracyRow],
-    reference: &str,
-    svg: &std::path::Path,
-    figures: FigureFormats,
-) -> Result<(), RunError> {
+    cost: Cost,
+) -> LogLogChart {
+    let x_label = match cost {
+        Cost::Wall => "wall time (s)",
+        Cost::Iterations => "CG iterations (all solves; the same on every device)",
+    };
     let mut chart = LogLogChart::new(
-        format!("R1/R2 = {ratio}: error of |min F̄| against cost ({reference})"),
-        "wall time (s)",
-        "|relative error of |min F̄||",
+        title,
+        x_label,
+        "|error of the stated |min F̄|| (relative), ± stated uncertainty",
     );
     chart.x_data_ticks = false;
     for (i, s) in series.iter().enumerate() {
@@ -330,36 +380,77 @@ fn write_chart(
         let (extra, single): (Vec<&AccuracyRow>, Vec<&AccuracyRow>) =
             mine.partition(|r| r.n_d.is_none() && r.grid.starts_with("extrapolated"));
         // A point at zero error (the reference itself) has no place on a log axis.
-        let points = |rows: &[&AccuracyRow]| -> Vec<(f64, f64)> {
+        let points = |rows: &[&AccuracyRow]| -> (Vec<(f64, f64)>, Vec<f64>) {
             rows.iter()
-                .filter_map(|r| r.error.map(|e| (r.wall_s, e.abs())))
-                .filter(|p| p.1 > 0.0)
-                .collect()
+                .filter_map(|r| {
+                    let x = match cost {
+                        Cost::Wall => r.wall_s,
+                        Cost::Iterations => r.cg_iterations as f64,
+                    };
+                    let bar = r.stated_uncertainty? / r.reference?;
+                    Some(((x, r.stated_error?.abs()), bar))
+                })
+                .filter(|p| p.0 .1 > 0.0)
+                .unzip()
         };
+        let precision = s.runs.first().map_or("", |r| r.precision.as_str());
+        let (single_points, single_bars) = points(&single);
         chart.push(Series {
             label: format!(
-                "{} ({}), {}: one grid per point",
+                "{} ({precision}), {}: one grid",
                 s.backend,
-                s.runs.first().map_or("", |r| r.precision.as_str()),
                 s.variant.flags()
             ),
-            points: points(&single),
+            points: single_points,
             color: i,
             dashed: false,
+            errors: single_bars,
         });
-        let extrapolations = points(&extra);
-        if !extrapolations.is_empty() {
+        let (extra_points, extra_bars) = points(&extra);
+        if !extra_points.is_empty() {
             chart.push(Series {
                 label: format!(
-                    "{}, {}: extrapolated from two consecutive grids",
+                    "{} ({precision}), {}: extrapolated from grids",
                     s.backend,
-                    s.variant.name()
+                    s.variant.flags()
                 ),
-                points: extrapolations,
+                points: extra_points,
                 color: i,
                 dashed: true,
+                errors: extra_bars,
             });
         }
     }
-    chart.write_figure(svg, figures).map_err(write_error(OUT))
+    chart
+}
+
+/// The two accuracy–cost charts of `series` against `reference` (in words): `svg` against
+/// wall time and [`iterations_chart`] of it against CG iterations, in each of `figures`.
+pub(super) fn write_charts(
+    ratio: f64,
+    series: &[RunSeries],
+    rows: &[AccuracyRow],
+    reference: &str,
+    svg: &std::path::Path,
+    figures: FigureFormats,
+) -> Result<(), RunError> {
+    for (cost, path) in [
+        (Cost::Wall, svg.to_path_buf()),
+        (Cost::Iterations, iterations_chart(svg)),
+    ] {
+        let title = format!("R1/R2 = {ratio}: error of |min F̄| against cost ({reference})");
+        cost_chart(&title, series, rows, cost)
+            .write_figure(&path, figures)
+            .map_err(write_error(OUT))?;
+    }
+    Ok(())
+}
+
+/// The chart against CG iterations beside the chart `svg` against wall time:
+/// `<stem>_iterations.svg`.
+pub fn iterations_chart(svg: &std::path::Path) -> PathBuf {
+    let stem = svg
+        .file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+    svg.with_file_name(format!("{stem}_iterations.svg"))
 }

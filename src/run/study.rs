@@ -15,8 +15,7 @@ use crate::analysis::study_fits::{
     branch_fits, coefficient_laws, limit_fits, BranchFits, CoefficientLaw, RatioRun,
 };
 use crate::model::{Model, ModelOptions};
-use crate::output::figure::{FigureFormat, FigureFormats};
-use crate::output::line_chart::LineChart;
+use crate::output::figure::{FigureFormat, FigureFormats, WriteFigure};
 use crate::output::names::sweep_states as states_path;
 use crate::output::study_charts::{
     axis_ratio_chart, branch_chart, coefficients_chart, contour_chart, BranchLaw,
@@ -83,7 +82,9 @@ const FILES: [&str; 3] = ["fits.csv", "coefficient_laws.csv", "index.html"];
 
 /// The charts `reproduce` writes in its --out folder, by their SVG names (each also in the
 /// other formats asked for, with its `.plot.csv`: [`FigureFormats::files`]).
-const CHARTS: [&str; 12] = [
+const CHARTS: [&str; 14] = [
+    "accuracy_cost.svg",
+    "accuracy_cost_iterations.svg",
     "pulloff_curves.svg",
     "pulloff_shapes_r5.svg",
     "axis_ratio.svg",
@@ -153,6 +154,7 @@ pub fn study(args: &StudyRequest, watch: &dyn Watch) -> Result<StudyDone, RunErr
     };
     draw_study_charts(&mut figures, &study, &what)?;
     draw_marked_states(&mut figures, &results, &rows, &backend)?;
+    draw_accuracy_cost(&mut figures, &results, &backend, args.quick)?;
     draw_contours(&mut figures, &results, &rows, &backend)?;
     crossed_step(
         args,
@@ -403,7 +405,12 @@ impl<'a> Figures<'a> {
 
     /// Write `chart` as `file` (its SVG name, and in the other formats) and list it with
     /// `caption`.
-    fn add(&mut self, file: &str, chart: LineChart, caption: String) -> Result<(), RunError> {
+    fn add(
+        &mut self,
+        file: &str,
+        chart: impl WriteFigure,
+        caption: String,
+    ) -> Result<(), RunError> {
         chart
             .write_figure(&self.out.join(file), self.formats)
             .map_err(write_error(OUT))?;
@@ -546,6 +553,72 @@ fn laws_text(laws: &[CoefficientLaw]) -> String {
         .join("; ")
 }
 
+/// The study's accuracy–cost charts: the sphere's answers as the program states them from
+/// each of its grids and from its grids extrapolated together, their error against JKR's
+/// exact 1/2 (stated uncertainties as bars) against wall time and against CG iterations.
+fn draw_accuracy_cost(
+    figures: &mut Figures,
+    results: &[JobResult],
+    backend: &str,
+    quick: bool,
+) -> Result<(), RunError> {
+    use super::accuracy::{chart_rows, cost_chart, Cost, RunSeries, Variant};
+    let mut runs: Vec<_> = results
+        .iter()
+        .filter(|r| r.ratio == 1.0)
+        .filter_map(|r| r.summary.as_ref()?.runs.first().cloned())
+        .collect();
+    if runs.is_empty() {
+        return Ok(());
+    }
+    runs.sort_by_key(|r| r.nx);
+    let grids: Vec<String> = runs.iter().map(|r| r.nx.to_string()).collect();
+    let series = [RunSeries {
+        backend: backend.to_string(),
+        variant: Variant::Plain,
+        runs,
+    }];
+    let exact = crate::analysis::estimate::Estimate {
+        value: 0.5,
+        uncertainty: 0.0,
+    };
+    let rows = chart_rows(&series, Some(exact));
+    for (cost, file, what) in [
+        (Cost::Wall, "accuracy_cost.svg", "wall time"),
+        (
+            Cost::Iterations,
+            "accuracy_cost_iterations.svg",
+            "CG iterations (the same on every device)",
+        ),
+    ] {
+        let chart = cost_chart(
+            "The sphere: error of |min F̄| against cost (exact JKR value 1/2)",
+            &series,
+            &rows,
+            cost,
+        );
+        figures.add(
+            file,
+            chart,
+            format!(
+                "Accuracy against cost: the sphere's adhesive force as the program states it \
+                 from each grid (Nx = {}; the grid's force corrected by the convergence law){}, \
+                 its error against JKR's exact 1/2 against {what}, with the stated uncertainty \
+                 as a bar (a bar down to the axis' bottom: the interval holds 1/2). \
+                 `jkrbem accuracy` draws the same for any ratio, backend and way of running \
+                 (re-gridding, adhesive force only). Backend {backend}.",
+                grids.join(", "),
+                if quick {
+                    ""
+                } else {
+                    ", and from the grids extrapolated together (dashed)"
+                }
+            ),
+        )?;
+    }
+    Ok(())
+}
+
 /// The ratio whose pull-off curve is drawn beside the contact outlines of its marked states.
 const MARKED_RATIO: f64 = 5.0;
 
@@ -577,13 +650,10 @@ fn draw_marked_states(
         (&reference.name, reference.points),
         &marked,
     );
-    let file = format!("pulloff_shapes_r{MARKED_RATIO}.svg");
-    figure
-        .write_figure(&figures.out.join(&file), figures.formats)
-        .map_err(write_error(OUT))?;
-    figures.figures.push(Figure {
-        file,
-        caption: format!(
+    figures.add(
+        &format!("pulloff_shapes_r{MARKED_RATIO}.svg"),
+        figure,
+        format!(
             "§8.1 (the study's Fig. 2b) Pull-off curve F̄(d̄) of R1/R2 = {MARKED_RATIO} ({}×{}) \
              beside {}, with {} states marked; right: the contact outline of each marked state, \
              in its colour, on equal scales (x along the major axis; lengths in c_r). Backend \
@@ -593,8 +663,7 @@ fn draw_marked_states(
             reference.name,
             marked.len()
         ),
-    });
-    Ok(())
+    )
 }
 
 /// §8.1 snapshots and §8.3 (the study's Fig. 3b): quarter contours at marked states against

@@ -238,8 +238,18 @@ fn accuracy_charts_error_against_cost_with_the_extrapolated_point() {
     assert_eq!(
         lines.next().unwrap(),
         "variant,backend,precision,grid,n_d,f_ad_bar,error,wall_s,cg_iterations,reference,\
-         reference_uncertainty"
+         reference_uncertainty,stated,stated_uncertainty,stated_error"
     );
+    // Every answer the program states (one grid corrected, two extrapolated) holds JKR's 1/2
+    // inside its stated interval.
+    for l in text.lines().skip(1) {
+        let c: Vec<&str> = l.split(',').collect();
+        let (stated, u): (f64, f64) = (c[11].parse().unwrap(), c[12].parse().unwrap());
+        assert!(
+            (stated - 0.5).abs() <= u && u < 0.05,
+            "{l}: {stated} ± {u} misses 1/2"
+        );
+    }
     // Per variant (plain, measure, regrid): two grids and the extrapolated point.
     let rows: Vec<(String, f64, usize)> = lines
         .map(|l| {
@@ -273,6 +283,13 @@ fn accuracy_charts_error_against_cost_with_the_extrapolated_point() {
     }
     let svg = std::fs::read_to_string(dir.path().join("acc/accuracy.svg")).unwrap();
     assert!(svg.contains("exact JKR value"));
+    // The same against CG iterations, with the stated uncertainties as bars in its data.
+    let iterations =
+        std::fs::read_to_string(dir.path().join("acc/accuracy_iterations.plot.csv")).unwrap();
+    assert!(
+        iterations.lines().skip(1).any(|l| !l.ends_with(',')),
+        "{iterations}"
+    );
     let bad = jkrbem(&["accuracy", "--backends", "tpu", "--out", "z"], dir.path());
     assert_eq!(bad.status.code(), Some(2));
     assert!(!dir.path().join("z").exists());
