@@ -62,13 +62,64 @@ fn quick_reproduction_writes_every_chart_with_data_and_an_index() {
         let data = std::fs::read_to_string(rep.join(c).with_extension("plot.csv")).unwrap();
         assert!(data.lines().count() >= 6, "{c}: {data}");
     }
-    assert_eq!(index.matches("<figcaption>").count(), charts.len());
+    // The study's Fig. 2b: the curve with four marked states beside their whole outlines
+    // (closed loops), and the sphere's accuracy against cost with its stated uncertainty.
+    let shapes = std::fs::read_to_string(rep.join("pulloff_shapes_r5.plot.csv")).unwrap();
+    for k in 1..=4 {
+        assert!(
+            shapes.contains(&format!("Contact outlines 1–4: {k},")),
+            "{shapes}"
+        );
+    }
+    let outline: Vec<&str> = shapes
+        .lines()
+        .filter(|l| l.starts_with("Contact outlines 1–4: 1,"))
+        .collect();
+    assert!(
+        outline.len() > 20
+            && outline.first().map(|l| l.split(',').nth(2))
+                == outline.last().map(|l| l.split(',').nth(2))
+    );
+    assert!(index.contains("src=\"pulloff_shapes_r5.svg\"") && index.contains("Fig. 2b"));
+    for chart in ["accuracy_cost", "accuracy_cost_iterations"] {
+        let data = std::fs::read_to_string(rep.join(format!("{chart}.plot.csv"))).unwrap();
+        let bar: f64 = data
+            .lines()
+            .nth(1)
+            .and_then(|l| l.rsplit(',').next())
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(bar > 0.0, "{chart}: {data}");
+        assert!(index.contains(&format!("src=\"{chart}.svg\"")));
+    }
+    assert_eq!(index.matches("<figcaption>").count(), charts.len() + 3);
+    // The ratios too coarse for their estimate (10, 25, 50 on the quick grids) are drawn
+    // hollow, marked "coarse", and left out of the coefficients' laws, which then have too
+    // few ratios to be fitted.
+    for chart in ["d_of_c.svg", "axis_ratio.svg"] {
+        let svg = std::fs::read_to_string(rep.join(chart)).unwrap();
+        assert!(svg.contains(", coarse)"), "{chart}");
+    }
+    let coefficients = std::fs::read_to_string(rep.join("coefficients.svg")).unwrap();
+    assert!(coefficients.contains("coarse grid, not fitted"));
+    let laws = std::fs::read_to_string(rep.join("coefficient_laws.csv")).unwrap();
+    assert!(
+        laws.lines().skip(1).all(|l| l.contains(",,,,,,3,")),
+        "{laws}"
+    );
     // The fits with their quality, per ratio and across ratios.
     let fits = std::fs::read_to_string(rep.join("fits.csv")).unwrap();
     assert!(fits.starts_with(
         "ratio,a,b,d_r_squared,d_rms,c1,c2,alpha,alpha_at_bound,f_r_squared,f_rms,points"
     ));
     assert_eq!(fits.lines().count(), 7);
+    let coarse: Vec<&str> = fits
+        .lines()
+        .filter(|l| l.ends_with(",true"))
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(coarse, ["10.0", "25.0", "50.0"], "{fits}");
     let laws = std::fs::read_to_string(rep.join("coefficient_laws.csv")).unwrap();
     assert_eq!(laws.lines().count(), 6, "{laws}");
     assert!(index.contains("backend cpu-f64"));
