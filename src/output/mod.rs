@@ -13,6 +13,7 @@ pub mod legend;
 pub mod line_chart;
 pub mod names;
 pub mod pressure_chart;
+pub mod pressure_profile;
 #[cfg(feature = "gpu")]
 pub mod profile;
 pub mod provenance;
