@@ -4,8 +4,8 @@
 //! approach drawn along the same lines. The edge's tension singularity would stretch the y axis
 //! until the interior is flat: the axis is clipped at the heat map's colour scale (the 98th
 //! percentile of the interior's |p|, [`pressure_chart`](super::pressure_chart)), the closed
-//! form is drawn only where it lies inside, element values beyond are drawn hollow at the
-//! limit, and the title says so.
+//! form is drawn only where it lies inside, element values beyond are drawn at the limit in a
+//! colour of their own, and the title says so.
 
 use super::figure::FigureFormats;
 use super::line_chart::{LineChart, Style};
@@ -178,9 +178,10 @@ fn clipped_line(p: &dyn Fn(f64) -> f64, half: f64, limit: f64) -> (Vec<(f64, f64
 
 /// The profile chart of `f`, titled `title` (a note of the clip is added where anything is
 /// clipped): the x and y profiles ([`profiles`]) as markers, filled in colour 0 and hollow in
-/// colour 1, element values beyond the clip in a third colour at the limit, and where `jkr` is given JKR's pressure at the
-/// state's own mean contact radius and approach along the same lines (one line where both
-/// lines lie as far from the apex, else one per axis).
+/// colour 1, element values beyond the clip in a colour of their own at the limit, and where
+/// `jkr` is given JKR's pressure at the state's own mean contact radius and approach along the
+/// same lines (one black line where both lines lie as far from the apex, else one per axis in
+/// its markers' colour).
 pub fn profile_chart(f: &StateFields, jkr: Option<JkrSphere>, title: &str) -> LineChart {
     let (limit, _) = colour_scale(f);
     let num = |v: f64| compact_digits(v, 3).replace('-', "−");
@@ -223,21 +224,23 @@ pub fn profile_chart(f: &StateFields, jkr: Option<JkrSphere>, title: &str) -> Li
     if let Some(jkr) = jkr {
         let (a, d) = (f.state.mean_radius, f.state.d);
         let same = (px.offset.abs() - py.offset.abs()).abs() <= 1e-9 * f.dx;
-        let lines: Vec<(&Profile, String)> = if same {
-            vec![(&px, format!("JKR at a = {}, d = {}", num(a), num(d)))]
+        let lines: Vec<(&Profile, String, usize)> = if same {
+            let label = format!("JKR at a = {}, d = {}", num(a), num(d));
+            vec![(&px, label, CLOSED_FORM_COLOUR)]
         } else {
             [&px, &py]
                 .into_iter()
-                .map(|pr| (pr, format!("JKR along {} (a = {})", pr.axis, num(a))))
+                .enumerate()
+                .map(|(k, pr)| (pr, format!("JKR along {} (a = {})", pr.axis, num(a)), k))
                 .collect()
         };
-        for (profile, label) in lines {
+        for (profile, label, colour) in lines {
             let offset = profile.offset;
             let p = |s: f64| jkr.pressure(s.hypot(offset), a, d);
             let half = ((a - offset.abs()) * (a + offset.abs())).max(0.0).sqrt();
             let (line, cut) = clipped_line(&p, half, limit);
             clipped |= cut;
-            chart.push(&label, line, CLOSED_FORM_COLOUR, Style::Line);
+            chart.push(&label, line, colour, Style::Line);
         }
     }
     if clipped {
