@@ -14,6 +14,7 @@ pub mod line_chart;
 pub mod names;
 pub mod panels;
 pub mod pressure_chart;
+pub mod pressure_profile;
 #[cfg(feature = "gpu")]
 pub mod profile;
 pub mod provenance;

@@ -102,6 +102,12 @@ pub fn pressure_chart(states: &Path) -> PathBuf {
     beside(states, "pressure.svg")
 }
 
+/// The chart of the pressure along the contact's x and y axes at the force minimum beside a
+/// states file: `<stem>.profile.svg`.
+pub fn profile_chart(states: &Path) -> PathBuf {
+    beside(states, "profile.svg")
+}
+
 /// The file of the chart named `chart` (its SVG path) in `format`: the same stem, the
 /// format's extension (`f_of_d.pdf`).
 pub fn figure_file(chart: &Path, format: FigureFormat) -> PathBuf {
@@ -260,5 +266,8 @@ mod tests {
             Path::new("r/a.pressure.png")
         );
         assert_eq!(plot_csv(&chart), Path::new("r/a.pressure.plot.csv"));
+        let profile = profile_chart(Path::new("r/a.csv"));
+        assert_eq!(profile, Path::new("r/a.profile.svg"));
+        assert_eq!(plot_csv(&profile), Path::new("r/a.profile.plot.csv"));
     }
 }

@@ -38,7 +38,7 @@ fn colour(t: f64) -> RGBColor {
 }
 
 /// The index ranges [i0, i1) × [j0, j1) around the contact, with the border.
-fn window(f: &StateFields) -> (usize, usize, usize, usize) {
+pub(crate) fn window(f: &StateFields) -> (usize, usize, usize, usize) {
     let (mut i0, mut i1, mut j0, mut j1) = (f.nx, 0, f.ny, 0);
     for j in 0..f.ny {
         for i in 0..f.nx {
@@ -186,7 +186,7 @@ pub fn pressure_svg(f: &StateFields, title: &str) -> Result<String, String> {
 /// The colour scale of `f`'s map and the largest |p| (force/length²): the
 /// [`SCALE_QUANTILE`] quantile of |p| over the contact's interior elements (those whose four
 /// neighbours are in contact too), or the largest |p| where there is no interior.
-fn colour_scale(f: &StateFields) -> (f64, f64) {
+pub(crate) fn colour_scale(f: &StateFields) -> (f64, f64) {
     let peak = f
         .pressure
         .iter()

@@ -15,6 +15,7 @@ use crate::analysis::fields::{
 use crate::analysis::generic_limit;
 use crate::model::{Measure, Model, ModelOptions, Onsets};
 use crate::output::figure::FigureFormats;
+use crate::output::pressure_profile::{self, JkrSphere};
 use crate::output::provenance::Provenance;
 use crate::output::summary::Summary;
 use crate::output::{fields_npz, names, pressure_chart, NamedBy};
@@ -202,8 +203,10 @@ fn targets(
     if !req.fields.is_none() {
         for o in outs {
             targets.push((names::fields_npz(o), FIELDS.into()));
-            for file in req.figures.files(&names::pressure_chart(o)) {
-                targets.push((file, FIELDS.into()));
+            for chart in [names::pressure_chart(o), names::profile_chart(o)] {
+                for file in req.figures.files(&chart) {
+                    targets.push((file, FIELDS.into()));
+                }
             }
         }
     }
@@ -261,7 +264,8 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
         provenance::backend_json(&req.backend, &reports),
     );
     provenance.request = req.request.clone();
-    let (field_files, unwritten) = write_fields(&ran.kept, &outs, &provenance, req.figures);
+    let (field_files, unwritten) =
+        write_fields(&ran.kept, &outs, &provenance, req.figures, &req.scene);
     if !unwritten.is_empty() {
         let e = unwritten.join("\n  ");
         ran.failure = Some(match ran.failure.take() {
@@ -304,14 +308,16 @@ fn one_run_returned(req: &SimulateRequest, models: &[Model]) -> Result<(), RunEr
 }
 
 /// Write each run's fields beside its states file (where it has a file and fields): the
-/// `.npz` archive, and the pressure at the force minimum as a picture in each of `figures`
-/// with its data. Returns the files written and why each one that could not be was not (the
-/// others are still written).
+/// `.npz` archive, and the pressure at the force minimum as a picture and as profiles along x
+/// and y (beside JKR's closed form for a sphere of `scene`) in each of `figures` with their
+/// data. Returns the files written and why each one that could not be was not (the others
+/// are still written).
 fn write_fields(
     runs: &[GridRun],
     outs: &[Option<PathBuf>],
     provenance: &Provenance,
     figures: FigureFormats,
+    scene: &Scene,
 ) -> (Vec<PathBuf>, Vec<String>) {
     let mut written = Vec::new();
     let mut unwritten = Vec::new();
@@ -345,6 +351,21 @@ fn write_fields(
                 min.index, min.state.f_bar, min.state.c_bar, run.grid.0, run.grid.1
             );
             match pressure_chart::write_pressure_chart(&chart, min, &title, figures) {
+                Ok(()) => written.extend(figures.files(&chart)),
+                Err(e) => unwritten.push(e.with_param(FIELDS).to_string()),
+            }
+            let chart = names::profile_chart(out);
+            let at = if min.label.contains(LOWEST_NOT_MINIMUM) {
+                "the lowest force recorded"
+            } else {
+                "the force minimum"
+            };
+            let title = format!(
+                "p along x and y at {at} (state {}), {}×{}",
+                min.index, run.grid.0, run.grid.1
+            );
+            let jkr = JkrSphere::of(scene);
+            match pressure_profile::write_profile_chart(&chart, min, jkr, &title, figures) {
                 Ok(()) => written.extend(figures.files(&chart)),
                 Err(e) => unwritten.push(e.with_param(FIELDS).to_string()),
             }

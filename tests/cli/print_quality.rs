@@ -83,7 +83,7 @@ fn faults(path: &Path) -> Vec<String> {
 fn slow_every_chart_renders_cleanly_for_print() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let runs: [&[&str]; 4] = [
+    let runs: [&[&str]; 5] = [
         &[
             "reproduce",
             "--quick",
@@ -106,6 +106,20 @@ fn slow_every_chart_renders_cleanly_for_print() {
             "minimum",
             "--out",
             "fields/s.csv",
+        ],
+        // The sphere: its profile chart draws JKR's closed form beside the elements.
+        &[
+            "simulate",
+            "--ratio",
+            "1",
+            "--grid",
+            "64",
+            "--backend",
+            "cpu",
+            "--fields",
+            "minimum",
+            "--out",
+            "fields/sphere.csv",
         ],
         &[
             "accuracy",
@@ -140,8 +154,12 @@ fn slow_every_chart_renders_cleanly_for_print() {
         .map(|p| p.file_name().unwrap().to_string_lossy().to_string())
         .collect();
     println!("{} charts: {names:?}", files.len());
-    // The study's eleven, the pressure map, the accuracy chart and the bench chart.
-    assert!(files.len() >= 14, "{names:?}");
+    // The study's eleven, two pressure maps and two profiles, the accuracy chart and the
+    // bench chart.
+    assert!(files.len() >= 17, "{names:?}");
+    for name in ["s.profile.svg", "sphere.profile.svg"] {
+        assert!(names.iter().any(|n| n == name), "no {name}: {names:?}");
+    }
     let all: Vec<String> = files.iter().flat_map(|p| faults(p)).collect();
     assert!(all.is_empty(), "{}", all.join("\n"));
 }

@@ -5,10 +5,12 @@
 use jkrbem::analysis::fields::{FieldChoice, StateFields};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::model::ModelOptions;
+use jkrbem::output::pressure_profile::{profile_chart, profiles, JkrSphere};
 use jkrbem::run::open::BackendRequest;
 use jkrbem::run::simulate::{simulate, Mode, SimulateRequest, Sink};
 use jkrbem::scene::Scene;
-use std::f64::consts::PI;
+use jkrbem::theory::jkr::jkr_pressure;
+use std::sync::OnceLock;
 
 /// The fields that a one-grid run of R1/R2 = `ratio` on `nx` keeps for `choice`, with the
 /// run's states.
@@ -86,19 +88,27 @@ fn every_picked_state_carries_its_force_and_a_consistent_gap() {
     assert!(fields.iter().any(|f| f.label.contains("force minimum")));
 }
 
+/// The fields at the force minimum of the sphere (R = E* = Δγ = 1) on `nx` (64 or 128), run
+/// once for every test that reads them.
+fn sphere_minimum(nx: usize) -> &'static StateFields {
+    static RUNS: [OnceLock<StateFields>; 2] = [OnceLock::new(), OnceLock::new()];
+    let k = [64, 128].iter().position(|&n| n == nx).expect("64 or 128");
+    RUNS[k].get_or_init(|| {
+        let (mut fields, _) = fields_of(1.0, nx, FieldChoice::Minimum);
+        assert_eq!(fields.len(), 1);
+        fields.remove(0)
+    })
+}
+
 /// The largest |p − p_JKR| inside 0.7a at the sphere's force minimum on `nx`, relative to
 /// p_JKR at the centre, with JKR taken at the state's own contact radius a and approach d
 /// (R = E* = 1): the Hertz pressure of radius a and a flat punch's for the rest of d.
 fn jkr_pressure_error(nx: usize) -> f64 {
-    let (fields, _) = fields_of(1.0, nx, FieldChoice::Minimum);
-    let f = &fields[0];
+    let f = sphere_minimum(nx);
     check_consistent(f);
     assert_eq!(f.label, "force minimum");
     let (a, d) = (f.state.mean_radius, f.state.d);
-    let jkr = |r: f64| {
-        let s = (a * a - r * r).sqrt();
-        2.0 / PI * s + (d - a * a) / (PI * s)
-    };
+    let jkr = |r: f64| jkr_pressure(r, a, d, 1.0, 1.0);
     let p0 = jkr(0.0).abs();
     let mut worst = 0.0f64;
     for j in 0..f.ny {
@@ -122,4 +132,81 @@ fn the_sphere_at_its_force_minimum_follows_jkr_pressure() {
         fine < coarse,
         "it converges: {coarse} on 64², {fine} on 128²"
     );
+}
+
+#[test]
+fn the_sphere_s_pressure_profiles_follow_jkr_s_line_and_agree_on_both_axes() {
+    // The profile chart's own points (what `<out>.profile.plot.csv` holds) at the sphere's
+    // force minimum on 128²: jkrbem's element values along x follow the JKR line drawn beside
+    // them, within the tolerance of the field test above, and the x and y profiles agree.
+    let f = sphere_minimum(128);
+    let scene = Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap();
+    let jkr = JkrSphere::of(&scene).expect("the sphere has JKR's closed form");
+    let chart = profile_chart(f, Some(jkr), "sphere");
+    let points = chart.plot_points();
+    let series = |prefix: &str, style: &str| -> Vec<(f64, f64)> {
+        points
+            .iter()
+            .filter(|p| p.series.starts_with(prefix) && p.style == style)
+            .map(|p| (p.x, p.y))
+            .collect()
+    };
+    let (along_x, along_y) = (
+        series("jkrbem along x", "markers"),
+        series("jkrbem along y", "hollow markers"),
+    );
+    let line = series("JKR", "line");
+    let (a, d) = (f.state.mean_radius, f.state.d);
+    let [px, py] = profiles(f);
+    assert_eq!(px.offset.abs(), py.offset.abs(), "one line for both axes");
+    assert!(
+        px.offset.abs() < f.dx,
+        "the row through the apex: {}",
+        px.offset
+    );
+    // The line is JKR's pressure along the row, ascending in x and inside the clip.
+    assert!(line.len() > 100, "{}", line.len());
+    for w in line.windows(2) {
+        assert!(w[1].0 > w[0].0);
+    }
+    for &(x, p) in &line {
+        let exact = jkr.pressure(x.hypot(px.offset), a, d);
+        assert!(
+            (p - exact).abs() <= 1e-9 * exact.abs().max(1.0),
+            "{x}: {p} vs {exact}"
+        );
+    }
+    // The line at x, linearly between its vertices.
+    let on_line = |x: f64| -> Option<f64> {
+        let k = line.windows(2).position(|w| w[0].0 <= x && x <= w[1].0)?;
+        let ((x0, p0), (x1, p1)) = (line[k], line[k + 1]);
+        Some(p0 + (p1 - p0) * (x - x0) / (x1 - x0))
+    };
+    let p0 = jkr.pressure(0.0, a, d).abs();
+    let mut worst = 0.0f64;
+    let mut checked = 0;
+    for &(x, p) in &along_x {
+        if x.hypot(px.offset) < 0.7 * a {
+            let expected = on_line(x).expect("the line spans 0.7a");
+            worst = worst.max((p - expected).abs() / p0);
+            checked += 1;
+        }
+    }
+    println!("along x: {checked} elements inside 0.7a, worst |p − line|/|p_JKR(0)| {worst}");
+    assert!(checked as f64 >= 1.3 * a / f.dx, "{checked}");
+    assert!(worst < 0.05, "{worst}");
+    // Symmetry: the same position along x and along y, the same pressure.
+    let scale = along_x.iter().fold(0.0f64, |m, p| m.max(p.1.abs()));
+    let mut pairs = 0;
+    let mut apart = 0.0f64;
+    for &(x, p) in &along_x {
+        if let Some(&(_, q)) = along_y.iter().find(|(y, _)| (y - x).abs() <= 1e-9 * f.dx) {
+            apart = apart.max((p - q).abs() / scale);
+            pairs += 1;
+        }
+    }
+    println!("{pairs} pairs, largest |p_x − p_y| / max |p| {apart:e}");
+    assert_eq!(pairs, along_x.len().min(along_y.len()));
+    assert!(pairs as f64 >= 2.0 * a / f.dx, "{pairs}");
+    assert!(apart < 1e-6, "{apart:e}");
 }
