@@ -503,7 +503,8 @@ pub const FIELDS: &Spec = &spec(
     "The states whose fields (pressure, gap, contact set) are kept: `minimum` (the force \
      minimum), `every:K` (every K-th state and the minimum) or `states:I,J` (those states, \
      counted from 0, and the minimum). The CLI writes them to <⟨out⟩>.fields.npz and the pressure \
-     at the minimum to <out>.pressure.svg. Each is the state's contact set solved again on the \
+     at the minimum to <out>.pressure.svg, with its profiles along x and y (beside JKR's for \
+     the sphere) in <out>.profile.svg. Each is the state's contact set solved again on the \
      CPU (f64).",
 );
 /// The formats every chart is written in.
