@@ -573,8 +573,9 @@ fn draw_accuracy_cost(
     }
     runs.sort_by_key(|r| r.nx);
     let grids: Vec<String> = runs.iter().map(|r| r.nx.to_string()).collect();
+    // The backend's name without its precision, which each run reports and the legend adds.
     let series = [RunSeries {
-        backend: backend.to_string(),
+        backend: backend.split('-').next().unwrap_or(backend).to_string(),
         variant: Variant::Plain,
         runs,
     }];
