@@ -509,7 +509,10 @@ fn draw_study_charts(figures: &mut Figures, study: &StudyData, what: &str) -> Re
     figures.add(
         "force_vs_ratio.svg",
         force_vs_ratio_chart(rows, &curves),
-        format!("§8.6 Adhesive force |min F̄| against R1/R2 beside JG's pull-off force, with the fitted law. {what}."),
+        format!(
+            "§8.6 Adhesive force |min F̄| against R1/R2 beside JG's pull-off force, with the \
+             fitted law.{coarse_text} {what}."
+        ),
     )
 }
 
