@@ -37,8 +37,9 @@ fn colour(t: f64) -> RGBColor {
     }
 }
 
-/// The index ranges [i0, i1) × [j0, j1) around the contact, with the border.
-pub(crate) fn window(f: &StateFields) -> (usize, usize, usize, usize) {
+/// The contact's bounding box as index ranges [i0, i1) × [j0, j1), or `None` where no element
+/// is in contact.
+pub(crate) fn contact_box(f: &StateFields) -> Option<(usize, usize, usize, usize)> {
     let (mut i0, mut i1, mut j0, mut j1) = (f.nx, 0, f.ny, 0);
     for j in 0..f.ny {
         for i in 0..f.nx {
@@ -47,9 +48,14 @@ pub(crate) fn window(f: &StateFields) -> (usize, usize, usize, usize) {
             }
         }
     }
-    if i1 <= i0 || j1 <= j0 {
+    (i1 > i0 && j1 > j0).then_some((i0, i1, j0, j1))
+}
+
+/// The index ranges [i0, i1) × [j0, j1) around the contact, with the border.
+pub(crate) fn window(f: &StateFields) -> (usize, usize, usize, usize) {
+    let Some((i0, i1, j0, j1)) = contact_box(f) else {
         return (0, f.nx, 0, f.ny);
-    }
+    };
     let grow = |lo: usize, hi: usize, n: usize| {
         let b = ((hi - lo) as f64 * BORDER).ceil() as usize + 1;
         (lo.saturating_sub(b), (hi + b).min(n))

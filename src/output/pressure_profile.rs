@@ -9,7 +9,7 @@
 
 use super::figure::FigureFormats;
 use super::line_chart::{LineChart, Style};
-use super::pressure_chart::{colour_scale, window};
+use super::pressure_chart::{colour_scale, contact_box, window};
 use super::OutputError;
 use crate::analysis::fields::StateFields;
 use crate::scene::{Indenter, Scene};
@@ -81,17 +81,7 @@ pub struct Profile {
 /// contact's bounding box (the grid's centre where there is no contact), over the heat map's
 /// window (the box and a 15 % border).
 pub fn profiles(f: &StateFields) -> [Profile; 2] {
-    let (mut i0, mut i1, mut j0, mut j1) = (f.nx, 0, f.ny, 0);
-    for j in 0..f.ny {
-        for i in 0..f.nx {
-            if f.contact[j * f.nx + i] {
-                (i0, i1, j0, j1) = (i0.min(i), i1.max(i + 1), j0.min(j), j1.max(j + 1));
-            }
-        }
-    }
-    if i1 <= i0 || j1 <= j0 {
-        (i0, i1, j0, j1) = (0, f.nx, 0, f.ny);
-    }
+    let (i0, i1, j0, j1) = contact_box(f).unwrap_or((0, f.nx, 0, f.ny));
     let nearest = |v: &[f64], lo: usize, hi: usize| {
         let centre = 0.5 * (v[lo] + v[hi - 1]);
         (lo..hi)

@@ -341,10 +341,14 @@ fn write_fields(
         };
         if let Some(min) = run.fields.iter().find(lowest) {
             let chart = names::pressure_chart(out);
-            let what = if min.label.contains(LOWEST_NOT_MINIMUM) {
-                "the lowest force recorded (not the minimum: the run did not reach it)"
+            // Where the state lies, in full (the heat map's title) and short (the profiles').
+            let (what, at) = if min.label.contains(LOWEST_NOT_MINIMUM) {
+                (
+                    "the lowest force recorded (not the minimum: the run did not reach it)",
+                    "the lowest force recorded",
+                )
             } else {
-                "the force minimum"
+                ("the force minimum", "the force minimum")
             };
             let title = format!(
                 "p at {what} (state {}): F̄ = {:.4}, c̄ = {:.3}, {}×{}",
@@ -355,11 +359,6 @@ fn write_fields(
                 Err(e) => unwritten.push(e.with_param(FIELDS).to_string()),
             }
             let chart = names::profile_chart(out);
-            let at = if min.label.contains(LOWEST_NOT_MINIMUM) {
-                "the lowest force recorded"
-            } else {
-                "the force minimum"
-            };
             let title = format!(
                 "p along x and y at {at} (state {}), {}×{}",
                 min.index, run.grid.0, run.grid.1
