@@ -93,7 +93,9 @@ def simulate(
     extrapolates to Δx → 0. With none of them the run aims at 2 %. ``accuracy`` with ``grid``,
     ``grid_y``, ``steps``, ``onsets``, ``measure`` or ``extrapolate``, and ``extrapolate`` with
     ``grid`` or ``grid_y``, are refused (one would override the other). ``backend`` is "auto",
-    "cpu" (f64) or "gpu" (f32). ``time_limit`` (s, at most 30 days) bounds an accuracy run.
+    "cpu" (f64) or "gpu" (f32); ``precision="f32"`` runs the CPU's FFT passes in f32 (its
+    vectors and sums stay f64), "f64" is the CPU's own and refused on the GPU. ``time_limit``
+    (s, at most 30 days) bounds an accuracy run.
 
     Numbers may be Python's or numpy's (``np.int64(64)``, ``np.float32(2)``); integers
     (``grid``, ``steps``, state indices) must be integers (32.0 is refused), and no bool is

@@ -142,7 +142,8 @@ pub trait Device {
 
     /// Short name for reports ("cpu", "gpu"; "cpu-periodic" for the unpadded CPU one).
     fn name(&self) -> &'static str;
-    /// Arithmetic precision of the device fields ("f64", "f32").
+    /// Arithmetic precision of the convolution ("f64", "f32"): the device fields' on the
+    /// GPU, the FFT passes' on the CPU (its fields are f64).
     fn precision(&self) -> &'static str;
     /// Grid shape (nx, ny).
     fn shape(&self) -> (usize, usize);

@@ -1,5 +1,6 @@
 //! Opening the backend a user asked for: `cpu`, `gpu` (the best adapter) or `auto` (a
-//! hardware GPU if there is one, else the CPU), behind one enum the solver is dispatched on.
+//! hardware GPU if there is one, else the CPU), in the arithmetic asked for ([`Precision`]),
+//! behind one enum the solver is dispatched on.
 
 use super::cpu::CpuBackend;
 #[cfg(feature = "gpu")]
@@ -23,10 +24,50 @@ pub enum BackendKind {
     /// A hardware GPU if there is one, else the CPU.
     #[default]
     Auto,
-    /// The rustfft CPU backend (f64).
+    /// The rustfft CPU backend (f64; its FFT passes in f32 where asked).
     Cpu,
     /// The wgpu GPU backend (f32) on the best adapter, software adapters included.
     Gpu,
+}
+
+/// The arithmetic of the convolution's FFT passes.
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    clap::ValueEnum,
+    serde::Serialize,
+    serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Precision {
+    /// The backend's own: f64 on the CPU, f32 on the GPU.
+    #[default]
+    Auto,
+    /// f64 (the CPU only: the reference).
+    F64,
+    /// f32: the GPU, or the CPU's FFT passes at twice the SIMD width (its vectors and
+    /// reductions stay f64).
+    F32,
+}
+
+impl Precision {
+    /// Why `kind` cannot run in this precision, if it cannot: the GPU has no f64.
+    pub fn refusal(self, kind: BackendKind) -> Option<String> {
+        (kind == BackendKind::Gpu && self == Precision::F64).then(|| {
+            format!(
+                "{} f64 is not offered by {} gpu, which computes in f32 only: use {} cpu for \
+                 f64, or {} f32 (or auto) on the GPU",
+                crate::run::schema::PRECISION,
+                crate::run::schema::BACKEND,
+                crate::run::schema::BACKEND,
+                crate::run::schema::PRECISION
+            )
+        })
+    }
 }
 
 /// An opened backend of either kind.
@@ -63,8 +104,27 @@ pub fn open_with(
     setup: &GridSetup,
     periodic: bool,
 ) -> Result<Opened, BackendError> {
+    open_in(kind, Precision::Auto, setup, periodic)
+}
+
+/// [`open_with`] in the arithmetic `precision`: `f32` on the CPU runs its convolution's FFT
+/// passes in f32 ([`CpuBackend::new_f32`]); `f64` is refused on `gpu` ([`Precision::refusal`])
+/// and takes the CPU under `auto`; `auto` is the backend's own.
+pub fn open_in(
+    kind: BackendKind,
+    precision: Precision,
+    setup: &GridSetup,
+    periodic: bool,
+) -> Result<Opened, BackendError> {
+    if let Some(why) = precision.refusal(kind) {
+        return Err(BackendError::Unavailable(why));
+    }
+    let f32 = precision == Precision::F32;
+    let arithmetic = if f32 { "f32 FFT passes" } else { "f64" };
     let cpu = |why: String| -> Result<Opened, BackendError> {
-        let backend = if periodic {
+        let backend = if f32 {
+            CpuBackend::new_f32(setup, periodic)?
+        } else if periodic {
             CpuBackend::new_periodic(setup)?
         } else {
             CpuBackend::new(setup)?
@@ -83,7 +143,7 @@ pub fn open_with(
         }
     };
     match kind {
-        BackendKind::Cpu => cpu("cpu (f64, rustfft)".into()),
+        BackendKind::Cpu => cpu(format!("cpu ({arithmetic}, rustfft)")),
         #[cfg(not(feature = "gpu"))]
         BackendKind::Gpu => Err(BackendError::Unavailable(format!(
             "this jkrbem was built without the `gpu` feature: use {} cpu, or rebuild with the \
@@ -91,7 +151,9 @@ pub fn open_with(
             crate::run::schema::BACKEND
         ))),
         #[cfg(not(feature = "gpu"))]
-        BackendKind::Auto => cpu("cpu (f64, rustfft) (auto: built without the gpu feature)".into()),
+        BackendKind::Auto => cpu(format!(
+            "cpu ({arithmetic}, rustfft) (auto: built without the gpu feature)"
+        )),
         #[cfg(feature = "gpu")]
         BackendKind::Gpu => {
             let ctx = GpuContext::new(AdapterPreference::Best)?;
@@ -109,6 +171,11 @@ pub fn open_with(
             })
         }
         #[cfg(feature = "gpu")]
+        BackendKind::Auto if precision == Precision::F64 => cpu(format!(
+            "cpu (f64, rustfft) (auto: {} f64, which only the CPU offers)",
+            crate::run::schema::PRECISION
+        )),
+        #[cfg(feature = "gpu")]
         BackendKind::Auto => match GpuContext::new(AdapterPreference::Best) {
             Ok(ctx) if ctx.is_hardware() => {
                 let summary = ctx.adapter_summary();
@@ -117,14 +184,16 @@ pub fn open_with(
                         backend: AnyBackend::Gpu(Box::new(b)),
                         note: format!("gpu (f32, wgpu) on {summary} (auto: hardware GPU found)"),
                     }),
-                    Err(e) => cpu(format!("cpu (f64, rustfft) (auto: {summary} refused: {e})")),
+                    Err(e) => cpu(format!(
+                        "cpu ({arithmetic}, rustfft) (auto: {summary} refused: {e})"
+                    )),
                 }
             }
             Ok(ctx) => cpu(format!(
-                "cpu (f64, rustfft) (auto: the only GPU adapter is software: {})",
+                "cpu ({arithmetic}, rustfft) (auto: the only GPU adapter is software: {})",
                 ctx.adapter_summary()
             )),
-            Err(e) => cpu(format!("cpu (f64, rustfft) (auto: {e})")),
+            Err(e) => cpu(format!("cpu ({arithmetic}, rustfft) (auto: {e})")),
         },
     }
 }
@@ -190,7 +259,8 @@ impl AnyBackend {
         }
     }
 
-    /// The arithmetic of the device fields ("f64", "f32").
+    /// The arithmetic of the convolution ("f64", "f32"): the GPU's fields, the CPU's FFT
+    /// passes.
     pub fn precision(&self) -> &'static str {
         use super::Device;
         match self {

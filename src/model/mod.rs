@@ -5,8 +5,8 @@
 
 use crate::run::schema::{
     APEX_OFFSET, BACKEND, CG_ACCEPT, CG_MAX_ITERATIONS, CG_TOLERANCE, CONVOLUTION, E_STAR, GRID,
-    GRID_Y, HEIGHT_MAP, INDENTER, MARGIN, MESH_ANGLE, PRELOAD_AREA, PRELOAD_DEPTH, PRELOAD_FORCE,
-    ROUGHNESS, START_RADIUS, STEPS, WORK_OF_ADHESION,
+    GRID_Y, HEIGHT_MAP, INDENTER, MARGIN, MESH_ANGLE, PRECISION, PRELOAD_AREA, PRELOAD_DEPTH,
+    PRELOAD_FORCE, ROUGHNESS, START_RADIUS, STEPS, WORK_OF_ADHESION,
 };
 use crate::scene::{FirstContact, Indenter, PullOffHint, Scene};
 use crate::setup::Preconditioner;
@@ -415,7 +415,7 @@ impl Model {
                         compact(self.scene.work_of_adhesion),
                         self.scene.indenter.describe(),
                         if precision == "f32" {
-                            format!(", or use {BACKEND} cpu (f64)")
+                            format!(", or use {BACKEND} cpu with {PRECISION} f64")
                         } else {
                             String::new()
                         }

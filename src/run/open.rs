@@ -3,7 +3,7 @@
 //! between CG residual reads.
 
 use super::{failed, input, RunError};
-use crate::backend::select::{self, AnyBackend, BackendKind};
+use crate::backend::select::{self, AnyBackend, BackendKind, Precision};
 use crate::backend::BackendError;
 use crate::model::Model;
 
@@ -36,6 +36,8 @@ pub enum Convolution {
 pub struct BackendRequest {
     /// cpu, gpu or auto.
     pub kind: BackendKind,
+    /// The convolution's arithmetic: auto (the backend's own), f64 (the CPU) or f32.
+    pub precision: Precision,
     /// Padded (an isolated contact) or periodic (a surface periodic over the domain).
     pub convolution: Convolution,
     /// CG residual reads every this many iterations; `None`: the backend's own interval.
@@ -43,11 +45,14 @@ pub struct BackendRequest {
 }
 
 impl BackendRequest {
-    /// Refuse a combination no backend offers (checked before any output is claimed): every
-    /// backend offers both convolutions now, so none is refused here (whether a scene is
-    /// periodic is the scene's to check).
+    /// Refuse a combination no backend offers (checked before any output is claimed): f64
+    /// on the GPU ([`Precision::refusal`]). Every backend offers both convolutions (whether a
+    /// scene is periodic is the scene's to check).
     pub fn check(&self) -> Result<(), RunError> {
-        Ok(())
+        match self.precision.refusal(self.kind) {
+            Some(why) => Err(input(why)),
+            None => Ok(()),
+        }
     }
 
     /// Whether the convolution asked for is the periodic one.
@@ -78,8 +83,8 @@ pub fn backend_error(e: BackendError) -> RunError {
 pub fn open_for(request: &BackendRequest, model: &mut Model) -> Result<OpenedFor, RunError> {
     request.check()?;
     let setup = model.grid_setup();
-    let opened =
-        select::open_with(request.kind, &setup, request.periodic()).map_err(backend_error)?;
+    let opened = select::open_in(request.kind, request.precision, &setup, request.periodic())
+        .map_err(backend_error)?;
     let backend = opened.backend;
     let note = if request.periodic() {
         format!(
@@ -89,7 +94,8 @@ pub fn open_for(request: &BackendRequest, model: &mut Model) -> Result<OpenedFor
     } else {
         opened.note
     };
-    // Refuse a model whose scales the backend's arithmetic (the GPU's f32) cannot hold.
+    // Refuse a model whose scales the backend's arithmetic (f32, the GPU's or the CPU's FFT
+    // passes) cannot hold.
     if backend.precision() == "f32" {
         model
             .check_scales("f32", crate::model::F32_SAFE_RANGE)

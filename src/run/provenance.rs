@@ -112,6 +112,7 @@ pub fn model_json(model: &Model, mode: Value) -> Value {
 pub fn backend_json(request: &BackendRequest, runs: &[RunReport]) -> Value {
     json!({
         "requested": word(request.kind),
+        "precision": word(request.precision),
         "convolution": word(request.convolution),
         "check_every": request.check_every,
         "runs": runs.iter().map(|r| json!({"grid": r.grid, "backend": r.backend,

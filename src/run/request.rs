@@ -15,7 +15,7 @@ use super::schema::{
 use super::simulate::{Mode, SimulateRequest, Sink};
 use super::{input, RunError};
 use crate::analysis::fields::FieldChoice;
-use crate::backend::select::BackendKind;
+use crate::backend::select::{BackendKind, Precision};
 use crate::model::{Measure, ModelOptions, Onsets, Preload};
 use crate::output::figure::{FigureFormat, FigureFormats};
 use crate::scene::height_map::HeightMap;
@@ -97,6 +97,9 @@ pub struct Request {
     pub preconditioner: Preconditioner,
     pub exact_cascade: bool,
     pub backend: BackendKind,
+    /// A request recorded before it existed ran in the backend's own arithmetic.
+    #[serde(default)]
+    pub precision: Precision,
     pub convolution: Convolution,
     pub extrapolate: bool,
     pub extrapolate_grids: Option<Vec<usize>>,
@@ -440,6 +443,7 @@ impl Request {
     pub fn backend(&self) -> BackendRequest {
         BackendRequest {
             kind: self.backend,
+            precision: self.precision,
             convolution: self.convolution,
             check_every: self.cg_check_every,
         }
@@ -470,6 +474,7 @@ impl Request {
             })?),
             None => None,
         };
+        self.backend().check()?;
         let scene = self.scene(map)?;
         if self.convolution == Convolution::Periodic && scene.window_half().is_none() {
             return Err(input(format!(

@@ -4,7 +4,7 @@
 use super::cg::{CgEnd, CgReport, REPLACE_EVERY, TRUE_RESIDUAL_SLACK};
 use crate::model::CgSettings;
 use crate::run::schema::{
-    BACKEND, CG_ACCEPT, CG_MAX_ITERATIONS, CG_TOLERANCE, PRECONDITIONER, STEPS,
+    BACKEND, CG_ACCEPT, CG_MAX_ITERATIONS, CG_TOLERANCE, PRECISION, PRECONDITIONER, STEPS,
 };
 
 /// What became of a safer retry.
@@ -71,7 +71,7 @@ pub fn floor_warning(
             "CG stopped at the {precision} precision floor of this backend, at relative \
              residual {floor:.1e}, above {CG_TOLERANCE} {:.1e}, which {precision} cannot \
              reach (the worst state's residual, in the cg_residual column of the states CSV: \
-             {}); use {BACKEND} cpu (f64) to reach it",
+             {}); use {BACKEND} cpu with {PRECISION} f64 to reach it",
             settings.tolerance,
             worst.map_or("—".into(), |w| format!("{w:.2e}"))
         )
@@ -83,11 +83,11 @@ pub fn advice(end: CgEnd) -> String {
     match end {
         CgEnd::Stagnated | CgEnd::ResidualGap | CgEnd::Converged => format!(
             "the tolerance is below what this arithmetic reaches: use a looser {CG_TOLERANCE} \
-             (or, on the f32 GPU backend, {BACKEND} cpu for f64)"
+             (or, in f32, {BACKEND} cpu with {PRECISION} f64)"
         ),
         CgEnd::Diverged | CgEnd::NonFinite => format!(
-            "try {PRECONDITIONER} stiffness, more {STEPS}, or (on the f32 GPU backend) \
-             {BACKEND} cpu for f64"
+            "try {PRECONDITIONER} stiffness, more {STEPS}, or (in f32) {BACKEND} cpu with \
+             {PRECISION} f64"
         ),
         CgEnd::IterationLimit => format!(
             "raise {CG_MAX_ITERATIONS}, use {PRECONDITIONER} stiffness, or loosen {CG_TOLERANCE}"

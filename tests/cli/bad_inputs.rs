@@ -65,3 +65,38 @@ fn every_bad_input_of_the_shared_table_is_refused_naming_its_flag() {
     );
     assert!(!dir.path().join("bad.csv").exists());
 }
+
+/// The GPU computes in f32 only: `--backend gpu --precision f64` is refused (exit 2) before
+/// any adapter is sought, so the refusal is the same on a machine with a GPU, without one and
+/// in a build without the `gpu` feature, and it says what to use instead.
+#[test]
+fn f64_on_the_gpu_is_refused_before_any_adapter_is_sought() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run_in(
+        dir.path(),
+        &[
+            "simulate",
+            "--ratio",
+            "1",
+            "--grid",
+            "16",
+            "--backend",
+            "gpu",
+            "--precision",
+            "f64",
+            "--out",
+            "s.csv",
+        ],
+        &[],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--precision f64 is not offered by --backend gpu")
+            && err.contains("f32 only")
+            && err.contains("--backend cpu"),
+        "{err}"
+    );
+    assert!(!err.contains("adapter"), "{err}");
+    assert!(!dir.path().join("s.csv").exists());
+}

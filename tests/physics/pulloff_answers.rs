@@ -126,3 +126,48 @@ fn slow_loose_rounds_give_the_exact_rounds_states() {
         assert!(cl.cg_iterations < ct.cg_iterations, "{what}");
     }
 }
+
+/// The CPU's f32 mode (issue 46: its convolution's FFT passes in f32, CG's vectors and sums
+/// in f64) on the 64² sphere's pull-off, through the request as `simulate` takes it: |min F̄|
+/// within 2e-5 (relative) of f64's, the same number of states ±2, and the run and its
+/// provenance say f32.
+#[test]
+fn the_f32_fft_passes_give_the_f64_pull_off() {
+    use jkrbem::run::request::Request;
+    use jkrbem::run::simulate::{simulate, Sink};
+    let run = |precision: &str| {
+        let request = Request::from_texts([
+            ("ratio", "1"),
+            ("grid", "64"),
+            ("backend", "cpu"),
+            ("precision", precision),
+        ])
+        .unwrap();
+        let request = request.simulate_request(Sink::Memory, None).unwrap();
+        simulate(&request, &jkrbem::run::Quiet).unwrap().summary
+    };
+    let (f64_run, f32_run) = (run("f64"), run("f32"));
+    let (a, b) = (&f64_run.runs[0], &f32_run.runs[0]);
+    assert_eq!((a.precision.as_str(), b.precision.as_str()), ("f64", "f32"));
+    assert!(a.min_reached && b.min_reached && a.complete && b.complete);
+    let backend = &f32_run.provenance.as_ref().unwrap().backend;
+    assert_eq!(backend["precision"], "f32");
+    assert_eq!(backend["runs"][0]["precision"], "f32");
+    let (fa, fb) = (a.f_ad_bar.unwrap(), b.f_ad_bar.unwrap());
+    println!(
+        "64² sphere: |min F̄| f64 {fa:.9}, f32 {fb:.9} ({:.1e} relative); states {} and {}; \
+         CG iterations {} and {}",
+        (fb / fa - 1.0).abs(),
+        a.states,
+        b.states,
+        a.cg_iterations,
+        b.cg_iterations
+    );
+    assert!((fb / fa - 1.0).abs() < 2e-5, "{fa} vs {fb}");
+    assert!(
+        a.states.abs_diff(b.states) <= 2,
+        "{} vs {}",
+        a.states,
+        b.states
+    );
+}

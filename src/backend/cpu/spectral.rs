@@ -5,12 +5,43 @@
 //! it is the periodic preconditioner. The zero padding and the cropping are fused into the
 //! transforms: only the `ny` occupied rows are transformed along x, and only `ny` rows are
 //! transformed back.
+//!
+//! The transforms run in f64 (the reference) or in f32 ([`Real`]): the data stay f64 outside
+//! the filter, rounded to the filter's type as a row is loaded and widened back as it is
+//! stored, so an f32 filter differs from an f64 one only in the passes' arithmetic (and the
+//! symbol's rounding), at twice the SIMD width.
 
 use rayon::prelude::*;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlanner};
+use rustfft::{Fft, FftNum, FftPlanner};
 use std::sync::Arc;
+
+/// The float type a filter's transforms run in: f64 (the reference) or f32.
+pub trait Real: FftNum + Default {
+    /// `v` rounded to this type.
+    fn round_from(v: f64) -> Self;
+    /// This value as f64 (exact).
+    fn widen(self) -> f64;
+}
+
+impl Real for f64 {
+    fn round_from(v: f64) -> Self {
+        v
+    }
+    fn widen(self) -> f64 {
+        self
+    }
+}
+
+impl Real for f32 {
+    fn round_from(v: f64) -> Self {
+        v as f32
+    }
+    fn widen(self) -> f64 {
+        f64::from(self)
+    }
+}
 
 /// The fewest rows (or columns) one thread takes in a pass.
 const PAR_MIN_ROWS: usize = 8;
@@ -22,31 +53,33 @@ fn min_rows(len: usize) -> usize {
     (super::PAR_MIN / len.max(1)).max(PAR_MIN_ROWS)
 }
 
-/// A planned 2-D real-to-complex filter of transform size mx × my acting on nx × ny data.
-pub struct SpectralFilter {
+/// A planned 2-D real-to-complex filter of transform size mx × my acting on nx × ny data
+/// (f64 in and out), its transforms in `T` (f64 unless said).
+pub struct SpectralFilter<T: Real = f64> {
     nx: usize,
     ny: usize,
     mx: usize,
     my: usize,
     /// Half-spectrum width mx/2 + 1.
     hx: usize,
-    r2c: Arc<dyn RealToComplex<f64>>,
-    c2r: Arc<dyn ComplexToReal<f64>>,
-    col_fwd: Arc<dyn Fft<f64>>,
-    col_inv: Arc<dyn Fft<f64>>,
+    r2c: Arc<dyn RealToComplex<T>>,
+    c2r: Arc<dyn ComplexToReal<T>>,
+    col_fwd: Arc<dyn Fft<T>>,
+    col_inv: Arc<dyn Fft<T>>,
     /// Real symbol, column-major (kx * my + ky), already divided by mx·my.
-    symbol: Vec<f64>,
+    symbol: Vec<T>,
     /// Row-pass spectra: ny rows of hx values.
-    rows: Vec<Complex<f64>>,
+    rows: Vec<Complex<T>>,
     /// Column spectra: hx columns of my values.
-    cols: Vec<Complex<f64>>,
+    cols: Vec<Complex<T>>,
 }
 
-impl SpectralFilter {
+impl<T: Real> SpectralFilter<T> {
     /// The elastic operator u = K p of an nx × ny grid of elements of side `dx` (length) on a
     /// half-space of modulus `e_star` (stress): Love's element kernel, zero-padded to
     /// 2nx × 2ny (an isolated contact), or summed over the periodic images, unpadded
-    /// (`periodic`; [`crate::backend::kernel::periodic_symbol`]).
+    /// (`periodic`; [`crate::backend::kernel::periodic_symbol`]). The symbol is computed in
+    /// f64 and rounded to `T`.
     pub fn influence(nx: usize, ny: usize, dx: f64, e_star: f64, periodic: bool) -> Self {
         use crate::backend::kernel::{padded_kernel, periodic_symbol};
         if periodic {
@@ -65,9 +98,9 @@ impl SpectralFilter {
     pub fn new(nx: usize, ny: usize, mx: usize, my: usize) -> Self {
         assert!(nx <= mx && ny <= my && mx >= 2 && my >= 1);
         let hx = mx / 2 + 1;
-        let mut rp = RealFftPlanner::<f64>::new();
-        let mut cp = FftPlanner::<f64>::new();
-        let scale = 1.0 / (mx * my) as f64;
+        let mut rp = RealFftPlanner::<T>::new();
+        let mut cp = FftPlanner::<T>::new();
+        let scale = T::round_from(1.0 / (mx * my) as f64);
         SpectralFilter {
             nx,
             ny,
@@ -90,7 +123,7 @@ impl SpectralFilter {
     }
 
     /// The symbol in use (column-major, hx × my), already divided by mx·my.
-    pub fn symbol(&self) -> &[f64] {
+    pub fn symbol(&self) -> &[T] {
         &self.symbol
     }
 
@@ -99,26 +132,29 @@ impl SpectralFilter {
         (self.mx, self.my)
     }
 
-    /// Use `symbol` (column-major, hx × my, `kx * my + ky`) as the filter's multiplier.
+    /// Use `symbol` (column-major, hx × my, `kx * my + ky`) as the filter's multiplier
+    /// (scaled in f64, then rounded to `T`).
     pub fn set_symbol(&mut self, symbol: &[f64]) {
         assert_eq!(symbol.len(), self.hx * self.my);
         let scale = 1.0 / (self.mx * self.my) as f64;
         for (s, v) in self.symbol.iter_mut().zip(symbol) {
-            *s = v * scale;
+            *s = T::round_from(v * scale);
         }
     }
 
     /// Use the spectrum of a real, even kernel given on the full mx × my grid (row-major)
-    /// as the symbol: the filter then convolves with that kernel.
+    /// as the symbol: the filter then convolves with that kernel. The spectrum is taken in
+    /// f64 whatever `T` is.
     pub fn set_symbol_from_kernel(&mut self, kernel: &[f64]) {
         assert_eq!(kernel.len(), self.mx * self.my);
-        let mut full = SpectralFilter::new(self.mx, self.my, self.mx, self.my);
+        let mut full = SpectralFilter::<f64>::new(self.mx, self.my, self.mx, self.my);
         full.forward(kernel);
         let spectrum: Vec<f64> = full.cols.iter().map(|c| c.re).collect();
         self.set_symbol(&spectrum);
     }
 
-    /// Forward transform of `src` (nx × ny, zero-padded to mx × my) into `self.cols`.
+    /// Forward transform of `src` (nx × ny, zero-padded to mx × my, rounded to `T`) into
+    /// `self.cols`.
     fn forward(&mut self, src: &[f64]) {
         let (nx, ny, mx, my, hx) = (self.nx, self.ny, self.mx, self.my, self.hx);
         let r2c = &self.r2c;
@@ -129,8 +165,10 @@ impl SpectralFilter {
             .for_each_init(
                 || (r2c.make_input_vec(), r2c.make_scratch_vec()),
                 |(buf, scratch), (out, row)| {
-                    buf[..nx].copy_from_slice(row);
-                    buf[nx..].iter_mut().for_each(|v| *v = 0.0);
+                    for (b, &v) in buf.iter_mut().zip(row) {
+                        *b = T::round_from(v);
+                    }
+                    buf[nx..].iter_mut().for_each(|v| *v = T::zero());
                     r2c.process_with_scratch(buf, out, scratch)
                         .expect("row transform sizes are planned together");
                 },
@@ -156,7 +194,8 @@ impl SpectralFilter {
             );
     }
 
-    /// dst = crop(IFFT(symbol · FFT(pad(src)))), both nx × ny row-major.
+    /// dst = crop(IFFT(symbol · FFT(pad(src)))), both nx × ny row-major (f64; the passes in
+    /// `T`).
     pub fn apply(&mut self, src: &[f64], dst: &mut [f64]) {
         let (nx, ny, mx, my, hx) = (self.nx, self.ny, self.mx, self.my, self.hx);
         assert!(src.len() == nx * ny && dst.len() == nx * ny);
@@ -170,8 +209,8 @@ impl SpectralFilter {
             .for_each_init(
                 || vec![Complex::default(); inv.get_inplace_scratch_len()],
                 |scratch, (col, sym)| {
-                    for (c, s) in col.iter_mut().zip(sym) {
-                        *c *= *s;
+                    for (c, &s) in col.iter_mut().zip(sym) {
+                        *c = c.scale(s);
                     }
                     inv.process_with_scratch(col, scratch);
                 },
@@ -194,11 +233,13 @@ impl SpectralFilter {
                         *s = cols[kx * my + j];
                     }
                     // A real result has real DC and Nyquist bins; drop round-off there.
-                    spec[0].im = 0.0;
-                    spec[hx - 1].im = 0.0;
+                    spec[0].im = T::zero();
+                    spec[hx - 1].im = T::zero();
                     c2r.process_with_scratch(spec, out, scratch)
                         .expect("row transform sizes are planned together");
-                    row.copy_from_slice(&out[..nx]);
+                    for (r, &v) in row.iter_mut().zip(&out[..nx]) {
+                        *r = v.widen();
+                    }
                 },
             );
     }
@@ -213,7 +254,7 @@ mod tests {
         let (nx, ny) = (6, 4);
         let src: Vec<f64> = (0..nx * ny).map(|i| (i as f64).sin()).collect();
         let mut dst = vec![0.0; nx * ny];
-        let mut f = SpectralFilter::new(nx, ny, 16, 8);
+        let mut f = SpectralFilter::<f64>::new(nx, ny, 16, 8);
         f.apply(&src, &mut dst);
         for (a, b) in src.iter().zip(&dst) {
             assert!((a - b).abs() < 1e-13);

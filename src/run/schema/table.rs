@@ -427,6 +427,19 @@ pub const BACKEND: &Spec = &spec(
     "Backend: `cpu` (f64, rustfft), `gpu` (f32, wgpu; the best adapter, a software one such as \
      lavapipe included) or `auto` (a hardware GPU if present, else the CPU).",
 );
+/// The convolution's arithmetic.
+pub const PRECISION: &Spec = &spec(
+    "precision",
+    "--precision",
+    Solver,
+    "",
+    Kind::Choice(&["auto", "f64", "f32"]),
+    Value("auto"),
+    "Arithmetic of the convolution's FFT passes: `auto` (the backend's own: f64 on the CPU, \
+     f32 on the GPU), `f64` (the CPU only: the reference; with ⟨backend⟩ auto it takes the \
+     CPU) or `f32` (the GPU, or on the CPU the FFT passes at twice the SIMD width, its \
+     vectors and sums still f64; CG's tolerance is then raised to f32's floor, 2e-7).",
+);
 /// The convolution.
 pub const CONVOLUTION: &Spec = &spec(
     "convolution",
@@ -586,6 +599,7 @@ pub const SPECS: &[&Spec] = &[
     PRECONDITIONER,
     EXACT_CASCADE,
     BACKEND,
+    PRECISION,
     CONVOLUTION,
     EXTRAPOLATE,
     EXTRAPOLATE_GRIDS,
