@@ -163,6 +163,16 @@ impl Legend {
         SAMPLE + 6 + text as i32 + PAD
     }
 
+    /// The legend in as many columns (four at most) as `width` (px) holds; in one where none
+    /// fits.
+    pub fn fitted_to(&self, width: u32) -> Legend {
+        (1..=4)
+            .rev()
+            .map(|c| self.in_columns(c))
+            .find(|l| l.size().0 <= width)
+            .unwrap_or_else(|| self.clone())
+    }
+
     /// Whether there is nothing to show.
     pub fn is_empty(&self) -> bool {
         self.entries.is_empty()
@@ -303,11 +313,7 @@ pub fn render_with_legend(
     // Below the plot, from the plot's left edge, in as many columns as the width holds.
     let left = (MARGIN + Y_LABEL_AREA) as i32;
     let room = size.0 as i32 - left - MARGIN as i32;
-    let legend = (1..=4)
-        .rev()
-        .map(|c| legend.in_columns(c))
-        .find(|l| l.size().0 as i32 <= room)
-        .unwrap_or_else(|| legend.clone());
+    let legend = legend.fitted_to(room.max(0) as u32);
     let (_, h) = legend.size();
     let below = (size.0, size.1 + h + 8);
     let svg = super::chart::render_svg(below, |root| {

@@ -176,24 +176,29 @@ impl LineChart {
     }
 
     /// Widen `xr` and `yr` so that one unit spans as many pixels on both axes of a plot of
-    /// `pixels` (width, height): a range that holds 0 inside it (a whole outline) about its
-    /// centre, any other (a quarter contour from its axes) keeping its lower end.
+    /// `pixels` (width, height): an axis whose data (`centred`, x then y) lie on both sides of
+    /// 0 (a whole outline) about its centre, any other (a quarter contour from its axes)
+    /// keeping its lower end.
     fn equalised(
         xr: std::ops::Range<f64>,
         yr: std::ops::Range<f64>,
         pixels: (u32, u32),
+        centred: (bool, bool),
     ) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
         let (pw, ph) = (pixels.0.max(1) as f64, pixels.1.max(1) as f64);
         let per_pixel = ((xr.end - xr.start) / pw).max((yr.end - yr.start) / ph);
-        let widen = |r: std::ops::Range<f64>, span: f64| {
-            if r.start < 0.0 && r.end > 0.0 {
+        let widen = |r: std::ops::Range<f64>, span: f64, centred: bool| {
+            if centred {
                 let mid = 0.5 * (r.start + r.end);
                 mid - 0.5 * span..mid + 0.5 * span
             } else {
                 r.start..r.start + span
             }
         };
-        (widen(xr, per_pixel * pw), widen(yr, per_pixel * ph))
+        (
+            widen(xr, per_pixel * pw, centred.0),
+            widen(yr, per_pixel * ph, centred.1),
+        )
     }
 
     /// Write the chart to `path` (its SVG path) in each of `formats`, and the points it draws
@@ -350,7 +355,13 @@ impl LineChart {
                 w.saturating_sub(2 * MARGIN + Y_LABEL_AREA),
                 h.saturating_sub(2 * MARGIN + X_LABEL_AREA + title),
             );
-            let (xr, yr) = Self::equalised(xr, yr, pixels);
+            // The data's own extent (not the padded range, which reaches below 0 for any
+            // shape drawn from an axis) says whether an axis is centred.
+            let straddles = |v: fn(&(f64, f64)) -> f64| {
+                all.iter().any(|p| v(p) < 0.0) && all.iter().any(|p| v(p) > 0.0)
+            };
+            let centred = (straddles(|p| p.0), straddles(|p| p.1));
+            let (xr, yr) = Self::equalised(xr, yr, pixels, centred);
             self.draw_on(root, plotters::coord::types::RangedCoordf64::from(xr), yr)
         } else {
             self.draw_on(root, plotters::coord::types::RangedCoordf64::from(xr), yr)
@@ -666,6 +677,17 @@ mod tests {
                 "{lo}..{hi}: {labels:?}"
             );
         }
+    }
+
+    #[test]
+    fn equal_scales_centre_a_whole_outline_and_keep_a_quarter_at_its_axes() {
+        // A quarter contour (data from 0, padded a little below): x widened upward only.
+        let (x, y) = LineChart::equalised(-0.05..1.05, -0.05..1.05, (400, 200), (false, false));
+        assert_eq!((x.start, y.start), (-0.05, -0.05));
+        assert!((x.end - 2.15).abs() < 1e-12 && (y.end - 1.05).abs() < 1e-12);
+        // A whole outline (data on both sides of 0): x widened about its centre.
+        let (x, _) = LineChart::equalised(-1.1..1.1, -1.1..1.1, (400, 200), (true, true));
+        assert!((x.start + 2.2).abs() < 1e-12 && (x.end - 2.2).abs() < 1e-12);
     }
 
     #[test]

@@ -57,15 +57,7 @@ impl Panels {
         let below: Vec<Option<Legend>> = placed
             .iter()
             .zip(&legends)
-            .map(|(p, l)| {
-                (p.is_none() && !l.is_empty()).then(|| {
-                    (1..=4)
-                        .rev()
-                        .map(|c| l.in_columns(c))
-                        .find(|l| l.size().0 <= cell)
-                        .unwrap_or_else(|| l.clone())
-                })
-            })
+            .map(|(p, l)| (p.is_none() && !l.is_empty()).then(|| l.fitted_to(cell)))
             .collect();
         let extra = below
             .iter()
