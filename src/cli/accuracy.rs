@@ -89,9 +89,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         "written {}, {} and {}",
         done.csv.display(),
         args.figures.figure_format.shown(&done.svg),
-        args.figures
-            .figure_format
-            .shown(&jkrbem::run::accuracy::iterations_chart(&done.svg))
+        args.figures.figure_format.shown(&done.iterations_svg)
     );
     failures("runs", &done.failures, "")
 }

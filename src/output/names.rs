@@ -102,6 +102,15 @@ pub fn pressure_chart(states: &Path) -> PathBuf {
     beside(states, "pressure.svg")
 }
 
+/// The accuracy chart against CG iterations beside the one against wall time (`svg`):
+/// `<stem>_iterations.svg`.
+pub fn iterations_chart(svg: &Path) -> PathBuf {
+    let stem = svg
+        .file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+    svg.with_file_name(format!("{stem}_iterations.svg"))
+}
+
 /// The chart of the pressure along the contact's x and y axes at the force minimum beside a
 /// states file: `<stem>.profile.svg`.
 pub fn profile_chart(states: &Path) -> PathBuf {

@@ -16,6 +16,7 @@ use crate::backend::select::BackendKind;
 use crate::model::{Measure, Model, ModelOptions};
 use crate::output::chart::{LogLogChart, Series};
 use crate::output::figure::FigureFormats;
+use crate::output::names;
 use crate::run::schema::{BACKENDS, GRIDS, MEASURE, OUT, REGRID, VARIANTS};
 use crate::scene::Scene;
 use serde::Serialize;
@@ -140,6 +141,8 @@ pub struct AccuracyDone {
     /// The chart, by its SVG path (its files in the formats asked for:
     /// [`FigureFormats::files`]).
     pub svg: PathBuf,
+    /// The same chart against CG iterations, by its SVG path.
+    pub iterations_svg: PathBuf,
     /// The runs that failed, in words.
     pub failures: Vec<String>,
 }
@@ -206,7 +209,7 @@ pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone
         .collect();
     targets.push(csv.clone());
     targets.extend(req.figures.files(&svg));
-    targets.extend(req.figures.files(&iterations_chart(&svg)));
+    targets.extend(req.figures.files(&names::iterations_chart(&svg)));
     let _claimed = Outputs::claim(&named(OUT, &targets))?;
     let mut series = Vec::new();
     let mut failures = Vec::new();
@@ -241,6 +244,7 @@ pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone
     )?;
     crate::output::file::write_csv(&csv, Some(ROW_HEADER), &rows).map_err(write_error(OUT))?;
     Ok(AccuracyDone {
+        iterations_svg: names::iterations_chart(&svg),
         rows,
         reference: reference_text,
         csv,
@@ -425,7 +429,7 @@ pub(super) fn cost_chart(
 }
 
 /// The two accuracy–cost charts of `series` against `reference` (in words): `svg` against
-/// wall time and [`iterations_chart`] of it against CG iterations, in each of `figures`.
+/// wall time and [`names::iterations_chart`] of it against CG iterations, in each of `figures`.
 pub(super) fn write_charts(
     ratio: f64,
     series: &[RunSeries],
@@ -436,7 +440,7 @@ pub(super) fn write_charts(
 ) -> Result<(), RunError> {
     for (cost, path) in [
         (Cost::Wall, svg.to_path_buf()),
-        (Cost::Iterations, iterations_chart(svg)),
+        (Cost::Iterations, names::iterations_chart(svg)),
     ] {
         let title = format!("R1/R2 = {ratio}: error of |min F̄| against cost ({reference})");
         cost_chart(&title, series, rows, cost)
@@ -444,13 +448,4 @@ pub(super) fn write_charts(
             .map_err(write_error(OUT))?;
     }
     Ok(())
-}
-
-/// The chart against CG iterations beside the chart `svg` against wall time:
-/// `<stem>_iterations.svg`.
-pub fn iterations_chart(svg: &std::path::Path) -> PathBuf {
-    let stem = svg
-        .file_stem()
-        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
-    svg.with_file_name(format!("{stem}_iterations.svg"))
 }

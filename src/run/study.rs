@@ -576,9 +576,9 @@ fn draw_accuracy_cost(
     }
     runs.sort_by_key(|r| r.nx);
     let grids: Vec<String> = runs.iter().map(|r| r.nx.to_string()).collect();
-    // The backend's name without its precision, which each run reports and the legend adds.
+    // The backend as the runs name it ("cpu"; the legend adds their precision).
     let series = [RunSeries {
-        backend: backend.split('-').next().unwrap_or(backend).to_string(),
+        backend: runs[0].backend.clone(),
         variant: Variant::Plain,
         runs,
     }];
