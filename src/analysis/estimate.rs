@@ -610,6 +610,7 @@ mod tests {
             states_csv: None,
             regrids: Vec::new(),
             stopped_after_minimum: true,
+            confirmation: None,
             warnings: Vec::new(),
             onsets: None,
             cost: None,

@@ -5,6 +5,7 @@ use super::convergence;
 use crate::model::{Model, Onsets, MIN_MAP_SPACINGS_AT_MINIMUM};
 use crate::run::schema::{ONSETS, SPACING};
 use crate::solver::cost::CostAccount;
+use crate::solver::protocol::Confirmation;
 use crate::solver::window::Refinement;
 use crate::solver::State;
 use crate::solver::{state::RegridEvent, Outcome};
@@ -101,6 +102,10 @@ pub struct RunReport {
     pub regrids: Vec<RegridEvent>,
     /// Whether the run stopped once the force minimum was confirmed (adhesive-force measure).
     pub stopped_after_minimum: bool,
+    /// How the force minimum was confirmed; null where it was not reached, and in reports
+    /// written before it was recorded.
+    #[serde(default)]
+    pub confirmation: Option<Confirmation>,
     /// Warnings about this run (CG retries and states accepted above the CG tolerance, too
     /// coarse a grid, too large load steps); empty for a healthy run.
     pub warnings: Vec<String>,
@@ -203,6 +208,7 @@ impl RunReport {
             states_csv: states_csv.map(|p| p.display().to_string()),
             regrids: outcome.regrids.clone(),
             stopped_after_minimum: outcome.stopped_after_minimum,
+            confirmation: outcome.confirmation(),
             warnings,
             onsets: Some(model.onsets.name().to_string()),
             cost: Some(outcome.cost.clone()),

@@ -428,6 +428,9 @@ fn run_text(r: &RunReport) -> String {
         for line in cost.band_lines() {
             s += &format!("    {line}\n");
         }
+        if let Some(line) = cost.activity_line() {
+            s += &format!("    {line}\n");
+        }
     }
     if let Some(w) = &r.refinement {
         s += &format!("  {}\n", refinement_line(w));
@@ -446,11 +449,34 @@ fn run_text(r: &RunReport) -> String {
             g.d_bar, g.dx_from, g.dx_to
         );
     }
+    if let Some(c) = &r.confirmation {
+        s += &format!("  {}\n", confirmation_line(c));
+    }
     if r.stopped_after_minimum {
         s +=
             &format!("  stopped once the force minimum was confirmed ({MEASURE} adhesive-force)\n");
     }
     s
+}
+
+/// How the force minimum was confirmed, in words.
+fn confirmation_line(c: &crate::solver::protocol::Confirmation) -> String {
+    use crate::solver::protocol::{CONFIRM_D_BAR, CONFIRM_RISE};
+    if c.vanished {
+        return format!(
+            "force minimum confirmed by the contact's end at d̄ = {:.4}, {:.4} past it",
+            c.d_bar, c.past_d_bar
+        );
+    }
+    format!(
+        "force minimum confirmed by the state at d̄ = {:.4}: {:.4} past it in d̄ and {:.2} % \
+         above it (the test asks ≥ {CONFIRM_D_BAR} and ≥ {} %); every onset between was located \
+         or bounded above it",
+        c.d_bar,
+        c.past_d_bar,
+        100.0 * c.rise,
+        100.0 * CONFIRM_RISE
+    )
 }
 
 /// Which steps had their onsets located, in words.

@@ -65,7 +65,49 @@ pub struct BandCost {
     pub work: Work,
 }
 
-/// Where a pull-off spent its work: totals, and the same per c̄ band.
+/// What work was for: load steps taken whole, or the search near the force minimum.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Activity {
+    /// A load step taken whole: its probe and its step-end cascade (the first contact, the
+    /// press to a preload and a re-grid's re-equilibration included).
+    WholeSteps,
+    /// The window's search for the onsets that may be the force minimum (going back to
+    /// kept steps: their pieces' cascades and probes, and the walks through their onsets).
+    Search,
+}
+
+/// Work by what it was for ([`Activity`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ActivityCost {
+    /// Load steps taken whole.
+    pub whole_steps: Work,
+    /// The search near the force minimum.
+    pub search: Work,
+}
+
+impl ActivityCost {
+    /// Add `work` done for `activity`.
+    pub fn add(&mut self, activity: Activity, work: Work) {
+        match activity {
+            Activity::WholeSteps => self.whole_steps.add(work),
+            Activity::Search => self.search.add(work),
+        }
+    }
+
+    /// Add another account's work, activity by activity.
+    pub fn absorb(&mut self, other: &ActivityCost) {
+        self.whole_steps.add(other.whole_steps);
+        self.search.add(other.search);
+    }
+
+    /// CG iterations of both activities.
+    pub fn cg_iterations(&self) -> usize {
+        self.whole_steps.cg_iterations + self.search.cg_iterations
+    }
+}
+
+/// Where a pull-off spent its work: totals, and the same per c̄ band and by activity on
+/// either side of the force minimum.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CostAccount {
     /// States recorded (handed to the observer).
@@ -79,8 +121,17 @@ pub struct CostAccount {
     pub work: Work,
     /// Blocking reads of device memory by the host (0 on the CPU backend, which reads none).
     pub readbacks: u64,
-    /// The same, per c̄ band, from the smallest contact up.
+    /// The same, per c̄ band, from the smallest contact up: work is charged at the contact
+    /// it was done at (a search's cascade at the c̄ it ended on, not its step's end).
     pub bands: Vec<BandCost>,
+    /// Work done at approaches down to the force minimum's (its own included), by activity;
+    /// all of a run's work where it found no minimum.
+    #[serde(default)]
+    pub to_minimum: ActivityCost,
+    /// Work done at approaches past the force minimum, by activity: what confirming the
+    /// minimum cost (for a whole curve, the rest of the curve).
+    #[serde(default)]
+    pub past_minimum: ActivityCost,
 }
 
 impl Default for CostAccount {
@@ -102,6 +153,8 @@ impl Default for CostAccount {
             work: Work::default(),
             readbacks: 0,
             bands,
+            to_minimum: ActivityCost::default(),
+            past_minimum: ActivityCost::default(),
         }
     }
 }
@@ -146,6 +199,53 @@ impl CostAccount {
             mine.onsets += theirs.onsets;
             mine.work.add(theirs.work);
         }
+        self.to_minimum.absorb(&other.to_minimum);
+        self.past_minimum.absorb(&other.past_minimum);
+    }
+
+    /// Split the work of `ledger` (the approach each piece was done at, length; what it was
+    /// for; the work) at the force minimum's approach `d_min` (length; `None`: no minimum, all
+    /// of it counts as up to it). The approach decreases as the run goes on, so work at a
+    /// smaller approach lies past the minimum.
+    pub fn split_at_minimum(&mut self, ledger: &[(f64, Activity, Work)], d_min: Option<f64>) {
+        for &(d, activity, work) in ledger {
+            match d_min {
+                Some(d_min) if d < d_min => self.past_minimum.add(activity, work),
+                _ => self.to_minimum.add(activity, work),
+            }
+        }
+    }
+
+    /// One line for people on what the CG iterations were for: "whole steps 1200 (31 %) to
+    /// the minimum + 80 (2 %) past it; search near the minimum 2000 (52 %) to it + 560
+    /// (15 %) past it"; `None` for a run that did no work.
+    pub fn activity_line(&self) -> Option<String> {
+        let total = self.work.cg_iterations;
+        if total == 0 {
+            return None;
+        }
+        let pct = |n: usize| 100.0 * n as f64 / total as f64;
+        let part = |name: &str, to: usize, past: usize| {
+            format!(
+                "{name} {to} ({:.0} %) to the minimum + {past} ({:.0} %) past it",
+                pct(to),
+                pct(past)
+            )
+        };
+        let (to, past) = (&self.to_minimum, &self.past_minimum);
+        Some(format!(
+            "CG iterations by activity: {}; {}",
+            part(
+                "whole steps",
+                to.whole_steps.cg_iterations,
+                past.whole_steps.cg_iterations
+            ),
+            part(
+                "search near the minimum",
+                to.search.cg_iterations,
+                past.search.cg_iterations
+            )
+        ))
     }
 
     /// One line for people: "572 states, 202 steps, 369 onsets, 1108 rounds, 1681 solves
@@ -239,5 +339,38 @@ mod tests {
         assert_eq!(b.work.exact_solves, 8);
         assert_eq!(b.bands[3].work.cg_iterations, 80);
         assert_eq!(b.work.certified, 24);
+    }
+
+    #[test]
+    fn work_past_the_minimum_is_told_apart_by_activity() {
+        let w = |n| Work {
+            cg_iterations: n,
+            ..Work::default()
+        };
+        let ledger = [
+            (2.0, Activity::WholeSteps, w(10)),
+            (1.0, Activity::Search, w(20)),
+            (0.5, Activity::Search, w(40)),
+            (0.4, Activity::WholeSteps, w(80)),
+        ];
+        let mut a = CostAccount::default();
+        for &(_, _, work) in &ledger {
+            a.charge(0.8, work);
+        }
+        a.split_at_minimum(&ledger, Some(1.0));
+        assert_eq!(a.to_minimum.whole_steps.cg_iterations, 10);
+        assert_eq!(a.to_minimum.search.cg_iterations, 20);
+        assert_eq!(a.past_minimum.search.cg_iterations, 40);
+        assert_eq!(a.past_minimum.whole_steps.cg_iterations, 80);
+        assert_eq!(
+            a.to_minimum.cg_iterations() + a.past_minimum.cg_iterations(),
+            a.work.cg_iterations
+        );
+        let line = a.activity_line().unwrap_or_default();
+        assert!(line.contains("whole steps 10 (7 %) to the minimum + 80 (53 %) past it"), "{line}");
+        let mut none = CostAccount::default();
+        none.split_at_minimum(&ledger, None);
+        assert_eq!(none.to_minimum.cg_iterations(), 150);
+        assert_eq!(none.past_minimum.cg_iterations(), 0);
     }
 }

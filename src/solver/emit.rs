@@ -4,7 +4,7 @@
 //! state ([`record`], [`force_of`]). The protocol, the onsets' walk and the window's search
 //! all build on these; this module imports none of them.
 
-use super::cost::{CostAccount, Work};
+use super::cost::{Activity, CostAccount, Work};
 use super::equilibrium::{Equilibrium, Fields};
 use super::retry::CgRetry;
 use super::state::{Phase, RegridEvent, State};
@@ -69,6 +69,20 @@ pub(super) fn force_of<B: Backend>(
     Ok(m.sum * model.dx * model.dx)
 }
 
+/// The force (force) of pressure `p` on the backend's contact set and that contact's mean
+/// radius c̄ (dimensionless), reduced on its device.
+pub(super) fn force_and_c_bar<B: Backend>(
+    backend: &mut B,
+    model: &Model,
+    c: &B::Mask,
+    p: &B::Field,
+) -> Result<(f64, f64), SolverError> {
+    let m = backend.measure(c, p, model.mesh.chord_axes())?;
+    let dx = model.dx;
+    let radius = (m.count as f64 * dx * dx / PI).sqrt();
+    Ok((m.sum * dx * dx, radius / model.scene.scales().length))
+}
+
 /// Where states go: to the observer at once, or held while onsets may still be located
 /// among them; and the run's account.
 pub(super) struct Emitter<'a> {
@@ -93,6 +107,11 @@ pub(super) struct Emitter<'a> {
     pub(super) cost: CostAccount,
     /// The window of located onsets, once there is one.
     pub(super) refinement: Option<Refinement>,
+    /// What the work charged now is for.
+    pub(super) activity: Activity,
+    /// Every piece of work charged: the approach it was done at (length), what for, the
+    /// work; split at the force minimum once the run ends ([`CostAccount::split_at_minimum`]).
+    pub(super) ledger: Vec<(f64, Activity, Work)>,
 }
 
 impl<'a> Emitter<'a> {
@@ -116,6 +135,8 @@ impl<'a> Emitter<'a> {
             retries: Vec::new(),
             cost: CostAccount::default(),
             refinement: None,
+            activity: Activity::WholeSteps,
+            ledger: Vec::new(),
         }
     }
 
@@ -135,6 +156,7 @@ impl<'a> Emitter<'a> {
             return Err(SolverError::Interrupted);
         }
         self.cost.charge(state.c_bar, eq.work);
+        self.ledger.push((state.d, self.activity, eq.work));
         eq.work = Work::default();
         self.retries.append(&mut eq.retries);
         if state.phase == Phase::Onset {
@@ -162,10 +184,12 @@ impl<'a> Emitter<'a> {
     }
 
     /// Charge work that produced no state of its own (a step's onsets located on going
-    /// back) to the band of `c_bar`, and to the end state of `step` if it is still held (so
-    /// that the states' `cg_iterations` add up to the run's).
-    pub(super) fn charge(&mut self, step: usize, c_bar: f64, eq: &mut Equilibrium) {
+    /// back), done at a contact of mean radius `c_bar` and approach `d` (length), to the
+    /// account, and to the end state of `step` if it is still held (so that the states'
+    /// `cg_iterations` add up to the run's).
+    pub(super) fn charge(&mut self, step: usize, c_bar: f64, d: f64, eq: &mut Equilibrium) {
         self.cost.charge(c_bar, eq.work);
+        self.ledger.push((d, self.activity, eq.work));
         if let Some((s, _)) = self
             .pending
             .iter_mut()

@@ -26,6 +26,24 @@ use crate::model::{Measure, Model, Onsets};
 pub use super::emit::{CONFIRM_D_BAR, CONFIRM_RISE};
 pub use super::onsets::JUMP_FRACTION;
 
+/// How a run's force minimum was confirmed: the first state after it that shows, by the
+/// protocol's test, that no later state lies lower (the contact gone, or the approach
+/// [`CONFIRM_D_BAR`] past it with the force [`CONFIRM_RISE`] of its size above it); where the
+/// run stopped at a minimum found lower than the one its test was made against, the last
+/// state it recorded. The onsets between the two are each located, or bounded above the
+/// minimum (the window's margin, [`Refinement::margin_f_bar`]).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Confirmation {
+    /// d̄ of the confirming state (dimensionless).
+    pub d_bar: f64,
+    /// How far past the minimum it lies in d̄ (dimensionless).
+    pub past_d_bar: f64,
+    /// How far its force lies above the minimum's, relative to |min F̄| (dimensionless).
+    pub rise: f64,
+    /// Whether the contact was gone there (the jump off the surface).
+    pub vanished: bool,
+}
+
 /// What a run produced: the states recorded so far and, if it stopped early, why.
 #[derive(Debug)]
 pub struct Outcome {
@@ -86,25 +104,48 @@ impl Outcome {
     /// size above it. A run stopped by `--final-d` (or an error) while the force was still
     /// falling has not.
     pub fn min_reached(&self) -> bool {
-        let Some(min) = self.force_minimum() else {
-            return false;
-        };
+        self.confirmation().is_some()
+    }
+
+    /// How the force minimum was confirmed ([`Confirmation`]); `None` where it was not
+    /// reached ([`Outcome::min_reached`]).
+    pub fn confirmation(&self) -> Option<Confirmation> {
+        let min = self.force_minimum()?;
         if min.n_contact == 0 || !min.force.is_finite() {
-            return false;
-        }
-        if self.stopped_after_minimum {
-            return true;
+            return None;
         }
         let k = self
             .states
             .iter()
             .rposition(|s| std::ptr::eq(s, min))
             .unwrap_or(self.states.len());
-        self.states[k + 1..].iter().any(|s| {
+        let after = &self.states[k + 1..];
+        let confirms = |s: &&State| {
             s.n_contact == 0
                 || (s.d_bar <= min.d_bar - CONFIRM_D_BAR
                     && s.force - min.force >= CONFIRM_RISE * min.force.abs())
-        })
+        };
+        let by = after.iter().find(confirms).or_else(|| {
+            self.stopped_after_minimum
+                .then(|| after.iter().min_by(|a, b| a.d.total_cmp(&b.d)))
+                .flatten()
+        });
+        match by {
+            Some(s) => Some(Confirmation {
+                d_bar: s.d_bar,
+                past_d_bar: min.d_bar - s.d_bar,
+                rise: (s.force - min.force) / min.force.abs(),
+                vanished: s.n_contact == 0,
+            }),
+            // Stopped at the minimum's own state: nothing after it to show.
+            None if self.stopped_after_minimum => Some(Confirmation {
+                d_bar: min.d_bar,
+                past_d_bar: 0.0,
+                rise: 0.0,
+                vanished: false,
+            }),
+            None => None,
+        }
     }
 }
 
@@ -179,6 +220,7 @@ pub fn run_watched<B: Backend>(
         retries,
         cost,
         refinement,
+        ledger,
         ..
     } = out;
     let mut warnings = retry::warnings(&retries, &model.cg);
@@ -189,7 +231,7 @@ pub fn run_watched<B: Backend>(
         backend.precision(),
         worst,
     ));
-    Outcome {
+    let mut outcome = Outcome {
         states,
         error,
         regrids,
@@ -198,7 +240,10 @@ pub fn run_watched<B: Backend>(
         warnings,
         cost,
         refinement,
-    }
+    };
+    let d_min = outcome.min_reached().then(|| outcome.force_minimum().map(|s| s.d));
+    outcome.cost.split_at_minimum(&ledger, d_min.flatten());
+    outcome
 }
 
 /// The least fraction of a load step taken once a step end meets one of the tests that

@@ -25,7 +25,8 @@
 //! again. After the window, each later step (a whole curve) is walked at once if its bound
 //! lies below the lowest onset.
 
-use super::emit::{force_of, Emitter, Progress};
+use super::cost::Activity;
+use super::emit::{force_and_c_bar, Emitter, Progress};
 use super::equilibrium::{equilibrate, settle, Equilibrium, Fields, Held};
 use super::onsets;
 use super::probe::{bound_meets, Probe, Through};
@@ -108,6 +109,18 @@ pub(super) fn refine<B: Backend>(
         return Ok(());
     }
     run.window.done = true;
+    out.activity = Activity::Search;
+    let searched = search_window(backend, run, out);
+    out.activity = Activity::WholeSteps;
+    searched
+}
+
+/// [`refine`]'s search, its work charged as [`Activity::Search`].
+fn search_window<B: Backend>(
+    backend: &mut B,
+    run: &mut Progress<B::Field, B::Mask>,
+    out: &mut Emitter,
+) -> Result<(), SolverError> {
     run.best = run.best.min(run.window.upper);
     // Keep the state held now, to resume from: in a slot of its own (evicting the kept start
     // with the highest bound if none is free), or, failing that, on the host.
@@ -140,7 +153,7 @@ pub(super) fn refine<B: Backend>(
             let part = root_part(backend, run, i, &mut eq)?;
             search(backend, run, out, part, slack, &mut eq)?;
             run.window.bounds[i].searched = true;
-            out.charge(b.step, b.c_bar, &mut eq);
+            out.charge(b.step, b.c_bar, b.d_from, &mut eq);
         }
         if run.window.violation <= violation_before {
             break;
@@ -156,6 +169,21 @@ pub(super) fn refine<B: Backend>(
     }
     resume.restore(backend, run)?;
     out.release(usize::MAX);
+    Ok(())
+}
+
+/// Charge the work in `eq` to the account at the contact held now (its c̄) and the approach
+/// `d` (length), for the end state of `step`.
+fn charge_here<B: Backend>(
+    backend: &mut B,
+    run: &mut Progress<B::Field, B::Mask>,
+    out: &mut Emitter,
+    step: usize,
+    d: f64,
+    eq: &mut Equilibrium,
+) -> Result<(), SolverError> {
+    let (_, c_bar) = force_and_c_bar(backend, &run.model, &run.fields.c, &run.fields.p)?;
+    out.charge(step, c_bar, d, eq);
     Ok(())
 }
 
@@ -361,6 +389,7 @@ fn search<B: Backend>(
             run.window.report.walks += 1;
             onsets::through(backend, run, out, &walk, probe, eq)?;
             run.window.pool.release(part.slot);
+            charge_here(backend, run, out, part.step, part.d_from, eq)?;
             continue;
         }
         run.window.report.splits += 1;
@@ -403,7 +432,7 @@ fn search<B: Backend>(
         if vanished {
             continue;
         }
-        let base = force_of(backend, &m, &run.fields.c, &run.fields.p)?;
+        let (base, c_bar) = force_and_c_bar(backend, &m, &run.fields.c, &run.fields.p)?;
         let Some(slot) = run.window.pool.take(backend)? else {
             // No room to keep it: walk the second piece from here.
             let probe = onsets::probe(backend, run, d_split, part.d_to(), None, base, eq)?;
@@ -414,6 +443,7 @@ fn search<B: Backend>(
             };
             run.window.report.walks += 1;
             onsets::through(backend, run, out, &walk, probe, eq)?;
+            out.charge(part.step, c_bar, d_split, eq);
             continue;
         };
         {
@@ -426,6 +456,7 @@ fn search<B: Backend>(
         backend.copy(&run.fields.p, &mut s.probe)?;
         s.probed = true;
         s.residual = probe.residual;
+        out.charge(part.step, c_bar, d_split, eq);
         if probe.t >= 1.0 || probe.lower >= run.best + slack {
             if probe.t < 1.0 {
                 run.window.report.pruned += 1;
