@@ -4,7 +4,8 @@
 
 use super::progress::Progress;
 use super::{failures, run_error, CliError};
-use jkrbem::backend::select::BackendKind;
+use jkrbem::backend::select::{BackendKind, Precision};
+use jkrbem::model::Measure;
 use jkrbem::output::bench as bench_text;
 use jkrbem::run::bench::{bench, BenchRequest};
 use std::path::PathBuf;
@@ -16,6 +17,11 @@ pub struct Args {
     /// [default: cpu, plus gpu when a GPU backend can be opened].
     #[arg(long, value_enum, value_delimiter = ',')]
     pub backends: Vec<BackendKind>,
+    /// The arithmetic each backend is timed in, comma-separated: `auto` (the backend's own),
+    /// `f64` (the CPU only; the GPU skips it) or `f32` (the GPU, or the CPU's FFT passes in
+    /// f32) [default: auto].
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub precisions: Vec<Precision>,
     /// Grids to time, Nx (elements along x), comma-separated powers of two ≥ 16. Ny is fitted
     /// to the contact (Ny = Nx for the sphere).
     #[arg(long, value_delimiter = ',', default_values_t = [64, 128, 256])]
@@ -24,6 +30,10 @@ pub struct Args {
     /// at 128 and 140 s at 256 on two CPU cores). 0 skips them.
     #[arg(long, default_value_t = 128)]
     pub pulloff_max_grid: usize,
+    /// What the timed pull-off computes: the whole `curve`, or only the `adhesive-force` (it
+    /// stops once the force minimum is confirmed; 20 load steps, as `simulate` takes them).
+    #[arg(long, value_enum, default_value_t = Measure::Curve)]
+    pub measure: Measure,
     /// Timed samples of the convolution and of the CG solve, after 0.2 s of untimed warm-up
     /// each; a sample is the mean over calls lasting ≥ 20 ms. The median is reported.
     #[arg(long, default_value_t = 5)]
@@ -58,8 +68,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
     super::stdout::not_stdout("--out", &args.out, "bench")?;
     let req = BenchRequest {
         backends: args.backends,
+        precisions: args.precisions,
         grids: args.grids,
         pulloff_max_grid: args.pulloff_max_grid,
+        measure: args.measure,
         repeats: args.repeats,
         cg_iterations: args.cg_iterations,
         ratio: args.ratio,

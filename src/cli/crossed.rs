@@ -5,7 +5,7 @@
 use super::progress::Progress;
 use super::stdout::not_stdout;
 use super::{count_in, no_repeats, run_error, CliError, MAX_JOBS};
-use jkrbem::backend::select::BackendKind;
+use jkrbem::backend::select::{BackendKind, Precision};
 use jkrbem::run::crossed::{crossed, CrossedRequest};
 use jkrbem::run::open::BackendRequest;
 use jkrbem::run::schema::{Spec, ANGLE, ANGLES, E, NU, POISSON, YOUNG};
@@ -50,6 +50,11 @@ pub struct Args {
     /// Backend: `cpu`, `gpu` or `auto`.
     #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
     pub backend: BackendKind,
+    /// Arithmetic of the convolution's FFT passes: `auto` (the backend's own: f64 on the CPU,
+    /// f32 on the GPU), `f64` (the CPU only) or `f32` (the GPU, or the CPU's FFT passes at
+    /// twice the SIMD width; CG's tolerance is then raised to f32's floor, 2e-7).
+    #[arg(long, value_enum, default_value_t = Precision::Auto)]
+    pub precision: Precision,
     /// Pull-offs run at the same time (1 to 256).
     #[arg(long, default_value_t = 1, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_JOBS as u64))]
     pub jobs: usize,
@@ -90,6 +95,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         margin: args.margin,
         backend: BackendRequest {
             kind: args.backend,
+            precision: args.precision,
             ..BackendRequest::default()
         },
         jobs: args.jobs,

@@ -5,7 +5,7 @@
 use super::progress::Progress;
 use super::stdout::not_stdout;
 use super::{count_in, no_repeats, run_error, CliError, MAX_JOBS};
-use jkrbem::backend::select::BackendKind;
+use jkrbem::backend::select::{BackendKind, Precision};
 use jkrbem::run::open::BackendRequest;
 use jkrbem::run::sweep::{sweep, SweepRequest};
 use std::path::PathBuf;
@@ -39,6 +39,11 @@ pub struct Args {
     /// Backend: `cpu`, `gpu` or `auto` (a hardware GPU if present, else the CPU).
     #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
     pub backend: BackendKind,
+    /// Arithmetic of the convolution's FFT passes: `auto` (the backend's own: f64 on the CPU,
+    /// f32 on the GPU), `f64` (the CPU only) or `f32` (the GPU, or the CPU's FFT passes at
+    /// twice the SIMD width; CG's tolerance is then raised to f32's floor, 2e-7).
+    #[arg(long, value_enum, default_value_t = Precision::Auto)]
+    pub precision: Precision,
     /// Run only shard K of N (1 ≤ K ≤ N ≤ 10000): the ratios at positions K, K+N, K+2N, … of
     /// --ratios. Each shard writes sweep-shard-K-of-N.json, which records the whole sweep, its
     /// position and its rows (none if it got no ratio); `jkrbem collect DIR` merges them.
@@ -75,6 +80,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         margin: args.margin,
         backend: BackendRequest {
             kind: args.backend,
+            precision: args.precision,
             ..BackendRequest::default()
         },
         shard,

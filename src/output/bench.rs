@@ -13,7 +13,9 @@ use std::path::Path;
 pub const HEADER: &str = "backend,precision,adapter,grid,nx,ny,convolution_ms,cg_iteration_ms,\
 dispatches_per_iteration,readbacks_per_iteration,pulloff_s,pulloff_cg_iterations,f_ad_bar,\
 pulloff_states,pulloff_steps,pulloff_onsets,pulloff_rounds,pulloff_solves,\
-pulloff_convolutions,pulloff_readbacks";
+pulloff_convolutions,pulloff_readbacks,pulloff_cg_c_below_070,pulloff_cg_c_070_090,\
+pulloff_cg_c_090_110,pulloff_cg_c_above_110,pulloff_cg_whole_steps_to_minimum,\
+pulloff_cg_whole_steps_past_minimum,pulloff_cg_search_to_minimum,pulloff_cg_search_past_minimum";
 
 /// One backend on one grid. Times are medians of the run's repeats and include one scalar
 /// readback each (see [`crate::bench`]); cells left empty were not measured.
@@ -59,12 +61,31 @@ pub struct BenchRow {
     pub pulloff_convolutions: Option<usize>,
     /// Blocking readbacks (0 on the CPU).
     pub pulloff_readbacks: Option<u64>,
+    /// CG iterations done at contacts of c̄ < 0.7 (the c̄ bands of
+    /// [`crate::solver::cost::C_BAR_BAND_EDGES`]).
+    pub pulloff_cg_c_below_070: Option<usize>,
+    /// CG iterations at 0.7 ≤ c̄ < 0.9.
+    pub pulloff_cg_c_070_090: Option<usize>,
+    /// CG iterations at 0.9 ≤ c̄ < 1.1.
+    pub pulloff_cg_c_090_110: Option<usize>,
+    /// CG iterations at c̄ ≥ 1.1.
+    pub pulloff_cg_c_above_110: Option<usize>,
+    /// CG iterations of the load steps taken whole, down to the force minimum.
+    pub pulloff_cg_whole_steps_to_minimum: Option<usize>,
+    /// The same past the minimum.
+    pub pulloff_cg_whole_steps_past_minimum: Option<usize>,
+    /// CG iterations of the search near the minimum, down to it.
+    pub pulloff_cg_search_to_minimum: Option<usize>,
+    /// The same past the minimum.
+    pub pulloff_cg_search_past_minimum: Option<usize>,
 }
 
 impl BenchRow {
     /// The row of measurement `m` made for grid `grid` on `adapter`.
     pub fn new(m: &Measurement, adapter: &str, grid: usize) -> Self {
         let pulloff = m.pulloff.as_ref().filter(|p| p.error.is_none());
+        let band =
+            |k: usize| pulloff.and_then(|p| p.cost.bands.get(k).map(|b| b.work.cg_iterations));
         BenchRow {
             backend: m.backend.to_string(),
             precision: m.precision.to_string(),
@@ -86,6 +107,17 @@ impl BenchRow {
             pulloff_solves: pulloff.map(|p| p.cost.work.solves),
             pulloff_convolutions: pulloff.map(|p| p.cost.work.convolutions),
             pulloff_readbacks: pulloff.map(|p| p.cost.readbacks),
+            pulloff_cg_c_below_070: band(0),
+            pulloff_cg_c_070_090: band(1),
+            pulloff_cg_c_090_110: band(2),
+            pulloff_cg_c_above_110: band(3),
+            pulloff_cg_whole_steps_to_minimum: pulloff
+                .map(|p| p.cost.to_minimum.whole_steps.cg_iterations),
+            pulloff_cg_whole_steps_past_minimum: pulloff
+                .map(|p| p.cost.past_minimum.whole_steps.cg_iterations),
+            pulloff_cg_search_to_minimum: pulloff.map(|p| p.cost.to_minimum.search.cg_iterations),
+            pulloff_cg_search_past_minimum: pulloff
+                .map(|p| p.cost.past_minimum.search.cg_iterations),
         }
     }
 }
@@ -202,7 +234,7 @@ pub fn cost_text(rows: &[BenchRow]) -> String {
     }
     let _ = writeln!(
         out,
-        "pull-off cost account (whole curve, {ONSETS} near-minimum):\n{:<8} {:>9} {:>7} {:>6} \
+        "pull-off cost account ({ONSETS} near-minimum):\n{:<8} {:>9} {:>7} {:>6} \
          {:>7} {:>7} {:>7} {:>8} {:>7} {:>9} {:>9}",
         "backend",
         "grid",
@@ -241,6 +273,55 @@ pub fn cost_text(rows: &[BenchRow]) -> String {
             growth(|r| r.pulloff_solves),
             growth(|r| r.pulloff_cg_iterations),
         );
+    }
+    out.push_str(&band_text(&timed));
+    out
+}
+
+/// The pull-offs' CG iterations per c̄ band and by activity on either side of the force
+/// minimum (whole steps, the search near the minimum), each with its growth from the grid
+/// before (× per doubling of Nx).
+fn band_text(timed: &[&BenchRow]) -> String {
+    type Column = (&'static str, fn(&BenchRow) -> Option<usize>);
+    let columns: [Column; 8] = [
+        ("c̄<0.7", |r| r.pulloff_cg_c_below_070),
+        ("0.7–0.9", |r| r.pulloff_cg_c_070_090),
+        ("0.9–1.1", |r| r.pulloff_cg_c_090_110),
+        ("c̄≥1.1", |r| r.pulloff_cg_c_above_110),
+        ("steps≤min", |r| r.pulloff_cg_whole_steps_to_minimum),
+        ("steps>min", |r| r.pulloff_cg_whole_steps_past_minimum),
+        ("search≤min", |r| r.pulloff_cg_search_to_minimum),
+        ("search>min", |r| r.pulloff_cg_search_past_minimum),
+    ];
+    let mut out = String::from(
+        "CG iterations per c̄ band (where the work was done) and by activity (≤min: down to the \
+         force minimum, >min: past it), ×: growth from the grid before:\n",
+    );
+    let _ = write!(out, "{:<8} {:>9}", "backend", "grid");
+    for (name, _) in &columns {
+        let _ = write!(out, " {name:>15}");
+    }
+    out.push('\n');
+    for (i, r) in timed.iter().enumerate() {
+        let before = timed[..i]
+            .iter()
+            .rev()
+            .find(|b| b.backend == r.backend && b.precision == r.precision && b.nx * 2 == r.nx);
+        let _ = write!(
+            out,
+            "{:<8} {:>9}",
+            format!("{} {}", r.backend, r.precision),
+            format!("{}×{}", r.nx, r.ny)
+        );
+        for (_, f) in &columns {
+            let cell = match (f(r), before.and_then(|b| f(b))) {
+                (Some(n), Some(a)) if a > 0 => format!("{n} ×{:.2}", n as f64 / a as f64),
+                (Some(n), _) => n.to_string(),
+                (None, _) => "—".into(),
+            };
+            let _ = write!(out, " {cell:>15}");
+        }
+        out.push('\n');
     }
     out
 }
@@ -345,6 +426,14 @@ mod tests {
             pulloff_solves: pulloff.map(|_| 6),
             pulloff_convolutions: pulloff.map(|_| 7),
             pulloff_readbacks: pulloff.map(|_| 0),
+            pulloff_cg_c_below_070: pulloff.map(|_| 1),
+            pulloff_cg_c_070_090: pulloff.map(|_| 5),
+            pulloff_cg_c_090_110: pulloff.map(|_| 2),
+            pulloff_cg_c_above_110: pulloff.map(|_| 2),
+            pulloff_cg_whole_steps_to_minimum: pulloff.map(|_| 4),
+            pulloff_cg_whole_steps_past_minimum: pulloff.map(|_| 1),
+            pulloff_cg_search_to_minimum: pulloff.map(|_| 3),
+            pulloff_cg_search_past_minimum: pulloff.map(|_| 2),
         }
     }
 
@@ -357,11 +446,11 @@ mod tests {
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines[0], HEADER);
         assert!(
-            lines[1].ends_with(",1.5,10,0.5,5,4,1,2,6,7,0"),
+            lines[1].ends_with(",1.5,10,0.5,5,4,1,2,6,7,0,1,5,2,2,4,1,3,2"),
             "{}",
             lines[1]
         );
-        assert!(lines[2].ends_with(",,,,,,,,,,"), "{}", lines[2]);
+        assert!(lines[2].ends_with(",,,,,,,,,,,,,,,,,,"), "{}", lines[2]);
         write_csv(&path, &[]).unwrap();
         assert_eq!(fs::read_to_string(&path).unwrap().trim_end(), HEADER);
     }
@@ -372,11 +461,16 @@ mod tests {
         let mut b = row("cpu", 32, Some(2.0));
         a.pulloff_cg_iterations = Some(100);
         b.pulloff_cg_iterations = Some(250);
+        b.pulloff_cg_search_past_minimum = Some(8);
         let t = cost_text(&[a, b, row("cpu", 64, None)]);
         let lines: Vec<&str> = t.lines().collect();
-        assert_eq!(lines.len(), 4, "{t}");
+        assert_eq!(lines.len(), 8, "{t}");
         assert!(lines[2].ends_with("—         —"), "{t}");
         assert!(lines[3].ends_with("1.00      2.50"), "{t}");
+        // Per band and activity: the growth of each from the grid before.
+        assert!(lines[4].starts_with("CG iterations per c̄ band"), "{t}");
+        assert!(lines[6].trim_end().ends_with(" 2"), "{t}");
+        assert!(lines[7].trim_end().ends_with("8 ×4.00"), "{t}");
         assert!(cost_text(&[row("cpu", 16, None)]).is_empty());
     }
 

@@ -8,14 +8,14 @@ use super::Watch;
 use super::{input, RunError};
 #[cfg(feature = "gpu")]
 use crate::backend::select::AnyBackend;
-use crate::backend::select::{self, BackendKind, Opened};
+use crate::backend::select::{self, BackendKind, Opened, Precision};
 use crate::bench::{self, BenchOptions, GridProfile, Measurement};
-use crate::model::{Model, ModelOptions, MIN_GRID};
+use crate::model::{default_steps, Measure, Model, ModelOptions, Onsets, MIN_GRID};
 use crate::output::bench::{timing_chart, write_csv, BenchRow};
 use crate::output::figure::FigureFormats;
 #[cfg(feature = "gpu")]
 use crate::output::profile::{self, ProfileRow};
-use crate::run::schema::{BACKENDS, CG_ITERATIONS, GRIDS, OUT, PROFILE, REPEATS};
+use crate::run::schema::{BACKENDS, CG_ITERATIONS, GRIDS, OUT, PRECISIONS, PROFILE, REPEATS};
 use crate::scene::Scene;
 use std::path::PathBuf;
 
@@ -24,10 +24,16 @@ use std::path::PathBuf;
 pub struct BenchRequest {
     /// Backends to time (cpu, gpu); empty: cpu, plus gpu when it opens.
     pub backends: Vec<BackendKind>,
+    /// The arithmetic each backend is timed in (auto, f64, f32); empty: auto, the backend's
+    /// own. A backend that has not one of them (the GPU has no f64) skips it.
+    pub precisions: Vec<Precision>,
     /// Grids Nx (powers of two ≥ 16; sorted and deduplicated here).
     pub grids: Vec<usize>,
     /// Time a whole pull-off only on grids up to this Nx (0: none).
     pub pulloff_max_grid: usize,
+    /// What the pull-off computes: the whole curve, or only the adhesive force (its default
+    /// load steps then [`crate::model::MEASURE_STEPS`], as `simulate` takes them).
+    pub measure: Measure,
     /// Timed samples per quantity (median reported).
     pub repeats: usize,
     /// CG iterations per timed solve.
@@ -61,14 +67,24 @@ pub struct BenchDone {
     pub problems: Vec<String>,
 }
 
-/// The parameter and value that name a backend ("⟨backends⟩ cpu").
-fn flag(kind: BackendKind) -> String {
+/// The parameters and values that name a backend in an arithmetic ("⟨backends⟩ cpu", and
+/// " ⟨precisions⟩ f32" unless it is the backend's own).
+fn flag(kind: BackendKind, precision: Precision) -> String {
     let name = match kind {
         BackendKind::Cpu => "cpu",
         BackendKind::Gpu => "gpu",
         BackendKind::Auto => "auto",
     };
-    format!("{BACKENDS} {name}")
+    let arithmetic = match precision {
+        Precision::Auto => "",
+        Precision::F64 => " f64",
+        Precision::F32 => " f32",
+    };
+    if arithmetic.is_empty() {
+        format!("{BACKENDS} {name}")
+    } else {
+        format!("{BACKENDS} {name} {PRECISIONS}{arithmetic}")
+    }
 }
 
 /// The grids asked for, sorted and without repeats; refused unless all are powers of two ≥ 16.
@@ -94,11 +110,14 @@ fn grids(args: &BenchRequest) -> Result<Vec<usize>, RunError> {
     Ok(g)
 }
 
-/// Open `which` for `model`'s grid.
-fn open(which: BackendKind, model: &Model) -> Result<Opened, RunError> {
-    select::open(which, &model.grid_setup()).map_err(|e| match backend_error(e) {
-        RunError::Input(m) => RunError::Input(format!("{}: {m}", flag(which))),
-        RunError::Failed(m) => RunError::Failed(format!("{}: {m}", flag(which))),
+/// Open `which` in `precision` for `model`'s grid.
+fn open(which: BackendKind, precision: Precision, model: &Model) -> Result<Opened, RunError> {
+    let named = |m: String| format!("{}: {m}", flag(which, precision));
+    select::open_in(which, precision, &model.grid_setup(), false).map_err(|e| {
+        match backend_error(e) {
+            RunError::Input(m) => RunError::Input(named(m)),
+            RunError::Failed(m) => RunError::Failed(named(m)),
+        }
     })
 }
 
@@ -126,11 +145,11 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
     // up front; the default takes the GPU only if it opens.
     let mut backends = open_backends(args, &models[0], watch)?;
     let mut got = Collected::default();
-    for (which, first) in &mut backends {
+    for (which, precision, first) in &mut backends {
         for (k, (model, &grid)) in models.iter().zip(&grids).enumerate() {
             let opened = match if k == 0 { first.take() } else { None } {
                 Some(o) => o,
-                None => match open(*which, model) {
+                None => match open(*which, *precision, model) {
                     Ok(o) => o,
                     Err(e) => {
                         watch.note(&format!("bench: skipped grid {grid}: {e}"));
@@ -139,7 +158,15 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
                     }
                 },
             };
-            measure_one(args, *which, model, grid, opened, watch, &mut got);
+            measure_one(
+                args,
+                (*which, *precision),
+                model,
+                grid,
+                opened,
+                watch,
+                &mut got,
+            );
         }
     }
     let Collected {
@@ -194,6 +221,8 @@ fn bench_models(args: &BenchRequest, grids: &[usize]) -> Result<(Scene, Vec<Mode
         .map(|&nx| {
             let opt = ModelOptions {
                 nx,
+                measure: args.measure,
+                steps: default_steps(args.measure, Onsets::NearMinimum, false),
                 start_radius_bar: args.start_radius,
                 margin: args.margin.unwrap_or(crate::model::default_margin(nx)),
                 ..ModelOptions::default()
@@ -217,40 +246,63 @@ struct Collected {
     problems: Vec<String>,
 }
 
-/// The backends asked for (both by default), each opened on the first grid; a default one
-/// that does not open is skipped with a note, one asked for that does not is refused.
+/// A backend to time, in an arithmetic, and its opening on the first grid (taken by it).
+type ToTime = (BackendKind, Precision, Option<Opened>);
+
+/// The backends asked for (both by default) in each arithmetic asked for, each opened on the
+/// first grid; a default backend that does not open is skipped with a note, one asked for
+/// that does not is refused; an arithmetic a backend has not (f64 on the GPU) is skipped with
+/// a note, unless nothing is left.
 fn open_backends(
     args: &BenchRequest,
     first: &Model,
     watch: &dyn Watch,
-) -> Result<Vec<(BackendKind, Option<Opened>)>, RunError> {
-    let mut backends: Vec<(BackendKind, Option<Opened>)> = Vec::new();
+) -> Result<Vec<ToTime>, RunError> {
+    let mut backends: Vec<ToTime> = Vec::new();
     let requested = if args.backends.is_empty() {
         vec![BackendKind::Cpu, BackendKind::Gpu]
     } else {
         args.backends.clone()
     };
+    let precisions = if args.precisions.is_empty() {
+        vec![Precision::Auto]
+    } else {
+        args.precisions.clone()
+    };
+    let mut refused = None;
     for which in requested {
-        if backends.iter().any(|(b, _)| *b == which) {
-            continue;
-        }
-        match open(which, first) {
-            Ok(o) => backends.push((which, Some(o))),
-            Err(e) if args.backends.is_empty() => {
-                watch.note(&format!("bench: {} skipped: {e}", flag(which)));
+        for &precision in &precisions {
+            if backends
+                .iter()
+                .any(|(b, p, _)| *b == which && *p == precision)
+            {
+                continue;
             }
-            Err(e) => return Err(e),
+            if let Some(why) = precision.refusal(which) {
+                watch.note(&format!("bench: {} skipped: {why}", flag(which, precision)));
+                refused.get_or_insert(why);
+                continue;
+            }
+            match open(which, precision, first) {
+                Ok(o) => backends.push((which, precision, Some(o))),
+                Err(e) if args.backends.is_empty() => {
+                    watch.note(&format!("bench: {} skipped: {e}", flag(which, precision)));
+                }
+                Err(e) => return Err(e),
+            }
         }
     }
-
-    Ok(backends)
+    match (backends.is_empty(), refused) {
+        (true, Some(why)) => Err(input(why)),
+        _ => Ok(backends),
+    }
 }
 
 /// Measure one backend on one grid (and profile its kernels with `--profile`), adding the
 /// row, the measurement and any problem to `got`.
 fn measure_one(
     args: &BenchRequest,
-    which: BackendKind,
+    (which, precision): (BackendKind, Precision),
     model: &Model,
     grid: usize,
     opened: Opened,
@@ -264,7 +316,7 @@ fn measure_one(
         cg_iterations: args.cg_iterations,
         pulloff: grid <= args.pulloff_max_grid,
     };
-    let label = format!("{} {}×{}", flag(which), model.nx, model.ny);
+    let label = format!("{} {}×{}", flag(which, precision), model.nx, model.ny);
     watch.note(&format!("bench: {label}: {}", opened.note));
     let mut progress = |what: &str| watch.note(&format!("bench: {label}: timing {what}"));
     let result = crate::with_backend!(&mut any, b =>

@@ -108,6 +108,7 @@ fn chart_formats(args: &StudyRequest) -> FigureFormats {
 /// `watch` receives progress notes.
 pub fn study(args: &StudyRequest, watch: &dyn Watch) -> Result<StudyDone, RunError> {
     let start = Instant::now();
+    args.backend.check()?;
     let sweep_dir = args.out.join("sweep");
     let work = study_jobs(args, &sweep_dir)?;
     check_study_memory(&work, args)?;

@@ -367,7 +367,10 @@ mod tests {
             a.work.cg_iterations
         );
         let line = a.activity_line().unwrap_or_default();
-        assert!(line.contains("whole steps 10 (7 %) to the minimum + 80 (53 %) past it"), "{line}");
+        assert!(
+            line.contains("whole steps 10 (7 %) to the minimum + 80 (53 %) past it"),
+            "{line}"
+        );
         let mut none = CostAccount::default();
         none.split_at_minimum(&ledger, None);
         assert_eq!(none.to_minimum.cg_iterations(), 150);

@@ -241,7 +241,9 @@ pub fn run_watched<B: Backend>(
         cost,
         refinement,
     };
-    let d_min = outcome.min_reached().then(|| outcome.force_minimum().map(|s| s.d));
+    let d_min = outcome
+        .min_reached()
+        .then(|| outcome.force_minimum().map(|s| s.d));
     outcome.cost.split_at_minimum(&ledger, d_min.flatten());
     outcome
 }

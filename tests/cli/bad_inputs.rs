@@ -100,3 +100,26 @@ fn f64_on_the_gpu_is_refused_before_any_adapter_is_sought() {
     assert!(!err.contains("adapter"), "{err}");
     assert!(!dir.path().join("s.csv").exists());
 }
+
+/// The studies take the precision too, and refuse f64 on the GPU the same way, before any
+/// output is claimed.
+#[test]
+fn the_studies_refuse_f64_on_the_gpu_too() {
+    for args in [
+        &["sweep", "--ratios", "1", "--grid", "16", "--out", "o"][..],
+        &["crossed", "--angles", "90", "--out", "o"][..],
+        &["reproduce", "--quick", "--out", "o"][..],
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let mut all = args.to_vec();
+        all.extend(["--backend", "gpu", "--precision", "f64"]);
+        let o = run_in(dir.path(), &all, &[]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains("f64") && err.contains("gpu"),
+            "{args:?}: {err}"
+        );
+        assert!(!dir.path().join("o").exists(), "{args:?}");
+    }
+}

@@ -8,7 +8,9 @@ use common::{jkrbem, stderr};
 const HEADER: &str = "backend,precision,adapter,grid,nx,ny,convolution_ms,cg_iteration_ms,\
 dispatches_per_iteration,readbacks_per_iteration,pulloff_s,pulloff_cg_iterations,f_ad_bar,\
 pulloff_states,pulloff_steps,pulloff_onsets,pulloff_rounds,pulloff_solves,\
-pulloff_convolutions,pulloff_readbacks";
+pulloff_convolutions,pulloff_readbacks,pulloff_cg_c_below_070,pulloff_cg_c_070_090,\
+pulloff_cg_c_090_110,pulloff_cg_c_above_110,pulloff_cg_whole_steps_to_minimum,\
+pulloff_cg_whole_steps_past_minimum,pulloff_cg_search_to_minimum,pulloff_cg_search_past_minimum";
 
 #[test]
 fn a_quick_cpu_bench_writes_one_row_per_grid_and_a_chart() {
@@ -83,6 +85,31 @@ fn a_quick_cpu_bench_writes_one_row_per_grid_and_a_chart() {
         assert_eq!(col(&rows[0], name), want.to_string(), "{name}");
     }
     assert!(cost.work.solves >= cost.steps && cost.steps > 0 && cost.states > cost.steps);
+    // Its CG iterations per c̄ band, and by activity on either side of the minimum, add up.
+    let sum = |names: &[&str]| -> usize {
+        names
+            .iter()
+            .map(|n| col(&rows[0], n).parse::<usize>().unwrap())
+            .sum()
+    };
+    let bands = [
+        "pulloff_cg_c_below_070",
+        "pulloff_cg_c_070_090",
+        "pulloff_cg_c_090_110",
+        "pulloff_cg_c_above_110",
+    ];
+    let activities = [
+        "pulloff_cg_whole_steps_to_minimum",
+        "pulloff_cg_whole_steps_past_minimum",
+        "pulloff_cg_search_to_minimum",
+        "pulloff_cg_search_past_minimum",
+    ];
+    assert_eq!(sum(&bands), its);
+    assert_eq!(sum(&activities), its);
+    assert_eq!(
+        col(&rows[0], "pulloff_cg_search_past_minimum"),
+        cost.past_minimum.search.cg_iterations.to_string()
+    );
     for empty in [
         "pulloff_s",
         "pulloff_cg_iterations",
@@ -163,4 +190,51 @@ fn bad_grids_and_unknown_backends_are_refused_naming_the_flag() {
         assert!(!err.contains("panicked"), "{args:?}: {err}");
         assert!(!dir.path().join("b").exists(), "{args:?} wrote output");
     }
+}
+
+#[test]
+fn each_backend_is_timed_in_each_precision_asked_for() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = jkrbem(
+        &[
+            "bench",
+            "--backends",
+            "cpu",
+            "--precisions",
+            "f64,f32",
+            "--grids",
+            "16",
+            "--repeats",
+            "1",
+            "--pulloff-max-grid",
+            "0",
+            "--margin",
+            "0.2",
+            "--out",
+            "b",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut csv = csv::Reader::from_path(dir.path().join("b/bench.csv")).unwrap();
+    let precisions: Vec<String> = csv.records().map(|r| r.unwrap()[1].to_string()).collect();
+    assert_eq!(precisions, ["f64", "f32"]);
+    // The GPU has no f64: asked for alone, refused before any work, naming the precision.
+    let o = jkrbem(
+        &[
+            "bench",
+            "--backends",
+            "gpu",
+            "--precisions",
+            "f64",
+            "--grids",
+            "16",
+            "--out",
+            "g",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("f64"), "{}", stderr(&o));
+    assert!(!dir.path().join("g/bench.csv").exists());
 }

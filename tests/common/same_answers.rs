@@ -95,6 +95,14 @@ pub fn assert_account_adds_up(what: &str, run: &Run) {
         }
     }
     assert!(c.work.solves > 0 && c.steps > 0, "{what}");
+    // The split by activity on either side of the force minimum adds up to the whole too.
+    let (to, past) = (&c.to_minimum, &c.past_minimum);
+    let split = |f: fn(&jkrbem::solver::cost::Work) -> usize| {
+        f(&to.whole_steps) + f(&to.search) + f(&past.whole_steps) + f(&past.search)
+    };
+    assert_eq!(split(|w| w.cg_iterations), c.work.cg_iterations, "{what}");
+    assert_eq!(split(|w| w.solves), c.work.solves, "{what}");
+    assert_eq!(split(|w| w.rounds), c.work.rounds, "{what}");
 }
 
 pub fn compare(what: &str, ratio: f64, nx: usize, ny: Option<usize>, options: ModelOptions) {

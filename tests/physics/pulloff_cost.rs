@@ -13,6 +13,7 @@ use common::same_answers::{
     assert_account_adds_up, assert_same_answers, compare, exact, f_min, model, step_ends,
 };
 use jkrbem::model::{Measure, Model, ModelOptions};
+use jkrbem::solver::protocol::{CONFIRM_D_BAR, CONFIRM_RISE};
 use jkrbem::solver::{Phase, State};
 
 #[test]
@@ -33,6 +34,29 @@ fn an_adhesive_force_alone_is_the_curves_minimum() {
     assert!(fast.outcome.stopped_after_minimum && fast.outcome.min_reached());
     assert_same_answers("5:1 128×64, adhesive force", &fast, &reference);
     assert_account_adds_up("5:1 128×64, adhesive force", &fast);
+    // How the minimum was confirmed: a recorded state past it by the protocol's test, the
+    // same as the whole curve's first such state (the curve goes on past it).
+    let by = fast.outcome.confirmation().expect("confirmed");
+    assert!(!by.vanished);
+    assert!(
+        by.past_d_bar >= CONFIRM_D_BAR - 1e-9 && by.rise >= CONFIRM_RISE,
+        "{by:?}"
+    );
+    let min = fast.outcome.force_minimum().unwrap();
+    assert!(fast
+        .outcome
+        .states
+        .iter()
+        .any(|s| s.d_bar == by.d_bar && s.d_bar < min.d_bar));
+    let curve = reference
+        .outcome
+        .confirmation()
+        .expect("the curve confirms it too");
+    assert!(curve.d_bar >= by.d_bar - 0.5, "{curve:?} against {by:?}");
+    // The onsets near the minimum were searched for, on both sides of it.
+    let c = &fast.outcome.cost;
+    assert!(c.to_minimum.search.cg_iterations > 0 && c.past_minimum.search.cg_iterations > 0);
+    assert!(c.to_minimum.whole_steps.cg_iterations > c.past_minimum.whole_steps.cg_iterations);
     assert!(fast.outcome.cost.work.cg_iterations * 2 < reference.outcome.cost.work.cg_iterations);
 }
 

@@ -200,6 +200,16 @@ pub const BACKENDS: &Spec = &cli(
     Chosen("accuracy: cpu; bench: cpu, plus gpu when a GPU backend can be opened"),
     "Backends, comma-separated, none repeated: accuracy runs on each, bench times each.",
 );
+/// The arithmetics of bench.
+pub const PRECISIONS: &Spec = &cli(
+    "precisions",
+    "--precisions",
+    "",
+    Kind::Choice(&["auto", "f64", "f32"]),
+    Chosen("auto: each backend's own"),
+    "Bench: the arithmetic each backend is timed in, comma-separated (the GPU has no f64 and \
+     skips it).",
+);
 /// One shard of a sweep.
 pub const SHARD: &Spec = &cli(
     "shard",
@@ -362,6 +372,7 @@ pub const STUDY_SPECS: &[&Spec] = &[
     SHAPES,
     EXPONENTS,
     BACKENDS,
+    PRECISIONS,
     SHARD,
     ALLOW_MISSING,
     RESUME,
