@@ -279,7 +279,8 @@ fn open_backends(
                 continue;
             }
             if let Some(why) = precision.refusal(which) {
-                watch.note(&format!("bench: {} skipped: {why}", flag(which, precision)));
+                let why = format!("{}: {why}", flag(which, precision));
+                watch.note(&format!("bench: skipped {why}"));
                 refused.get_or_insert(why);
                 continue;
             }
