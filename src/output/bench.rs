@@ -456,6 +456,17 @@ mod tests {
     }
 
     #[test]
+    fn the_band_columns_are_named_by_the_accounts_band_edges() {
+        // pulloff_cg_c_below_070 … pulloff_cg_c_above_110: one column per band of the account.
+        assert_eq!(crate::solver::cost::C_BAR_BAND_EDGES, [0.7, 0.9, 1.1]);
+        let bands: Vec<&str> = HEADER
+            .split(',')
+            .filter(|c| c.starts_with("pulloff_cg_c_"))
+            .collect();
+        assert_eq!(bands.len(), crate::solver::cost::C_BAR_BAND_EDGES.len() + 1);
+    }
+
+    #[test]
     fn cost_table_gives_the_growth_per_doubling() {
         let mut a = row("cpu", 16, Some(1.0));
         let mut b = row("cpu", 32, Some(2.0));

@@ -4,6 +4,7 @@
 
 use super::claim::{named, write_error, Outputs};
 use super::open::backend_error;
+use super::provenance::word;
 use super::Watch;
 use super::{input, RunError};
 #[cfg(feature = "gpu")]
@@ -70,20 +71,10 @@ pub struct BenchDone {
 /// The parameters and values that name a backend in an arithmetic ("⟨backends⟩ cpu", and
 /// " ⟨precisions⟩ f32" unless it is the backend's own).
 fn flag(kind: BackendKind, precision: Precision) -> String {
-    let name = match kind {
-        BackendKind::Cpu => "cpu",
-        BackendKind::Gpu => "gpu",
-        BackendKind::Auto => "auto",
-    };
-    let arithmetic = match precision {
-        Precision::Auto => "",
-        Precision::F64 => " f64",
-        Precision::F32 => " f32",
-    };
-    if arithmetic.is_empty() {
-        format!("{BACKENDS} {name}")
-    } else {
-        format!("{BACKENDS} {name} {PRECISIONS}{arithmetic}")
+    let backend = format!("{BACKENDS} {}", word(kind));
+    match precision {
+        Precision::Auto => backend,
+        _ => format!("{backend} {PRECISIONS} {}", word(precision)),
     }
 }
 

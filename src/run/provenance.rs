@@ -18,8 +18,8 @@ pub fn set_command_line(line: String) {
     let _ = COMMAND_LINE.set(line);
 }
 
-/// An option's value as the CLI spells it (e.g. "adhesive-force").
-fn word<T: clap::ValueEnum>(value: T) -> String {
+/// An option's value as the CLI spells it (e.g. "adhesive-force", "cpu").
+pub(crate) fn word<T: clap::ValueEnum>(value: T) -> String {
     value
         .to_possible_value()
         .map_or_else(String::new, |v| v.get_name().to_string())

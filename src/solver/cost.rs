@@ -68,8 +68,9 @@ pub struct BandCost {
 /// What work was for: load steps taken whole, or the search near the force minimum.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Activity {
-    /// A load step taken whole: its probe and its step-end cascade (the first contact, the
-    /// press to a preload and a re-grid's re-equilibration included).
+    /// A load step as it comes: its probe and its step-end cascade, and the walk through its
+    /// onsets where it is walked at once (the first contact, the press to a preload and a
+    /// re-grid's re-equilibration included).
     WholeSteps,
     /// The window's search for the onsets that may be the force minimum (going back to
     /// kept steps: their pieces' cascades and probes, and the walks through their onsets).
@@ -216,9 +217,9 @@ impl CostAccount {
         }
     }
 
-    /// One line for people on what the CG iterations were for: "whole steps 1200 (31 %) to
-    /// the minimum + 80 (2 %) past it; search near the minimum 2000 (52 %) to it + 560
-    /// (15 %) past it"; `None` for a run that did no work.
+    /// One line for people on what the CG iterations were for: "CG iterations by activity:
+    /// whole steps 1200 (31 %) to the minimum + 80 (2 %) past it; search near the minimum
+    /// 2000 (52 %) to the minimum + 560 (15 %) past it"; `None` for a run that did no work.
     pub fn activity_line(&self) -> Option<String> {
         let total = self.work.cg_iterations;
         if total == 0 {

@@ -10,7 +10,7 @@ use super::retry::CgRetry;
 use super::state::{Phase, RegridEvent, State};
 use super::window::{Refinement, Window};
 use super::SolverError;
-use crate::backend::{Backend, ContactKernels};
+use crate::backend::{Backend, ContactKernels, ContactMeasure};
 use crate::model::Model;
 use std::f64::consts::PI;
 
@@ -32,9 +32,7 @@ pub(super) fn record<B: Backend>(
     let n = m.count;
     let dx = model.dx;
     let sc = model.scene.scales();
-    let area = n as f64 * dx * dx;
-    let force = m.sum * dx * dx;
-    let mean_radius = (area / PI).sqrt();
+    let (force, area, mean_radius) = force_area_radius(model, &m);
     let state = State {
         step,
         phase,
@@ -58,6 +56,14 @@ pub(super) fn record<B: Backend>(
     Ok((state, m.bounds))
 }
 
+/// A measurement's force (force), contact area (length²) and mean contact radius √(A/π)
+/// (length).
+fn force_area_radius(model: &Model, m: &ContactMeasure) -> (f64, f64, f64) {
+    let dx = model.dx;
+    let area = m.count as f64 * dx * dx;
+    (m.sum * dx * dx, area, (area / PI).sqrt())
+}
+
 /// The force (force) of pressure `p` on the backend's contact set, reduced on its device.
 pub(super) fn force_of<B: Backend>(
     backend: &mut B,
@@ -65,8 +71,7 @@ pub(super) fn force_of<B: Backend>(
     c: &B::Mask,
     p: &B::Field,
 ) -> Result<f64, SolverError> {
-    let m = backend.measure(c, p, model.mesh.chord_axes())?;
-    Ok(m.sum * model.dx * model.dx)
+    Ok(force_and_c_bar(backend, model, c, p)?.0)
 }
 
 /// The force (force) of pressure `p` on the backend's contact set and that contact's mean
@@ -78,9 +83,8 @@ pub(super) fn force_and_c_bar<B: Backend>(
     p: &B::Field,
 ) -> Result<(f64, f64), SolverError> {
     let m = backend.measure(c, p, model.mesh.chord_axes())?;
-    let dx = model.dx;
-    let radius = (m.count as f64 * dx * dx / PI).sqrt();
-    Ok((m.sum * dx * dx, radius / model.scene.scales().length))
+    let (force, _, radius) = force_area_radius(model, &m);
+    Ok((force, radius / model.scene.scales().length))
 }
 
 /// Where states go: to the observer at once, or held while onsets may still be located

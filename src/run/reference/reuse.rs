@@ -9,9 +9,9 @@ use crate::backend::select::BackendKind;
 use crate::model::ModelOptions;
 use crate::output::states_csv::read_state_rows;
 use crate::run::open::BackendRequest;
+use crate::run::provenance::word;
 use crate::run::schema::BACKEND;
 use crate::scene::Scene;
-use clap::ValueEnum;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -55,12 +55,6 @@ pub struct RunSettings {
     pub check_every: Option<usize>,
 }
 
-/// The name a value of a CLI enum goes by ("near-minimum", "cpu").
-fn name_of<T: ValueEnum>(v: T) -> String {
-    v.to_possible_value()
-        .map_or_else(String::new, |p| p.get_name().to_string())
-}
-
 impl RunSettings {
     /// The settings of a run of `options` on `scene` with `backend`.
     pub fn of(scene: &Scene, options: &ModelOptions, backend: &BackendRequest) -> Self {
@@ -72,8 +66,8 @@ impl RunSettings {
             e_star: scene.e_star,
             work_of_adhesion: scene.work_of_adhesion,
             options: options.clone(),
-            backend: name_of(backend.kind),
-            convolution: name_of(backend.convolution),
+            backend: word(backend.kind),
+            convolution: word(backend.convolution),
             check_every: backend.check_every,
         }
     }
@@ -148,7 +142,7 @@ fn report_differences(run: &RunReport, asked: &RunSettings, kind: BackendKind) -
             "it ran on {} ({}), asked {BACKEND} {}",
             run.backend,
             run.precision,
-            name_of(kind)
+            word(kind)
         ));
     }
     if run.nx != asked.options.nx || asked.options.ny.is_some_and(|ny| ny != run.ny) {
