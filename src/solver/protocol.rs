@@ -355,7 +355,9 @@ fn pull_off<B: Backend>(
             break;
         }
         let held = run.held.force;
-        match confirming_end(out, &run.model, held, &mut confirming, d_prev, d) {
+        // The schedule's whole step: a step after a shortened one starts off the schedule.
+        let whole = model.load.approach(planned) - d;
+        match confirming_end(out, &run.model, held, &mut confirming, d_prev, d, whole) {
             Some(d_confirm) => d = d_confirm,
             None => planned += 1,
         }
@@ -367,7 +369,11 @@ fn pull_off<B: Backend>(
         if model.confirm_minimum && out.minimum_confirmed(end.force, end.d_bar) {
             run.may_regrid = false;
             super::search::refine(backend, run, out)?;
-            if model.measure == Measure::AdhesiveForce {
+            // The search may have found the minimum further on, beyond the reach of this
+            // step end's test: the steps then go on until one confirms that minimum too.
+            if model.measure == Measure::AdhesiveForce
+                && out.minimum_confirmed(end.force, end.d_bar)
+            {
                 out.stopped_after_minimum = true;
                 return Ok(());
             }
@@ -386,7 +392,7 @@ fn pull_off<B: Backend>(
 /// measured, once the state held at `d_prev` (force `held`) meets one of the two tests that
 /// confirm the minimum known, [`CONFIRM_D_BAR`] past it or [`CONFIRM_RISE`] above it
 /// (`confirming`, latched here): at the first approach [`CONFIRM_D_BAR`] past the minimum,
-/// or [`CONFIRMING_STEP`] of the step if that lies further. The minimum does not depend on
+/// or [`CONFIRMING_STEP`] of a `whole` step (length) if that lies further. The minimum does not depend on
 /// where the steps end (the contact set at a load is the greatest stable subset of the one
 /// it came from); what the shorter steps save is their cascades: past the minimum the
 /// contact shrinks fast, and a whole step there detaches a wide ring.
@@ -397,6 +403,7 @@ fn confirming_end(
     confirming: &mut bool,
     d_prev: f64,
     d: f64,
+    whole: f64,
 ) -> Option<f64> {
     if model.measure != Measure::AdhesiveForce || !model.confirm_minimum {
         return None;
@@ -406,7 +413,7 @@ fn confirming_end(
     // A hair beyond, so that the step end's d̄ passes the test despite rounding.
     let d_confirm = (d_bar_min - CONFIRM_D_BAR - 1e-9) * scale;
     *confirming |= d_prev <= d_confirm || held - f_min >= CONFIRM_RISE * f_min.abs();
-    let end = d_confirm.min(d_prev - CONFIRMING_STEP * (d_prev - d));
+    let end = d_confirm.min(d_prev - CONFIRMING_STEP * whole);
     (*confirming && end > d).then_some(end)
 }
 

@@ -61,6 +61,27 @@ fn an_adhesive_force_alone_is_the_curves_minimum() {
 }
 
 #[test]
+fn a_minimum_the_search_moves_on_is_confirmed_again() {
+    // Re-gridded with 100 steps, as `--accuracy` runs it: at 64² the search near the minimum
+    // finds it past the one the step ends knew, and the step end that stopped the run was then
+    // only 0.04 past it in d̄. The steps go on until one confirms the minimum found.
+    let options = ModelOptions {
+        measure: Measure::AdhesiveForce,
+        steps: 100,
+        regrid: true,
+        ..ModelOptions::default()
+    };
+    let run = run_model(model(1.0, 64, None, options));
+    assert!(run.outcome.stopped_after_minimum);
+    let by = run.outcome.confirmation().expect("confirmed");
+    assert!(
+        by.vanished || (by.past_d_bar >= CONFIRM_D_BAR - 1e-9 && by.rise >= CONFIRM_RISE),
+        "{by:?}"
+    );
+    assert_account_adds_up("sphere 64², re-gridded, adhesive force", &run);
+}
+
+#[test]
 fn solves_and_convolutions_are_made_only_where_needed() {
     // Every onset, every round exact: each solve is a probe (one per step, one after each
     // onset's cascade), a cascade round or the first press; and each probe starts from a
