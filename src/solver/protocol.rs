@@ -392,10 +392,11 @@ fn pull_off<B: Backend>(
 /// measured, once the state held at `d_prev` (force `held`) meets one of the two tests that
 /// confirm the minimum known, [`CONFIRM_D_BAR`] past it or [`CONFIRM_RISE`] above it
 /// (`confirming`, latched here): at the first approach [`CONFIRM_D_BAR`] past the minimum,
-/// or [`CONFIRMING_STEP`] of a `whole` step (length) if that lies further. The minimum does not depend on
-/// where the steps end (the contact set at a load is the greatest stable subset of the one
-/// it came from); what the shorter steps save is their cascades: past the minimum the
-/// contact shrinks fast, and a whole step there detaches a wide ring.
+/// or [`CONFIRMING_STEP`] of a `whole` step of the schedule (length) if that lies further.
+/// The minimum does not depend on where the steps end (the contact set at a load is the
+/// greatest stable subset of the one it came from); what the shorter steps save is their
+/// cascades: past the minimum the contact shrinks fast, and a whole step there detaches a
+/// wide ring.
 fn confirming_end(
     out: &Emitter,
     model: &Model,
