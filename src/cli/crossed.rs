@@ -5,9 +5,7 @@
 use super::progress::Progress;
 use super::stdout::not_stdout;
 use super::{count_in, no_repeats, run_error, CliError, MAX_JOBS};
-use jkrbem::backend::select::{BackendKind, Precision};
 use jkrbem::run::crossed::{crossed, CrossedRequest};
-use jkrbem::run::open::BackendRequest;
 use jkrbem::run::schema::{Spec, ANGLE, ANGLES, E, NU, POISSON, YOUNG};
 use std::path::PathBuf;
 
@@ -47,14 +45,9 @@ pub struct Args {
     /// Free margin around the initial contact, relative to its half-axes (in [0, 10]).
     #[arg(long, default_value_t = 0.08)]
     pub margin: f64,
-    /// Backend: `cpu`, `gpu` or `auto`.
-    #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
-    pub backend: BackendKind,
-    /// Arithmetic of the convolution's FFT passes: `auto` (the backend's own: f64 on the CPU,
-    /// f32 on the GPU), `f64` (the CPU only) or `f32` (the GPU, or the CPU's FFT passes at
-    /// twice the SIMD width; CG's tolerance is then raised to f32's floor, 2e-7).
-    #[arg(long, value_enum, default_value_t = Precision::Auto)]
-    pub precision: Precision,
+    // The backend of every run, and its arithmetic.
+    #[command(flatten)]
+    pub backend: super::study_backend::StudyBackendArgs,
     /// Pull-offs run at the same time (1 to 256).
     #[arg(long, default_value_t = 1, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_JOBS as u64))]
     pub jobs: usize,
@@ -93,11 +86,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         grid: super::grid_choice(args.grid, args.accuracy),
         steps: args.steps,
         margin: args.margin,
-        backend: BackendRequest {
-            kind: args.backend,
-            precision: args.precision,
-            ..BackendRequest::default()
-        },
+        backend: args.backend.request(),
         jobs: args.jobs,
         out: args.out.clone(),
         figures: args.figures.figure_format,

@@ -15,6 +15,7 @@ pub mod reproduce;
 pub mod roughness;
 pub mod simulate;
 pub mod stdout;
+pub mod study_backend;
 pub mod sweep;
 pub mod theory;
 

@@ -4,8 +4,6 @@
 
 use super::progress::Progress;
 use super::{failures, run_error, CliError, MAX_JOBS};
-use jkrbem::backend::select::{BackendKind, Precision};
-use jkrbem::run::open::BackendRequest;
 use jkrbem::run::study::{study, StudyRequest};
 use std::path::PathBuf;
 
@@ -22,14 +20,9 @@ pub struct Args {
     /// --jobs 2).
     #[arg(long)]
     pub quick: bool,
-    /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.
-    #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
-    pub backend: BackendKind,
-    /// Arithmetic of the convolution's FFT passes: `auto` (the backend's own: f64 on the CPU,
-    /// f32 on the GPU), `f64` (the CPU only) or `f32` (the GPU, or the CPU's FFT passes at
-    /// twice the SIMD width; CG's tolerance is then raised to f32's floor, 2e-7).
-    #[arg(long, value_enum, default_value_t = Precision::Auto)]
-    pub precision: Precision,
+    // The backend of every run, and its arithmetic.
+    #[command(flatten)]
+    pub backend: super::study_backend::StudyBackendArgs,
     /// Pull-offs run at the same time (1 to 256).
     #[arg(long, default_value_t = 1, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_JOBS as u64))]
     pub jobs: usize,
@@ -44,11 +37,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let req = StudyRequest {
         out: args.out,
         quick: args.quick,
-        backend: BackendRequest {
-            kind: args.backend,
-            precision: args.precision,
-            ..BackendRequest::default()
-        },
+        backend: args.backend.request(),
         jobs: args.jobs,
         figures: args.figures.figure_format,
     };

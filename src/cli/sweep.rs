@@ -5,8 +5,6 @@
 use super::progress::Progress;
 use super::stdout::not_stdout;
 use super::{count_in, no_repeats, run_error, CliError, MAX_JOBS};
-use jkrbem::backend::select::{BackendKind, Precision};
-use jkrbem::run::open::BackendRequest;
 use jkrbem::run::sweep::{sweep, SweepRequest};
 use std::path::PathBuf;
 
@@ -36,14 +34,9 @@ pub struct Args {
     /// Free margin around the initial contact, relative to its half-axes (in [0, 10]).
     #[arg(long, default_value_t = 0.08)]
     pub margin: f64,
-    /// Backend: `cpu`, `gpu` or `auto` (a hardware GPU if present, else the CPU).
-    #[arg(long, value_enum, default_value_t = BackendKind::Auto)]
-    pub backend: BackendKind,
-    /// Arithmetic of the convolution's FFT passes: `auto` (the backend's own: f64 on the CPU,
-    /// f32 on the GPU), `f64` (the CPU only) or `f32` (the GPU, or the CPU's FFT passes at
-    /// twice the SIMD width; CG's tolerance is then raised to f32's floor, 2e-7).
-    #[arg(long, value_enum, default_value_t = Precision::Auto)]
-    pub precision: Precision,
+    // The backend of every run, and its arithmetic.
+    #[command(flatten)]
+    pub backend: super::study_backend::StudyBackendArgs,
     /// Run only shard K of N (1 ≤ K ≤ N ≤ 10000): the ratios at positions K, K+N, K+2N, … of
     /// --ratios. Each shard writes sweep-shard-K-of-N.json, which records the whole sweep, its
     /// position and its rows (none if it got no ratio); `jkrbem collect DIR` merges them.
@@ -78,11 +71,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         steps: args.steps,
         start_radius: args.start_radius,
         margin: args.margin,
-        backend: BackendRequest {
-            kind: args.backend,
-            precision: args.precision,
-            ..BackendRequest::default()
-        },
+        backend: args.backend.request(),
         shard,
         jobs: args.jobs,
         out: args.out.clone(),
