@@ -28,10 +28,11 @@ pub use super::onsets::JUMP_FRACTION;
 
 /// How a run's force minimum was confirmed: the first state after it that shows, by the
 /// protocol's test, that no later state lies lower (the contact gone, or the approach
-/// [`CONFIRM_D_BAR`] past it with the force [`CONFIRM_RISE`] of its size above it); where the
-/// run stopped at a minimum found lower than the one its test was made against, the last
-/// state it recorded. The onsets between the two are each located, or bounded above the
-/// minimum (the window's margin, [`Refinement::margin_f_bar`]).
+/// [`CONFIRM_D_BAR`] past it with the force [`CONFIRM_RISE`] of its size above it). An
+/// adhesive-force run stops only at such a state, the minimum its search found included; a
+/// run marked stopped without one (a guard: it does not happen) is given its furthest state.
+/// The onsets between the two are each located, or bounded above the minimum (the window's
+/// margin, [`Refinement::margin_f_bar`]).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Confirmation {
     /// d̄ of the confirming state (dimensionless).
