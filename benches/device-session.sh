@@ -19,6 +19,13 @@
 #   accuracy  `--accuracy ACCURACY_TARGET` on the GPU for R1/R2 in ACCURACY_RATIOS, each against
 #             the reference table (data/reference/adhesive-force.csv)
 #   curve     R1/R2 = MEASURE_RATIO at CURVE_GRID, the whole curve, on the GPU
+#   profile   a whole pull-off's profile: `jkrbem bench --profile` with the pull-off of
+#             R1/R2 = MEASURE_RATIO at MEASURE_GRID (--measure adhesive-force), timed, then run
+#             again with timestamps: the host's time blocked on readbacks and submitting, and
+#             each kernel's GPU time over the whole pull-off
+#   sphere    the sphere's whole curve at SPHERE_GRID², on the GPU
+#   rough     a rough sphere's adhesive force at ROUGH_GRID² on the GPU (R = 1, rms slope 0.1,
+#             Hurst 0.8, the short cut-off 8 elements; the map made there by `jkrbem roughness`)
 #
 # Writes $OUT/report.md (the headline and the targets first, then each step's table), and
 # $OUT/log.txt; every other file is packed into $OUT/results.tar.gz at the end (a device call
@@ -35,6 +42,8 @@
 #   TESTS_LIMIT_S (240), TESTS_ARGS, TESTS_FILTER
 #   ACCURACY_RATIOS (1,5,25), ACCURACY_TARGET (1%), ACCURACY_LIMIT_S (60 each)
 #   CURVE_GRID (2048), CURVE_LIMIT_S (180)
+#   PROFILE_LIMIT_S (300); SPHERE_GRID (2048), SPHERE_LIMIT_S (180)
+#   ROUGH_GRID (2048), ROUGH_LIMIT_S (180), ROUGH_FLAGS (the scene's flags besides the map's)
 #   PYVKFFT_SRC      a pyvkfft source tree to build with nvcc for the VkFFT floor (optional)
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -66,6 +75,11 @@ ACCURACY_TARGET=${ACCURACY_TARGET:-1%}
 ACCURACY_LIMIT_S=${ACCURACY_LIMIT_S:-60}
 CURVE_GRID=${CURVE_GRID:-2048}
 CURVE_LIMIT_S=${CURVE_LIMIT_S:-180}
+PROFILE_LIMIT_S=${PROFILE_LIMIT_S:-300}
+SPHERE_GRID=${SPHERE_GRID:-2048}
+SPHERE_LIMIT_S=${SPHERE_LIMIT_S:-180}
+ROUGH_GRID=${ROUGH_GRID:-2048}
+ROUGH_LIMIT_S=${ROUGH_LIMIT_S:-180}
 REPORTER=(python3 "$ROOT/benches/device_report.py")
 STEPS=("$@")
 [ ${#STEPS[@]} -eq 0 ] && STEPS=(devices measure bench floors parity)
@@ -251,6 +265,7 @@ bench() {
   cat "$OUT/$name.txt" >>"$LOG"
   cp "$OUT/.$name/bench.csv" "$OUT/$name.csv" 2>/dev/null
   cp "$OUT/.$name/profile.csv" "$OUT/$name-profile.csv" 2>/dev/null
+  cp "$OUT/.$name/pulloff-profile.csv" "$OUT/$name-pulloff-profile.csv" 2>/dev/null
   rm -rf "${OUT:?}/.$name"
 }
 
@@ -272,6 +287,41 @@ for step in "${STEPS[@]}"; do
   curve)
     gpu_pulloff_step "$CURVE_LIMIT_S" "${CURVE_GRID} grid, R1/R2 = ${MEASURE_RATIO}, whole curve" \
       "gpu-${CURVE_GRID}-curve" --ratio "$MEASURE_RATIO" --grid "$CURVE_GRID"
+    ;;
+  profile)
+    lim=$(budget "$PROFILE_LIMIT_S" 30)
+    say "## Whole pull-off profile: R1/R2 = ${MEASURE_RATIO} at Nx = ${MEASURE_GRID}, adhesive force (\`jkrbem bench --profile\`, limit ${lim} s)"
+    say ""
+    if [ "$lim" = 0 ]; then skipped profile 30; continue; fi
+    bench profile "$lim" --backends gpu --ratio "$MEASURE_RATIO" --grids "$MEASURE_GRID" \
+      --pulloff-max-grid "$MEASURE_GRID" --measure adhesive-force --repeats 1 --cg-iterations 10 --profile
+    say ""
+    ;;
+  sphere)
+    gpu_pulloff_step "$SPHERE_LIMIT_S" "${SPHERE_GRID}² sphere, whole curve" \
+      "gpu-${SPHERE_GRID}-sphere-curve" --ratio 1 --grid "$SPHERE_GRID"
+    ;;
+  rough)
+    # The grid's Δx: a 64² smooth sphere's (the same margin, 0.08) scaled to ROUGH_GRID. The map:
+    # twice the grid's elements at that spacing, so that it covers the domain.
+    limited 60 "$BIN" simulate --ratio 1 --grid 64 --measure adhesive-force --backend cpu \
+      --out "$OUT/.probe.csv" --summary "$OUT/.probe.json"
+    dx=$(python3 -c 'import json, sys; r = json.load(open(sys.argv[1]))["runs"][0]; print(r["dx"] * r["nx"] / int(sys.argv[2]))' \
+      "$OUT/.probe.json" "$ROUGH_GRID" 2>>"$LOG")
+    rm -f "$OUT/.probe.csv" "$OUT/.probe.json"
+    if [ -z "$dx" ]; then
+      say "## ${ROUGH_GRID}² rough sphere"; say ""; say "(skipped: the probe run gave no Δx)"; say ""
+      continue
+    fi
+    map=$OUT/rough-${ROUGH_GRID}.npy
+    cutoff=$(python3 -c "print(8 * $dx)")
+    "$BIN" roughness --out "$map" --grid $((2 * ROUGH_GRID)) --spacing "$dx" --hurst 0.8 \
+      --rms-slope 0.1 --cutoff "$cutoff" --seed 1 >>"$LOG" 2>&1
+    # shellcheck disable=SC2086 # ROUGH_FLAGS is a word list
+    gpu_pulloff_step "$ROUGH_LIMIT_S" "${ROUGH_GRID}² rough sphere (rms slope 0.1, Hurst 0.8, cut-off 8 Δx = $cutoff), adhesive force" \
+      "gpu-${ROUGH_GRID}-rough-measure" --ratio 1 --grid "$ROUGH_GRID" --roughness "$map" \
+      --spacing "$dx" ${ROUGH_FLAGS:-} --measure adhesive-force
+    rm -f "$map"
     ;;
   bench)
     lim=$(budget "$BENCH_LIMIT_S" 20)

@@ -9,9 +9,14 @@
 // generation's elements), `jacobi` JACOBI_STEPS times (ping-pong between v_in and v_out),
 // then `certify` (an element of C whose bound is below the limit leaves C, p = 0 on it,
 // gen = g + 1, counted; on a candidate kept p is set to before + Δ, the round's predicted
-// start). Every kernel runs over the whole grid and returns at once for the elements outside
-// its part (the generation's elements, H, the candidates), so a generation costs the hole's
-// work plus a few reads per element.
+// start). `seed` and `mark` run over the whole grid and return at once for the elements
+// outside their part; `jacobi` and `certify` run in 16 × 16 tiles, and a tile with no element
+// of H (of the candidates) returns at once, the others stencil from workgroup memory (the
+// tile of v with its halo, and G's table).
+//
+// Several generations are recorded before the host reads their counts (one slot each): a
+// generation whose `guard` slot (the generation before it in the batch) counted nothing does
+// nothing, so that the batch ends where the host's loop of one generation a read would.
 
 // Must stay in sync with `CertifyParams` in src/backend/gpu/backend.rs.
 struct Params {
@@ -29,6 +34,12 @@ struct Params {
     limit: f32,
     // The disc's safety factor on Δ (dimensionless).
     safety: f32,
+    // The slot of `certified` this generation counts into, and the slot of the generation
+    // before it in the batch (NO_GUARD: none; this generation then runs).
+    slot: u32,
+    guard: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
@@ -42,11 +53,30 @@ struct Params {
 @group(0) @binding(6) var<storage, read> v_in: array<f32>;
 @group(0) @binding(7) var<storage, read_write> v_out: array<f32>;
 @group(0) @binding(8) var<storage, read> g: array<f32>;
-// Elements certified by this dispatch; cleared by the host before it.
-@group(0) @binding(9) var<storage, read_write> certified: array<atomic<u32>, 1>;
+// Elements certified by each generation of a batch (one slot each); cleared by the host
+// before the batch.
+@group(0) @binding(9) var<storage, read_write> certified: array<atomic<u32>>;
 
 const HOLE: u32 = 1u;
 const CANDIDATE: u32 = 2u;
+const NO_GUARD: u32 = 0xffffffffu;
+// The tiles of `jacobi` and `certify`: TILE × TILE elements (one thread each, WG in all),
+// with a halo of HALO elements, the largest truncation they hold.
+const TILE: u32 = 16u;
+const HALO: u32 = 12u;
+const SPAN: u32 = 40u; // TILE + 2 HALO
+const G_SIDE: u32 = 25u; // 2 HALO + 1
+
+var<workgroup> v_tile: array<f32, 1600>; // SPAN²
+var<workgroup> g_tile: array<f32, 625>; // G_SIDE²
+var<workgroup> busy: atomic<u32>;
+var<workgroup> go: u32;
+
+// Whether the generation before this one in the batch certified nothing (this one then does
+// nothing).
+fn halted() -> bool {
+    return params.guard != NO_GUARD && atomicLoad(&certified[params.guard]) == 0u;
+}
 
 fn element(gid: vec3<u32>, nwg: vec3<u32>) -> u32 {
     return gid.x + gid.y * nwg.x * WG;
@@ -76,7 +106,7 @@ fn mark(
     @builtin(num_workgroups) nwg: vec3<u32>,
 ) {
     let i = element(gid, nwg);
-    if i >= params.nx * params.ny || gen[i] != params.generation {
+    if i >= params.nx * params.ny || gen[i] != params.generation || halted() {
         return;
     }
     let reach = i32(max(params.hole_reach, params.candidate_reach));
@@ -99,55 +129,114 @@ fn mark(
     }
 }
 
-// Σ_{o ≠ 0} g(o) v_in[i + o] over the offsets within the truncation, on the grid (v_in is
-// zero outside the hole; the table's centre is zero). Each stencil row is summed apart and
-// then added to the total, as the host twin does, so that no chain of roundings is longer
-// than two stencil sides (what the safety factor on Δ is sized for).
-fn g_times_v(i: u32) -> f32 {
+// Whether any thread of the workgroup has work (`mine`); every thread calls it, in uniform
+// control flow.
+fn any_in_workgroup(mine: bool, lid: u32) -> bool {
+    if lid == 0u {
+        atomicStore(&busy, 0u);
+    }
+    workgroupBarrier();
+    if mine {
+        atomicStore(&busy, 1u);
+    }
+    workgroupBarrier();
+    if lid == 0u {
+        go = atomicLoad(&busy);
+    }
+    return workgroupUniformLoad(&go) != 0u;
+}
+
+// The tile's v (its elements and a halo of HALO, zero off the grid) and G's table into
+// workgroup memory; every thread calls it, in uniform control flow.
+fn load_tile(origin: vec2<i32>, lid: u32) {
+    for (var k = lid; k < SPAN * SPAN; k += WG) {
+        let xx = origin.x - i32(HALO) + i32(k % SPAN);
+        let yy = origin.y - i32(HALO) + i32(k / SPAN);
+        var v = 0.0;
+        if xx >= 0 && yy >= 0 && xx < i32(params.nx) && yy < i32(params.ny) {
+            v = v_in[u32(yy) * params.nx + u32(xx)];
+        }
+        v_tile[k] = v;
+    }
+    let side = 2u * params.truncation + 1u;
+    for (var k = lid; k < side * side; k += WG) {
+        g_tile[k] = g[k];
+    }
+    workgroupBarrier();
+}
+
+// Σ_{o ≠ 0} g(o) v_in[i + o] over the offsets within the truncation (at most HALO), on the
+// grid, for the element (x, y) of the tile at `origin`, from workgroup memory (v_in is zero
+// outside the hole; the table's centre is zero). Each stencil row is summed apart and then
+// added to the total, as the host twin does, so that no chain of roundings is longer than
+// two stencil sides (what the safety factor on Δ is sized for).
+fn g_times_v(x: i32, y: i32, origin: vec2<i32>) -> f32 {
     let t = i32(params.truncation);
     let side = 2 * t + 1;
-    let x = i32(i % params.nx);
-    let y = i32(i / params.nx);
     var acc = 0.0;
     for (var yy = max(y - t, 0); yy <= min(y + t, i32(params.ny) - 1); yy++) {
         var row = 0.0;
+        let g_row = (yy - y + t) * side - x + t;
+        let v_row = (yy - origin.y + i32(HALO)) * i32(SPAN) - origin.x + i32(HALO);
         for (var xx = max(x - t, 0); xx <= min(x + t, i32(params.nx) - 1); xx++) {
-            let j = u32(yy) * params.nx + u32(xx);
-            row += g[(yy - y + t) * side + xx - x + t] * v_in[j];
+            row += g_tile[g_row + xx] * v_tile[v_row + xx];
         }
         acc += row;
     }
     return acc;
 }
 
-@compute @workgroup_size(WG)
+@compute @workgroup_size(16, 16)
 fn jacobi(
-    @builtin(global_invocation_id) gid: vec3<u32>,
-    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(local_invocation_id) lid3: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
 ) {
-    let i = element(gid, nwg);
-    if i >= params.nx * params.ny || atomicLoad(&role[i]) != HOLE {
+    let origin = vec2<i32>(wid.xy * TILE);
+    let x = origin.x + i32(lid3.x);
+    let y = origin.y + i32(lid3.y);
+    let i = u32(y) * params.nx + u32(x);
+    var mine = false;
+    if x < i32(params.nx) && y < i32(params.ny) && !halted() {
+        mine = atomicLoad(&role[i]) == HOLE;
+    }
+    if !any_in_workgroup(mine, lid) {
         return;
     }
-    let b = select(0.0, -before[i], gen[i] != 0u);
-    v_out[i] = b - g_times_v(i);
+    load_tile(origin, lid);
+    if mine {
+        let b = select(0.0, -before[i], gen[i] != 0u);
+        v_out[i] = b - g_times_v(x, y, origin);
+    }
 }
 
-@compute @workgroup_size(WG)
+@compute @workgroup_size(16, 16)
 fn certify(
-    @builtin(global_invocation_id) gid: vec3<u32>,
-    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(local_invocation_id) lid3: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
 ) {
-    let i = element(gid, nwg);
-    if i >= params.nx * params.ny || atomicLoad(&role[i]) != CANDIDATE || mask[i] == 0u {
+    let origin = vec2<i32>(wid.xy * TILE);
+    let x = origin.x + i32(lid3.x);
+    let y = origin.y + i32(lid3.y);
+    let i = u32(y) * params.nx + u32(x);
+    var mine = false;
+    if x < i32(params.nx) && y < i32(params.ny) && !halted() {
+        mine = atomicLoad(&role[i]) == CANDIDATE && mask[i] != 0u;
+    }
+    if !any_in_workgroup(mine, lid) {
         return;
     }
-    let delta = min(g_times_v(i), 0.0);
+    load_tile(origin, lid);
+    if !mine {
+        return;
+    }
+    let delta = min(g_times_v(x, y, origin), 0.0);
     if before[i] < 0.0 && before[i] + params.safety * delta < params.limit {
         mask[i] = 0u;
         p[i] = 0.0;
         gen[i] = params.generation + 1u;
-        atomicAdd(&certified[0], 1u);
+        atomicAdd(&certified[params.slot], 1u);
     } else {
         // The round's predicted start; the last generation's (which certifies none) stays.
         p[i] = before[i] + delta;

@@ -86,6 +86,51 @@ pub struct PulloffTiming {
     pub cost: crate::solver::cost::CostAccount,
     /// Why the run stopped early, if it did (the other fields then describe the part run).
     pub error: Option<SolverError>,
+    /// The backend's work over the run: dispatches, readbacks, submissions, bytes, and the
+    /// host's time blocked on readbacks and submitting (zeros on the CPU).
+    pub host: Counters,
+}
+
+/// One kernel's totals over a whole pull-off (GPU timestamps around each dispatch).
+#[derive(Debug, Clone, PartialEq)]
+pub struct KernelTotal {
+    /// The kernel (WGSL entry point).
+    pub kernel: &'static str,
+    /// Its dispatches.
+    pub dispatches: u64,
+    /// Its GPU time, summed between each dispatch's timestamps (s).
+    pub seconds: f64,
+    /// Bytes it read and wrote in device memory, as counted from its code.
+    pub bytes: u64,
+}
+
+/// Where a whole pull-off's wall time goes on a device: the unprofiled run's wall time and
+/// the host's blocked reads and submissions, and a second, profiled run's GPU time per
+/// kernel (profiling submits and waits every 1024 dispatches, so that run's wall time is
+/// longer; its kernel times are not).
+#[derive(Debug, Clone)]
+pub struct PulloffProfile {
+    /// "--backends gpu 2048×1024".
+    pub label: String,
+    /// Wall time of the unprofiled pull-off (s).
+    pub wall_s: f64,
+    /// Its CG iterations.
+    pub cg_iterations: usize,
+    /// Its cascade rounds.
+    pub rounds: usize,
+    /// The backend's work over it (readbacks, submissions, the host's blocked time).
+    pub host: Counters,
+    /// Wall time of the profiled run (s).
+    pub profiled_wall_s: f64,
+    /// Per kernel, over the profiled run, slowest first.
+    pub kernels: Vec<KernelTotal>,
+}
+
+impl PulloffProfile {
+    /// The kernels' summed GPU time (s).
+    pub fn kernel_s(&self) -> f64 {
+        self.kernels.iter().map(|k| k.seconds).sum()
+    }
 }
 
 /// Everything measured for one backend on one grid.
@@ -205,6 +250,8 @@ fn delta(before: Counters, after: Counters) -> Counters {
         readback_bytes: after.readback_bytes - before.readback_bytes,
         submits: after.submits - before.submits,
         bytes: after.bytes - before.bytes,
+        wait_ns: after.wait_ns - before.wait_ns,
+        submit_ns: after.submit_ns - before.submit_ns,
     }
 }
 
@@ -356,12 +403,57 @@ pub fn profile_cg_iteration(
     Ok(rows)
 }
 
+/// Profile a whole pull-off of `model` on the GPU: `timed` is its unprofiled run (wall time,
+/// readbacks, the host's blocked time); this runs it again with a timestamp around every
+/// dispatch and totals the GPU time per kernel. Fails where the adapter cannot write
+/// timestamps.
+#[cfg(feature = "gpu")]
+pub fn profile_pulloff(
+    gpu: &mut GpuBackend,
+    model: &Model,
+    timed: &PulloffTiming,
+    label: String,
+) -> Result<PulloffProfile, BackendError> {
+    gpu.set_profiling(true)?;
+    let t0 = Instant::now();
+    let outcome = solver::run(gpu, model, &mut |_| {});
+    let profiled_wall_s = t0.elapsed().as_secs_f64();
+    let totals = gpu.profile()?.unwrap_or_default();
+    gpu.set_profiling(false)?;
+    if let Some(e) = outcome.error {
+        return Err(BackendError::Unavailable(format!(
+            "the profiled pull-off stopped early: {e}"
+        )));
+    }
+    let mut kernels: Vec<KernelTotal> = totals
+        .iter()
+        .map(|(&kernel, t)| KernelTotal {
+            kernel,
+            dispatches: t.dispatches,
+            seconds: t.seconds,
+            bytes: t.bytes,
+        })
+        .collect();
+    kernels.sort_by(|a, b| b.seconds.total_cmp(&a.seconds));
+    Ok(PulloffProfile {
+        label,
+        wall_s: timed.wall_s,
+        cg_iterations: timed.cg_iterations,
+        rounds: timed.cost.work.rounds,
+        host: timed.host,
+        profiled_wall_s,
+        kernels,
+    })
+}
+
 /// Time one whole pull-off of `model` ([`solver::run`], which resets the contact set).
 pub fn time_pulloff<B: Backend>(backend: &mut B, model: &Model) -> PulloffTiming {
+    let before = backend.counters();
     let t0 = Instant::now();
     let outcome = solver::run(backend, model, &mut |_| {});
     let wall_s = t0.elapsed().as_secs_f64();
     PulloffTiming {
+        host: delta(before, backend.counters()),
         wall_s,
         cg_iterations: outcome.cg_iterations(),
         states: outcome.states.len(),

@@ -130,6 +130,12 @@ pub struct Counters {
     /// Bytes the launched kernels read and wrote in device memory, as counted from their
     /// code (`gpu::traffic`; 0 for the CPU backend).
     pub bytes: u64,
+    /// Host wall time blocked in those reads (ns): the work queued before each read and the
+    /// round trip to the device (0 for the CPU backend). Not device-independent: for profiles.
+    pub wait_ns: u64,
+    /// Host wall time spent finishing and submitting command buffers (ns; 0 for the CPU
+    /// backend). For profiles.
+    pub submit_ns: u64,
 }
 
 /// Fields resident on a device: the part of the contract every other part builds on.
@@ -302,6 +308,25 @@ pub trait CgKernels: ElasticOperator + Scalars {
     fn guard_cg(&mut self, stop: Option<CgStop>) -> Result<(), BackendError> {
         let _ = stop;
         Ok(())
+    }
+    /// Whether CG's start may be left unread until its first progress read
+    /// ([`CgKernels::read_cg_status`]): a backend that guards the iterations it queues
+    /// ([`CgKernels::guard_cg`]) makes no step where the warm start already meets the
+    /// tolerance, so the solver need not wait for the start's residual before recording them.
+    /// The default (false): the solver reads the start at once.
+    fn defers_cg_start(&self) -> bool {
+        false
+    }
+    /// `slots` read back together (into `out`), and under a guard the CG steps made since it
+    /// began (`None`: every step recorded was made): one read for CG's progress and, where
+    /// deferred, its start.
+    fn read_cg_status(
+        &mut self,
+        slots: &[Slot],
+        out: &mut [f64],
+    ) -> Result<Option<usize>, BackendError> {
+        self.read_slots(slots, out)?;
+        Ok(None)
     }
     /// slots\[rr\], and under a guard the CG steps made since it began (`None`: every step
     /// recorded was made).

@@ -53,7 +53,9 @@ pub struct Args {
     pub margin: Option<f64>,
     /// Also profile the GPU's kernels with timestamp queries (where the adapter has them):
     /// per kernel, its time, bytes and achieved bandwidth per CG iteration, printed and
-    /// written to profile.csv.
+    /// written to profile.csv; where a pull-off is timed (`--pulloff-max-grid`), it is run
+    /// again profiled: the host's time blocked on readbacks and submitting, and each kernel's
+    /// GPU time over the whole pull-off, printed and written to pulloff-profile.csv.
     #[arg(long)]
     pub profile: bool,
     /// Folder for bench.csv and bench.svg (and profile.csv).
@@ -84,6 +86,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let done = bench(&req, &Progress::new()).map_err(run_error)?;
     for p in &done.profiles {
         out!("{}", bench_text::profile_text(p));
+    }
+    for p in &done.pulloff_profiles {
+        out!("{}", bench_text::pulloff_profile_text(p));
     }
     out!("{}", bench_text::table_text(&done.rows, &done.measured));
     out!("{}", bench_text::ratios_text(&done.rows));

@@ -3,7 +3,7 @@
 
 use super::chart::{LogLogChart, Series};
 use super::OutputError;
-use crate::bench::{GridProfile, Measurement};
+use crate::bench::{GridProfile, Measurement, PulloffProfile};
 use crate::run::schema::ONSETS;
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -15,7 +15,8 @@ dispatches_per_iteration,readbacks_per_iteration,pulloff_s,pulloff_cg_iterations
 pulloff_states,pulloff_steps,pulloff_onsets,pulloff_rounds,pulloff_solves,\
 pulloff_convolutions,pulloff_readbacks,pulloff_cg_c_below_070,pulloff_cg_c_070_090,\
 pulloff_cg_c_090_110,pulloff_cg_c_above_110,pulloff_cg_whole_steps_to_minimum,\
-pulloff_cg_whole_steps_past_minimum,pulloff_cg_search_to_minimum,pulloff_cg_search_past_minimum";
+pulloff_cg_whole_steps_past_minimum,pulloff_cg_search_to_minimum,pulloff_cg_search_past_minimum,\
+pulloff_dispatches,pulloff_submits,pulloff_wait_s,pulloff_submit_s";
 
 /// One backend on one grid. Times are medians of the run's repeats and include one scalar
 /// readback each (see [`crate::bench`]); cells left empty were not measured.
@@ -78,6 +79,14 @@ pub struct BenchRow {
     pub pulloff_cg_search_to_minimum: Option<usize>,
     /// The same past the minimum.
     pub pulloff_cg_search_past_minimum: Option<usize>,
+    /// Compute dispatches of the pull-off (0 on the CPU).
+    pub pulloff_dispatches: Option<u64>,
+    /// Queue submissions of the pull-off (0 on the CPU).
+    pub pulloff_submits: Option<u64>,
+    /// Host wall time blocked on the pull-off's readbacks (s; 0 on the CPU).
+    pub pulloff_wait_s: Option<f64>,
+    /// Host wall time finishing and submitting its command buffers (s; 0 on the CPU).
+    pub pulloff_submit_s: Option<f64>,
 }
 
 impl BenchRow {
@@ -118,6 +127,10 @@ impl BenchRow {
             pulloff_cg_search_to_minimum: pulloff.map(|p| p.cost.to_minimum.search.cg_iterations),
             pulloff_cg_search_past_minimum: pulloff
                 .map(|p| p.cost.past_minimum.search.cg_iterations),
+            pulloff_dispatches: pulloff.map(|p| p.host.dispatches),
+            pulloff_submits: pulloff.map(|p| p.host.submits),
+            pulloff_wait_s: pulloff.map(|p| p.host.wait_ns as f64 * 1e-9),
+            pulloff_submit_s: pulloff.map(|p| p.host.submit_ns as f64 * 1e-9),
         }
     }
 }
@@ -365,6 +378,71 @@ pub fn profile_text(p: &GridProfile) -> String {
     out
 }
 
+/// A whole pull-off's profile: where its wall time went (the host blocked on readbacks, the
+/// host submitting, the rest of the host's work) and the GPU's time per kernel.
+pub fn pulloff_profile_text(p: &PulloffProfile) -> String {
+    let mut out = String::new();
+    let h = &p.host;
+    let wait = h.wait_ns as f64 * 1e-9;
+    let submit = h.submit_ns as f64 * 1e-9;
+    let kernels = p.kernel_s();
+    let per = |n: u64| if n > 0 { 1e6 * wait / n as f64 } else { 0.0 };
+    let pct = |x: f64| 100.0 * x / p.wall_s.max(f64::MIN_POSITIVE);
+    let _ = writeln!(
+        out,
+        "whole pull-off profile {}: {:.2} s wall, {} CG iterations, {} cascade rounds, \
+         {} dispatches, {} submissions, {} readbacks ({:.1} per round)",
+        p.label,
+        p.wall_s,
+        p.cg_iterations,
+        p.rounds,
+        h.dispatches,
+        h.submits,
+        h.readbacks,
+        h.readbacks as f64 / (p.rounds.max(1)) as f64
+    );
+    let _ = writeln!(
+        out,
+        "  host blocked on readbacks {wait:.2} s ({:.0} %, {:.0} µs each); submitting {submit:.2} s \
+         ({:.0} %); the rest of the host's work {:.2} s ({:.0} %)",
+        pct(wait),
+        per(h.readbacks),
+        pct(submit),
+        (p.wall_s - wait - submit).max(0.0),
+        pct((p.wall_s - wait - submit).max(0.0))
+    );
+    let _ = writeln!(
+        out,
+        "  GPU kernels {kernels:.2} s ({:.0} % of the unprofiled wall; profiled run {:.2} s): \
+         the GPU idles {:.2} s",
+        pct(kernels),
+        p.profiled_wall_s,
+        (p.wall_s - kernels).max(0.0)
+    );
+    let _ = writeln!(
+        out,
+        "  {:<22} {:>10} {:>10} {:>9} {:>9} {:>7}",
+        "kernel", "dispatches", "GPU s", "µs each", "GB/s", "share"
+    );
+    for k in &p.kernels {
+        let _ = writeln!(
+            out,
+            "  {:<22} {:>10} {:>10.4} {:>9.2} {:>9.0} {:>6.1}%",
+            k.kernel,
+            k.dispatches,
+            k.seconds,
+            1e6 * k.seconds / k.dispatches.max(1) as f64,
+            if k.seconds > 0.0 {
+                k.bytes as f64 / k.seconds / 1e9
+            } else {
+                0.0
+            },
+            100.0 * k.seconds / kernels.max(f64::MIN_POSITIVE)
+        );
+    }
+    out
+}
+
 /// GPU/CPU time ratios per grid, when both ran in this invocation (empty otherwise).
 pub fn ratios_text(rows: &[BenchRow]) -> String {
     let mut out = String::new();
@@ -434,6 +512,10 @@ mod tests {
             pulloff_cg_whole_steps_past_minimum: pulloff.map(|_| 1),
             pulloff_cg_search_to_minimum: pulloff.map(|_| 3),
             pulloff_cg_search_past_minimum: pulloff.map(|_| 2),
+            pulloff_dispatches: pulloff.map(|_| 0),
+            pulloff_submits: pulloff.map(|_| 0),
+            pulloff_wait_s: pulloff.map(|_| 0.0),
+            pulloff_submit_s: pulloff.map(|_| 0.0),
         }
     }
 
@@ -446,11 +528,11 @@ mod tests {
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines[0], HEADER);
         assert!(
-            lines[1].ends_with(",1.5,10,0.5,5,4,1,2,6,7,0,1,5,2,2,4,1,3,2"),
+            lines[1].ends_with(",1.5,10,0.5,5,4,1,2,6,7,0,1,5,2,2,4,1,3,2,0,0,0.0,0.0"),
             "{}",
             lines[1]
         );
-        assert!(lines[2].ends_with(",,,,,,,,,,,,,,,,,,"), "{}", lines[2]);
+        assert!(lines[2].ends_with(",,,,,,,,,,,,,,,,,,,,,,"), "{}", lines[2]);
         write_csv(&path, &[]).unwrap();
         assert_eq!(fs::read_to_string(&path).unwrap().trim_end(), HEADER);
     }

@@ -1,7 +1,7 @@
 //! The per-kernel profile of `jkrbem bench --profile`: one CSV row per grid and kernel.
 
 use super::OutputError;
-use crate::bench::KernelProfile;
+use crate::bench::{KernelProfile, PulloffProfile};
 use serde::Serialize;
 use std::path::Path;
 
@@ -58,4 +58,71 @@ pub fn rows(grid: usize, nx: usize, ny: usize, profile: &[KernelProfile]) -> Vec
 /// Write `rows` as CSV to `path` (creating its folder), atomically.
 pub fn write_csv(path: &Path, rows: &[ProfileRow]) -> Result<(), OutputError> {
     super::file::write_csv(path, Some(HEADER), rows)
+}
+
+/// The CSV header of a whole pull-off's profile, one column per [`PulloffProfileRow`] field.
+pub const PULLOFF_HEADER: &str = "label,kernel,dispatches,gpu_s,bytes,gb_per_s,share_of_kernels";
+
+/// One kernel over a whole pull-off; the rows "(wall)", "(readback wait)", "(submit)" and
+/// "(profiled wall)" hold the run's host times in `gpu_s` (s) and their counts in
+/// `dispatches`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PulloffProfileRow {
+    /// "--backends gpu 2048×1024".
+    pub label: String,
+    /// The kernel (WGSL entry point), or a host time in parentheses.
+    pub kernel: String,
+    /// Its dispatches (readbacks, submissions for the host rows).
+    pub dispatches: u64,
+    /// Its GPU time over the pull-off (s); the host time for the host rows.
+    pub gpu_s: f64,
+    /// Bytes it read and wrote, counted from its code.
+    pub bytes: u64,
+    /// Achieved bandwidth (1e9 bytes/s).
+    pub gb_per_s: f64,
+    /// Its share of the kernels' summed time (0…1; empty meaning 0 for host rows).
+    pub share_of_kernels: f64,
+}
+
+/// The rows of one pull-off's profile: the host's times first, then each kernel.
+pub fn pulloff_rows(p: &PulloffProfile) -> Vec<PulloffProfileRow> {
+    let total = p.kernel_s();
+    let host = |kernel: &str, count: u64, s: f64| PulloffProfileRow {
+        label: p.label.clone(),
+        kernel: kernel.to_string(),
+        dispatches: count,
+        gpu_s: s,
+        bytes: 0,
+        gb_per_s: 0.0,
+        share_of_kernels: 0.0,
+    };
+    let mut rows = vec![
+        host("(wall)", p.host.dispatches, p.wall_s),
+        host(
+            "(readback wait)",
+            p.host.readbacks,
+            p.host.wait_ns as f64 * 1e-9,
+        ),
+        host("(submit)", p.host.submits, p.host.submit_ns as f64 * 1e-9),
+        host("(profiled wall)", 0, p.profiled_wall_s),
+    ];
+    rows.extend(p.kernels.iter().map(|k| PulloffProfileRow {
+        label: p.label.clone(),
+        kernel: k.kernel.to_string(),
+        dispatches: k.dispatches,
+        gpu_s: k.seconds,
+        bytes: k.bytes,
+        gb_per_s: if k.seconds > 0.0 {
+            k.bytes as f64 / k.seconds / 1e9
+        } else {
+            0.0
+        },
+        share_of_kernels: if total > 0.0 { k.seconds / total } else { 0.0 },
+    }));
+    rows
+}
+
+/// Write a whole pull-off's profile rows as CSV to `path`, atomically.
+pub fn write_pulloff_csv(path: &Path, rows: &[PulloffProfileRow]) -> Result<(), OutputError> {
+    super::file::write_csv(path, Some(PULLOFF_HEADER), rows)
 }

@@ -10,7 +10,7 @@ use super::{input, RunError};
 #[cfg(feature = "gpu")]
 use crate::backend::select::AnyBackend;
 use crate::backend::select::{self, BackendKind, Opened, Precision};
-use crate::bench::{self, BenchOptions, GridProfile, Measurement};
+use crate::bench::{self, BenchOptions, GridProfile, Measurement, PulloffProfile};
 use crate::model::{default_steps, Measure, Model, ModelOptions, Onsets, MIN_GRID};
 use crate::output::bench::{timing_chart, write_csv, BenchRow};
 use crate::output::figure::FigureFormats;
@@ -62,6 +62,8 @@ pub struct BenchDone {
     pub measured: Vec<Measurement>,
     /// The kernel profiles (with `profile`).
     pub profiles: Vec<GridProfile>,
+    /// The whole pull-offs' profiles (with `profile`, on the GPU, where a pull-off ran).
+    pub pulloff_profiles: Vec<PulloffProfile>,
     /// The files written.
     pub files: Vec<PathBuf>,
     /// What failed or stopped early, one line each.
@@ -120,6 +122,7 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
     let csv = args.out.join("bench.csv");
     let svg = args.out.join("bench.svg");
     let profile_csv = args.out.join("profile.csv");
+    let pulloff_profile_csv = args.out.join("pulloff-profile.csv");
     let mut targets = vec![csv.clone()];
     targets.extend(args.figures.files(&svg));
     if args.profile {
@@ -129,6 +132,9 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
             )));
         }
         targets.push(profile_csv.clone());
+        if args.pulloff_max_grid > 0 {
+            targets.push(pulloff_profile_csv.clone());
+        }
     }
     let _claimed = Outputs::claim(&named(OUT, &targets))?;
 
@@ -165,6 +171,7 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
         #[cfg(feature = "gpu")]
         profile_rows,
         profiles,
+        pulloff_profiles,
         measured,
         problems,
     } = got;
@@ -177,6 +184,14 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
     if args.profile {
         profile::write_csv(&profile_csv, &profile_rows).map_err(write_error(OUT))?;
         files.push(profile_csv.clone());
+        if args.pulloff_max_grid > 0 {
+            let rows: Vec<_> = pulloff_profiles
+                .iter()
+                .flat_map(profile::pulloff_rows)
+                .collect();
+            profile::write_pulloff_csv(&pulloff_profile_csv, &rows).map_err(write_error(OUT))?;
+            files.push(pulloff_profile_csv.clone());
+        }
     }
     let title = format!(
         "jkrbem bench: R1/R2 = {}, medians of {} samples",
@@ -190,6 +205,7 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
         rows,
         measured,
         profiles,
+        pulloff_profiles,
         files,
         problems,
     })
@@ -233,6 +249,7 @@ struct Collected {
     #[cfg(feature = "gpu")]
     profile_rows: Vec<ProfileRow>,
     profiles: Vec<GridProfile>,
+    pulloff_profiles: Vec<PulloffProfile>,
     measured: Vec<Measurement>,
     problems: Vec<String>,
 }
@@ -331,6 +348,18 @@ fn measure_one(
             Err(e) => {
                 watch.note(&format!("bench: {label}: no profile: {e}"));
                 got.problems.push(format!("{label}: no profile: {e}"));
+            }
+        }
+        let timed = result.as_ref().ok().and_then(|m| m.pulloff.as_ref());
+        if let Some(timed) = timed.filter(|t| t.error.is_none()) {
+            watch.note(&format!("bench: {label}: profiling a whole pull-off"));
+            match bench::profile_pulloff(g, model, timed, label.clone()) {
+                Ok(p) => got.pulloff_profiles.push(p),
+                Err(e) => {
+                    watch.note(&format!("bench: {label}: no pull-off profile: {e}"));
+                    got.problems
+                        .push(format!("{label}: no pull-off profile: {e}"));
+                }
             }
         }
     }

@@ -32,6 +32,9 @@ pub struct CgSlots {
     rr: Slot,
     /// ‖(d − h)_C‖², the right-hand side's norm.
     bb: Slot,
+    /// r·r of the warm start, kept where its read is deferred to the first progress read
+    /// ([`CgKernels::defers_cg_start`]).
+    rr_start: Slot,
     /// A register that is never written, so it stays 0.
     zero: Slot,
 }
@@ -44,6 +47,7 @@ impl CgSlots {
             sq: backend.slot()?,
             rr: backend.slot()?,
             bb: backend.slot()?,
+            rr_start: backend.slot()?,
             zero: backend.slot()?,
         })
     }
@@ -248,7 +252,8 @@ impl Scale {
 
 /// Start a solve at approach `d` (length): r = (d − h − K p)_C, the true residual of the warm
 /// start, with K p taken from `known` where the caller has it (else convolved into q).
-/// Returns the scale ‖(d − h)_C‖, that residual's relative norm (read back together) and
+/// Returns the scale ‖(d − h)_C‖ and that residual's relative norm, read back together
+/// (`None` with `read` false: r·r is then kept in the `rr_start` slot for a later read), and
 /// the convolutions made (0 or 1).
 fn start<B: CgKernels>(
     backend: &mut B,
@@ -257,8 +262,11 @@ fn start<B: CgKernels>(
     p: &B::Field,
     d: f64,
     known: Option<&B::Field>,
-) -> Result<(Scale, f64, usize), BackendError> {
-    let CgSlots { rr, bb, .. } = work.slots;
+    read: bool,
+) -> Result<(Option<(Scale, f64)>, usize), BackendError> {
+    let CgSlots {
+        rr, bb, rr_start, ..
+    } = work.slots;
     backend.residual(c, &work.zero, d, &mut work.r)?;
     backend.dot(c, &work.r, &work.r, bb)?;
     let convolutions = match known {
@@ -273,10 +281,31 @@ fn start<B: CgKernels>(
         }
     };
     backend.dot(c, &work.r, &work.r, rr)?;
+    if !read {
+        backend.copy_slot(rr, rr_start)?;
+        return Ok((None, convolutions));
+    }
     let mut v = [0.0; 2];
     backend.read_slots(&[rr, bb], &mut v)?;
     let scale = Scale(v[1].sqrt());
-    Ok((scale, scale.relative(v[0]), convolutions))
+    Ok((Some((scale, scale.relative(v[0]))), convolutions))
+}
+
+/// The warm start's relative residual `initial` judged as the solve begins: the report's
+/// first residual, and the end of a solve whose warm start met the tolerance (converged, no
+/// iteration) or is not finite.
+fn judge_start(
+    report: &mut CgReport,
+    history: &mut ResidualHistory,
+    initial: f64,
+    settings: &CgSettings,
+) -> Option<CgEnd> {
+    report.residual = initial;
+    report.best = initial;
+    if initial <= settings.tolerance {
+        return Some(CgEnd::Converged);
+    }
+    history.push(0, initial)
 }
 
 /// The relative residual of r, with r·r already in its slot, read back from the device.
@@ -410,53 +439,89 @@ pub fn solve_with<B: CgKernels>(
     known: Option<&B::Field>,
     goal: Goal,
 ) -> Result<CgReport, BackendError> {
-    let (scale, initial, convolutions) = start(backend, c, work, p, d, known)?;
+    // A device that guards its iterations reads the warm start's residual with the first
+    // progress read: it makes no step where the warm start meets the tolerance.
+    let defer = backend.defers_cg_start();
+    let (started, convolutions) = start(backend, c, work, p, d, known, !defer)?;
     let mut report = CgReport {
         iterations: 0,
-        residual: initial,
-        best: initial,
+        residual: f64::NAN,
+        best: f64::NAN,
         end: CgEnd::Converged,
         convolutions,
     };
-    if initial <= settings.tolerance {
-        return Ok(report);
-    }
     let mut history = ResidualHistory::new(settings.check_every);
-    if let Some(end) = history.push(0, initial) {
-        report.end = end;
-        return Ok(report);
+    let mut scale = Scale(f64::NAN);
+    if let Some((s, initial)) = started {
+        scale = s;
+        if let Some(end) = judge_start(&mut report, &mut history, initial, settings) {
+            report.end = end;
+            return Ok(report);
+        }
     }
-    let mut rz = start_directions(backend, c, work)?;
+    let mut pending_start = started.is_none();
     // A device backend stops the iterations it has queued once the tolerance is reached, so
     // it can be read rarely without doing more iterations than the solve needs.
-    backend.guard_cg(Some(CgStop {
+    let guard = CgStop {
         rr: work.slots.rr,
         bb: work.slots.bb,
         tolerance: settings.tolerance,
-    }))?;
+    };
+    backend.guard_cg(Some(guard))?;
+    let mut rz = start_directions(backend, c, work)?;
     let mut k = 0;
     let end = loop {
-        if k == settings.max_iterations {
+        let at_limit = k == settings.max_iterations;
+        if at_limit && !pending_start {
             break None;
         }
-        k += 1;
-        step(backend, c, work, p, rz)?;
-        if k % settings.check_every == 0 || k == settings.max_iterations {
-            let (rr, made) = backend.read_cg_progress(work.slots.rr)?;
-            // Under a guard the device stops before the k-th step once its test of the
-            // tolerance holds (in f32): the solve has then converged, which the true residual
-            // recomputed by `verify` confirms or not.
-            let stopped = made.is_some_and(|m| m < k);
-            k = made.unwrap_or(k);
-            report.iterations = k;
-            report.residual = scale.relative(rr);
-            report.best = report.best.min(report.residual);
-            if report.residual.is_finite() && (report.residual <= settings.tolerance || stopped) {
-                break Some(None);
+        if !at_limit {
+            k += 1;
+            step(backend, c, work, p, rz)?;
+            if k % settings.check_every != 0 && k != settings.max_iterations {
+                rz = next_direction(backend, c, work, rz)?;
+                continue;
             }
-            if let Some(end) = history.push(k, report.residual) {
-                break Some(Some(end));
+        }
+        let slots = work.slots;
+        let mut v = [0.0; 3];
+        let made = backend.read_cg_status(&[slots.rr, slots.rr_start, slots.bb], &mut v)?;
+        if pending_start {
+            pending_start = false;
+            scale = Scale(v[2].sqrt());
+            let end = judge_start(&mut report, &mut history, scale.relative(v[1]), settings);
+            // Whether no step was made: none recorded, or the device's guard stopped before
+            // the first because the warm start met its test of the tolerance (in f32) or is
+            // not finite. The host's test of the warm start then decides, as at a read start.
+            let no_step = k == 0 || made == Some(0);
+            match end {
+                Some(end) if no_step => break Some(Some(end)),
+                None if no_step && !at_limit => {
+                    // Within rounding of the tolerance, above it here: iterate from the
+                    // directions already made, as after a start read at once.
+                    backend.guard_cg(Some(guard))?;
+                    k = 0;
+                    continue;
+                }
+                _ => {}
             }
+            if at_limit {
+                break None;
+            }
+        }
+        // Under a guard the device stops before the k-th step once its test of the
+        // tolerance holds (in f32): the solve has then converged, which the true residual
+        // recomputed by `verify` confirms or not.
+        let stopped = made.is_some_and(|m| m < k);
+        k = made.unwrap_or(k);
+        report.iterations = k;
+        report.residual = scale.relative(v[0]);
+        report.best = report.best.min(report.residual);
+        if report.residual.is_finite() && (report.residual <= settings.tolerance || stopped) {
+            break Some(None);
+        }
+        if let Some(end) = history.push(k, report.residual) {
+            break Some(Some(end));
         }
         rz = next_direction(backend, c, work, rz)?;
     };
@@ -517,7 +582,8 @@ pub fn solve_safe<B: CgKernels>(
     d: f64,
     settings: &CgSettings,
 ) -> Result<CgReport, BackendError> {
-    let (scale, mut t, convolutions) = start(backend, c, work, p, d, None)?;
+    let (started, convolutions) = start(backend, c, work, p, d, None, true)?;
+    let (scale, mut t) = started.expect("a start read at once is read");
     let mut history = ResidualHistory::new(1);
     let mut report = CgReport {
         iterations: 0,

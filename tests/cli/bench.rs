@@ -10,7 +10,8 @@ dispatches_per_iteration,readbacks_per_iteration,pulloff_s,pulloff_cg_iterations
 pulloff_states,pulloff_steps,pulloff_onsets,pulloff_rounds,pulloff_solves,\
 pulloff_convolutions,pulloff_readbacks,pulloff_cg_c_below_070,pulloff_cg_c_070_090,\
 pulloff_cg_c_090_110,pulloff_cg_c_above_110,pulloff_cg_whole_steps_to_minimum,\
-pulloff_cg_whole_steps_past_minimum,pulloff_cg_search_to_minimum,pulloff_cg_search_past_minimum";
+pulloff_cg_whole_steps_past_minimum,pulloff_cg_search_to_minimum,pulloff_cg_search_past_minimum,\
+pulloff_dispatches,pulloff_submits,pulloff_wait_s,pulloff_submit_s";
 
 #[test]
 fn a_quick_cpu_bench_writes_one_row_per_grid_and_a_chart() {
@@ -73,6 +74,13 @@ fn a_quick_cpu_bench_writes_one_row_per_grid_and_a_chart() {
     );
     let its: usize = col(&rows[0], "pulloff_cg_iterations").parse().unwrap();
     assert!(its > 0);
+    // The CPU dispatches nothing, reads nothing back and waits on nothing.
+    for name in ["pulloff_dispatches", "pulloff_submits"] {
+        assert_eq!(col(&rows[0], name), "0", "{name}");
+    }
+    for name in ["pulloff_wait_s", "pulloff_submit_s"] {
+        assert_eq!(col(&rows[0], name).parse::<f64>().unwrap(), 0.0, "{name}");
+    }
     // The cost account: the in-process run's, count for count (the same f64 run).
     let cost = &reference.outcome.cost;
     for (name, want) in [

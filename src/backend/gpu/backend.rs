@@ -113,7 +113,25 @@ struct CertifyParams {
     /// −σ_c − 3ε (stress).
     limit: f32,
     safety: f32,
+    /// The count slot of this generation within its batch.
+    slot: u32,
+    /// The slot of the generation before it in the batch ([`NO_GUARD`]: none).
+    guard: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
+
+/// `CertifyParams::guard` of a batch's first generation: it runs whatever came before.
+const NO_GUARD: u32 = u32::MAX;
+
+/// The most generations of the certification recorded before the host reads their counts.
+const MAX_GENERATION_BATCH: usize = 16;
+
+/// Side of the tiles of shaders/certify.wgsl's `jacobi` and `certify` (elements; `TILE`).
+const CERTIFY_TILE: usize = 16;
+
+/// The largest truncation of G those tiles hold (elements; `HALO` in the shader).
+const CERTIFY_HALO: i64 = 12;
 
 /// The device fields of the certified detachments (shaders/certify.wgsl), made at the first
 /// cascade that takes them: each element's generation and role, the hole's Jacobi iterate
@@ -141,7 +159,7 @@ impl CertifyBuffers {
                     contents: bytemuck::cast_slice(g),
                     usage: wgpu::BufferUsages::STORAGE,
                 }),
-            count: storage(ctx, "certified count", 4),
+            count: storage(ctx, "certified counts", 4 * MAX_GENERATION_BATCH as u64),
         }
     }
 }
@@ -260,6 +278,9 @@ pub struct GpuBackend {
     contact_counters: wgpu::Buffer,
     /// Made at the first certification.
     certify: Option<CertifyBuffers>,
+    /// Generations the last certification took (its last, which certifies nothing,
+    /// included): the next one records as many before it first reads their counts.
+    certify_generations: usize,
     reduce_groups: u32,
     rec: Recorder,
 }
@@ -409,6 +430,7 @@ impl GpuBackend {
             counts: storage(&ctx, "partial counts", (5 * reduce_groups as u64 + 8) * 4),
             contact_counters: storage(&ctx, "contact counters", 16),
             certify: None,
+            certify_generations: 2,
             reduce_groups,
             rec: Recorder::default(),
             ctx,
@@ -1012,6 +1034,20 @@ impl CgKernels for GpuBackend {
         self.guard = stop;
         Ok(())
     }
+    fn defers_cg_start(&self) -> bool {
+        true
+    }
+    fn read_cg_status(
+        &mut self,
+        slots: &[Slot],
+        out: &mut [f64],
+    ) -> Result<Option<usize>, BackendError> {
+        let v = self.read_values(0, SLOTS)?;
+        for (o, s) in out.iter_mut().zip(slots) {
+            *o = v[s.index()] as f64;
+        }
+        Ok(self.guard.map(|_| v[slots::STEPS_SLOT] as usize))
+    }
     fn read_cg_progress(&mut self, rr: Slot) -> Result<(f64, Option<usize>), BackendError> {
         let v = self.read_values(0, SLOTS)?;
         let steps = self.guard.map(|_| v[slots::STEPS_SLOT] as usize);
@@ -1120,6 +1156,11 @@ impl ContactKernels for GpuBackend {
             enc.clear_buffer(b, 0, None);
         }
         let grid = grid_for(&self.ctx, n);
+        const _: () = assert!(TRUNCATION <= CERTIFY_HALO, "the tiles' halo must hold G");
+        let tiles = (
+            self.nx.div_ceil(CERTIFY_TILE) as u32,
+            self.ny.div_ceil(CERTIFY_TILE) as u32,
+        );
         let mut params = CertifyParams {
             nx: self.nx as u32,
             ny: self.ny as u32,
@@ -1129,6 +1170,10 @@ impl ContactKernels for GpuBackend {
             candidate_reach: CANDIDATE_REACH as u32,
             limit: (-sigma_c - ERROR_MARGIN * eps) as f32,
             safety: ROUNDING_SAFETY as f32,
+            slot: 0,
+            guard: NO_GUARD,
+            _pad0: 0,
+            _pad1: 0,
         };
         let prm = self.rec.uniform(&self.ctx, &params)?;
         self.rec.dispatch(
@@ -1143,62 +1188,85 @@ impl ContactKernels for GpuBackend {
             grid,
             traffic::elementwise(n, 3),
         )?;
-        // The stencils' neighbour reads hit the cache: each kernel moves about its own
-        // elements' fields.
+        // Generations are recorded in batches, as many as the last certification took, and
+        // their counts read once a batch: a generation after one that certified nothing does
+        // nothing on the device (its guard), so the batch ends where a loop of one generation
+        // a read would. The stencils' neighbour reads hit the cache or workgroup memory: each
+        // kernel moves about its own elements' fields.
+        let batch = self.certify_generations.clamp(2, MAX_GENERATION_BATCH);
         let mut certified = 0;
-        for generation in 1u32.. {
-            params.generation = generation;
-            let prm = self.rec.uniform(&self.ctx, &params)?;
-            self.rec.dispatch(
-                &self.ctx,
-                &self.kernels.certify_mark,
-                &[(0, &prm), (3, &c.buffer), (4, &bufs.gen), (5, &bufs.role)],
-                grid,
-                traffic::elementwise(n, 1),
-            )?;
-            for step in 0..JACOBI_STEPS {
-                let (from, to) = (&bufs.v[step % 2], &bufs.v[(step + 1) % 2]);
-                self.rec.dispatch(
-                    &self.ctx,
-                    &self.kernels.certify_jacobi,
-                    &[
-                        (0, &prm),
-                        (2, &before.buffer),
-                        (4, &bufs.gen),
-                        (5, &bufs.role),
-                        (6, from),
-                        (7, to),
-                        (8, &bufs.g),
-                    ],
-                    grid,
-                    traffic::elementwise(n, 2),
-                )?;
-            }
+        let mut first = 1u32;
+        loop {
             self.rec
                 .encoder(&self.ctx)
                 .clear_buffer(&bufs.count, 0, None);
-            self.rec.dispatch(
-                &self.ctx,
-                &self.kernels.certify,
-                &[
-                    (0, &prm),
-                    (1, &p.buffer),
-                    (2, &before.buffer),
-                    (3, &c.buffer),
-                    (4, &bufs.gen),
-                    (5, &bufs.role),
-                    (6, &bufs.v[JACOBI_STEPS % 2]),
-                    (8, &bufs.g),
-                    (9, &bufs.count),
-                ],
-                grid,
-                traffic::elementwise(n, 2),
-            )?;
-            let more: Vec<u32> = self.rec.read(&self.ctx, &bufs.count, 0, 4)?;
-            if more[0] == 0 {
-                break;
+            for k in 0..batch {
+                params.generation = first + k as u32;
+                params.slot = k as u32;
+                params.guard = if k == 0 { NO_GUARD } else { k as u32 - 1 };
+                let prm = self.rec.uniform(&self.ctx, &params)?;
+                self.rec.dispatch(
+                    &self.ctx,
+                    &self.kernels.certify_mark,
+                    &[
+                        (0, &prm),
+                        (3, &c.buffer),
+                        (4, &bufs.gen),
+                        (5, &bufs.role),
+                        (9, &bufs.count),
+                    ],
+                    grid,
+                    traffic::elementwise(n, 1),
+                )?;
+                for step in 0..JACOBI_STEPS {
+                    let (from, to) = (&bufs.v[step % 2], &bufs.v[(step + 1) % 2]);
+                    self.rec.dispatch(
+                        &self.ctx,
+                        &self.kernels.certify_jacobi,
+                        &[
+                            (0, &prm),
+                            (2, &before.buffer),
+                            (4, &bufs.gen),
+                            (5, &bufs.role),
+                            (6, from),
+                            (7, to),
+                            (8, &bufs.g),
+                            (9, &bufs.count),
+                        ],
+                        tiles,
+                        traffic::elementwise(n, 2),
+                    )?;
+                }
+                self.rec.dispatch(
+                    &self.ctx,
+                    &self.kernels.certify,
+                    &[
+                        (0, &prm),
+                        (1, &p.buffer),
+                        (2, &before.buffer),
+                        (3, &c.buffer),
+                        (4, &bufs.gen),
+                        (5, &bufs.role),
+                        (6, &bufs.v[JACOBI_STEPS % 2]),
+                        (8, &bufs.g),
+                        (9, &bufs.count),
+                    ],
+                    tiles,
+                    traffic::elementwise(n, 2),
+                )?;
             }
-            certified += more[0] as usize;
+            let counts: Vec<u32> = self.rec.read(&self.ctx, &bufs.count, 0, 4 * batch as u64)?;
+            match counts.iter().position(|&k| k == 0) {
+                Some(last) => {
+                    certified += counts[..last].iter().map(|&k| k as usize).sum::<usize>();
+                    self.certify_generations = first as usize + last;
+                    break;
+                }
+                None => {
+                    certified += counts.iter().map(|&k| k as usize).sum::<usize>();
+                    first += batch as u32;
+                }
+            }
         }
         Ok(Some(certified))
     }

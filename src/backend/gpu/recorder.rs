@@ -322,7 +322,9 @@ impl Recorder {
             if let Some(p) = self.profiler.as_mut() {
                 p.resolve(&mut encoder);
             }
+            let t0 = std::time::Instant::now();
             ctx.queue().submit([encoder.finish()]);
+            self.counters.submit_ns += t0.elapsed().as_nanos() as u64;
             self.counters.submits += 1;
             if let Some(p) = self.profiler.as_mut() {
                 p.collect(ctx)?;
@@ -356,7 +358,10 @@ impl Recorder {
         self.flush(ctx)?;
         self.counters.readbacks += 1;
         self.counters.readback_bytes += bytes;
-        map_read(ctx, &staging)
+        let t0 = std::time::Instant::now();
+        let out = map_read(ctx, &staging);
+        self.counters.wait_ns += t0.elapsed().as_nanos() as u64;
+        out
     }
 }
 

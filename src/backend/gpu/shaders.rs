@@ -199,7 +199,13 @@ pub const CERTIFY_KERNELS: &[KernelLayout] = &[
     },
     KernelLayout {
         entry: "mark",
-        bindings: &[(0, Uniform), (3, ReadWrite), (4, ReadWrite), (5, ReadWrite)],
+        bindings: &[
+            (0, Uniform),
+            (3, ReadWrite),
+            (4, ReadWrite),
+            (5, ReadWrite),
+            (9, ReadWrite),
+        ],
     },
     KernelLayout {
         entry: "jacobi",
@@ -211,6 +217,7 @@ pub const CERTIFY_KERNELS: &[KernelLayout] = &[
             (6, Read),
             (7, ReadWrite),
             (8, Read),
+            (9, ReadWrite),
         ],
     },
     KernelLayout {
