@@ -106,7 +106,7 @@ fn mark(
     @builtin(num_workgroups) nwg: vec3<u32>,
 ) {
     let i = element(gid, nwg);
-    if i >= params.nx * params.ny || gen[i] != params.generation || halted() {
+    if halted() || i >= params.nx * params.ny || gen[i] != params.generation {
         return;
     }
     let reach = i32(max(params.hole_reach, params.candidate_reach));
