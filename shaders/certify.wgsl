@@ -10,9 +10,11 @@
 // then `certify` (an element of C whose bound is below the limit leaves C, p = 0 on it,
 // gen = g + 1, counted; on a candidate kept p is set to before + Δ, the round's predicted
 // start). `seed` and `mark` run over the whole grid and return at once for the elements
-// outside their part; `jacobi` and `certify` run in 16 × 16 tiles, and a tile with no element
-// of H (of the candidates) returns at once, the others stencil from workgroup memory (the
-// tile of v with its halo, and G's table).
+// outside their part. `mark` also lists each 16 × 16 tile that a generation's reach touches,
+// once (the list only grows in a call, as the hole does), and `tiles` turns the list's length
+// into the indirect dispatch of `jacobi` and `certify`: one workgroup a listed tile, none for a
+// halted generation. A listed tile with no element of H (of the candidates) returns at once;
+// the others stencil from workgroup memory (the tile of v with its halo, and G's table).
 //
 // Several generations are recorded before the host reads their counts (one slot each): a
 // generation whose `guard` slot (the generation before it in the batch) counted nothing does
@@ -38,8 +40,9 @@ struct Params {
     // before it in the batch (NO_GUARD: none; this generation then runs).
     slot: u32,
     guard: u32,
-    _pad0: u32,
-    _pad1: u32,
+    // Tiles along x (the grid's tiles are numbered row by row).
+    tiles_x: u32,
+    _pad: u32,
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
@@ -53,13 +56,24 @@ struct Params {
 @group(0) @binding(6) var<storage, read> v_in: array<f32>;
 @group(0) @binding(7) var<storage, read_write> v_out: array<f32>;
 @group(0) @binding(8) var<storage, read> g: array<f32>;
-// Elements certified by each generation of a batch (one slot each); cleared by the host
-// before the batch.
+// Elements certified by each generation of a batch (one slot each, BATCH of them; cleared by
+// the host before the batch), then the count of the tiles listed (at LISTED) and their list
+// (from LIST; both cleared by the host before the call).
 @group(0) @binding(9) var<storage, read_write> certified: array<atomic<u32>>;
+// Whether each tile is listed (cleared by the host before the call).
+@group(0) @binding(10) var<storage, read_write> tile_listed: array<atomic<u32>>;
+// The indirect dispatch of `jacobi` and `certify` (workgroups along x, y, z).
+@group(0) @binding(11) var<storage, read_write> dispatch: array<u32>;
 
 const HOLE: u32 = 1u;
 const CANDIDATE: u32 = 2u;
 const NO_GUARD: u32 = 0xffffffffu;
+// The layout of `certified` (`MAX_GENERATION_BATCH` in src/backend/gpu/backend.rs).
+const BATCH: u32 = 16u;
+const LISTED: u32 = BATCH;
+const LIST: u32 = BATCH + 1u;
+// Workgroups along x of an indirect dispatch at most (the per-dimension limit).
+const ROW: u32 = 65535u;
 // The tiles of `jacobi` and `certify`: TILE × TILE elements (one thread each, WG in all),
 // with a halo of HALO elements, the largest truncation they hold.
 const TILE: u32 = 16u;
@@ -112,6 +126,21 @@ fn mark(
     let reach = i32(max(params.hole_reach, params.candidate_reach));
     let x = i32(i % params.nx);
     let y = i32(i / params.nx);
+    // The tiles this element's reach touches, each listed once.
+    let lo = vec2<u32>(u32(max(x - reach, 0)), u32(max(y - reach, 0))) / TILE;
+    let hi = vec2<u32>(
+        u32(min(x + reach, i32(params.nx) - 1)),
+        u32(min(y + reach, i32(params.ny) - 1)),
+    ) / TILE;
+    for (var ty = lo.y; ty <= hi.y; ty++) {
+        for (var tx = lo.x; tx <= hi.x; tx++) {
+            let t = ty * params.tiles_x + tx;
+            if atomicExchange(&tile_listed[t], 1u) == 0u {
+                let k = atomicAdd(&certified[LISTED], 1u);
+                atomicStore(&certified[LIST + k], t);
+            }
+        }
+    }
     for (var yy = max(y - reach, 0); yy <= min(y + reach, i32(params.ny) - 1); yy++) {
         for (var xx = max(x - reach, 0); xx <= min(x + reach, i32(params.nx) - 1); xx++) {
             let j = u32(yy) * params.nx + u32(xx);
@@ -186,18 +215,40 @@ fn g_times_v(x: i32, y: i32, origin: vec2<i32>) -> f32 {
     return acc;
 }
 
+// The indirect dispatch of this generation's `jacobi` and `certify`: one workgroup a listed
+// tile (rows of ROW), none where the generation is halted.
+@compute @workgroup_size(1)
+fn tiles() {
+    let n = select(atomicLoad(&certified[LISTED]), 0u, halted());
+    dispatch[0] = min(n, ROW);
+    dispatch[1] = (n + ROW - 1u) / ROW;
+    dispatch[2] = 1u;
+}
+
+// The origin (element x, y) of the listed tile a workgroup of an indirect dispatch takes, and
+// whether there is one (the last row of workgroups may run past the list).
+fn listed_tile(wid: vec3<u32>) -> vec3<i32> {
+    let k = wid.y * ROW + wid.x;
+    if k >= atomicLoad(&certified[LISTED]) {
+        return vec3<i32>(0, 0, 0);
+    }
+    let t = atomicLoad(&certified[LIST + k]);
+    return vec3<i32>(i32((t % params.tiles_x) * TILE), i32((t / params.tiles_x) * TILE), 1);
+}
+
 @compute @workgroup_size(16, 16)
 fn jacobi(
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(local_invocation_id) lid3: vec3<u32>,
     @builtin(local_invocation_index) lid: u32,
 ) {
-    let origin = vec2<i32>(wid.xy * TILE);
+    let tile = listed_tile(wid);
+    let origin = tile.xy;
     let x = origin.x + i32(lid3.x);
     let y = origin.y + i32(lid3.y);
     let i = u32(y) * params.nx + u32(x);
     var mine = false;
-    if x < i32(params.nx) && y < i32(params.ny) && !halted() {
+    if tile.z != 0 && x < i32(params.nx) && y < i32(params.ny) && !halted() {
         mine = atomicLoad(&role[i]) == HOLE;
     }
     if !any_in_workgroup(mine, lid) {
@@ -216,12 +267,13 @@ fn certify(
     @builtin(local_invocation_id) lid3: vec3<u32>,
     @builtin(local_invocation_index) lid: u32,
 ) {
-    let origin = vec2<i32>(wid.xy * TILE);
+    let tile = listed_tile(wid);
+    let origin = tile.xy;
     let x = origin.x + i32(lid3.x);
     let y = origin.y + i32(lid3.y);
     let i = u32(y) * params.nx + u32(x);
     var mine = false;
-    if x < i32(params.nx) && y < i32(params.ny) && !halted() {
+    if tile.z != 0 && x < i32(params.nx) && y < i32(params.ny) && !halted() {
         mine = atomicLoad(&role[i]) == CANDIDATE && mask[i] != 0u;
     }
     if !any_in_workgroup(mine, lid) {

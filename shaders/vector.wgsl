@@ -17,7 +17,7 @@ struct Params {
     den: u32,
     // Slot receiving a sum (dot, cg_update's r·r), or NO_SLOT.
     out: u32,
-    // ±1 for axpy_ratio.
+    // ±1 for axpy_ratio and copy_slot (which copies sign · slots[num]).
     sign: f32,
     // The approach d (residual), the fraction t (lerp), or under a CG guard the stopping
     // threshold tol² (xpay_ratio: stop once slots[out] ≤ tol²·slots[aux]).
@@ -175,10 +175,10 @@ fn finish_slots(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id
     }
 }
 
-// slots[den] = slots[num] (one workgroup).
+// slots[den] = sign · slots[num] (one workgroup; num may be den).
 @compute @workgroup_size(WG)
 fn copy_slot(@builtin(local_invocation_index) lid: u32) {
-    let v = slot_value(lid, params.num);
+    let v = params.sign * slot_value(lid, params.num);
     if lid == 0u {
         slot_set(params.den, v);
     }

@@ -309,6 +309,15 @@ pub trait CgKernels: ElasticOperator + Scalars {
         let _ = stop;
         Ok(())
     }
+    /// slots\[out\] = max over C of |f| (0 if C is empty), left on the device: CG's error
+    /// estimate of a solve (max |M r|), read with the solve's last read where the backend
+    /// defers its reads ([`CgKernels::defers_cg_start`]).
+    fn max_abs_to(
+        &mut self,
+        c: &Self::Mask,
+        f: &Self::Field,
+        out: Slot,
+    ) -> Result<(), BackendError>;
     /// Whether CG's start may be left unread until its first progress read
     /// ([`CgKernels::read_cg_status`]): a backend that guards the iterations it queues
     /// ([`CgKernels::guard_cg`]) makes no step where the warm start already meets the

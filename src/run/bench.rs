@@ -320,6 +320,15 @@ fn measure_one(
 ) {
     let mut any = opened.backend;
     let device = any.device_summary();
+    // The pull-off reads CG's residual at the backend's own interval, as `simulate`'s does
+    // (every iteration on the CPU, every 8 on the GPU).
+    let model = &Model {
+        cg: crate::model::CgSettings {
+            check_every: any.check_every(),
+            ..model.cg
+        },
+        ..model.clone()
+    };
     let options = BenchOptions {
         repeats: args.repeats,
         cg_iterations: args.cg_iterations,

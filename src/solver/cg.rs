@@ -35,6 +35,8 @@ pub struct CgSlots {
     /// r·r of the warm start, kept where its read is deferred to the first progress read
     /// ([`CgKernels::defers_cg_start`]).
     rr_start: Slot,
+    /// max over C of |M r|, the error estimate read with a solve's last read.
+    eps: Slot,
     /// A register that is never written, so it stays 0.
     zero: Slot,
 }
@@ -48,6 +50,7 @@ impl CgSlots {
             rr: backend.slot()?,
             bb: backend.slot()?,
             rr_start: backend.slot()?,
+            eps: backend.slot()?,
             zero: backend.slot()?,
         })
     }
@@ -95,6 +98,10 @@ pub struct CgWork<F> {
     zero: F,
     /// The scalar registers.
     slots: CgSlots,
+    /// Whether an exact solve on a backend that defers its reads also reads its error
+    /// estimate ([`CgReport::error_estimate`]) with its last read (a loose solve always
+    /// does); false until the caller asks.
+    pub estimate_exact: bool,
 }
 
 impl<F> CgWork<F> {
@@ -108,6 +115,7 @@ impl<F> CgWork<F> {
             q: backend.field()?,
             best: backend.field()?,
             zero: backend.field()?,
+            estimate_exact: false,
         })
     }
 
@@ -173,6 +181,11 @@ pub struct CgReport {
     /// Convolutions made outside the iterations: the start residual (unless K p was
     /// given) and each recomputed true residual.
     pub convolutions: usize,
+    /// max over C of |M r| for the r the solve left (stress), read with its last read on a
+    /// backend that defers its reads ([`CgKernels::defers_cg_start`]): a loose solve's that
+    /// converged, an exact one's with [`CgWork::estimate_exact`]; `None` otherwise, where
+    /// the caller that needs it computes it.
+    pub error_estimate: Option<f64>,
 }
 
 impl CgReport {
@@ -306,6 +319,17 @@ fn judge_start(
         return Some(CgEnd::Converged);
     }
     history.push(0, initial)
+}
+
+/// z = M r and its max over C into the `eps` slot: the error estimate of the r in `work`,
+/// left on the device for the next read.
+fn estimate<B: CgKernels>(
+    backend: &mut B,
+    c: &B::Mask,
+    work: &mut CgWork<B::Field>,
+) -> Result<(), BackendError> {
+    backend.precondition(c, &work.r, &mut work.z)?;
+    backend.max_abs_to(c, &work.z, work.slots.eps)
 }
 
 /// The relative residual of r, with r·r already in its slot, read back from the device.
@@ -442,6 +466,7 @@ pub fn solve_with<B: CgKernels>(
     // A device that guards its iterations reads the warm start's residual with the first
     // progress read: it makes no step where the warm start meets the tolerance.
     let defer = backend.defers_cg_start();
+    let estimate_loose = defer && goal == Goal::Loose;
     let (started, convolutions) = start(backend, c, work, p, d, known, !defer)?;
     let mut report = CgReport {
         iterations: 0,
@@ -449,6 +474,7 @@ pub fn solve_with<B: CgKernels>(
         best: f64::NAN,
         end: CgEnd::Converged,
         convolutions,
+        error_estimate: None,
     };
     let mut history = ResidualHistory::new(settings.check_every);
     let mut scale = Scale(f64::NAN);
@@ -484,8 +510,15 @@ pub fn solve_with<B: CgKernels>(
             }
         }
         let slots = work.slots;
-        let mut v = [0.0; 3];
-        let made = backend.read_cg_status(&[slots.rr, slots.rr_start, slots.bb], &mut v)?;
+        if estimate_loose {
+            // The error estimate of the r read now, in the same read: the last read's is
+            // the loose round's.
+            estimate(backend, c, work)?;
+        }
+        let mut v = [0.0; 4];
+        let made =
+            backend.read_cg_status(&[slots.rr, slots.rr_start, slots.bb, slots.eps], &mut v)?;
+        report.error_estimate = estimate_loose.then_some(v[3]);
         if pending_start {
             pending_start = false;
             scale = Scale(v[2].sqrt());
@@ -557,7 +590,18 @@ fn verify<B: CgKernels>(
     settings: &CgSettings,
     mut report: CgReport,
 ) -> Result<CgReport, BackendError> {
-    let t = true_residual(backend, c, p, work, d, scale)?;
+    backend.convolve(p, &mut work.q)?;
+    backend.residual(c, &work.q, d, &mut work.r)?;
+    backend.dot(c, &work.r, &work.r, work.slots.rr)?;
+    // The error estimate of the true residual, read with it where asked for.
+    let with_estimate = backend.defers_cg_start() && work.estimate_exact;
+    if with_estimate {
+        estimate(backend, c, work)?;
+    }
+    let mut v = [0.0; 2];
+    backend.read_slots(&[work.slots.rr, work.slots.eps], &mut v)?;
+    let t = scale.relative(v[0]);
+    report.error_estimate = with_estimate.then_some(v[1]);
     report.convolutions += 1;
     report.residual = t;
     if t <= TRUE_RESIDUAL_SLACK * settings.tolerance {
@@ -591,6 +635,7 @@ pub fn solve_safe<B: CgKernels>(
         best: f64::INFINITY,
         end: CgEnd::IterationLimit,
         convolutions,
+        error_estimate: None,
     };
     loop {
         if t < report.best {

@@ -67,11 +67,15 @@ fn round_solved<B: Backend>(
     certify: bool,
 ) -> Result<(bool, Option<f64>, f64), BackendError> {
     let exact = solve.exact;
+    let known = solve.error_estimate;
     eq.add_solve(solve);
     if exact && !certify {
         return Ok((true, None, 0.0));
     }
-    let eps = error_estimate(backend, fields)?;
+    let eps = match known {
+        Some(eps) => eps,
+        None => error_estimate(backend, fields)?,
+    };
     let margin = if exact { 0.0 } else { LOOSE_SAFETY * eps };
     Ok((exact, Some(eps), margin))
 }
@@ -130,6 +134,9 @@ pub struct Solve {
     pub exact: bool,
     /// The safer retry, if the normal mode failed.
     pub retry: Option<CgRetry>,
+    /// The error estimate of the p kept (stress), where CG read it with its last read
+    /// ([`cg::CgReport::error_estimate`]); `None`: computed where needed.
+    pub error_estimate: Option<f64>,
 }
 
 /// Fields the loop works on: the pressure p (force/length²) and the displacement u = K p
@@ -260,6 +267,7 @@ fn solve_to<B: Backend>(
                 residual: r.residual,
                 exact: false,
                 retry: None,
+                error_estimate: r.error_estimate,
             });
         }
         // A loose solve that went wrong: solve exactly, from its start if it diverged.
@@ -293,6 +301,7 @@ fn solve_to<B: Backend>(
             residual: first.residual,
             exact: true,
             retry: None,
+            error_estimate: first.error_estimate,
         });
     }
     if matches!(first.end, CgEnd::Diverged | CgEnd::NonFinite) {
@@ -333,6 +342,7 @@ fn solve_to<B: Backend>(
         residual: second.residual,
         exact: true,
         retry: Some(retry),
+        error_estimate: None,
     })
 }
 
@@ -374,6 +384,8 @@ pub fn settle<B: Backend>(
     let spread = model.spread_detached && sigma_c > 0.0;
     let certify = model.certify_detached && sigma_c > 0.0;
     let tighten = model.tighten_stalls && loose_rounds;
+    // An exact solve's error estimate is needed where the certification takes it.
+    fields.cg.estimate_exact = certify;
     let mut eq = Equilibrium::default();
     // Whether the p held is a state's (an exact solve's, or the one the cascade starts from);
     // the error estimate of the p held (stress), where a solve gave it; and beyond σ_c by

@@ -168,6 +168,7 @@ mod tests {
             best: residual,
             end,
             convolutions: 0,
+            error_estimate: None,
         }
     }
 

@@ -264,7 +264,25 @@ impl ElasticOperator for CpuBackend {
     }
 }
 
+/// max over the mask of |f| (0 for an empty mask).
+fn max_abs_on(mask: &[bool], f: &[f64]) -> f64 {
+    f.par_iter()
+        .with_min_len(PAR_MIN)
+        .zip(mask.par_iter())
+        .map(|(v, &m)| if m { v.abs() } else { 0.0 })
+        .reduce(|| 0.0, f64::max)
+}
+
 impl CgKernels for CpuBackend {
+    fn max_abs_to(
+        &mut self,
+        mask: &Vec<bool>,
+        f: &Vec<f64>,
+        out: Slot,
+    ) -> Result<(), BackendError> {
+        self.slots[out.index()] = max_abs_on(mask, f);
+        Ok(())
+    }
     /// 0 in f64; [`F32_CONVOLUTION_FLOOR`] with the f32 convolution.
     fn residual_floor(&self) -> f64 {
         if self.convolution.is_f32() {
@@ -441,11 +459,7 @@ impl ContactKernels for CpuBackend {
             .reduce(|| 1.0, f64::min))
     }
     fn max_abs(&mut self, mask: &Vec<bool>, f: &Vec<f64>) -> Result<f64, BackendError> {
-        Ok(f.par_iter()
-            .with_min_len(PAR_MIN)
-            .zip(mask.par_iter())
-            .map(|(v, &m)| if m { v.abs() } else { 0.0 })
-            .reduce(|| 0.0, f64::max))
+        Ok(max_abs_on(mask, f))
     }
     fn lerp(
         &mut self,

@@ -117,8 +117,9 @@ struct CertifyParams {
     slot: u32,
     /// The slot of the generation before it in the batch ([`NO_GUARD`]: none).
     guard: u32,
-    _pad0: u32,
-    _pad1: u32,
+    /// Tiles of [`CERTIFY_TILE`]² along x.
+    tiles_x: u32,
+    _pad: u32,
 }
 
 /// `CertifyParams::guard` of a batch's first generation: it runs whatever came before.
@@ -135,17 +136,21 @@ const CERTIFY_HALO: i64 = 12;
 
 /// The device fields of the certified detachments (shaders/certify.wgsl), made at the first
 /// cascade that takes them: each element's generation and role, the hole's Jacobi iterate
-/// (two buffers, ping-pong), G's table and the count of one dispatch.
+/// (two buffers, ping-pong), G's table, the counts of a batch's generations with the list of
+/// the tiles the hole and the candidates touch, whether each tile is listed, and the indirect
+/// dispatch over the list.
 struct CertifyBuffers {
     gen: wgpu::Buffer,
     role: wgpu::Buffer,
     v: [wgpu::Buffer; 2],
     g: wgpu::Buffer,
     count: wgpu::Buffer,
+    listed: wgpu::Buffer,
+    dispatch: wgpu::Buffer,
 }
 
 impl CertifyBuffers {
-    fn new(ctx: &GpuContext, n: usize) -> CertifyBuffers {
+    fn new(ctx: &GpuContext, n: usize, tiles: usize) -> CertifyBuffers {
         let g = crate::backend::certify::off_diagonal();
         let field = |label| storage(ctx, label, n as u64 * 4);
         CertifyBuffers {
@@ -159,7 +164,20 @@ impl CertifyBuffers {
                     contents: bytemuck::cast_slice(g),
                     usage: wgpu::BufferUsages::STORAGE,
                 }),
-            count: storage(ctx, "certified counts", 4 * MAX_GENERATION_BATCH as u64),
+            // The batch's counts, the tiles listed and their list (LISTED and LIST in
+            // shaders/certify.wgsl).
+            count: storage(
+                ctx,
+                "certified counts and listed tiles",
+                4 * (MAX_GENERATION_BATCH + 1 + tiles) as u64,
+            ),
+            listed: storage(ctx, "tile listed", 4 * tiles as u64),
+            dispatch: ctx.device().create_buffer(&wgpu::BufferDescriptor {
+                label: Some("certify dispatch"),
+                size: 16,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT,
+                mapped_at_creation: false,
+            }),
         }
     }
 }
@@ -203,6 +221,7 @@ struct Kernels {
     spread_detached: Kernel,
     certify_seed: Kernel,
     certify_mark: Kernel,
+    certify_tiles: Kernel,
     certify_jacobi: Kernel,
     certify: Kernel,
     spectral: SpectralKernels,
@@ -238,6 +257,7 @@ impl Kernels {
             spread_detached: k(&s, shaders::SPREAD_KERNELS, "spread_detached"),
             certify_seed: k(&cf, shaders::CERTIFY_KERNELS, "seed"),
             certify_mark: k(&cf, shaders::CERTIFY_KERNELS, "mark"),
+            certify_tiles: k(&cf, shaders::CERTIFY_KERNELS, "tiles"),
             certify_jacobi: k(&cf, shaders::CERTIFY_KERNELS, "jacobi"),
             certify: k(&cf, shaders::CERTIFY_KERNELS, "certify"),
             spectral: SpectralKernels::new(ctx),
@@ -1037,6 +1057,25 @@ impl CgKernels for GpuBackend {
     fn defers_cg_start(&self) -> bool {
         true
     }
+    fn max_abs_to(&mut self, c: &GpuMask, f: &GpuField, out: Slot) -> Result<(), BackendError> {
+        // The reduction leaves −max |f| (a minimum); the copy turns its sign in place.
+        let out = out.index() as u32;
+        self.reduce(Reduction::MaxAbs, &c.buffer, &f.buffer, &f.buffer, out, 0.0)?;
+        let params = VectorParams {
+            num: out,
+            den: out,
+            sign: -1.0,
+            ..self.vector_params()
+        };
+        let p = self.rec.uniform(&self.ctx, &params)?;
+        self.rec.dispatch(
+            &self.ctx,
+            &self.kernels.copy_slot,
+            &[(0, &p), (8, &self.scalars)],
+            (1, 1),
+            8,
+        )
+    }
     fn read_cg_status(
         &mut self,
         slots: &[Slot],
@@ -1148,19 +1187,26 @@ impl ContactKernels for GpuBackend {
             return Ok(None);
         }
         let n = self.n();
-        let bufs = self
-            .certify
-            .get_or_insert_with(|| CertifyBuffers::new(&self.ctx, n));
-        let enc = self.rec.encoder(&self.ctx);
-        for b in [&bufs.gen, &bufs.role, &bufs.v[0], &bufs.v[1]] {
-            enc.clear_buffer(b, 0, None);
-        }
-        let grid = grid_for(&self.ctx, n);
         const _: () = assert!(TRUNCATION <= CERTIFY_HALO, "the tiles' halo must hold G");
         let tiles = (
             self.nx.div_ceil(CERTIFY_TILE) as u32,
             self.ny.div_ceil(CERTIFY_TILE) as u32,
         );
+        let bufs = self
+            .certify
+            .get_or_insert_with(|| CertifyBuffers::new(&self.ctx, n, (tiles.0 * tiles.1) as usize));
+        let enc = self.rec.encoder(&self.ctx);
+        for b in [
+            &bufs.gen,
+            &bufs.role,
+            &bufs.v[0],
+            &bufs.v[1],
+            &bufs.count,
+            &bufs.listed,
+        ] {
+            enc.clear_buffer(b, 0, None);
+        }
+        let grid = grid_for(&self.ctx, n);
         let mut params = CertifyParams {
             nx: self.nx as u32,
             ny: self.ny as u32,
@@ -1172,8 +1218,8 @@ impl ContactKernels for GpuBackend {
             safety: ROUNDING_SAFETY as f32,
             slot: 0,
             guard: NO_GUARD,
-            _pad0: 0,
-            _pad1: 0,
+            tiles_x: tiles.0,
+            _pad: 0,
         };
         let prm = self.rec.uniform(&self.ctx, &params)?;
         self.rec.dispatch(
@@ -1197,9 +1243,12 @@ impl ContactKernels for GpuBackend {
         let mut certified = 0;
         let mut first = 1u32;
         loop {
-            self.rec
-                .encoder(&self.ctx)
-                .clear_buffer(&bufs.count, 0, None);
+            // The batch's counts (the list of tiles after them stays).
+            self.rec.encoder(&self.ctx).clear_buffer(
+                &bufs.count,
+                0,
+                Some(4 * MAX_GENERATION_BATCH as u64),
+            );
             for k in 0..batch {
                 params.generation = first + k as u32;
                 params.slot = k as u32;
@@ -1214,13 +1263,21 @@ impl ContactKernels for GpuBackend {
                         (4, &bufs.gen),
                         (5, &bufs.role),
                         (9, &bufs.count),
+                        (10, &bufs.listed),
                     ],
                     grid,
                     traffic::elementwise(n, 1),
                 )?;
+                self.rec.dispatch(
+                    &self.ctx,
+                    &self.kernels.certify_tiles,
+                    &[(0, &prm), (9, &bufs.count), (11, &bufs.dispatch)],
+                    (1, 1),
+                    16,
+                )?;
                 for step in 0..JACOBI_STEPS {
                     let (from, to) = (&bufs.v[step % 2], &bufs.v[(step + 1) % 2]);
-                    self.rec.dispatch(
+                    self.rec.dispatch_indirect(
                         &self.ctx,
                         &self.kernels.certify_jacobi,
                         &[
@@ -1233,11 +1290,11 @@ impl ContactKernels for GpuBackend {
                             (8, &bufs.g),
                             (9, &bufs.count),
                         ],
-                        tiles,
+                        &bufs.dispatch,
                         traffic::elementwise(n, 2),
                     )?;
                 }
-                self.rec.dispatch(
+                self.rec.dispatch_indirect(
                     &self.ctx,
                     &self.kernels.certify,
                     &[
@@ -1251,7 +1308,7 @@ impl ContactKernels for GpuBackend {
                         (8, &bufs.g),
                         (9, &bufs.count),
                     ],
-                    tiles,
+                    &bufs.dispatch,
                     traffic::elementwise(n, 2),
                 )?;
             }

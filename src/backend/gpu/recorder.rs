@@ -127,6 +127,23 @@ pub fn grid_for(ctx: &GpuContext, n: usize) -> (u32, u32) {
     groups_grid(ctx, (n as u64).div_ceil(WORKGROUP as u64).max(1) as u32)
 }
 
+/// The workgroups of one dispatch: a grid given now, or one a buffer holds when it runs.
+enum Workgroups<'a> {
+    /// (x, y) workgroups.
+    Direct((u32, u32)),
+    /// x, y, z workgroups read from the buffer's start on the device.
+    Indirect(&'a wgpu::Buffer),
+}
+
+impl Workgroups<'_> {
+    fn dispatch(&self, pass: &mut wgpu::ComputePass<'_>) {
+        match self {
+            Workgroups::Direct((x, y)) => pass.dispatch_workgroups(*x, *y, 1),
+            Workgroups::Indirect(args) => pass.dispatch_workgroups_indirect(args, 0),
+        }
+    }
+}
+
 /// A bind group's identity: the kernel (by its layout) and the buffer at each binding.
 type BindKey = (wgpu::BindGroupLayout, Vec<(u32, wgpu::Buffer)>);
 
@@ -275,6 +292,30 @@ impl Recorder {
         grid: (u32, u32),
         bytes: u64,
     ) -> Result<(), BackendError> {
+        self.record(ctx, kernel, entries, Workgroups::Direct(grid), bytes)
+    }
+
+    /// Record one dispatch of `kernel` over the workgroups that `args` (x, y, z: three u32 at
+    /// its start, written on the device; a buffer with the INDIRECT usage) holds when it runs.
+    pub fn dispatch_indirect(
+        &mut self,
+        ctx: &GpuContext,
+        kernel: &Kernel,
+        entries: &[(u32, &wgpu::Buffer)],
+        args: &wgpu::Buffer,
+        bytes: u64,
+    ) -> Result<(), BackendError> {
+        self.record(ctx, kernel, entries, Workgroups::Indirect(args), bytes)
+    }
+
+    fn record(
+        &mut self,
+        ctx: &GpuContext,
+        kernel: &Kernel,
+        entries: &[(u32, &wgpu::Buffer)],
+        groups: Workgroups,
+        bytes: u64,
+    ) -> Result<(), BackendError> {
         let bind = self.bind_group(ctx, kernel, entries);
         self.counters.dispatches += 1;
         self.counters.bytes += bytes;
@@ -294,7 +335,7 @@ impl Recorder {
             });
             pass.set_pipeline(&kernel.pipeline);
             pass.set_bind_group(0, &bind, &[]);
-            pass.dispatch_workgroups(grid.0, grid.1, 1);
+            groups.dispatch(&mut pass);
             return Ok(());
         }
         if self.pass.is_none() {
@@ -310,7 +351,7 @@ impl Recorder {
         let pass = self.pass.as_mut().expect("a pass was opened above");
         pass.set_pipeline(&kernel.pipeline);
         pass.set_bind_group(0, &bind, &[]);
-        pass.dispatch_workgroups(grid.0, grid.1, 1);
+        groups.dispatch(pass);
         Ok(())
     }
 

@@ -205,7 +205,12 @@ pub const CERTIFY_KERNELS: &[KernelLayout] = &[
             (4, ReadWrite),
             (5, ReadWrite),
             (9, ReadWrite),
+            (10, ReadWrite),
         ],
+    },
+    KernelLayout {
+        entry: "tiles",
+        bindings: &[(0, Uniform), (9, ReadWrite), (11, ReadWrite)],
     },
     KernelLayout {
         entry: "jacobi",
