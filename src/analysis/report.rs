@@ -55,8 +55,9 @@ pub struct RunReport {
     pub min_resolved: bool,
     /// Why the adhesive force is withheld although the run reached the force minimum: a
     /// height map too coarse for the contact there (fewer than
-    /// [`crate::model::MIN_MAP_SPACINGS_AT_MINIMUM`] map spacings across its minor axis).
-    /// `f_ad_bar` is then null. Absent where nothing is withheld.
+    /// [`crate::model::MIN_MAP_SPACINGS_AT_MINIMUM`] map spacings across its minor axis), or
+    /// a minimum that is not tensile (the indenter never pulled). `f_ad_bar` is then null.
+    /// Absent where nothing is withheld.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub withheld: Option<String>,
     /// The lowest F̄ recorded (dimensionless), minimum or not; null if no state was recorded.
@@ -161,7 +162,8 @@ impl RunReport {
         // 2b/Δx is a count of elements (half-integers on an aligned mesh): rounded to 1e-6 so
         // that it does not read 25.999999999999996.
         let n_d = min.map(|s| (2e6 * s.b_axis / s.dx).round() / 1e6);
-        let withheld = min.and_then(|s| map_too_coarse(model, s));
+        let withheld =
+            min.and_then(|s| map_too_coarse(model, s).or_else(|| compressive_minimum(s)));
         let unresolved = step_warning(model, outcome);
         let min_resolved = unresolved.is_none();
         let warnings = n_d
@@ -252,6 +254,20 @@ fn map_too_coarse(model: &Model, at_min: &State) -> Option<String> {
     })
 }
 
+/// Why a force minimum that is not tensile gives no adhesive force: the indenter never pulled
+/// on the surface (F̄ > 0 at the lowest force), so |min F̄| would be negative. A healthy
+/// adhesive run always pulls; this guards the answer against a broken one. `None` for a
+/// tensile minimum.
+fn compressive_minimum(at_min: &State) -> Option<String> {
+    (at_min.f_bar > 0.0).then(|| {
+        format!(
+            "the lowest force reached is compressive (F̄ = {}): the indenter never pulled on \
+             the surface, so there is no adhesive force to state: it is withheld",
+            compact(at_min.f_bar)
+        )
+    })
+}
+
 /// With [`Onsets::None`], a warning if the steps around the force minimum detached
 /// elements: the minimum then lies at an onset inside a step, which whole steps do not see.
 fn step_warning(model: &Model, outcome: &Outcome) -> Option<String> {
@@ -335,6 +351,24 @@ mod tests {
             ..State::default()
         };
         assert_eq!(map_too_coarse(&model, &wide), None);
+    }
+
+    #[test]
+    fn a_compressive_minimum_is_no_adhesive_force() {
+        let pushing = State {
+            f_bar: 0.25,
+            ..State::default()
+        };
+        let why = compressive_minimum(&pushing).expect("a compressive minimum is withheld");
+        assert!(
+            why.contains("compressive") && why.contains("withheld"),
+            "{why}"
+        );
+        let pulling = State {
+            f_bar: -0.5,
+            ..State::default()
+        };
+        assert_eq!(compressive_minimum(&pulling), None);
     }
 
     #[test]

@@ -31,8 +31,9 @@
 //! is one of the grown hole's system, whose new rows have b ≥ 0 and non-positive couplings)
 //! rise towards the solution and stay below it: v smaller, Δ less negative, the bound looser,
 //! never wrong. Jacobi is the same on the host and on a device, in f32 on both:
-//! shaders/certify.wgsl runs these steps over the whole grid (this module is its twin), so
-//! the GPU backend certifies what the CPU backend does without its fields leaving the device.
+//! shaders/certify.wgsl runs these steps over the tiles the hole touches (this module is its
+//! twin), so the GPU backend certifies what the CPU backend does without its fields leaving
+//! the device.
 //! On the host, v lives on the grid padded by the truncation, and eight cells of a row are
 //! summed at once, each weight of the stencil broadcast and multiplied into the eight in one
 //! vector instruction (the `stencil` module; AVX2 and FMA where the CPU has them); the
