@@ -45,6 +45,11 @@ pub const MAX_MARGIN: f64 = 10.0;
 /// Most CG iterations per solve.
 pub const MAX_CG_ITERATIONS: usize = 10_000_000;
 
+/// Most loading steps of a preload (a target the surface never reaches, say an area it
+/// cannot cover, stops there with an error; a depth further than that many load steps is
+/// refused before any work).
+pub const MAX_LOADING_STEPS: usize = 100_000;
+
 /// Loosest CG tolerance accepted (relative residual, dimensionless). The stated
 /// uncertainties take each state's solve as exact: they hold only while the solves' error is
 /// far below them. Measured on the sphere at its default grid (64², CPU, the grid's |min F̄|

@@ -370,11 +370,28 @@ impl Model {
                 "a surface that the half-space can touch somewhere in the domain",
             ));
         }
-        Ok(Loading {
+        let loading = Loading {
             d_touch,
             d_step: self.load.d_step,
             target,
-        })
+        };
+        if let LoadTarget::Depth(d) = target {
+            // A depth further than the loading's steps can go is refused before any work.
+            let deepest = d_touch + MAX_LOADING_STEPS as f64 * loading.d_step;
+            if (d - d_touch) / loading.d_step > MAX_LOADING_STEPS as f64 {
+                return refuse(
+                    PRELOAD_DEPTH,
+                    d,
+                    format!(
+                        "at most {MAX_LOADING_STEPS} loading steps of Δd = {} (length): a depth \
+                         up to {}",
+                        compact(loading.d_step),
+                        compact(deepest)
+                    ),
+                );
+            }
+        }
+        Ok(loading)
     }
 
     /// The characteristic numbers a backend holds, with their names and units: σ_c, the

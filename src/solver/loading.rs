@@ -12,14 +12,10 @@ use super::onsets::JUMP_FRACTION;
 use super::state::{Phase, State};
 use super::SolverError;
 use crate::backend::Backend;
-use crate::model::{LoadTarget, Model};
+use crate::model::{LoadTarget, Model, MAX_LOADING_STEPS};
 
 /// A force or area target counts as reached within this fraction of it (dimensionless).
 const TARGET_TOLERANCE: f64 = 1e-3;
-
-/// Most loading steps (a target the surface never reaches, say an area it cannot cover,
-/// stops here with an error).
-const MAX_LOADING_STEPS: usize = 100_000;
 
 /// Halvings of a loading step at most, while its cascade moves the force from that of the
 /// contact it started from by more than [`JUMP_FRACTION`]: a jump (a patch snapping in or
@@ -62,6 +58,8 @@ pub(super) fn press<B: Backend>(
     let mut seen: f64 = 0.0;
     // The depth schedule's next step (it moves on once a step lands on it whole).
     let mut planned = 1;
+    // Whether the preload was reached.
+    let mut reached = false;
     for recorded in 0..MAX_LOADING_STEPS {
         if !out.go_on() {
             return Err(SolverError::Interrupted);
@@ -80,6 +78,15 @@ pub(super) fn press<B: Backend>(
         // lies in the half, which is halved again, down to 1/2^JUMP_HALVINGS of the step; if
         // by little, the half is kept and the jump sought in the rest.
         let full = d_planned - d_from;
+        // An approach that no longer moves in floating point (d + Δd == d) never gets there.
+        if !(full > 0.0 && d_planned.is_finite()) {
+            return Err(unreachable(
+                model,
+                last.as_ref(),
+                recorded,
+                "the approach no longer grows in floating point (d + Δd = d)".into(),
+            ));
+        }
         let mut halvings = 0;
         // The discrepancy of the try twice as long as this one (force), and whether the next
         // try is taken whole without the test.
@@ -159,19 +166,50 @@ pub(super) fn press<B: Backend>(
                 state.area >= goal * domain * (1.0 - TARGET_TOLERANCE)
             }
         };
+        // A contact over every element of the domain cannot take more load: the surface
+        // beyond it is not modelled (a window of a height map ends there).
+        let full_cover = !done && state.area >= domain * (1.0 - 1e-12);
         out.emit(backend, &fields.c, state.clone(), &mut eq, false)?;
         if let Some(l) = &last {
             before = Some((l.d, value_of(&loading.target, l)));
         }
         last = Some(state);
         if done {
+            reached = true;
             break;
         }
+        if full_cover {
+            return Err(unreachable(
+                model,
+                last.as_ref(),
+                recorded + 1,
+                "the contact covers the whole domain".into(),
+            ));
+        }
+    }
+    if !reached {
+        return Err(unreachable(
+            model,
+            last.as_ref(),
+            MAX_LOADING_STEPS,
+            format!("{MAX_LOADING_STEPS} loading steps did not reach it"),
+        ));
     }
     let state = last.expect("at least one loading step");
     // The pull-off's minimum is of the unloading only.
     out.least = None;
     Ok((fields, state))
+}
+
+/// The error of a loading phase that cannot reach its preload, at `last` (the last loading
+/// state, if any) after `steps` steps.
+fn unreachable(model: &Model, last: Option<&State>, steps: usize, why: String) -> SolverError {
+    let d = last.map_or(model.loading.map_or(0.0, |l| l.d_touch), |s| s.d);
+    SolverError::PreloadUnreachable {
+        d_bar: d / model.scene.scales().approach,
+        steps,
+        why,
+    }
 }
 
 /// The monitored quantity of a force or area target (force, or length²).

@@ -99,6 +99,22 @@ pub enum SolverError {
         /// Approach of the first press (dimensionless).
         d_bar: f64,
     },
+    /// The loading phase cannot reach the preload asked for.
+    #[error(
+        "the preload cannot be reached: {why} (at d̄ = {d_bar:.5}, after {steps} loading \
+         steps); ask for a smaller preload ({}, {} or {}) or give a larger domain",
+        crate::run::schema::PRELOAD_DEPTH,
+        crate::run::schema::PRELOAD_FORCE,
+        crate::run::schema::PRELOAD_AREA
+    )]
+    PreloadUnreachable {
+        /// Approach of the last loading state (dimensionless).
+        d_bar: f64,
+        /// Loading steps recorded.
+        steps: usize,
+        /// Why, in words.
+        why: String,
+    },
     /// The run was stopped from outside (the observer of its states asked to stop).
     #[error("interrupted: the run was asked to stop")]
     Interrupted,

@@ -130,6 +130,13 @@ pub const CASES: &[Case] = &[
     // Looser than the stated uncertainty can take (0.1 stated 0.4623 ± 0.0066 for 0.4993).
     (SIM, &["--cg-tolerance", "0.1"], "--cg-tolerance", NONE),
     (SIM, &["--cg-tolerance", "1e-4"], "--cg-tolerance", NONE),
+    // A depth further than the loading's step limit (it loaded for ever).
+    (
+        SIM,
+        &["--ratio", "1", "--preload-depth", "1e30"],
+        "--preload-depth",
+        NONE,
+    ),
     (
         SIM,
         &["--cg-max-iterations", "0"],
@@ -1194,4 +1201,56 @@ mod round_two {
             .unwrap()
             .starts_with("step,"));
     }
+}
+
+/// A preload the domain cannot hold (issue 55): a force the window of a nominally flat map
+/// cannot carry is out of reach once the contact covers the window, and the run stops saying
+/// so (exit 1) instead of loading for ever.
+#[test]
+fn a_preload_the_window_cannot_hold_stops_with_the_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    // A gently wavy surface on a window (no apex): 48 × 48 nodes, spacing 0.02.
+    let n = 48;
+    let text: String = (0..n)
+        .map(|j| {
+            let row: Vec<String> = (0..n)
+                .map(|i| {
+                    let (x, y) = (i as f64 * 0.3, j as f64 * 0.2);
+                    format!("{:.9e}", 0.01 * (x.sin() + y.cos()))
+                })
+                .collect();
+            row.join(" ") + "\n"
+        })
+        .collect();
+    std::fs::write(dir.path().join("m.txt"), text).unwrap();
+    let o = common::jkrbem(
+        &[
+            "simulate",
+            "--indenter",
+            "height-map",
+            "--height-map",
+            "m.txt",
+            "--spacing",
+            "0.02",
+            "--grid",
+            "32",
+            "--preload-force",
+            "1e6",
+            "--backend",
+            "cpu",
+            "--out",
+            "s.csv",
+        ],
+        dir.path(),
+    );
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("the preload cannot be reached") && err.contains("covers the whole domain"),
+        "{err}"
+    );
+    assert!(
+        !dir.path().join("s.csv").exists(),
+        "no complete result is claimed"
+    );
 }
