@@ -18,12 +18,18 @@ macro_rules! outln {
 }
 
 /// `eprintln!` that never panics: a message standard error cannot take (a closed pipe, a full
-/// disk) is dropped, as there is nowhere else to say it.
+/// disk) is dropped, as there is nowhere else to say it. Where standard error is a file this
+/// run reads (`2>> map.npy`), the message goes to standard output instead, or nowhere if that
+/// is one too: an input is never written.
 macro_rules! errln {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
         let text = jkrbem::run::schema::words::flags(&format!($($arg)*));
-        let _ = writeln!(std::io::stderr(), "{text}");
+        if !jkrbem::output::file::stream_is_input(2) {
+            let _ = writeln!(std::io::stderr(), "{text}");
+        } else if !jkrbem::output::file::stream_is_input(1) {
+            let _ = writeln!(std::io::stdout(), "{text}");
+        }
     }};
 }
 

@@ -31,7 +31,10 @@
 mod identity;
 mod temporary;
 
-pub use identity::{canonical, file_id, input_at, note_input, FileId, Input, InputKind};
+pub use identity::{
+    canonical, file_id, input_at, note_input, stream_is_input, stream_on_input, FileId, Input,
+    InputKind,
+};
 
 use super::OutputError;
 use std::fs::{self, File, OpenOptions};

@@ -71,6 +71,13 @@ impl Outputs {
     /// reads ([`note_input`](crate::output::file::note_input): `--height-map`, the shards of
     /// `collect`), the program itself or a standard stream redirected to a file.
     pub fn check(targets: &[(PathBuf, NamedBy)]) -> Result<(), RunError> {
+        // A standard stream appended to a file this run reads would write into it.
+        if let Some(what) = crate::output::file::stream_on_input() {
+            return Err(input(format!(
+                "{what}: the run's results or messages would be written into a file it \
+                 reads; send the stream elsewhere"
+            )));
+        }
         let mut seen: Vec<Claimed> = Vec::new();
         for &(ref path, param) in targets {
             check_target(path).map_err(write_error(param))?;

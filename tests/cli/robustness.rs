@@ -1254,3 +1254,69 @@ fn a_preload_the_window_cannot_hold_stops_with_the_reason() {
         "no complete result is claimed"
     );
 }
+
+/// A standard stream appended onto an input (issue 55): `--out - >> map`, `2>> map` and
+/// `--out - >> a hard link of the map` are refused before any work (exit 2), the map left as
+/// it was; the refusal is said on the other stream.
+#[test]
+fn a_standard_stream_appended_onto_an_input_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 48;
+    let text: String = (0..n)
+        .map(|j| {
+            let row: Vec<String> = (0..n)
+                .map(|i| {
+                    format!(
+                        "{:.9e}",
+                        0.01 * ((i as f64 * 0.3).sin() + (j as f64 * 0.2).cos())
+                    )
+                })
+                .collect();
+            row.join(" ") + "\n"
+        })
+        .collect();
+    let map = dir.path().join("m.txt");
+    std::fs::write(&map, &text).unwrap();
+    std::fs::hard_link(&map, dir.path().join("hl.txt")).unwrap();
+    for (fd, target, out) in [(1, "m.txt", "-"), (2, "m.txt", "o.csv"), (1, "hl.txt", "-")] {
+        let append = std::fs::OpenOptions::new()
+            .append(true)
+            .open(dir.path().join(target))
+            .unwrap();
+        let mut cmd = bin();
+        cmd.current_dir(dir.path()).args([
+            "simulate",
+            "--indenter",
+            "height-map",
+            "--height-map",
+            "m.txt",
+            "--spacing",
+            "0.02",
+            "--grid",
+            "32",
+            "--backend",
+            "cpu",
+            "--out",
+            out,
+        ]);
+        let said = if fd == 1 {
+            let o = cmd.stdout(Stdio::from(append)).output().unwrap();
+            assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+            stderr(&o)
+        } else {
+            let o = cmd.stderr(Stdio::from(append)).output().unwrap();
+            assert_eq!(o.status.code(), Some(2));
+            String::from_utf8_lossy(&o.stdout).into_owned()
+        };
+        assert!(
+            said.contains("which this run reads"),
+            "fd {fd} onto {target}: {said}"
+        );
+        assert_eq!(
+            std::fs::read_to_string(&map).unwrap(),
+            text,
+            "fd {fd} onto {target}"
+        );
+        assert!(!dir.path().join("o.csv").exists());
+    }
+}

@@ -166,6 +166,35 @@ fn implicit_inputs() -> Vec<Input> {
     found
 }
 
+/// A standard stream (output or error) redirected to a regular file that this run reads
+/// (`--out - >> map.npy`, `2>> map.npy`, a hard link of it): what it is, in words ("this
+/// run's standard output is --height-map map.npy, which this run reads"); `None` where
+/// neither is. Results or messages written there would change the input.
+pub fn stream_on_input() -> Option<String> {
+    [(1, "standard output"), (2, "standard error")]
+        .into_iter()
+        .find_map(|(fd, what)| {
+            input_behind(fd).map(|read| format!("this run's {what} is {}", read.describe()))
+        })
+}
+
+/// Whether the standard stream `fd` (1: output, 2: error) is a regular file this run reads:
+/// nothing may then be written to it.
+pub fn stream_is_input(fd: i32) -> bool {
+    input_behind(fd).is_some()
+}
+
+/// The noted input that the standard stream `fd` is redirected to, if any.
+fn input_behind(fd: i32) -> Option<Input> {
+    let m = fs::metadata(format!("/dev/fd/{fd}")).ok()?;
+    let id = m.is_file().then(|| inode(&m)).flatten()?;
+    let inputs = INPUTS.lock().ok()?;
+    inputs
+        .iter()
+        .find(|i| i.id == id && file_id(&i.path) == id)
+        .cloned()
+}
+
 /// The input that is the file `id`, if any: one noted, or one every run has (the program
 /// itself, a standard stream redirected to a regular file). A noted input counts only while
 /// its name still names the file that was read: one removed since (whose inode the system
