@@ -236,28 +236,43 @@ fn listed_tile(wid: vec3<u32>) -> vec3<i32> {
     return vec3<i32>(i32((t % params.tiles_x) * TILE), i32((t / params.tiles_x) * TILE), 1);
 }
 
+// A thread of a listed tile: the tile's origin, its element (x, y) and index i, and whether
+// it has an element to work on (a listed tile, inside the grid, the generation not halted).
+struct TileThread {
+    origin: vec2<i32>,
+    x: i32,
+    y: i32,
+    i: u32,
+    live: bool,
+}
+
+fn tile_thread(wid: vec3<u32>, lid3: vec3<u32>) -> TileThread {
+    let tile = listed_tile(wid);
+    let x = tile.x + i32(lid3.x);
+    let y = tile.y + i32(lid3.y);
+    let live = tile.z != 0 && x < i32(params.nx) && y < i32(params.ny) && !halted();
+    return TileThread(tile.xy, x, y, u32(y) * params.nx + u32(x), live);
+}
+
 @compute @workgroup_size(16, 16)
 fn jacobi(
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(local_invocation_id) lid3: vec3<u32>,
     @builtin(local_invocation_index) lid: u32,
 ) {
-    let tile = listed_tile(wid);
-    let origin = tile.xy;
-    let x = origin.x + i32(lid3.x);
-    let y = origin.y + i32(lid3.y);
-    let i = u32(y) * params.nx + u32(x);
+    let t = tile_thread(wid, lid3);
+    let i = t.i;
     var mine = false;
-    if tile.z != 0 && x < i32(params.nx) && y < i32(params.ny) && !halted() {
+    if t.live {
         mine = atomicLoad(&role[i]) == HOLE;
     }
     if !any_in_workgroup(mine, lid) {
         return;
     }
-    load_tile(origin, lid);
+    load_tile(t.origin, lid);
     if mine {
         let b = select(0.0, -before[i], gen[i] != 0u);
-        v_out[i] = b - g_times_v(x, y, origin);
+        v_out[i] = b - g_times_v(t.x, t.y, t.origin);
     }
 }
 
@@ -267,23 +282,20 @@ fn certify(
     @builtin(local_invocation_id) lid3: vec3<u32>,
     @builtin(local_invocation_index) lid: u32,
 ) {
-    let tile = listed_tile(wid);
-    let origin = tile.xy;
-    let x = origin.x + i32(lid3.x);
-    let y = origin.y + i32(lid3.y);
-    let i = u32(y) * params.nx + u32(x);
+    let t = tile_thread(wid, lid3);
+    let i = t.i;
     var mine = false;
-    if tile.z != 0 && x < i32(params.nx) && y < i32(params.ny) && !halted() {
+    if t.live {
         mine = atomicLoad(&role[i]) == CANDIDATE && mask[i] != 0u;
     }
     if !any_in_workgroup(mine, lid) {
         return;
     }
-    load_tile(origin, lid);
+    load_tile(t.origin, lid);
     if !mine {
         return;
     }
-    let delta = min(g_times_v(x, y, origin), 0.0);
+    let delta = min(g_times_v(t.x, t.y, t.origin), 0.0);
     if before[i] < 0.0 && before[i] + params.safety * delta < params.limit {
         mask[i] = 0u;
         p[i] = 0.0;

@@ -1209,40 +1209,9 @@ mod round_two {
 #[test]
 fn a_preload_the_window_cannot_hold_stops_with_the_reason() {
     let dir = tempfile::tempdir().unwrap();
-    // A gently wavy surface on a window (no apex): 48 × 48 nodes, spacing 0.02.
-    let n = 48;
-    let text: String = (0..n)
-        .map(|j| {
-            let row: Vec<String> = (0..n)
-                .map(|i| {
-                    let (x, y) = (i as f64 * 0.3, j as f64 * 0.2);
-                    format!("{:.9e}", 0.01 * (x.sin() + y.cos()))
-                })
-                .collect();
-            row.join(" ") + "\n"
-        })
-        .collect();
-    std::fs::write(dir.path().join("m.txt"), text).unwrap();
-    let o = common::jkrbem(
-        &[
-            "simulate",
-            "--indenter",
-            "height-map",
-            "--height-map",
-            "m.txt",
-            "--spacing",
-            "0.02",
-            "--grid",
-            "32",
-            "--preload-force",
-            "1e6",
-            "--backend",
-            "cpu",
-            "--out",
-            "s.csv",
-        ],
-        dir.path(),
-    );
+    wavy_map(&dir.path().join("m.txt"));
+    let args = [WAVY_MAP_RUN, &["--preload-force", "1e6", "--out", "s.csv"]].concat();
+    let o = common::jkrbem(&args, dir.path());
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(
@@ -1261,22 +1230,8 @@ fn a_preload_the_window_cannot_hold_stops_with_the_reason() {
 #[test]
 fn a_standard_stream_appended_onto_an_input_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let n = 48;
-    let text: String = (0..n)
-        .map(|j| {
-            let row: Vec<String> = (0..n)
-                .map(|i| {
-                    format!(
-                        "{:.9e}",
-                        0.01 * ((i as f64 * 0.3).sin() + (j as f64 * 0.2).cos())
-                    )
-                })
-                .collect();
-            row.join(" ") + "\n"
-        })
-        .collect();
     let map = dir.path().join("m.txt");
-    std::fs::write(&map, &text).unwrap();
+    let text = wavy_map(&map);
     std::fs::hard_link(&map, dir.path().join("hl.txt")).unwrap();
     for (fd, target, out) in [(1, "m.txt", "-"), (2, "m.txt", "o.csv"), (1, "hl.txt", "-")] {
         let append = std::fs::OpenOptions::new()
@@ -1284,21 +1239,9 @@ fn a_standard_stream_appended_onto_an_input_is_refused() {
             .open(dir.path().join(target))
             .unwrap();
         let mut cmd = bin();
-        cmd.current_dir(dir.path()).args([
-            "simulate",
-            "--indenter",
-            "height-map",
-            "--height-map",
-            "m.txt",
-            "--spacing",
-            "0.02",
-            "--grid",
-            "32",
-            "--backend",
-            "cpu",
-            "--out",
-            out,
-        ]);
+        cmd.current_dir(dir.path())
+            .args(WAVY_MAP_RUN)
+            .args(["--out", out]);
         let said = if fd == 1 {
             let o = cmd.stdout(Stdio::from(append)).output().unwrap();
             assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
@@ -1319,4 +1262,38 @@ fn a_standard_stream_appended_onto_an_input_is_refused() {
         );
         assert!(!dir.path().join("o.csv").exists());
     }
+}
+
+/// `simulate` of the map [`wavy_map`] writes to `m.txt`, on the CPU at 32².
+const WAVY_MAP_RUN: &[&str] = &[
+    "simulate",
+    "--indenter",
+    "height-map",
+    "--height-map",
+    "m.txt",
+    "--spacing",
+    "0.02",
+    "--grid",
+    "32",
+    "--backend",
+    "cpu",
+];
+
+/// A gently wavy surface on a window (no apex) as a text map of 48 × 48 nodes (for a spacing
+/// of 0.02), written to `path`; returns its text.
+fn wavy_map(path: &Path) -> String {
+    let n = 48;
+    let text: String = (0..n)
+        .map(|j| {
+            let row: Vec<String> = (0..n)
+                .map(|i| {
+                    let (x, y) = (i as f64 * 0.3, j as f64 * 0.2);
+                    format!("{:.9e}", 0.01 * (x.sin() + y.cos()))
+                })
+                .collect();
+            row.join(" ") + "\n"
+        })
+        .collect();
+    std::fs::write(path, &text).unwrap();
+    text
 }
