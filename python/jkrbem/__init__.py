@@ -17,6 +17,7 @@ from __future__ import annotations
 import inspect
 import json
 import math
+import warnings
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -24,6 +25,7 @@ import numpy as np
 from . import _check, _jkrbem, _progress, _request, _results
 from ._jkrbem import InputError, SolveError
 from ._load import load
+from ._progress import _PROGRESS
 from ._results import STATE_COLUMNS, Fields, Result, Run
 from ._results import fields_from_raw as _fields
 from ._results import states_array as _states_array
@@ -145,6 +147,14 @@ def _frame_records(frame: Any) -> List[Dict[str, Any]]:
     """A pandas DataFrame's rows as dicts of keywords: an empty (NaN, None, NA) cell is not
     given, and a whole number in a column pandas made float (because of its empty cells) is
     an integer again where the keyword takes one."""
+    # to_dict keeps the last of two columns of one name: every row would run with its values.
+    names = [str(c) for c in frame.columns]
+    repeated = sorted({n for n in names if names.count(n) > 1})
+    if repeated:
+        raise InputError(
+            f"scenes: the DataFrame has the column {', '.join(repeated)} more than once: each "
+            "keyword may be given once; drop or rename the copies"
+        )
     import pandas as pd
 
     records = []
@@ -159,6 +169,10 @@ def _frame_records(frame: Any) -> List[Dict[str, Any]]:
             given[name] = value
         records.append(given)
     return records
+
+
+# What the library says of a scene an interrupted batch did not start (src/run/scenes/pool.rs).
+_NOT_STARTED = "not started (the batch was stopped)"
 
 
 def _batch_progress(progress: Union[None, bool, Callable[[dict], Any]]) -> Optional[Callable[[dict], Any]]:
@@ -208,7 +222,9 @@ def batch(
     ``text`` naming its scene, and "scene" as each scene ends: ``index``, ``done``, ``total``,
     ``adhesive_force``, ``failure``), or True for a tqdm bar over the scenes.
 
-    Returns the :class:`Result` of each scene, in order. Raises :class:`SolveError` naming
+    Returns the :class:`Result` of each scene, in order; an interrupted batch (Ctrl-C, or a
+    ``progress`` callable that raises KeyboardInterrupt) warns and returns what it computed,
+    None for the scenes it did not start. Raises :class:`SolveError` naming
     every scene that has no adhesive force because a run failed; its ``results`` attribute
     holds every scene's :class:`Result` (None for one that could not start) and ``result``
     the first failed one's.
@@ -238,21 +254,27 @@ def batch(
     answers = _jkrbem.batch(json.dumps(requests), processes, _batch_progress(progress))
     results: List[Optional[Result]] = []
     failures = []
+    stopped = False
     for i, (text, raw_fields, error) in enumerate(answers):
         if error is not None:
             kind, message = error
             if kind == "input":
                 raise InputError(f"scenes[{i}]: {message}")
             results.append(None)
-            failures.append((i, message, None))
+            if message == _NOT_STARTED:
+                # The batch was interrupted before this scene: not a failure.
+                stopped = True
+            else:
+                failures.append((i, message, None))
             continue
         r = _result(json.loads(text), _fields(raw_fields))
         results.append(r)
         if r.adhesive_force is None and r.failure is not None and not r.interrupted:
             failures.append((i, r.failure, r))
-    if any(r is not None and r.interrupted for r in results):
+    if stopped or any(r is not None and r.interrupted for r in results):
         warnings.warn(
-            "jkrbem: the batch was interrupted; the results hold the states computed so far",
+            "jkrbem: the batch was interrupted; the results hold the states computed so far "
+            "(None for the scenes it did not start)",
             RuntimeWarning,
             stacklevel=2,
         )

@@ -101,3 +101,51 @@ def test_sweep_results_run_as_one_batch():
     assert list(t["f_ad_bar"]) == [r.adhesive_force for r in rs]
     with pytest.raises(jkrbem.InputError, match="ratios"):
         jkrbem.sweep_results([0.5], **FAST)
+
+
+class _TwoRatioColumns:
+    """What batch reads of a DataFrame with the column ratio twice (pandas' to_dict keeps the
+    last copy's values)."""
+
+    columns = ["ratio", "ratio", "grid"]
+
+    def to_dict(self, orient):
+        return [{"ratio": 32.0, "grid": 32}]
+
+
+def test_a_dataframe_with_a_repeated_column_is_refused():
+    # Before any run, and before pandas is needed: every row ran with the last copy's values.
+    with pytest.raises(jkrbem.InputError, match="ratio more than once"):
+        jkrbem.batch(_TwoRatioColumns())
+
+
+def test_a_pandas_dataframe_with_a_repeated_column_is_refused():
+    pd = pytest.importorskip("pandas")
+    frame = pd.DataFrame([[1.0, 32.0, 32]], columns=["ratio", "ratio", "grid"])
+    with pytest.raises(jkrbem.InputError, match="ratio more than once"):
+        jkrbem.batch(frame)
+
+
+@pytest.mark.parametrize("progress", [None, False, True, lambda event: None])
+def test_every_progress_value_of_batch_runs(progress):
+    # progress=True and False raised NameError (_PROGRESS) before they were checked.
+    results = jkrbem.batch(SCENES[:1], progress=progress)
+    assert results[0].adhesive_force is not None
+    with pytest.raises(TypeError, match="progress"):
+        jkrbem.batch(SCENES[:1], progress="yes")
+
+
+def test_an_interrupted_batch_warns_and_keeps_its_results():
+    # The warning of an interrupted batch raised NameError (warnings) and lost the results.
+    seen = []
+
+    def stop(event):
+        seen.append(event)
+        if event["event"] == "scene":
+            raise KeyboardInterrupt
+
+    with pytest.warns(RuntimeWarning, match="interrupted"):
+        results = jkrbem.batch(SCENES[:2], progress=stop)
+    # The first scene ended before the interrupt; the second was not started.
+    assert len(results) == 2 and results[1] is None
+    assert results[0].adhesive_force is not None
