@@ -9,6 +9,7 @@ import csv
 import json
 import math
 import os
+import stat
 import zipfile
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Tuple, Union
@@ -29,6 +30,40 @@ _ARRAYS = ("pressure", "gap", "contact", "x", "y", "state_index", "d", "force", 
            "d_bar", "f_bar", "c_bar")
 
 _WHAT = "a summary (.json), a states CSV (.csv) or a fields archive (.fields.npz)"
+
+#: The largest summary read (bytes), as the command's own reads of summaries.
+_MAX_SUMMARY_BYTES = 16 << 20
+
+#: The largest states CSV read (bytes): a run's 100 000 steps with their onsets take far less.
+_MAX_STATES_BYTES = 1 << 30
+
+
+def _open_regular(p: Path, cap: Optional[int]) -> int:
+    """A descriptor of `p` opened for reading without blocking (a FIFO never hangs), checked
+    to be a regular file of at most `cap` bytes (None: any size); :class:`InputError`
+    otherwise (a device such as /dev/zero, a FIFO, a folder, a file too large), OSError where
+    it cannot be opened."""
+    fd = os.open(p, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    try:
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode):
+            raise _refuse(p, "not a regular file (a device, a FIFO or a folder): jkrbem.load "
+                             "reads the files the command wrote")
+        if cap is not None and st.st_size > cap:
+            raise _refuse(p, f"{st.st_size} bytes, more than the {cap} such a file can hold")
+    except BaseException:
+        os.close(fd)
+        raise
+    return fd
+
+
+def _read_regular(p: Path, cap: Optional[int]) -> str:
+    """The text (UTF-8) of the regular file `p`, of at most `cap` bytes ([`_open_regular`])."""
+    with os.fdopen(_open_regular(p, cap), "rb") as f:
+        data = f.read(cap + 1 if cap is not None else -1)
+    if cap is not None and len(data) > cap:
+        raise _refuse(p, f"more than the {cap} bytes such a file can hold")
+    return data.decode("utf-8")
 
 
 def load(path: Union[str, "os.PathLike[str]"]) -> Union[Result, Run, List[Fields]]:
@@ -71,8 +106,7 @@ def _refuse(p: Path, why: str) -> InputError:
 
 def _read_states(p: Path) -> Tuple[np.ndarray, List[str], Optional[str]]:
     """The states of a states CSV, its comment lines (without ``# ``) and its ``onsets``."""
-    with open(p, newline="", encoding="utf-8") as f:
-        text = f.read().splitlines()
+    text = _read_regular(p, _MAX_STATES_BYTES).splitlines()
     comments = [line[1:].strip() for line in text if line.lstrip().startswith("#")]
     numbered = [(i + 1, line) for i, line in enumerate(text) if line.strip() and not line.lstrip().startswith("#")]
     if not numbered:
@@ -108,7 +142,7 @@ def _summary_beside(csv_path: Path) -> Optional[Dict[str, Any]]:
     """The run report naming `csv_path` in the summary beside it (``<stem>.json``), if any."""
     beside = csv_path.with_suffix(".json")
     try:
-        summary = json.loads(beside.read_text(encoding="utf-8"))
+        summary = json.loads(_read_regular(beside, _MAX_SUMMARY_BYTES))
     except (OSError, ValueError):
         return None
     for report in summary.get("runs", []) if isinstance(summary, dict) else []:
@@ -126,6 +160,7 @@ def _fields_path(csv_path: Path) -> Path:
 def _grid_of_fields(npz: Path) -> Optional[Tuple[int, int]]:
     """The grid a fields archive states (its metadata's ``about.grid``), if it can be read."""
     try:
+        os.close(_open_regular(npz, None))
         with np.load(npz, allow_pickle=False) as z:
             meta = json.loads(z["metadata"].tobytes().decode("utf-8"))
         nx, ny = meta["about"]["grid"]
@@ -159,6 +194,7 @@ def _load_run(p: Path) -> Run:
 def _load_fields(p: Path, run: int = 0, states: Optional[np.ndarray] = None) -> List[Fields]:
     """The fields of a ``.fields.npz`` (of run `run`), each state's row from `states` (the
     run's states) or, where not given, from the states CSV beside the archive if found."""
+    os.close(_open_regular(p, None))
     try:
         z = np.load(p, allow_pickle=False)
     except (ValueError, EOFError, zipfile.BadZipFile) as e:
@@ -239,7 +275,7 @@ def _find(named: str, base: Path) -> Optional[Path]:
 
 def _load_summary(p: Path) -> Result:
     try:
-        summary = json.loads(p.read_text(encoding="utf-8"))
+        summary = json.loads(_read_regular(p, _MAX_SUMMARY_BYTES))
     except ValueError as e:
         raise _refuse(p, f"not JSON ({e})") from None
     if not (isinstance(summary, dict) and isinstance(summary.get("runs"), list) and "f_ad_bar" in summary):

@@ -239,3 +239,32 @@ def test_a_states_csv_with_a_bad_number_names_its_line(memory, tmp_path):
 def test_a_missing_file_is_an_os_error(tmp_path):
     with pytest.raises(FileNotFoundError):
         jkrbem.load(tmp_path / "none.json")
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+@pytest.mark.parametrize("name", ["s.json", "s.csv", "s.fields.npz"])
+def test_a_device_behind_a_name_is_refused_not_read(tmp_path, device, name):
+    # It read /dev/urandom for ever and /dev/zero to exhaustion.
+    link = tmp_path / name
+    link.symlink_to(device)
+    with pytest.raises(jkrbem.InputError, match="not a regular file"):
+        jkrbem.load(link)
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs on this system")
+def test_a_fifo_is_refused_at_once(tmp_path):
+    # A FIFO named .json with no writer blocked the call for ever.
+    fifo = tmp_path / "s.json"
+    os.mkfifo(fifo)
+    with pytest.raises(jkrbem.InputError, match="not a regular file"):
+        jkrbem.load(fifo)
+
+
+def test_a_summary_larger_than_any_summary_is_refused(tmp_path, monkeypatch):
+    from jkrbem import _load
+
+    monkeypatch.setattr(_load, "_MAX_SUMMARY_BYTES", 64)
+    big = tmp_path / "s.json"
+    big.write_text(json.dumps({"f_ad_bar": None, "runs": [], "pad": "x" * 100}))
+    with pytest.raises(jkrbem.InputError, match="more than the 64"):
+        jkrbem.load(big)
