@@ -408,6 +408,35 @@ fn process_pool() -> PyResult<std::sync::Arc<rayon::ThreadPool>> {
     Ok(fresh)
 }
 
+/// Run `work` on a thread of its own while the calling thread waits with the GIL released,
+/// taking the GIL back every few milliseconds (at most 50) to run Python's signal handlers:
+/// a Ctrl-C (SIGINT, or any handler that raises) marks `callback` interrupted, which the run's
+/// watch sees at its next state and stops at, keeping what it computed. Python runs its
+/// signal handlers only on its main thread, so a check made from the solver's threads alone
+/// never sees a Ctrl-C: the run went on to its end and the interrupt then discarded it.
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    callback: &Callback,
+    work: impl FnOnce() -> T + Send,
+) -> T {
+    std::thread::scope(|scope| {
+        let handle = scope.spawn(work);
+        let mut wait = Duration::from_millis(1);
+        loop {
+            if handle.is_finished() {
+                return handle
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+            }
+            if py.check_signals().is_err() {
+                callback.interrupted.store(true, Ordering::SeqCst);
+            }
+            py.detach(|| std::thread::sleep(wait));
+            wait = (wait * 2).min(Duration::from_millis(50));
+        }
+    })
+}
+
 /// Run a simulation: `request` is a JSON object of the keywords given (every other keyword
 /// takes the schema's default), `height_map` an array's heights (native-endian f64 bytes, ny,
 /// nx) where one is given in memory. Returns the answer as JSON and the fields (a list of
@@ -424,10 +453,14 @@ fn simulate<'py>(
     guarded(|| {
         let req = self::request(request)?;
         let map = array_map(&req, height_map)?;
-        let sim = req.simulate_request(Sink::Memory, map).map_err(input_error)?;
+        let sim = req
+            .simulate_request(Sink::Memory, map)
+            .map_err(input_error)?;
         let watch = PyWatch::new(progress);
         let pool = process_pool()?;
-        let done = py.detach(|| pool.install(|| run_simulate(&sim, &watch)));
+        let done = interruptible(py, &watch.callback, || {
+            pool.install(|| run_simulate(&sim, &watch))
+        });
         if let Some(e) = watch.callback.take_error() {
             return Err(e);
         }
@@ -450,7 +483,9 @@ fn simulate<'py>(
 fn plan(request: &str, height_map: Option<Heights<'_>>) -> PyResult<String> {
     guarded(|| {
         let req = self::request(request)?;
-        let scene = req.scene(array_map(&req, height_map)?).map_err(input_error)?;
+        let scene = req
+            .scene(array_map(&req, height_map)?)
+            .map_err(input_error)?;
         let target = req.accuracy.unwrap_or(DEFAULT_ACCURACY);
         let p = jkrbem::plan::for_accuracy(&scene, target, &req.options())
             .map_err(|e| input_error(e.to_string()))?;
@@ -587,7 +622,13 @@ fn crossed_scene(
             work_of_adhesion,
         };
         let refused = |e: jkrbem::scene::SceneError| {
-            input_error(e.renamed(&|p| if p == schema::ANGLE { schema::ANGLES } else { p }))
+            input_error(e.renamed(&|p| {
+                if p == schema::ANGLE {
+                    schema::ANGLES
+                } else {
+                    p
+                }
+            }))
         };
         c.validate().map_err(refused)?;
         let (r1, r2) = c.radii().map_err(refused)?;
@@ -714,7 +755,9 @@ fn batch<'py>(
         let watch = BatchWatch(Callback::new(progress));
         let pool = process_pool()?;
         let threads = processes.max(1);
-        let done = py.detach(|| pool.install(|| run_all(jobs, threads, &watch, &|_, o| o)));
+        let done = interruptible(py, &watch.0, || {
+            pool.install(|| run_all(jobs, threads, &watch, &|_, o| o))
+        });
         if let Some(e) = watch.0.take_error() {
             return Err(e);
         }

@@ -268,3 +268,45 @@ def test_defaults_follow_the_cli():
     curve = jkrbem.pulloff(1, grid=32, backend="cpu")
     assert curve.summary["provenance"]["options"]["steps"] == 200
     assert r.summary["runs"][0]["f_ad_bar"] == pytest.approx(curve.summary["runs"][0]["f_ad_bar"], rel=1e-6)
+
+
+_SIGINT_CHILD = r'''
+import sys, time, warnings
+import jkrbem
+warnings.simplefilter("ignore")
+print("started", flush=True)
+if sys.argv[1] == "simulate":
+    r = jkrbem.simulate(ratio=1, grid=256, backend="cpu", measure="adhesive_force")
+    print("returned", r.interrupted, len(r.states), flush=True)
+else:
+    scenes = [dict(ratio=1 + k, grid=128, backend="cpu", measure="adhesive_force") for k in range(8)]
+    rs = jkrbem.batch(scenes)
+    print("returned", any(r is None or r.interrupted for r in rs), len(rs), flush=True)
+'''
+
+
+@pytest.mark.skipif(os.name != "posix", reason="SIGINT is sent with os.kill")
+@pytest.mark.parametrize("call", ["simulate", "batch"])
+def test_a_real_sigint_stops_the_run_and_keeps_what_it_computed(call):
+    # Python runs signal handlers on its main thread only: the solver's threads never saw a
+    # Ctrl-C, the run went on to its end and the interrupt then discarded its result.
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    p = subprocess.Popen([sys.executable, "-c", _SIGINT_CHILD, call], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    try:
+        assert p.stdout.readline().strip() == "started"
+        time.sleep(1.5)
+        sent = time.monotonic()
+        p.send_signal(signal.SIGINT)
+        out, err = p.communicate(timeout=60)
+        took = time.monotonic() - sent
+    finally:
+        p.kill()
+    assert p.returncode == 0, err
+    words = out.split()
+    assert words[:2] == ["returned", "True"], out + err
+    assert took < 5.0, f"stopped {took:.1f} s after the signal"
