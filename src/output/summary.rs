@@ -403,14 +403,22 @@ fn run_text(r: &RunReport) -> String {
             crate::text::compact(r.apex_offset[1])
         );
     }
+    // A contact that does not cross the centre lines at pull-off (the patches of a nominally
+    // flat rough surface) has no width across them to state: the clause is left out.
+    let across = match r.n_d {
+        Some(n) if n > 0.0 => format!(
+            ", {} elements across the minor axis at pull-off",
+            fixed(n, 0)
+        ),
+        Some(_) => String::new(),
+        None => ", — elements across the minor axis at pull-off".to_string(),
+    };
     s += &format!(
-        "grid {}{angle}: |min F̄| = {}, Δx = {:.5e}, σ_c = {:.5e}, {} elements across the minor \
-         axis at pull-off\n",
+        "grid {}{angle}: |min F̄| = {}, Δx = {:.5e}, σ_c = {:.5e}{across}\n",
         r.grid,
         opt(r.f_ad_bar, 5),
         r.dx,
         r.sigma_c,
-        opt(r.n_d, 0)
     );
     if !r.regrids.is_empty() {
         s += &format!(
@@ -596,6 +604,23 @@ mod tests {
             Some(Path::new("s.csv")),
         );
         Summary::new(&AdhesiveResult::single(run, None))
+    }
+
+    #[test]
+    fn a_contact_off_the_centre_lines_states_no_width_across_it() {
+        // The patches of a nominally flat rough surface read "0 elements across the minor axis".
+        let model = sphere(32);
+        let patches = state(&model, -1.0, 0.0, 40);
+        let gone = state(&model, -0.3, 0.0, 0);
+        let text = run_text(&summary_of(&model, vec![patches, gone]).runs[0]);
+        assert!(!text.contains("elements across"), "{text}");
+        let round = state(&model, -1.0, 13.0, 500);
+        let gone = state(&model, -0.3, 0.0, 0);
+        let text = run_text(&summary_of(&model, vec![round, gone]).runs[0]);
+        assert!(
+            text.contains("26 elements across the minor axis at pull-off"),
+            "{text}"
+        );
     }
 
     #[test]
