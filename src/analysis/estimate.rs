@@ -181,8 +181,17 @@ impl AdhesiveResult {
                     100.0 * e.f_ad_bar.relative()
                 ),
                 None => format!(
-                    "target ± {:.2} % not met: no run reached the force minimum",
-                    100.0 * t.target
+                    "target ± {:.2} % not met: {}",
+                    100.0 * t.target,
+                    if !self.runs.iter().any(|r| r.min_reached) {
+                        "no run reached the force minimum"
+                    } else if self.runs.iter().all(|r| r.f_ad_bar.is_none()) {
+                        "the runs reached the force minimum, but each one's adhesive force was \
+                         withheld (the warnings say why)"
+                    } else {
+                        "the runs reached the force minimum, but no estimate with an \
+                         uncertainty could be made from them (the warnings say why)"
+                    }
                 ),
             });
         }
@@ -633,6 +642,23 @@ mod tests {
             let (u, v) = (self.next().max(1e-300), self.next());
             (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
         }
+    }
+
+    #[test]
+    fn a_missed_target_says_why_there_is_no_estimate() {
+        let reached =
+            AdhesiveResult::assemble(5.0, None, Some(0.01), vec![run(5.0, 64, 0.5, 30.0)]);
+        let w = reached.warnings().join("\n");
+        assert!(
+            w.contains("the runs reached the force minimum, but no estimate"),
+            "{w}"
+        );
+        let mut short = run(5.0, 64, 0.5, 30.0);
+        short.min_reached = false;
+        short.f_ad_bar = None;
+        let none = AdhesiveResult::assemble(5.0, None, Some(0.01), vec![short]);
+        let w = none.warnings().join("\n");
+        assert!(w.contains("no run reached the force minimum"), "{w}");
     }
 
     #[test]
