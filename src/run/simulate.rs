@@ -630,6 +630,19 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
     let result = if !req.scene.is_ellipsoid() && req.mode == Mode::Single && reports.len() == 1 {
         AdhesiveResult::beside_limit(reports.into_iter().next().expect("one run"), exact)
     } else if !req.scene.is_ellipsoid() {
+        // A deadline (or a stop) that cut a grid between its phases leaves it too few for the
+        // phase scatter: the answer comes from the grids that finished, as the time limit's
+        // warning says.
+        let cut = if timed_out.is_some() || stopped {
+            drop_unfinished_grid(&mut reports)
+        } else {
+            None
+        };
+        if let (Some(cut), Some(note)) = (&cut, &mut plan_note) {
+            note.push_str(&format!("; {cut}"));
+        } else if let Some(cut) = cut {
+            plan_note = Some(cut);
+        }
         // No convergence law: the grids and their phases extrapolated (every run, the
         // accuracy loop's finer grids included).
         let limit = generic_limit::grids_of(&reports).and_then(|g| generic_limit::limit(&g));
@@ -926,6 +939,29 @@ fn refine_generic(
     Ok(ran)
 }
 
+/// Drop the finest grid's runs where it finished fewer grid phases than the extrapolation
+/// needs ([`generic_limit::MIN_PHASES`]) and coarser grids remain: what a deadline that cut the
+/// grid between its phases leaves. Says what was left out; `None` where nothing was.
+fn drop_unfinished_grid(reports: &mut Vec<crate::analysis::report::RunReport>) -> Option<String> {
+    let labels: Vec<&str> = reports.iter().map(|r| r.grid.as_str()).collect();
+    let (finest, phases) = unfinished_finest(&labels)?;
+    reports.retain(|r| r.grid != finest);
+    Some(format!(
+        "the {finest} grid finished {phases} grid phase(s), fewer than the {} its phase \
+         scatter needs, so the answer is from the coarser grids",
+        generic_limit::MIN_PHASES
+    ))
+}
+
+/// Of runs' grids (`labels`, coarse to fine), the finest and its count where it has fewer
+/// runs than [`generic_limit::MIN_PHASES`] and a coarser grid ran too.
+fn unfinished_finest(labels: &[&str]) -> Option<(String, usize)> {
+    let finest = *labels.last()?;
+    let phases = labels.iter().filter(|&&l| l == finest).count();
+    (phases < generic_limit::MIN_PHASES && phases < labels.len())
+        .then(|| (finest.to_string(), phases))
+}
+
 /// ", mesh turned by θ°" for a rotated mesh, else nothing.
 pub fn angle_note(model: &Model) -> String {
     if model.mesh.is_aligned() {
@@ -940,5 +976,24 @@ pub fn failure_error(failure: Option<String>) -> Result<(), RunError> {
     match failure {
         None => Ok(()),
         Some(f) => Err(failed(f)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_grid_cut_between_its_phases_is_left_out_of_the_extrapolation() {
+        // The 256² grid finished one phase before the deadline: the answer is from 64² and 128².
+        let cut = ["64×64", "64×64", "128×128", "128×128", "256×256"];
+        assert_eq!(unfinished_finest(&cut), Some(("256×256".to_string(), 1)));
+        // Every grid at two phases or more, or a single grid: nothing is left out.
+        assert_eq!(
+            unfinished_finest(&["64×64", "64×64", "128×128", "128×128"]),
+            None
+        );
+        assert_eq!(unfinished_finest(&["64×64"]), None);
+        assert_eq!(unfinished_finest(&[]), None);
     }
 }
