@@ -474,3 +474,29 @@ fn the_smallest_grid_runs() {
         std::fs::remove_file(dir.path().join("g.csv")).unwrap();
     }
 }
+
+/// A `.npy` map too large for the limits is refused from its header (issue 55), before its
+/// data is read: a 20000² float64 map (3.2 GB, sparse here) was read in full first, or refused
+/// by the memory check for the wrong cause.
+#[test]
+fn an_npy_map_of_too_many_nodes_is_refused_from_its_header() {
+    let dir = tempfile::tempdir().unwrap();
+    let header = "{'descr': '<f8', 'fortran_order': False, 'shape': (20000, 20000), }";
+    let pad = (64 - (10 + header.len() + 1) % 64) % 64;
+    let header = format!("{header}{}\n", " ".repeat(pad));
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    bytes.extend_from_slice(header.as_bytes());
+    let path = dir.path().join("big.npy");
+    let file = std::fs::File::create(&path).unwrap();
+    use std::io::Write;
+    (&file).write_all(&bytes).unwrap();
+    file.set_len(bytes.len() as u64 + 20000 * 20000 * 8)
+        .unwrap();
+    let o = map_run(dir.path(), "big.npy", "0.01", &[]);
+    let err = refused_naming(&o, "--height-map");
+    assert!(
+        err.contains("20000 columns") && err.contains("16384"),
+        "{err}"
+    );
+}

@@ -16,6 +16,26 @@ const MAX_MAP_BYTES: u64 = 16384 * 16384 * 32;
 /// the list they grow in) and the map built from them.
 const MAP_READ_BYTES_PER_BYTE: u64 = 6;
 
+/// The bytes of a `.npy` header read before the data: NumPy writes headers of a few hundred.
+const NPY_HEADER_PREFIX: u64 = 1 << 16;
+
+/// Refuse a regular `.npy` file whose header states a shape outside the map limits, from its
+/// first bytes alone (the data is not read).
+fn refuse_npy_shape(path: &Path, name: &str, param: &Spec) -> Result<(), RunError> {
+    use std::io::Read;
+    if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
+        return Ok(()); // read_regular says why it cannot be read
+    }
+    let mut prefix = Vec::new();
+    if let Ok(f) = std::fs::File::open(path) {
+        let _ = f.take(NPY_HEADER_PREFIX).read_to_end(&mut prefix);
+    }
+    if !prefix.starts_with(b"\x93NUMPY") {
+        return Ok(());
+    }
+    HeightMap::refuse_npy_shape(&prefix, name).map_err(|e| input(format!("{param}: {e}")))
+}
+
 /// Refuse, before reading it, a map file whose reading would need more memory than the machine
 /// has ([`crate::plan::available_memory`]).
 fn check_map_memory(path: &Path, name: &str, param: &Spec) -> Result<(), RunError> {
@@ -52,6 +72,7 @@ pub fn read_as(
     param: &'static Spec,
 ) -> Result<HeightMap, RunError> {
     crate::output::file::note_input(path, &param.to_string());
+    refuse_npy_shape(path, name, param)?;
     check_map_memory(path, name, param)?;
     let bytes = read_regular(path, MAX_MAP_BYTES).map_err(|e| match e {
         ReadError::Absent => input(format!("{param} {name}: no such file")),

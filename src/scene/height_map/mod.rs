@@ -267,6 +267,19 @@ impl HeightMap {
         }
     }
 
+    /// Refuse a `.npy` file whose header (in `prefix`, the file's first bytes) states a shape
+    /// outside the limits, before its data is read: a 20000² map would otherwise be read in
+    /// full (gigabytes) first. Only the shape's refusal is final here; any other fault of the
+    /// file is found when the whole of it is read (`Ok` then).
+    pub fn refuse_npy_shape(prefix: &[u8], name: &str) -> Result<(), HeightMapError> {
+        match npy::header(prefix, name) {
+            Err(e @ (HeightMapError::Dimensions { .. } | HeightMapError::NpyShape { .. })) => {
+                Err(e)
+            }
+            _ => Ok(()),
+        }
+    }
+
     /// Parses the contents of a NumPy `.npy` file, with lattice spacing
     /// `spacing` (length); `name` identifies the data in error messages.
     ///

@@ -24,6 +24,66 @@ pub(super) const ACCEPTED_DTYPES: &str = "'<f8', '<f4', '=f8', '=f4', '>f8', '>f
 /// themselves: see [`HeightMap::from_npy_bytes`](super::HeightMap::from_npy_bytes)
 /// for the accepted formats and the errors.
 pub(super) fn parse(bytes: &[u8], name: &str) -> Result<Grid, HeightMapError> {
+    let Header {
+        nx,
+        ny,
+        item_size,
+        big_endian,
+        fortran_order,
+        end: header_end,
+    } = header(bytes, name)?;
+    let file = || name.to_owned();
+    let expected = nx
+        .checked_mul(ny)
+        .and_then(|count| count.checked_mul(item_size))
+        .ok_or_else(|| HeightMapError::Dimensions {
+            file: file(),
+            nx,
+            ny,
+        })?;
+    let data = bytes.get(header_end..).unwrap_or_default();
+    if data.len() < expected {
+        return Err(HeightMapError::NpyTruncated {
+            file: file(),
+            part: "data",
+            expected,
+            found: data.len(),
+        });
+    }
+    if data.len() > expected {
+        return Err(HeightMapError::NpyTrailingData {
+            file: file(),
+            expected,
+            found: data.len(),
+        });
+    }
+    let values = decode_floats(data, item_size, big_endian);
+    let heights = if fortran_order {
+        // Column-major (ny, nx): element [j, i] sits at i * ny + j.
+        (0..ny)
+            .flat_map(|j| (0..nx).map(move |i| i * ny + j))
+            .map(|k| values.get(k).copied().unwrap_or(f64::NAN))
+            .collect()
+    } else {
+        values
+    };
+    Ok(Grid { nx, ny, heights })
+}
+
+/// What a `.npy` file's header says: the node counts (checked against the limits), the item
+/// size (bytes), the byte order, the memory order, and where the data starts (bytes).
+pub(super) struct Header {
+    pub(super) nx: usize,
+    pub(super) ny: usize,
+    item_size: usize,
+    big_endian: bool,
+    fortran_order: bool,
+    end: usize,
+}
+
+/// The header of the `.npy` data `bytes` (the data itself need not follow): its magic,
+/// version, dtype and shape checked; `name` identifies the data in error messages.
+pub(super) fn header(bytes: &[u8], name: &str) -> Result<Header, HeightMapError> {
     let file = || name.to_owned();
     let truncated_header = |expected: usize| HeightMapError::NpyTruncated {
         file: file(),
@@ -102,41 +162,14 @@ pub(super) fn parse(bytes: &[u8], name: &str) -> Result<Grid, HeightMapError> {
     let ny = usize::try_from(rows).unwrap_or(usize::MAX);
     let nx = usize::try_from(cols).unwrap_or(usize::MAX);
     check_dims(name, nx, ny)?;
-    let expected = nx
-        .checked_mul(ny)
-        .and_then(|count| count.checked_mul(item_size))
-        .ok_or_else(|| HeightMapError::Dimensions {
-            file: file(),
-            nx,
-            ny,
-        })?;
-    let data = bytes.get(header_end..).unwrap_or_default();
-    if data.len() < expected {
-        return Err(HeightMapError::NpyTruncated {
-            file: file(),
-            part: "data",
-            expected,
-            found: data.len(),
-        });
-    }
-    if data.len() > expected {
-        return Err(HeightMapError::NpyTrailingData {
-            file: file(),
-            expected,
-            found: data.len(),
-        });
-    }
-    let values = decode_floats(data, item_size, big_endian);
-    let heights = if header.fortran_order {
-        // Column-major (ny, nx): element [j, i] sits at i * ny + j.
-        (0..ny)
-            .flat_map(|j| (0..nx).map(move |i| i * ny + j))
-            .map(|k| values.get(k).copied().unwrap_or(f64::NAN))
-            .collect()
-    } else {
-        values
-    };
-    Ok(Grid { nx, ny, heights })
+    Ok(Header {
+        nx,
+        ny,
+        item_size,
+        big_endian,
+        fortran_order: header.fortran_order,
+        end: header_end,
+    })
 }
 
 /// Decodes little- or big-endian float64 (`size == 8`) or float32
