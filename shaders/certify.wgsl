@@ -254,6 +254,16 @@ fn tile_thread(wid: vec3<u32>, lid3: vec3<u32>) -> TileThread {
     return TileThread(tile.xy, x, y, u32(y) * params.nx + u32(x), live);
 }
 
+// Whether any thread of the workgroup has work (`mine`), and if so the tile at `origin`
+// loaded into workgroup memory; every thread calls it, in uniform control flow.
+fn tile_loaded(mine: bool, origin: vec2<i32>, lid: u32) -> bool {
+    if !any_in_workgroup(mine, lid) {
+        return false;
+    }
+    load_tile(origin, lid);
+    return true;
+}
+
 @compute @workgroup_size(16, 16)
 fn jacobi(
     @builtin(workgroup_id) wid: vec3<u32>,
@@ -266,10 +276,9 @@ fn jacobi(
     if t.live {
         mine = atomicLoad(&role[i]) == HOLE;
     }
-    if !any_in_workgroup(mine, lid) {
+    if !tile_loaded(mine, t.origin, lid) {
         return;
     }
-    load_tile(t.origin, lid);
     if mine {
         let b = select(0.0, -before[i], gen[i] != 0u);
         v_out[i] = b - g_times_v(t.x, t.y, t.origin);
@@ -288,10 +297,9 @@ fn certify(
     if t.live {
         mine = atomicLoad(&role[i]) == CANDIDATE && mask[i] != 0u;
     }
-    if !any_in_workgroup(mine, lid) {
+    if !tile_loaded(mine, t.origin, lid) {
         return;
     }
-    load_tile(t.origin, lid);
     if !mine {
         return;
     }

@@ -301,7 +301,7 @@ pub trait CgKernels: ElasticOperator + Scalars {
     /// Guard the CG iterations recorded from now on (`Some`) or end the guard (`None`). A
     /// device backend that queues iterations ahead of the host stops them on the device once
     /// the stop condition holds after a step: the steps recorded after that change nothing,
-    /// and [`CgKernels::read_cg_progress`] tells how many steps were made. The guarded
+    /// and [`CgKernels::read_cg_status`] tells how many steps were made. The guarded
     /// iterations are: `convolve_dot`, `cg_update` (one step each), `precondition_dot` and
     /// `xpay_ratio` (which tests the condition). The default does nothing: a backend that
     /// runs each operation when called makes every step the solver asks for.
@@ -336,13 +336,6 @@ pub trait CgKernels: ElasticOperator + Scalars {
     ) -> Result<Option<usize>, BackendError> {
         self.read_slots(slots, out)?;
         Ok(None)
-    }
-    /// slots\[rr\], and under a guard the CG steps made since it began (`None`: every step
-    /// recorded was made).
-    fn read_cg_progress(&mut self, rr: Slot) -> Result<(f64, Option<usize>), BackendError> {
-        let mut v = [0.0];
-        self.read_slots(&[rr], &mut v)?;
-        Ok((v[0], None))
     }
 }
 

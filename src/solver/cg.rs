@@ -339,19 +339,8 @@ fn read_rr<B: CgKernels>(backend: &mut B, rr: Slot, scale: Scale) -> Result<f64,
     Ok(scale.relative(v[0]))
 }
 
-/// The relative residual of r, read back from the device.
-fn read_residual<B: CgKernels>(
-    backend: &mut B,
-    c: &B::Mask,
-    r: &B::Field,
-    rr: Slot,
-    scale: Scale,
-) -> Result<f64, BackendError> {
-    backend.dot(c, r, r, rr)?;
-    read_rr(backend, rr, scale)
-}
-
-/// q = K p and r = (d − h − q)_C, the true residual; returns its relative norm.
+/// q = K p and r = (d − h − q)_C, the true residual: its relative norm and, with
+/// `with_estimate`, its error estimate (max over C of |M r|, stress), read back together.
 fn true_residual<B: CgKernels>(
     backend: &mut B,
     c: &B::Mask,
@@ -359,10 +348,17 @@ fn true_residual<B: CgKernels>(
     work: &mut CgWork<B::Field>,
     d: f64,
     scale: Scale,
-) -> Result<f64, BackendError> {
+    with_estimate: bool,
+) -> Result<(f64, Option<f64>), BackendError> {
     backend.convolve(p, &mut work.q)?;
     backend.residual(c, &work.q, d, &mut work.r)?;
-    read_residual(backend, c, &work.r, work.slots.rr, scale)
+    backend.dot(c, &work.r, &work.r, work.slots.rr)?;
+    if with_estimate {
+        estimate(backend, c, work)?;
+    }
+    let mut v = [0.0; 2];
+    backend.read_slots(&[work.slots.rr, work.slots.eps], &mut v)?;
+    Ok((scale.relative(v[0]), with_estimate.then_some(v[1])))
 }
 
 /// Start CG's directions from the residual in `work.r`: z = M r with r·z in the first r·z
@@ -590,18 +586,10 @@ fn verify<B: CgKernels>(
     settings: &CgSettings,
     mut report: CgReport,
 ) -> Result<CgReport, BackendError> {
-    backend.convolve(p, &mut work.q)?;
-    backend.residual(c, &work.q, d, &mut work.r)?;
-    backend.dot(c, &work.r, &work.r, work.slots.rr)?;
     // The error estimate of the true residual, read with it where asked for.
     let with_estimate = backend.defers_cg_start() && work.estimate_exact;
-    if with_estimate {
-        estimate(backend, c, work)?;
-    }
-    let mut v = [0.0; 2];
-    backend.read_slots(&[work.slots.rr, work.slots.eps], &mut v)?;
-    let t = scale.relative(v[0]);
-    report.error_estimate = with_estimate.then_some(v[1]);
+    let (t, eps) = true_residual(backend, c, p, work, d, scale, with_estimate)?;
+    report.error_estimate = eps;
     report.convolutions += 1;
     report.residual = t;
     if t <= TRUE_RESIDUAL_SLACK * settings.tolerance {
@@ -662,7 +650,7 @@ pub fn solve_safe<B: CgKernels>(
         }
         let n = REPLACE_EVERY.min(settings.max_iterations - report.iterations);
         report.iterations += segment(backend, c, work, p, scale, settings.tolerance, n)?;
-        t = true_residual(backend, c, p, work, d, scale)?;
+        t = true_residual(backend, c, p, work, d, scale, false)?.0;
         report.convolutions += 1;
     }
 }

@@ -379,13 +379,28 @@ pub fn settle<B: Backend>(
     sigma_c: f64,
     held: Held,
 ) -> Result<Equilibrium, SolverError> {
+    // An exact solve's error estimate is needed where the certification takes it, and only
+    // within the cascade: the solves outside it (probes, loading) read none.
+    fields.cg.estimate_exact = model.certify_detached && sigma_c > 0.0;
+    let settled = cascade(backend, model, fields, d, sigma_c, held);
+    fields.cg.estimate_exact = false;
+    settled
+}
+
+/// [`settle`]'s loop.
+fn cascade<B: Backend>(
+    backend: &mut B,
+    model: &Model,
+    fields: &mut Fields<B::Field, B::Mask>,
+    d: f64,
+    sigma_c: f64,
+    held: Held,
+) -> Result<Equilibrium, SolverError> {
     let d_bar = d / model.scene.scales().approach;
     let loose_rounds = model.loose_rounds && sigma_c > 0.0;
     let spread = model.spread_detached && sigma_c > 0.0;
     let certify = model.certify_detached && sigma_c > 0.0;
     let tighten = model.tighten_stalls && loose_rounds;
-    // An exact solve's error estimate is needed where the certification takes it.
-    fields.cg.estimate_exact = certify;
     let mut eq = Equilibrium::default();
     // Whether the p held is a state's (an exact solve's, or the one the cascade starts from);
     // the error estimate of the p held (stress), where a solve gave it; and beyond σ_c by

@@ -684,7 +684,7 @@ fn guard<B: Backend>(mut s: Subject<B>) {
             after_first = s.get(&fx);
         }
     }
-    let (_, steps) = s.b.read_cg_progress(rr).unwrap();
+    let steps = s.b.read_cg_status(&[rr], &mut [0.0]).unwrap();
     s.b.guard_cg(None).unwrap();
     let x = s.get(&fx);
     match steps {

@@ -1087,11 +1087,6 @@ impl CgKernels for GpuBackend {
         }
         Ok(self.guard.map(|_| v[slots::STEPS_SLOT] as usize))
     }
-    fn read_cg_progress(&mut self, rr: Slot) -> Result<(f64, Option<usize>), BackendError> {
-        let v = self.read_values(0, SLOTS)?;
-        let steps = self.guard.map(|_| v[slots::STEPS_SLOT] as usize);
-        Ok((v[rr.index()] as f64, steps))
-    }
 }
 
 impl ContactKernels for GpuBackend {

@@ -151,9 +151,8 @@ fn implicit_inputs() -> Vec<Input> {
         (1, "this run's standard output"),
         (2, "this run's standard error"),
     ] {
-        let path = PathBuf::from(format!("/dev/fd/{fd}"));
-        let Ok(m) = fs::metadata(&path) else { continue };
-        if let (true, Some(id)) = (m.is_file(), inode(&m)) {
+        if let Some(id) = regular_stream(fd) {
+            let path = PathBuf::from(format!("/dev/fd/{fd}"));
             let shown = fs::read_link(&path).unwrap_or(path);
             found.push(Input {
                 path: shown,
@@ -184,10 +183,16 @@ pub fn stream_is_input(fd: i32) -> bool {
     input_behind(fd).is_some()
 }
 
+/// The identity of the file the standard stream `fd` is redirected to, where it is a regular
+/// file.
+fn regular_stream(fd: i32) -> Option<FileId> {
+    let m = fs::metadata(format!("/dev/fd/{fd}")).ok()?;
+    m.is_file().then(|| inode(&m)).flatten()
+}
+
 /// The noted input that the standard stream `fd` is redirected to, if any.
 fn input_behind(fd: i32) -> Option<Input> {
-    let m = fs::metadata(format!("/dev/fd/{fd}")).ok()?;
-    let id = m.is_file().then(|| inode(&m)).flatten()?;
+    let id = regular_stream(fd)?;
     let inputs = INPUTS.lock().ok()?;
     inputs
         .iter()
