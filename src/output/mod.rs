@@ -5,6 +5,7 @@
 pub mod batch_csv;
 pub mod bench;
 pub mod chart;
+pub mod digest;
 pub mod fields_npz;
 pub mod figure;
 pub mod figure_style;

@@ -2,6 +2,7 @@
 //! version and commit, when it ran, the scene in the user's units, every option that shaped
 //! the run, the backend and device, and (for the CLI) the command line.
 
+use super::digest::InputFile;
 use serde::Serialize;
 use serde_json::Value;
 
@@ -30,6 +31,10 @@ pub struct Provenance {
     /// compares and `collect` tabulates.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub request: Option<Value>,
+    /// Every file the scene was read from (height map, roughness), with the size and CRC-32
+    /// of what was read: what a batch's `--resume` and `collect` check the files against.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub input_files: Vec<InputFile>,
 }
 
 impl Provenance {
@@ -45,6 +50,7 @@ impl Provenance {
             backend,
             command,
             request: None,
+            input_files: Vec::new(),
         }
     }
 }

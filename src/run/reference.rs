@@ -475,6 +475,7 @@ pub(crate) fn run_or_reuse(
         fields: Default::default(),
         time_limit: None,
         request: None,
+        input_files: Vec::new(),
         figures: Default::default(),
     };
     let done = simulate(&one, watch)?;

@@ -17,6 +17,7 @@ use super::{input, RunError};
 use crate::analysis::fields::FieldChoice;
 use crate::backend::select::{BackendKind, Precision};
 use crate::model::{Measure, ModelOptions, Onsets, Preload};
+use crate::output::digest::InputFile;
 use crate::output::figure::{FigureFormat, FigureFormats};
 use crate::scene::height_map::HeightMap;
 use crate::scene::{Indenter, MeasuredSurface, RoughShape, Scene};
@@ -256,6 +257,13 @@ impl Request {
     /// base shape) is read from its file, or is `map` where the caller holds it in memory
     /// (Python's array).
     pub fn scene(&self, map: Option<HeightMap>) -> Result<Scene, RunError> {
+        self.scene_read(map).map(|(scene, _)| scene)
+    }
+
+    /// Like [`Request::scene`], with the record of every file read for it (none where the
+    /// maps are in memory).
+    pub fn scene_read(&self, map: Option<HeightMap>) -> Result<(Scene, Vec<InputFile>), RunError> {
+        let mut read = Vec::new();
         let is_map = self.indenter == Shape::HeightMap;
         let (map, rough_map) = if is_map { (map, None) } else { (None, map) };
         self.refuse_foreign(map.is_some(), rough_map.is_some())?;
@@ -277,23 +285,24 @@ impl Request {
                 n: self.exponent.unwrap_or(2.0),
                 scale: self.scale.unwrap_or(crate::scene::DEFAULT_POWER_LAW_SCALE),
             },
-            Shape::HeightMap => self.height_map_indenter(map)?,
+            Shape::HeightMap => self.height_map_indenter(map, &mut read)?,
         };
-        let shape = match self.roughness_map(rough_map)? {
+        let shape = match self.roughness_map(rough_map, &mut read)? {
             Some((map, name)) => {
                 let base = shape.checked().map_err(input)?;
                 Indenter::Rough(Arc::new(RoughShape::new(base, map, &name).map_err(input)?))
             }
             None => shape,
         };
-        Scene::with_indenter(shape, e, w).map_err(input)
+        Ok((Scene::with_indenter(shape, e, w).map_err(input)?, read))
     }
 
     /// The roughness to add to the base shape, with its name: `map` if given, else read
-    /// from [`Request::roughness`]; `None` for a smooth shape.
+    /// from [`Request::roughness`] (its record added to `read`); `None` for a smooth shape.
     fn roughness_map(
         &self,
         map: Option<HeightMap>,
+        read: &mut Vec<InputFile>,
     ) -> Result<Option<(HeightMap, String)>, RunError> {
         match (map, &self.roughness) {
             (Some(map), _) => Ok(Some((map, "the array given".to_string()))),
@@ -304,19 +313,22 @@ impl Request {
                     )));
                 };
                 let name = crate::text::printable(&path.display().to_string(), 200);
-                Ok(Some((
-                    map_file::read_as(path, &name, spacing, ROUGHNESS)?,
-                    name,
-                )))
+                let (map, file) = map_file::read_as(path, &name, spacing, ROUGHNESS)?;
+                read.push(file);
+                Ok(Some((map, name)))
             }
             (None, None) => Ok(None),
         }
     }
 
-    /// The measured surface: `map` if given, else read from [`Request::height_map`]; placed
-    /// on its period under the periodic convolution, else on the window asked for, else at
-    /// its apex where it has one, else on the whole map.
-    fn height_map_indenter(&self, map: Option<HeightMap>) -> Result<Indenter, RunError> {
+    /// The measured surface: `map` if given, else read from [`Request::height_map`] (its
+    /// record added to `read`); placed on its period under the periodic convolution, else on
+    /// the window asked for, else at its apex where it has one, else on the whole map.
+    fn height_map_indenter(
+        &self,
+        map: Option<HeightMap>,
+        read: &mut Vec<InputFile>,
+    ) -> Result<Indenter, RunError> {
         let (map, name) = match (map, &self.height_map) {
             (Some(map), _) => (map, "the array given".to_string()),
             (None, Some(path)) => {
@@ -327,7 +339,9 @@ impl Request {
                     )));
                 };
                 let name = crate::text::printable(&path.display().to_string(), 200);
-                (map_file::read(path, &name, spacing)?, name)
+                let (map, file) = map_file::read(path, &name, spacing)?;
+                read.push(file);
+                (map, name)
             }
             (None, None) => {
                 return Err(input(format!(
@@ -475,7 +489,7 @@ impl Request {
             None => None,
         };
         self.backend().check()?;
-        let scene = self.scene(map)?;
+        let (scene, input_files) = self.scene_read(map)?;
         if self.convolution == Convolution::Periodic && scene.window_half().is_none() {
             return Err(input(format!(
                 "{CONVOLUTION} periodic is for a surface periodic over the domain, a height map \
@@ -493,6 +507,7 @@ impl Request {
             fields,
             time_limit,
             request: Some(self.to_json()),
+            input_files,
             figures: FigureFormats::of(&self.figure_format),
         })
     }

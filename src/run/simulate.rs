@@ -14,6 +14,7 @@ use crate::analysis::fields::{
 };
 use crate::analysis::generic_limit;
 use crate::model::{Measure, Model, ModelOptions, Onsets};
+use crate::output::digest::InputFile;
 use crate::output::figure::FigureFormats;
 use crate::output::pressure_profile::{self, JkrSphere};
 use crate::output::provenance::Provenance;
@@ -91,6 +92,9 @@ pub struct SimulateRequest {
     /// The request this was built from, as JSON ([`super::request::Request::to_json`]),
     /// recorded in the summary's provenance where given.
     pub request: Option<serde_json::Value>,
+    /// Every file the scene was read from (height map, roughness), with its digest: recorded
+    /// in the summary's provenance, so that a later run can tell it was replaced.
+    pub input_files: Vec<InputFile>,
     /// The formats of the pressure map drawn beside each states file where fields are kept
     /// (with [`Sink::Files`]); its data goes to `<stem>.plot.csv` whatever they are.
     pub figures: FigureFormats,
@@ -264,6 +268,7 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
         provenance::backend_json(&req.backend, &reports),
     );
     provenance.request = req.request.clone();
+    provenance.input_files = req.input_files.clone();
     let (field_files, unwritten) =
         write_fields(&ran.kept, &outs, &provenance, req.figures, &req.scene);
     if !unwritten.is_empty() {

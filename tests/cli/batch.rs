@@ -302,3 +302,80 @@ fn resume_skips_the_scenes_done_and_runs_a_changed_row_again() {
     let o = run_ok(dir, &["collect", "runs"], 2);
     assert!(stderr(&o).contains("holds both"), "{}", stderr(&o));
 }
+
+#[test]
+fn resume_runs_a_scene_whose_height_map_was_replaced_and_collect_refuses_its_old_summary() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let sphere = crate::common::sphere_map_text(41, 0.05, 0.0);
+    std::fs::write(dir.join("map.txt"), &sphere).unwrap();
+    let table = "id,indenter,height_map,spacing,grid,measure,backend\n\
+                 m,height-map,map.txt,0.05,32,adhesive-force,cpu\n\
+                 e,ellipsoid,,,32,adhesive-force,cpu\n";
+    std::fs::write(dir.join("scenes.csv"), table).unwrap();
+    let args = ["batch", "scenes.csv", "--out", "runs", "--resume"];
+    let o = run_ok(dir, &args, 0);
+    assert!(stdout(&o).contains("2 ran (0 failed)"), "{}", stdout(&o));
+    let recorded = |id: &str| -> serde_json::Value {
+        let path = dir.join(format!("runs/scene-{id}.json"));
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+    };
+    let first = recorded("m");
+    let files = &first["provenance"]["input_files"];
+    assert_eq!(files[0]["parameter"], "height_map");
+    assert_eq!(files[0]["path"], "map.txt");
+    assert_eq!(files[0]["bytes"], sphere.len() as u64);
+    assert!(recorded("e")["provenance"].get("input_files").is_none());
+    let o = run_ok(dir, &args, 0);
+    assert!(
+        stdout(&o).contains("0 ran (0 failed), 2 skipped"),
+        "{}",
+        stdout(&o)
+    );
+
+    // Another surface under the same name: the sphere of half the radius.
+    let steeper: String = sphere
+        .lines()
+        .map(|l| {
+            let row: Vec<String> = l
+                .split_whitespace()
+                .map(|h| format!("{:e}", 2.0 * h.parse::<f64>().unwrap()))
+                .collect();
+            row.join(" ") + "\n"
+        })
+        .collect();
+    std::fs::write(dir.join("map.txt"), &steeper).unwrap();
+    let o = run_ok(dir, &["collect", "runs"], 1);
+    assert!(
+        stderr(&o).contains("scene m:") && stderr(&o).contains("map.txt changed since it ran"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.join("runs/batch.csv").exists());
+
+    let o = run_ok(dir, &args, 0);
+    assert!(
+        stdout(&o).contains("1 ran (0 failed), 1 skipped"),
+        "{}",
+        stdout(&o)
+    );
+    let second = recorded("m");
+    assert_ne!(
+        second["provenance"]["input_files"],
+        first["provenance"]["input_files"]
+    );
+    let radius = |v: &serde_json::Value| v["provenance"]["scene"]["fitted_radii"][0].as_f64();
+    assert!((radius(&first).unwrap() - 1.0).abs() < 1e-6);
+    assert!(
+        (radius(&second).unwrap() - 0.5).abs() < 1e-6,
+        "the new surface ran"
+    );
+    let o = run_ok(dir, &["collect", "runs"], 0);
+    assert!(stdout(&o).contains("merged 2 of 2"), "{}", stdout(&o));
+    let o = run_ok(dir, &args, 0);
+    assert!(
+        stdout(&o).contains("0 ran (0 failed), 2 skipped"),
+        "{}",
+        stdout(&o)
+    );
+}

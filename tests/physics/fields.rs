@@ -31,6 +31,7 @@ fn fields_of(ratio: f64, nx: usize, choice: FieldChoice) -> (Vec<StateFields>, u
             fields: choice,
             time_limit: None,
             request: None,
+            input_files: Vec::new(),
             figures: Default::default(),
         },
         &jkrbem::run::Quiet,

@@ -30,6 +30,7 @@ fn extrapolated(indenter: Indenter, mode: Mode) -> jkrbem::output::summary::Summ
             fields: Default::default(),
             time_limit: None,
             request: None,
+            input_files: Vec::new(),
             figures: Default::default(),
         },
         &Quiet,

@@ -27,6 +27,7 @@ fn request(sink: Sink) -> SimulateRequest {
         fields: Default::default(),
         time_limit: None,
         request: None,
+        input_files: Vec::new(),
         figures: Default::default(),
     }
 }

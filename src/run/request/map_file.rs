@@ -3,6 +3,7 @@
 
 use super::super::schema::{Spec, HEIGHT_MAP, SPACING};
 use super::super::{input, RunError};
+use crate::output::digest::InputFile;
 use crate::output::file::{read_regular, ReadError};
 use crate::scene::height_map::{HeightMap, HeightMapError};
 use std::path::Path;
@@ -57,9 +58,10 @@ fn check_map_memory(path: &Path, name: &str, param: &Spec) -> Result<(), RunErro
     }
 }
 
-/// The map of the file at `path` (shown as `name`) with nodes `spacing` apart (length). The
-/// file is noted as this run's input, so that no output of the run may be it.
-pub fn read(path: &Path, name: &str, spacing: f64) -> Result<HeightMap, RunError> {
+/// The map of the file at `path` (shown as `name`) with nodes `spacing` apart (length), with
+/// the record of what was read. The file is noted as this run's input, so that no output of
+/// the run may be it.
+pub fn read(path: &Path, name: &str, spacing: f64) -> Result<(HeightMap, InputFile), RunError> {
     read_as(path, name, spacing, HEIGHT_MAP)
 }
 
@@ -70,7 +72,7 @@ pub fn read_as(
     name: &str,
     spacing: f64,
     param: &'static Spec,
-) -> Result<HeightMap, RunError> {
+) -> Result<(HeightMap, InputFile), RunError> {
     crate::output::file::note_input(path, &param.to_string());
     refuse_npy_shape(path, name, param)?;
     check_map_memory(path, name, param)?;
@@ -78,8 +80,10 @@ pub fn read_as(
         ReadError::Absent => input(format!("{param} {name}: no such file")),
         ReadError::Refused(why) => input(format!("{param} {name}: {why}")),
     })?;
-    HeightMap::from_file_bytes(path, &bytes, spacing).map_err(|e| match e {
+    let read = InputFile::read(param.name, path, &bytes);
+    let map = HeightMap::from_file_bytes(path, &bytes, spacing).map_err(|e| match e {
         HeightMapError::Spacing { .. } => input(format!("{SPACING}: {e}")),
         e => input(format!("{param}: {e}")),
-    })
+    })?;
+    Ok((map, read))
 }

@@ -2,11 +2,13 @@
 //! `DIR/scene-<id>.csv` (states) and `DIR/scene-<id>.json` (summary, its provenance holding the
 //! scene's request), with the batch's record beside them (`batch.json`, or
 //! `batch-shard-K-of-N.json`) for `collect`. Every row is checked before any work; with
-//! `resume`, a scene whose summary is complete and records the same request is not run again.
+//! `resume`, a scene whose summary is complete, records the same request and read the same
+//! files (size and CRC-32) is not run again.
 
 use super::pool::{run_all, SceneJob};
 use super::table::{self, Row, Table};
 use crate::output::batch_csv::{Manifest, ManifestScene, MANIFEST_FORMAT};
+use crate::output::digest::InputFile;
 use crate::output::file::{note_input, read_regular};
 use crate::output::names;
 use crate::output::NamedBy;
@@ -84,23 +86,36 @@ fn scene_request(row: &Row, dir: &Path) -> Result<SimulateRequest, RunError> {
 /// The largest summary read to decide whether a scene is done (bytes).
 const MAX_SUMMARY_BYTES: u64 = 16 << 20;
 
-/// Whether the summary at `path` is complete and records `request`: the scene need not run
-/// again. Anything else (absent, unreadable, incomplete, of another request or another
-/// version's schema) says it must.
-pub fn is_done(path: &Path, request: &Request) -> bool {
+/// Whether the summary at `path` is complete, records `request` and read the files `read`
+/// holds as they are now (the same size and CRC-32 of each): the scene need not run again.
+/// Anything else (absent, unreadable, incomplete, of another request or another version's
+/// schema, a file replaced since) says it must.
+pub fn is_done(path: &Path, request: &Request, read: &[InputFile]) -> bool {
     let Ok(bytes) = read_regular(path, MAX_SUMMARY_BYTES) else {
         return false;
     };
     let Ok(summary) = serde_json::from_slice::<serde_json::Value>(&bytes) else {
         return false;
     };
-    let recorded = summary
-        .get("provenance")
+    let provenance = summary.get("provenance");
+    let recorded = provenance
         .and_then(|p| p.get("request"))
         .cloned()
         .and_then(|r| serde_json::from_value::<Request>(r).ok());
+    let files = provenance
+        .and_then(|p| p.get("input_files"))
+        .cloned()
+        .map_or(Some(Vec::new()), |f| {
+            serde_json::from_value::<Vec<InputFile>>(f).ok()
+        });
+    let contents = |f: &[InputFile]| {
+        f.iter()
+            .map(|i| (i.parameter.clone(), i.digest.clone()))
+            .collect::<Vec<_>>()
+    };
     summary.get("complete") == Some(&serde_json::Value::Bool(true))
         && recorded.as_ref() == Some(request)
+        && files.is_some_and(|f| contents(&f) == contents(read))
 }
 
 /// A row's simulation, checked, and the files it writes (each with the flag that names it).
@@ -168,7 +183,8 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
     let mut ran_rows = Vec::new();
     for &j in &mine {
         let row = &table.rows[j];
-        if req.resume && is_done(&names::scene_summary(&req.out, &row.id), &row.request) {
+        let summary = names::scene_summary(&req.out, &row.id);
+        if req.resume && is_done(&summary, &row.request, &scenes[j].request.input_files) {
             skipped.push(row.id.clone());
             continue;
         }

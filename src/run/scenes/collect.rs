@@ -6,13 +6,14 @@
 //! are named.
 
 use crate::output::batch_csv::{self, BatchRow, Manifest, ManifestScene};
+use crate::output::digest::{CurrentDigests, InputFile};
 use crate::output::file::{note_input, read_regular, ReadError};
 use crate::output::names;
 use crate::output::sweep_csv::MAX_SHARDS;
 use crate::run::claim::{named, write_error, Outputs};
 use crate::run::request::Request;
 use crate::run::schema::{values, Fronts, SPECS};
-use crate::run::schema::{ALLOW_MISSING, RESUME};
+use crate::run::schema::{ALLOW_MISSING, HEIGHT_MAP, RESUME, ROUGHNESS};
 use crate::run::{failed, input, RunError};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -115,8 +116,31 @@ fn number(v: &Value, key: &str) -> Option<f64> {
     v.get(key).and_then(Value::as_f64)
 }
 
-/// The row of `scene` from its summary in `dir`.
-fn scene_row(dir: &Path, scene: &ManifestScene) -> Scene {
+/// Why the files a summary's scene read no longer hold what it read (a height map replaced
+/// since), or `None` where they still do. A request that names a file whose summary records
+/// no digest of it (an older version's) cannot be vouched for.
+fn files_changed(summary: &Value, request: &Value, now: &mut CurrentDigests) -> Option<String> {
+    let files = match summary.pointer("/provenance/input_files") {
+        None => Vec::new(),
+        Some(f) => match serde_json::from_value::<Vec<InputFile>>(f.clone()) {
+            Ok(f) => f,
+            Err(_) => return Some("its record of the files it read is unreadable".into()),
+        },
+    };
+    for param in [HEIGHT_MAP, ROUGHNESS] {
+        let named = request.get(param.name).is_some_and(|v| !v.is_null());
+        if named && !files.iter().any(|f| f.parameter == param.name) {
+            return Some(format!(
+                "it records no digest of its {param} file (written by an older version), so \
+                 it cannot be checked against the file as it is now"
+            ));
+        }
+    }
+    files.iter().find_map(|f| now.changed(f))
+}
+
+/// The row of `scene` from its summary in `dir`, the files it read checked against `now`.
+fn scene_row(dir: &Path, scene: &ManifestScene, now: &mut CurrentDigests) -> Scene {
     let path = names::scene_summary(dir, &scene.id);
     let bytes = match read_regular(&path, 16 << 20) {
         Ok(b) => b,
@@ -140,6 +164,9 @@ fn scene_row(dir: &Path, scene: &ManifestScene) -> Scene {
             "{} is of another request (the table changed since it ran)",
             path.display()
         ));
+    }
+    if let Some(why) = files_changed(&s, &scene.request, now) {
+        return Scene::Stale(format!("{}: {why}", path.display()));
     }
     let parameters = SPECS
         .iter()
@@ -219,8 +246,9 @@ pub fn collect_batch(dir: &Path, allow_missing: bool) -> Result<BatchMerged, Run
     let mut missing = Vec::new();
     let mut stale = Vec::new();
     let mut incomplete = Vec::new();
+    let mut now = CurrentDigests::default();
     for scene in &scenes {
-        match scene_row(dir, scene) {
+        match scene_row(dir, scene, &mut now) {
             Scene::Row(row) => {
                 if !row.complete {
                     incomplete.push(row.id.clone());
@@ -244,8 +272,8 @@ pub fn collect_batch(dir: &Path, allow_missing: bool) -> Result<BatchMerged, Run
     }
     if !stale.is_empty() {
         problems.push(format!(
-            "{} scene(s) without a summary of their request (run the batch again with \
-             {RESUME}): {}",
+            "{} scene(s) without a summary of their request and files as they are now (run \
+             the batch again with {RESUME}): {}",
             stale.len(),
             stale.join("; ")
         ));
