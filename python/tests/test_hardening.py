@@ -433,3 +433,21 @@ def test_a_batch_scenes_map_array_of_a_bad_dtype_names_the_scene_and_keyword():
                                        "spacing": 0.05}]), "height_map", TypeError)
     assert "scenes[0]" in str(e)
 
+
+# LOW: a summary nested too deeply for Python's JSON parser.
+
+
+def test_a_deeply_nested_summary_is_refused_as_a_load_error_not_a_recursion_error(tmp_path):
+    deep = "[" * 100_000 + "]" * 100_000
+    summary = tmp_path / "deep.json"
+    summary.write_text(deep)
+    e = refused(lambda: jkrbem.load(summary), "deep.json", jkrbem.InputError)
+    assert "nested" in str(e), str(e)
+    # A states CSV beside such a summary loads alone, as beside any unreadable summary.
+    (tmp_path / "deep.csv").write_text("step,phase,d,force,d_bar,f_bar,c_bar\n0,approach,0,0,0,0,0\n")
+    run = jkrbem.load(tmp_path / "deep.csv")
+    assert run.grid is None and len(run.states) == 1
+    # A fields archive whose metadata is so nested.
+    np.savez(tmp_path / "deep.fields.npz", metadata=np.frombuffer(deep.encode(), dtype=np.uint8))
+    e = refused(lambda: jkrbem.load(tmp_path / "deep.fields.npz"), "deep.fields.npz", jkrbem.InputError)
+    assert "nested" in str(e), str(e)
