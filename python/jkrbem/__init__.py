@@ -101,7 +101,10 @@ def simulate(
 
     Numbers may be Python's or numpy's (``np.int64(64)``, ``np.float32(2)``); integers
     (``grid``, ``steps``, state indices) must be integers (32.0 is refused), and no bool is
-    taken for a number.
+    taken for a number. ``height_map`` (with ``indenter="height_map"``) and ``roughness`` may
+    be 2-D numpy arrays of heights (rows along y, with ``spacing``) of real numbers, a float
+    or integer dtype: a complex, bool, object, string or masked array is refused, and a
+    masked array for any keyword.
 
     ``fields``: the states whose fields (pressure, gap, contact set as 2-D arrays, with x
     and y) are kept in :attr:`Result.fields`: None (the default), "minimum" (the force

@@ -95,10 +95,60 @@ def flag(name: str, value: Any, what: str) -> bool:
     return bool(value)
 
 
+def unmasked(name: str, value: Any) -> None:
+    """Refuse a numpy masked array: a masked value has no number, and the data hidden under
+    its mask is what numpy would hand on (a masked array with nothing masked is refused too,
+    so that an answer never depends on what a mask happens to hide)."""
+    if isinstance(value, np.ma.MaskedArray):
+        raise TypeError(
+            f"{name} is invalid: a masked array is not taken (a masked value has no number, "
+            "and the one hidden under the mask would be read): give a plain numpy array, "
+            "e.g. a.filled(value)"
+        )
+
+
+#: The dtypes of an array that is not one of real numbers, in words.
+_NOT_REAL = {
+    "c": "a complex array",
+    "b": "a bool array",
+    "O": "an object array",
+    "U": "an array of strings",
+    "S": "an array of bytes",
+    "M": "an array of dates",
+    "m": "an array of time spans",
+    "V": "an array of records",
+}
+
+#: What to do with an array of such a dtype, where there is a likely remedy.
+_REMEDY = {
+    "c": ": give its real part (a.real) if that is what is meant",
+    "O": ": convert it, a.astype(float)",
+    "U": ": convert it, a.astype(float)",
+    "S": ": convert it, a.astype(float)",
+}
+
+
+def real_array(name: str, value: np.ndarray, what: str) -> np.ndarray:
+    """`value` (a numpy array) checked to hold real numbers, a float or integer dtype, as
+    `what`: a masked array, and one of complex numbers, bools, objects, strings, dates or
+    records are refused (numpy would turn each into floats without a word, dropping an
+    imaginary part, reading a bool as 0 or 1, parsing a string), naming `name`."""
+    unmasked(name, value)
+    kind = value.dtype.kind
+    if kind not in "fiu":
+        words = _NOT_REAL.get(kind, "an array")
+        raise TypeError(
+            f"{name} is invalid: {what} (real numbers: a float or integer dtype) is expected, "
+            f"not {words} ({value.dtype}){_REMEDY.get(kind, '')}"
+        )
+    return value
+
+
 def items(name: str, value: Any, what: str) -> List[Any]:
-    """`value` as a list: a list, tuple, range or 1-D numpy array, never a string (whose
-    characters would be taken one by one), a dict, a set or a scalar."""
+    """`value` as a list: a list, tuple, range or 1-D numpy array (not a masked one), never a
+    string (whose characters would be taken one by one), a dict, a set or a scalar."""
     if isinstance(value, np.ndarray):
+        unmasked(name, value)
         if value.ndim != 1:
             raise TypeError(f"{name} is invalid: {what} is expected, not a {value.ndim}-D array")
         return list(value)

@@ -96,6 +96,21 @@ def load(path: Union[str, "os.PathLike[str]"]) -> Union[Result, Run, List[Fields
     raise InputError(f"path = {str(p)!r} is invalid: jkrbem.load reads {_WHAT}, not {shown}")
 
 
+class _TooDeep(ValueError):
+    """JSON nested too deeply for Python's parser."""
+
+
+def _json(text: str) -> Any:
+    """`text` parsed as JSON; a document nested too deeply for Python's parser (which recurses
+    once per level and runs out of stack) is a ValueError (:class:`_TooDeep`), as any other
+    text that is not JSON, never a RecursionError."""
+    try:
+        return json.loads(text)
+    except RecursionError:
+        raise _TooDeep("nested deeper than Python's parser can follow, as no file jkrbem "
+                       "writes is") from None
+
+
 def _refuse(p: Path, why: str) -> InputError:
     """The error for a file that is not of the format its extension says."""
     return InputError(f"path = {str(p)!r} is invalid: {why}")
@@ -142,7 +157,7 @@ def _summary_beside(csv_path: Path) -> Optional[Dict[str, Any]]:
     """The run report naming `csv_path` in the summary beside it (``<stem>.json``), if any."""
     beside = csv_path.with_suffix(".json")
     try:
-        summary = json.loads(_read_regular(beside, _MAX_SUMMARY_BYTES))
+        summary = _json(_read_regular(beside, _MAX_SUMMARY_BYTES))
     except (OSError, ValueError):
         return None
     for report in summary.get("runs", []) if isinstance(summary, dict) else []:
@@ -162,7 +177,7 @@ def _grid_of_fields(npz: Path) -> Optional[Tuple[int, int]]:
     try:
         os.close(_open_regular(npz, None))
         with np.load(npz, allow_pickle=False) as z:
-            meta = json.loads(z["metadata"].tobytes().decode("utf-8"))
+            meta = _json(z["metadata"].tobytes().decode("utf-8"))
         nx, ny = meta["about"]["grid"]
         return int(nx), int(ny)
     except Exception:  # no archive, or not one of ours: the grid stays unknown
@@ -205,7 +220,9 @@ def _load_fields(p: Path, run: int = 0, states: Optional[np.ndarray] = None) -> 
         if "metadata" not in z.files:
             raise _refuse(p, "not a jkrbem fields archive (no metadata)")
         try:
-            meta = json.loads(z["metadata"].tobytes().decode("utf-8"))
+            meta = _json(z["metadata"].tobytes().decode("utf-8"))
+        except _TooDeep as e:
+            raise _refuse(p, f"not a jkrbem fields archive: its metadata is {e}") from None
         except ValueError:
             raise _refuse(p, "not a jkrbem fields archive (its metadata is not JSON)") from None
         if not isinstance(meta, dict) or meta.get("format") != "jkrbem fields":
@@ -275,7 +292,9 @@ def _find(named: str, base: Path) -> Optional[Path]:
 
 def _load_summary(p: Path) -> Result:
     try:
-        summary = json.loads(_read_regular(p, _MAX_SUMMARY_BYTES))
+        summary = _json(_read_regular(p, _MAX_SUMMARY_BYTES))
+    except _TooDeep as e:
+        raise _refuse(p, f"not a jkrbem summary: it is {e}") from None
     except ValueError as e:
         raise _refuse(p, f"not JSON ({e})") from None
     if not (isinstance(summary, dict) and isinstance(summary.get("runs"), list) and "f_ad_bar" in summary):

@@ -14,7 +14,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from . import _jkrbem
+from . import _check, _jkrbem
 from ._jkrbem import InputError
 
 #: Every keyword of a simulation, as the library's schema declares it (name, unit, kind,
@@ -29,11 +29,13 @@ _FIELDS = 'None, "minimum", ("every", k) or a list of state indices'
 
 def _plain(name: str, value: Any) -> Any:
     """`value` as JSON can carry it: numpy scalars and arrays as Python numbers and lists,
-    tuples as lists, paths as strings; anything else JSON cannot carry is a TypeError."""
+    tuples as lists, paths as strings; anything else JSON cannot carry (a complex number, a
+    masked array) is a TypeError."""
     if isinstance(value, np.generic):
         return _plain(name, value.item())
     if isinstance(value, np.ndarray):
-        return value.tolist()
+        _check.unmasked(name, value)
+        return _plain(name, value.tolist())
     if isinstance(value, (tuple, list)):
         return [_plain(name, v) for v in value]
     if isinstance(value, os.PathLike):
@@ -51,6 +53,8 @@ def _plain(name: str, value: Any) -> Any:
         return as_float
     if value is None or isinstance(value, (bool, int, float, str)):
         return value
+    if isinstance(value, complex):
+        raise TypeError(f"{name} = {_check.shown(value)} is invalid: a real number is expected, not a complex one")
     raise TypeError(f"{name} = {type(value).__name__} is invalid: a number, a string or a list is expected")
 
 
@@ -60,6 +64,7 @@ def _fields(value: Any) -> Optional[str]:
         return value
     if not isinstance(value, (list, tuple, np.ndarray)):
         raise TypeError(f"fields = {type(value).__name__} is invalid: {_FIELDS} is expected")
+    _check.unmasked("fields", value)
     items = [v.item() if isinstance(v, np.generic) else v for v in value]
     if not items:
         raise InputError(f"fields = [] is invalid: {_FIELDS}, at least one")
@@ -72,13 +77,45 @@ def _fields(value: Any) -> Optional[str]:
 
 
 def _heights(name: str, value: Any) -> Optional[Tuple[bytes, int, int]]:
-    """A height map (or roughness) given as a 2-D array: its heights as f64 bytes, and its shape."""
+    """A height map (or roughness) given as a 2-D array of real numbers (a float or integer
+    dtype, as the CLI's .npy of float64 or float32; never complex, bool, object or masked):
+    its heights as f64 bytes, and its shape."""
     if not isinstance(value, np.ndarray):
         return None
+    _check.real_array(name, value, "a 2-D array of heights")
     if value.ndim != 2:
         raise InputError(f"{name} is invalid: a 2-D array of heights (rows along y), not {value.ndim}-D")
     a = np.ascontiguousarray(value, dtype=np.float64)
     return a.tobytes(), a.shape[0], a.shape[1]
+
+
+#: The indenters, as the library spells them (hyphens).
+_INDENTERS: List[str] = json.loads(BY_NAME["indenter"]["kind"][len("Choice("):-1])
+
+
+def _refuse_foreign_array(name: str, indenter: Any) -> None:
+    """Refuse an array given as ``height_map`` with another indenter, or as ``roughness``
+    with ``indenter="height_map"``, as the library refuses such a file: the library takes an
+    array as the indenter's map or as the roughness by the indenter alone, and would run a
+    height_map array as the roughness of the ellipsoid (or a roughness array as the map)."""
+    if indenter is None:
+        indenter = BY_NAME["indenter"]["default"]
+    if not isinstance(indenter, str):
+        return  # the library refuses the indenter itself
+    shape = indenter.strip().replace("_", "-")
+    if shape not in _INDENTERS:
+        return  # likewise
+    if name == "height_map" and shape != "height-map":
+        raise InputError(
+            f"height_map is for indenter height-map, not {shape}: give indenter=\"height_map\" to "
+            f"run the map, or give the array as roughness to add it to the {shape}"
+        )
+    if name == "roughness" and shape == "height-map":
+        others = " or ".join(s for s in _INDENTERS if s != "height-map")
+        raise InputError(
+            f"roughness is for indenter {others}, not height-map: give the array as height_map "
+            "to run it as the indenter"
+        )
 
 
 def request(params: Dict[str, Any]) -> Tuple[str, Optional[Tuple[bytes, int, int]]]:
@@ -93,6 +130,7 @@ def request(params: Dict[str, Any]) -> Tuple[str, Optional[Tuple[bytes, int, int
             if heights is not None:
                 raise InputError("height_map and roughness: give one array (a height map has no base shape to add roughness to)")
             heights = _heights(name, value)
+            _refuse_foreign_array(name, params.get("indenter"))
             continue
         if name == "fields":
             value = _fields(value)

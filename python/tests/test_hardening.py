@@ -301,3 +301,153 @@ def test_a_fast_progress_callback_still_sees_states_often():
     states = [e for e in events if e["event"] == "state"]
     assert len(states) >= 2
     assert [e["event"] for e in events][-1] == "end"
+
+
+# Hardening four (issue 55).
+
+#: A paraboloid of radius 1 on 64 × 64 nodes at spacing 0.05: a height map that plans.
+_X = (np.arange(64) - 31.5) * 0.05
+BOWL = (_X[None, :] ** 2 + _X[:, None] ** 2) / 2
+
+#: Where a map's array goes: as the indenter, or as the roughness added to a sphere.
+AS = {
+    "height_map": {"indenter": "height_map", "spacing": 0.05},
+    "roughness": {"ratio": 1, "spacing": 0.05},
+}
+
+
+def _masked(a):
+    return np.ma.masked_array(a, mask=a > 1.0)
+
+
+# ITEM 20: the CLI reads float64 and float32 .npy maps only; Python takes real numbers
+# (float or integer arrays) and refuses, naming the keyword and before any run, what the CLI
+# refuses and numpy would have turned into heights silently: complex numbers (their imaginary
+# part dropped), masked arrays (their hidden values read as heights), bools (0 and 1).
+@pytest.mark.parametrize("keyword", ["height_map", "roughness"])
+@pytest.mark.parametrize(
+    "array, says",
+    [
+        (BOWL.astype(np.complex128), "complex"),
+        (BOWL + 0.5j, "complex"),
+        (BOWL.astype(np.complex64), "complex"),
+        (_masked(BOWL), "masked"),
+        (np.ma.masked_array(BOWL), "masked"),  # nothing masked: still a masked array
+        (BOWL > 0.5, "bool"),
+    ],
+    ids=["complex128", "complex-imaginary", "complex64", "masked", "masked-none", "bool"],
+)
+def test_a_complex_masked_or_bool_map_array_is_refused_naming_its_keyword(keyword, array, says):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no ComplexWarning on the way: refused before numpy casts
+        e = refused(lambda: jkrbem.plan(**{keyword: array}, **AS[keyword]), keyword, TypeError)
+        assert says in str(e), str(e)
+        refused(lambda: jkrbem.simulate(**{keyword: array}, **AS[keyword], **FAST), keyword, TypeError)
+
+
+def test_a_real_map_array_of_any_float_or_integer_dtype_is_taken():
+    f64 = jkrbem.plan(indenter="height_map", height_map=BOWL, spacing=0.05)
+    assert f64["grids"] == jkrbem.plan(indenter="height_map", height_map=BOWL.astype(np.float32),
+                                       spacing=0.05)["grids"]
+    # The same bowl 10⁴ times larger, in whole numbers (Δγ scaled to keep the contact's size).
+    whole = jkrbem.plan(indenter="height_map", height_map=np.rint(BOWL * 1e4).astype(np.int32),
+                        spacing=500, work_of_adhesion=1e4)
+    assert whole["grids"] == f64["grids"]
+
+
+@pytest.mark.parametrize(
+    "kwargs, keyword",
+    [
+        ({"extrapolate": np.array([32, 64], dtype=complex)}, "extrapolate"),
+        ({"apex_offset": np.array([0.1, 0.0], dtype=complex)}, "apex_offset"),
+        ({"apex_offset": np.array(0.1 + 0j)}, "apex_offset"),
+        ({"e_star": np.array(2 + 0j)}, "e_star"),
+        ({"extrapolate": np.ma.masked_array([32, 64, 128], mask=[0, 0, 1])}, "extrapolate"),
+        ({"extrapolate": np.ma.masked_array([32, 64])}, "extrapolate"),
+        ({"apex_offset": np.ma.masked_array([0.1, 0.2], mask=[0, 1])}, "apex_offset"),
+        ({"e_star": np.ma.masked_array(2.0, mask=True)}, "e_star"),
+        ({"fields": np.ma.masked_array([1, 2], mask=[0, 1])}, "fields"),
+    ],
+)
+def test_a_complex_or_masked_array_for_any_other_keyword_is_refused_naming_it(kwargs, keyword):
+    # Before: "Object of type complex is not JSON serializable" (no keyword), and a masked
+    # value read as its hidden data (nothing masked) or as null.
+    args = {"ratio": 1, "backend": "cpu", **kwargs}
+    if "extrapolate" not in kwargs:
+        args["grid"] = 32
+    e = refused(lambda: jkrbem.simulate(**args), keyword, TypeError)
+    assert "serializable" not in str(e)
+    if isinstance(next(iter(kwargs.values())), np.ma.MaskedArray):
+        assert "masked" in str(e), str(e)
+
+
+def test_a_masked_array_of_ratios_or_angles_is_refused_naming_it():
+    e = refused(lambda: jkrbem.sweep(np.ma.masked_array([1, 2]), **FAST), "ratios", TypeError)
+    assert "masked" in str(e)
+    e = refused(lambda: jkrbem.crossed(np.ma.masked_array([90, 45], mask=[0, 1]), **FAST), "angles", TypeError)
+    assert "masked" in str(e)
+
+
+# ITEM 20 (found beside it): an array's keyword says what it is, as the CLI's flag does. A
+# height_map array without indenter="height_map" ran the ellipsoid with the map as its
+# roughness; a roughness array with indenter="height_map" ran it as the map.
+
+
+def test_a_height_map_array_with_another_indenter_is_refused_not_taken_as_roughness():
+    e = refused(lambda: jkrbem.plan(height_map=BOWL, spacing=0.05), "height_map", jkrbem.InputError)
+    assert "indenter" in str(e) and "ellipsoid" in str(e), str(e)
+    e = refused(lambda: jkrbem.simulate(height_map=BOWL, spacing=0.05, indenter="flat-punch", **FAST),
+                "height_map", jkrbem.InputError)
+    assert "flat-punch" in str(e), str(e)
+    e = refused(lambda: jkrbem.plan(indenter="height-map", roughness=BOWL, spacing=0.05),
+                "roughness", jkrbem.InputError)
+    assert "height" in str(e), str(e)
+    # As the CLI: --height-map with the default indenter is refused the same way.
+    refused(lambda: jkrbem.plan(height_map="map.npy", spacing=0.05), "height_map", jkrbem.InputError)
+
+
+# LOW: an object array (or one of strings, dates or records) is no array of heights.
+
+
+@pytest.mark.parametrize("keyword", ["height_map", "roughness"])
+@pytest.mark.parametrize(
+    "array",
+    [
+        BOWL.astype(object),
+        np.full((64, 64), "a", dtype=object),
+        np.full((64, 64), "1.5"),
+        np.zeros((64, 64), dtype="M8[s]"),
+        np.zeros((64, 64), dtype=[("h", "f8")]),
+    ],
+    ids=["object-floats", "object-strings", "strings", "datetimes", "records"],
+)
+def test_an_object_or_text_map_array_is_refused_naming_its_keyword(keyword, array):
+    # Before: an object array of strings raised numpy's "could not convert string to float"
+    # (no keyword); one of floats, strings of numbers, dates and records were read as heights.
+    e = refused(lambda: jkrbem.plan(**{keyword: array}, **AS[keyword]), keyword, TypeError)
+    assert str(array.dtype) in str(e), str(e)
+
+
+def test_a_batch_scenes_map_array_of_a_bad_dtype_names_the_scene_and_keyword():
+    e = refused(lambda: jkrbem.batch([{"indenter": "height_map", "height_map": BOWL.astype(object),
+                                       "spacing": 0.05}]), "height_map", TypeError)
+    assert "scenes[0]" in str(e)
+
+
+# LOW: a summary nested too deeply for Python's JSON parser.
+
+
+def test_a_deeply_nested_summary_is_refused_as_a_load_error_not_a_recursion_error(tmp_path):
+    deep = "[" * 100_000 + "]" * 100_000
+    summary = tmp_path / "deep.json"
+    summary.write_text(deep)
+    e = refused(lambda: jkrbem.load(summary), "deep.json", jkrbem.InputError)
+    assert "nested" in str(e), str(e)
+    # A states CSV beside such a summary loads alone, as beside any unreadable summary.
+    (tmp_path / "deep.csv").write_text("step,phase,d,force,d_bar,f_bar,c_bar\n0,approach,0,0,0,0,0\n")
+    run = jkrbem.load(tmp_path / "deep.csv")
+    assert run.grid is None and len(run.states) == 1
+    # A fields archive whose metadata is so nested.
+    np.savez(tmp_path / "deep.fields.npz", metadata=np.frombuffer(deep.encode(), dtype=np.uint8))
+    e = refused(lambda: jkrbem.load(tmp_path / "deep.fields.npz"), "deep.fields.npz", jkrbem.InputError)
+    assert "nested" in str(e), str(e)
