@@ -226,25 +226,27 @@ impl RunReport {
 }
 
 /// For a height map, why its force minimum `at_min` cannot be trusted: the contact there spans
-/// fewer than [`MIN_MAP_SPACINGS_AT_MINIMUM`] map spacings across its minor axis, so the solver
-/// worked on the map's facets (the check before the run predicts this from the closed form;
-/// this one measures it). `None` where the map resolves it, and for the other shapes.
+/// fewer than [`MIN_MAP_SPACINGS_AT_MINIMUM`] map spacings, so the solver worked on the map's
+/// facets (the checks before the run predict this, from the closed form at the apex and from
+/// the window's size on a window; this one measures it). At the apex the width is the
+/// contact's minor axis 2b; on a window, where the contact may lie anywhere and in patches,
+/// its mean diameter 2√(A/π). `None` where the map resolves it, and for the other shapes.
 fn map_too_coarse(model: &Model, at_min: &State) -> Option<String> {
-    // Only a map at its apex stands for a smooth tip whose shape its facets approximate; a
-    // map on a window is the surface itself, facets and all, and a rough shape's map is
-    // roughness on a smooth base.
-    if model.scene.window_half().is_some()
-        || matches!(model.scene.indenter, crate::scene::Indenter::Rough(_))
-    {
+    // A rough shape's map is roughness on a smooth base, the shape the contact resolves.
+    if matches!(model.scene.indenter, crate::scene::Indenter::Rough(_)) {
         return None;
     }
     let spacing = model.scene.indenter.map_spacing()?;
-    let width = 2.0 * at_min.b_axis;
+    let (width, measure) = if model.scene.window_half().is_some() {
+        (2.0 * at_min.mean_radius, "its mean diameter 2√(A/π)")
+    } else {
+        (2.0 * at_min.b_axis, "its minor axis, 2b")
+    };
     let across = width / spacing;
     (across < MIN_MAP_SPACINGS_AT_MINIMUM).then(|| {
         format!(
             "height map too coarse for its contact: at the force minimum the contact spans \
-             {across:.1} map spacings across its minor axis (2b = {}; at least \
+             {across:.1} map spacings across ({measure} = {}; at least \
              {MIN_MAP_SPACINGS_AT_MINIMUM} are needed), so the solver worked on the map's flat \
              facets instead of the surface's shape: the adhesive force is withheld; give a map \
              of {SPACING} {} or finer over the same area",

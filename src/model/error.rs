@@ -72,6 +72,27 @@ pub enum ModelError {
         /// The contact length scale c_r (length).
         c_r: f64,
     },
+    /// A height map on a window too small, in map spacings, for any contact it holds to be
+    /// resolved.
+    #[error(
+        "{HEIGHT_MAP}: the {map} is too coarse for any contact it can hold: the whole window \
+         spans {} map spacings across (its mean diameter 2√(A/π) ≈ {}), and the contact at the \
+         force minimum spans fewer; at least {MIN_MAP_SPACINGS_AT_MINIMUM} are needed there, or \
+         the solver works on the map's flat facets instead of the surface's shape and its \
+         answer is wrong: give a map of {SPACING} {} or finer over the same area, or a larger \
+         map",
+        compact_count(*across), compact(*width), compact(*needed_spacing)
+    )]
+    WindowMapTooCoarse {
+        /// The map in words (its file, nodes and spacing).
+        map: String,
+        /// Map spacings across the window's mean diameter.
+        across: f64,
+        /// The window's mean diameter 2√(A/π) (length).
+        width: f64,
+        /// The spacing that would give it the map spacings needed (length).
+        needed_spacing: f64,
+    },
     /// An environment variable's value cannot be used (`JKRBEM_MEMORY_LIMIT`).
     #[error("{variable} = {value} is invalid: {expected}")]
     Environment {

@@ -263,6 +263,7 @@ impl Model {
         mesh: MeshAngle,
         (half_x, half_y): (f64, f64),
     ) -> Result<Self, ModelError> {
+        check_window_map_resolution(scene, (half_x, half_y))?;
         let dx = 2.0 * half_x / opt.nx as f64;
         let ny = match periodic_map(scene) {
             Some(m) => periodic_rows(m, opt, &mesh, dx)?,
@@ -694,6 +695,33 @@ fn check_map_resolution(scene: &Scene, hint: PullOffHint) -> Result<(), ModelErr
         width,
         needed_spacing: width / MIN_MAP_SPACINGS_AT_MINIMUM,
         c_r,
+    })
+}
+
+/// Refuse a height map on a window of half-widths `half` (length) too small, in map
+/// spacings, for any contact it could hold to be resolved: no contact is larger than the
+/// window, so where even the window's mean diameter 2√(A/π) spans fewer than
+/// [`MIN_MAP_SPACINGS_AT_MINIMUM`] map spacings, so does the contact at the force minimum
+/// (the run measures that contact too: [`crate::analysis::report`]). Roughness on a smooth
+/// base passes (its base is the shape the contact resolves).
+fn check_window_map_resolution(
+    scene: &Scene,
+    (half_x, half_y): (f64, f64),
+) -> Result<(), ModelError> {
+    let Indenter::HeightMap(ref m) = scene.indenter else {
+        return Ok(());
+    };
+    let spacing = m.map.spacing();
+    let width = 2.0 * (4.0 * half_x * half_y / std::f64::consts::PI).sqrt();
+    let across = width / spacing;
+    if across >= MIN_MAP_SPACINGS_AT_MINIMUM {
+        return Ok(());
+    }
+    Err(ModelError::WindowMapTooCoarse {
+        map: scene.indenter.describe(),
+        across,
+        width,
+        needed_spacing: width / MIN_MAP_SPACINGS_AT_MINIMUM,
     })
 }
 

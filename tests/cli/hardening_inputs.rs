@@ -92,6 +92,42 @@ fn a_map_too_coarse_for_its_contact_is_refused_before_any_work() {
 }
 
 #[test]
+fn a_map_on_a_window_too_coarse_for_its_contact_is_refused_or_withheld() {
+    // The sphere of radius 1 with E* = 1e3, Δγ = 1e-3 (c_r ≈ 0.019): a map 0.014 wide is too
+    // small for the first contact, so it is placed on a window; the contact at the force
+    // minimum is about 0.0049 wide.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    sphere_map(d, "m8.txt", 8, 0.002);
+    let o = map_run(d, "m8.txt", "0.002", &TINY_CONTACT[..4]);
+    let err = refused_naming(&o, "--height-map");
+    assert!(
+        err.contains("too coarse for any contact it can hold") && err.contains("7.9 map spacings"),
+        "{err}"
+    );
+    assert_eq!(outputs(d, &["m8.txt"]), Vec::<String>::new());
+
+    // 16 × 16 nodes over the same area: the window passes, but the contact at the minimum
+    // spans about 5 map spacings: the answer is withheld, saying why.
+    let spacing = format!("{}", 0.014 / 15.0);
+    sphere_map(d, "m16.txt", 16, 0.014 / 15.0);
+    let mut extra = TINY_CONTACT[..4].to_vec();
+    extra.extend(["--grid", "64", "--summary", "r.json"]);
+    let o = map_run(d, "m16.txt", &spacing, &extra);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("r.json")).unwrap()).unwrap();
+    let run = &summary["runs"][0];
+    assert!(run["f_ad_bar"].is_null(), "{run}");
+    assert!(summary["f_ad_bar"].is_null());
+    let why = run["withheld"].as_str().unwrap();
+    assert!(
+        why.contains("too coarse for its contact") && why.contains("mean diameter"),
+        "{why}"
+    );
+}
+
+#[test]
 fn a_map_whose_contact_falls_inside_one_cell_is_refused_and_blames_no_flag_not_given() {
     // 128 × 128 nodes (an even count: the apex between nodes) at 0.06, E* = 1e3, Δγ = 1e-3.
     let dir = tempfile::tempdir().unwrap();
