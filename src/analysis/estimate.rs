@@ -164,6 +164,9 @@ impl AdhesiveResult {
                     .cloned()
             })
             .collect();
+        // Runs that warn alike (every grid of a pinned contact) say it once.
+        let mut seen = std::collections::HashSet::new();
+        w.retain(|x| seen.insert(x.clone()));
         if let Some(t) = self.target.filter(|t| !t.met) {
             w.push(match &self.estimate {
                 Some(e) if e.f_ad_bar.relative() <= t.target => format!(
@@ -465,6 +468,13 @@ fn from_runs_with(runs: &[RunReport], spread: Option<f64>) -> Result<AdhesiveEst
     if runs.iter().any(|r| r.n_d.is_none()) {
         return Err("a run has no contact width at its minimum".into());
     }
+    if let Some(r) = runs.iter().find(|r| r.min_pinned) {
+        return Err(format!(
+            "the {} run's force minimum lies at the first onset of a pinned contact, where the \
+             convergence law does not apply",
+            r.grid
+        ));
+    }
     let ratio = first.ratio;
     let refs: Vec<&RunReport> = runs.iter().collect();
     let spread = spread.unwrap_or_else(|| k_sd(ratio, &refs));
@@ -599,6 +609,7 @@ mod tests {
             min_reached: true,
             min_resolved: true,
             withheld: None,
+            min_pinned: false,
             lowest_f_bar: Some(-f),
             d_bar_at_lowest: Some(-0.3),
             c_bar_at_min: Some(0.8 * (1.0 + 1.0 / n_d)),

@@ -60,6 +60,14 @@ pub struct RunReport {
     /// Absent where nothing is withheld.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub withheld: Option<String>,
+    /// Whether the force minimum lies at the first onsets of a pinned contact: the contact
+    /// the pull-off began with (a small preload's) was narrower than the receding branch's
+    /// contact at its minimum (the closed form's), so the minimum is where that contact starts
+    /// to come off, not one a receding front reached. The ellipsoid's convergence law, fitted to the latter, does not
+    /// apply to it, nor do the closed forms of that branch (JKR's). Never set for a flat
+    /// punch, whose edge pins every contact.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub min_pinned: bool,
     /// The lowest F̄ recorded (dimensionless), minimum or not; null if no state was recorded.
     pub lowest_f_bar: Option<f64>,
     /// d̄ of that state.
@@ -164,14 +172,24 @@ impl RunReport {
         let n_d = min.map(|s| (2e6 * s.b_axis / s.dx).round() / 1e6);
         let withheld =
             min.and_then(|s| map_too_coarse(model, s).or_else(|| compressive_minimum(s)));
+        // A flat punch's contact is pinned by its edge: its minimum is always that onset.
+        let punch = matches!(
+            model.scene.indenter,
+            crate::scene::Indenter::FlatPunch { .. }
+        );
+        let min_pinned = !punch && min.is_some_and(|m| pinned_at(model, outcome, m));
         let unresolved = step_warning(model, outcome);
         let min_resolved = unresolved.is_none();
         let warnings = n_d
-            .filter(|_| model.scene.is_ellipsoid())
+            .filter(|_| model.scene.is_ellipsoid() && !min_pinned)
             .and_then(|n| convergence::coarse_grid_warning(ratio, n))
             .into_iter()
             .chain(unresolved)
             .chain(withheld.clone())
+            .chain(
+                (min_pinned && model.scene.is_ellipsoid() && withheld.is_none())
+                    .then(pinned_warning),
+            )
             .chain(outcome.warnings.iter().cloned())
             .collect();
         RunReport {
@@ -190,6 +208,7 @@ impl RunReport {
             min_reached,
             min_resolved,
             withheld,
+            min_pinned,
             lowest_f_bar: lowest.map(|s| s.f_bar),
             d_bar_at_lowest: lowest.map(|s| s.d_bar),
             c_bar_at_min: min.map(|s| s.c_bar),
@@ -254,6 +273,37 @@ fn map_too_coarse(model: &Model, at_min: &State) -> Option<String> {
             compact(width / MIN_MAP_SPACINGS_AT_MINIMUM)
         )
     })
+}
+
+/// Whether the force minimum `at_min` of `outcome` lies at the first onsets of the contact
+/// the pull-off began with, not on the receding branch: that contact (the pull-off's first
+/// state on the minimum's grid) is narrower than the receding branch's contact at its
+/// minimum (the closed form's b̄ there), which a front that only recedes cannot reach. `None`
+/// of the closed form (a height map): not known, so not pinned.
+fn pinned_at(model: &Model, outcome: &Outcome, at_min: &State) -> bool {
+    let scene = &model.scene;
+    let Some(hint) = scene
+        .indenter
+        .pull_off_hint(scene.e_star, scene.work_of_adhesion)
+    else {
+        return false;
+    };
+    outcome
+        .states
+        .iter()
+        .find(|s| s.dx == at_min.dx && !s.phase.is_loading())
+        .is_some_and(|start| start.b_bar < hint.b_bar_at_min)
+}
+
+/// What a pinned force minimum of the ellipsoid means for its answer.
+fn pinned_warning() -> String {
+    "the force minimum lies at the first onset of a pinned contact (the contact the pull-off \
+     began with, after a small preload, is narrower than the receding branch's contact at its \
+     minimum, so no front recedes to that minimum): the convergence law, fitted to minima a \
+     receding front reaches, does not apply, so no estimate with an uncertainty is made from \
+     this run; its discretisation error is of first order in Δx (refine the grid to see it \
+     converge), and JKR's 1/2 and Johnson–Greenwood are of the other branch"
+        .to_string()
 }
 
 /// Why a force minimum that is not tensile gives no adhesive force: the indenter never pulled

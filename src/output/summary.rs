@@ -135,7 +135,7 @@ impl Summary {
             indenter: result
                 .runs
                 .first()
-                .filter(|r| !crate::analysis::report::is_ellipsoid(r))
+                .filter(|r| !crate::analysis::report::is_ellipsoid(r) || r.min_pinned)
                 .map(|r| r.indenter.clone()),
             exact_limit: c.exact.map(|(name, f_ad_bar)| ExactLimit {
                 name,
@@ -366,14 +366,27 @@ impl Summary {
     /// form of the limit, where one exists.
     fn indenter_text(&self) -> String {
         let own = self.runs.first().and_then(|r| r.f_ad_bar);
-        let mut s = format!(
-            "the grid's |min F̄| = {} ({}; F̄ in its own normalisation, see docs/indenters.md)\n\
-             \x20 no convergence law for this indenter yet, so no estimate with an uncertainty: \
-             its discretisation error is of first order in Δx (refine the grid to see it \
-             converge)\n",
-            own.map_or("—".into(), |f| fixed(f, 4)),
-            self.indenter.as_deref().unwrap_or("—"),
-        );
+        let ellipsoid = self.indenter.as_deref() == Some("ellipsoid");
+        let mut s = if ellipsoid && self.runs.iter().any(|r| r.min_pinned) {
+            format!(
+                "the grid's |min F̄| = {} ({}, at the first onset of a pinned contact)\n\
+                 \x20 the convergence law is for a minimum a receding front reaches, so no \
+                 estimate with an uncertainty: its discretisation error is of first order in \
+                 Δx (refine the grid to see it converge)\n",
+                own.map_or("—".into(), |f| fixed(f, 4)),
+                self.indenter.as_deref().unwrap_or("—"),
+            )
+        } else {
+            format!(
+                "the grid's |min F̄| = {} ({}; F̄ in its own normalisation, see \
+                 docs/indenters.md)\n\
+                 \x20 no convergence law for this indenter yet, so no estimate with an \
+                 uncertainty: its discretisation error is of first order in Δx (refine the grid \
+                 to see it converge)\n",
+                own.map_or("—".into(), |f| fixed(f, 4)),
+                self.indenter.as_deref().unwrap_or("—"),
+            )
+        };
         if let Some(l) = &self.exact_limit {
             s += &format!(
                 "  beside {}'s exact limit {}: the grid is off by {}\n",

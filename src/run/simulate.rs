@@ -632,9 +632,15 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
         .scene
         .indenter
         .exact_adhesive_force(req.scene.e_star, req.scene.work_of_adhesion);
-    let result = if !req.scene.is_ellipsoid() && req.mode == Mode::Single && reports.len() == 1 {
+    // The ellipsoid's convergence law holds for a minimum a receding front reached; a run
+    // whose minimum is a pinned contact's first onset is answered as a shape without one.
+    // (Nor is the closed form of the receding branch the limit: JKR's 1/2, the power law's.)
+    let pinned = reports.iter().any(|r| r.min_pinned);
+    let law = req.scene.is_ellipsoid() && !pinned;
+    let exact = exact.filter(|_| !pinned);
+    let result = if !law && req.mode == Mode::Single && reports.len() == 1 {
         AdhesiveResult::beside_limit(reports.into_iter().next().expect("one run"), exact)
-    } else if !req.scene.is_ellipsoid() {
+    } else if !law {
         // A deadline (or a stop) that cut a grid between its phases leaves it too few for the
         // phase scatter: the answer comes from the grids that finished, as the time limit's
         // warning says.
@@ -652,7 +658,15 @@ fn conclude(req: &SimulateRequest, ran: Ran, plan: Concluding) -> Simulated {
         // accuracy loop's finer grids included).
         let limit = generic_limit::grids_of(&reports).and_then(|g| generic_limit::limit(&g));
         if let (Err(why), None) = (&limit, &failure) {
-            failure = Some(format!("no extrapolation: {why}"));
+            failure = Some(if pinned {
+                format!(
+                    "no estimate with an uncertainty: the force minimum is a pinned contact's \
+                     first onset, where the convergence law does not apply, and the grids \
+                     cannot be extrapolated without it ({why})"
+                )
+            } else {
+                format!("no extrapolation: {why}")
+            });
         }
         let result = AdhesiveResult::generic(reports, limit.ok(), exact, target);
         if let (Some(t), None, Some(note)) = (result.target, &failure, &plan_note) {

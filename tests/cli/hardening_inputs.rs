@@ -536,3 +536,74 @@ fn an_npy_map_of_too_many_nodes_is_refused_from_its_header() {
         "{err}"
     );
 }
+
+#[test]
+fn a_sphere_pulled_from_a_small_preload_states_no_law_corrected_answer() {
+    // Pressed to d = 0.5 (E* = Δγ = R = 1), the contact is Hertz's, a = √(R d): narrower than
+    // the receding branch's at its minimum, so the force minimum is where that pinned contact
+    // starts to come off, JKR's F(a) = 4E*a³/(3R) − √(8πΔγE*a³) at a = √0.5. The sphere's law
+    // (for a minimum a receding front reaches) corrected it to 0.2553 ± 0.0039 at 128², which
+    // excludes that value.
+    let a: f64 = 0.5f64.sqrt();
+    let pinned = -(4.0 * a.powi(3) / 3.0 - (8.0 * std::f64::consts::PI * a.powi(3)).sqrt())
+        / (3.0 * std::f64::consts::PI);
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for grid in ["64", "128"] {
+        let args = [
+            "simulate",
+            "--ratio",
+            "1",
+            "--preload-depth",
+            "0.5",
+            "--grid",
+            grid,
+            "--backend",
+            "cpu",
+            "--out",
+            "p.csv",
+            "--summary",
+            "p.json",
+        ];
+        let o = run_in(d, &args, &[]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let s = summary(d, "p.json");
+        let run = &s["runs"][0];
+        assert_eq!(run["min_pinned"], true, "{run}");
+        assert!(s["f_ad_bar"].is_null() && s["f_ad_bar_uncertainty"].is_null());
+        assert!(s.get("exact_limit").is_none_or(|e| e.is_null()), "{s}");
+        let own = run["f_ad_bar"].as_f64().unwrap();
+        assert!(
+            own > pinned && own < 1.08 * pinned,
+            "{grid}: {own} against the pinned branch's {pinned}"
+        );
+        let text = common::stdout(&o);
+        assert!(text.contains("first onset of a pinned contact"), "{text}");
+        assert!(!text.contains("against JKR's exact 1/2"), "{text}");
+        let warnings = s["warnings"].to_string();
+        assert!(warnings.contains("does not apply"), "{warnings}");
+    }
+    // Pressed deeper (d = 3), the contact recedes to the branch's minimum: the law applies.
+    let args = [
+        "simulate",
+        "--ratio",
+        "1",
+        "--preload-depth",
+        "3",
+        "--grid",
+        "64",
+        "--backend",
+        "cpu",
+        "--out",
+        "q.csv",
+        "--summary",
+        "q.json",
+    ];
+    let o = run_in(d, &args, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = summary(d, "q.json");
+    assert!(s["runs"][0].get("min_pinned").is_none());
+    let f = s["f_ad_bar"].as_f64().unwrap();
+    let u = s["f_ad_bar_uncertainty"].as_f64().unwrap();
+    assert!((f - 0.5).abs() <= u, "{f} ± {u} against JKR's 1/2");
+}
