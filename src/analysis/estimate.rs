@@ -610,6 +610,7 @@ mod tests {
             min_resolved: true,
             withheld: None,
             min_pinned: false,
+            straight_front_share: None,
             lowest_f_bar: Some(-f),
             d_bar_at_lowest: Some(-0.3),
             c_bar_at_min: Some(0.8 * (1.0 + 1.0 / n_d)),

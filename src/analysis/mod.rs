@@ -12,6 +12,7 @@ pub mod estimate;
 pub mod extrapolate;
 pub mod fields;
 pub mod fit;
+pub mod fronts;
 pub mod generic_limit;
 pub mod line_fit;
 mod lstsq;

@@ -264,8 +264,7 @@ impl Summary {
                     .collect();
                 s += &format!(
                     "NO ADHESIVE FORCE: the {} run reached the force minimum, but the answer is \
-                     withheld: the height map is too coarse for the contact there (see its \
-                     WARNING)\n",
+                     withheld (its WARNING says why)\n",
                     grids.join(", ")
                 );
             }

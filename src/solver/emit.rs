@@ -95,6 +95,11 @@ pub(super) struct Emitter<'a> {
     held: &'a mut dyn FnMut(&State) -> bool,
     /// Whether the observer sees each state's contact mask.
     with_contact: bool,
+    /// Whether to keep the contact mask of the least-force pull-off state (read back only
+    /// when a state lowers it): the straight fronts' check of a measured surface.
+    keep_min_contact: bool,
+    /// That state and its mask, on the grid of the latest state.
+    pub(super) min_contact: Option<(State, Vec<bool>)>,
     /// False once the observer asked to stop.
     go_on: &'a std::cell::Cell<bool>,
     /// States held back, with their masks if the observer sees them.
@@ -131,6 +136,8 @@ impl<'a> Emitter<'a> {
             push,
             held,
             with_contact,
+            keep_min_contact: false,
+            min_contact: None,
             go_on,
             pending: Vec::new(),
             least: None,
@@ -168,7 +175,14 @@ impl<'a> Emitter<'a> {
         } else if state.phase == Phase::Pulloff {
             self.cost.step(state.c_bar);
         }
-        let mask = if self.with_contact {
+        let lowers = self.keep_min_contact
+            && !state.phase.is_loading()
+            && state.phase != Phase::Approach
+            && self
+                .min_contact
+                .as_ref()
+                .is_none_or(|(m, _)| m.dx != state.dx || state.force < m.force);
+        let mask = if self.with_contact || lowers {
             let (nx, ny) = backend.shape();
             let mut mask = vec![false; nx * ny];
             backend.download_mask(c, &mut mask)?;
@@ -176,6 +190,10 @@ impl<'a> Emitter<'a> {
         } else {
             None
         };
+        if lowers {
+            self.min_contact = Some((state.clone(), mask.clone().unwrap_or_default()));
+        }
+        let mask = mask.filter(|_| self.with_contact);
         self.cost.states += 1;
         if hold && !(self.held)(&state) {
             self.go_on.set(false);
@@ -205,6 +223,11 @@ impl<'a> Emitter<'a> {
         }
         eq.work = Work::default();
         self.retries.append(&mut eq.retries);
+    }
+
+    /// Keep the contact mask of the least-force pull-off state ([`Emitter::min_contact`]).
+    pub(super) fn keep_min_contact(&mut self) {
+        self.keep_min_contact = true;
     }
 
     /// Hand on the held states of load steps before `step`, in the order of the load

@@ -66,9 +66,21 @@ pub struct Outcome {
     /// Which load steps had their onsets located, and the check that they hold the force
     /// minimum ([`Onsets::NearMinimum`]; `None` otherwise or before any such step).
     pub refinement: Option<Refinement>,
+    /// For a measured surface (a height map, roughness): the least-force pull-off state of
+    /// the last grid and its contact mask (row-major, x fastest), kept for the straight
+    /// fronts' check ([`crate::analysis::fronts`]); `None` for the smooth shapes.
+    pub min_contact: Option<(State, Vec<bool>)>,
 }
 
 impl Outcome {
+    /// The contact mask at the force minimum, where it was kept
+    /// ([`Outcome::min_contact`]) and is that state's.
+    pub fn contact_at_minimum(&self) -> Option<&[bool]> {
+        let (kept, mask) = self.min_contact.as_ref()?;
+        let min = self.force_minimum()?;
+        (kept.d == min.d && kept.force == min.force && !mask.is_empty()).then_some(mask.as_slice())
+    }
+
     /// Whether the protocol ran to its end (or to its confirmed minimum).
     pub fn complete(&self) -> bool {
         self.error.is_none()
@@ -212,6 +224,9 @@ pub fn run_watched<B: Backend>(
         states.push(s);
     };
     let mut out = Emitter::new(&mut push, held, with_contact, &go_on);
+    if model.scene.indenter.map_spacing().is_some() {
+        out.keep_min_contact();
+    }
     let error = run_inner(backend, model, &mut out).err();
     out.release(usize::MAX);
     out.cost.readbacks = backend.counters().readbacks.saturating_sub(readbacks);
@@ -222,6 +237,7 @@ pub fn run_watched<B: Backend>(
         cost,
         refinement,
         ledger,
+        min_contact,
         ..
     } = out;
     let mut warnings = retry::warnings(&retries, &model.cg);
@@ -241,6 +257,7 @@ pub fn run_watched<B: Backend>(
         warnings,
         cost,
         refinement,
+        min_contact,
     };
     let d_min = outcome
         .min_reached()

@@ -136,3 +136,107 @@ fn what_does_not_repeat_is_refused_before_any_work() {
     );
     assert!(!d.join("jkrbem-out").exists(), "nothing written");
 }
+
+/// A text grid of `nx` × `ny` nodes of `f(x, y)` at the nodes' positions in periods (0–1),
+/// written to `dir/name`.
+fn write_period(dir: &Path, name: &str, (nx, ny): (usize, usize), f: impl Fn(f64, f64) -> f64) {
+    let text: String = (0..ny)
+        .map(|j| {
+            let row: Vec<String> = (0..nx)
+                .map(|i| {
+                    let (x, y) = ((i as f64 + 0.5) / nx as f64, (j as f64 + 0.5) / ny as f64);
+                    format!("{:.12e}", f(x, y))
+                })
+                .collect();
+            row.join(" ") + "\n"
+        })
+        .collect();
+    std::fs::write(dir.join(name), text).unwrap();
+}
+
+#[test]
+fn a_wave_whose_fronts_run_along_the_grid_is_withheld_and_an_egg_crate_is_not() {
+    // Johnson's wave extruded along y (128 nodes a wavelength, 32 rows): its contact is a
+    // strip whose two fronts run straight along y, which the criterion pins (1.82 Δγ).
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write_period(d, "ridge.txt", (128, 32), |x, _| {
+        0.02 * (1.0 - (2.0 * PI * x).cos())
+    });
+    let mut args = vec!["--grid", "128", "--summary", "r.json", "--out", "r.csv"];
+    let o = jkrbem(
+        &[
+            "simulate",
+            "--indenter",
+            "height-map",
+            "--height-map",
+            "ridge.txt",
+            "--spacing",
+            "0.0078125",
+            "--e-star",
+            "1",
+            "--work-of-adhesion",
+            "1.7765e-4",
+            "--convolution",
+            "periodic",
+            "--backend",
+            "cpu",
+            "--preload-area",
+            "0.4",
+        ]
+        .into_iter()
+        .chain(args.iter().copied())
+        .collect::<Vec<_>>(),
+        d,
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("r.json")).unwrap()).unwrap();
+    let run = &s["runs"][0];
+    assert_eq!(run["straight_front_share"], 1.0, "{run}");
+    assert!(s["f_ad_bar"].is_null() && run["f_ad_bar"].is_null());
+    let why = run["withheld"].as_str().unwrap();
+    assert!(
+        why.contains("runs straight along the grid") && why.contains("1.82 Δγ"),
+        "{why}"
+    );
+    let text = crate::common::stdout(&o);
+    assert!(text.contains("NO ADHESIVE FORCE"), "{text}");
+
+    // An egg crate (a wave along both axes): each period's contact is a rounded patch.
+    write_period(d, "egg.txt", (128, 128), |x, y| {
+        0.01 * (2.0 - (2.0 * PI * x).cos() - (2.0 * PI * y).cos())
+    });
+    args[3] = "e.json";
+    args[5] = "e.csv";
+    let o = jkrbem(
+        &[
+            "simulate",
+            "--indenter",
+            "height-map",
+            "--height-map",
+            "egg.txt",
+            "--spacing",
+            "0.0078125",
+            "--e-star",
+            "1",
+            "--work-of-adhesion",
+            "1.7765e-4",
+            "--convolution",
+            "periodic",
+            "--backend",
+            "cpu",
+        ]
+        .into_iter()
+        .chain(args.iter().copied())
+        .collect::<Vec<_>>(),
+        d,
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("e.json")).unwrap()).unwrap();
+    let run = &s["runs"][0];
+    assert!(run["straight_front_share"].as_f64().unwrap() < 0.5, "{run}");
+    assert!(run.get("withheld").is_none(), "{run}");
+    assert!(run["f_ad_bar"].as_f64().unwrap() > 0.0, "{run}");
+}
