@@ -255,7 +255,10 @@ impl MeasuredSurface {
         let radius = (FIT_FRACTION * ex.min(ey)).max(MIN_FIT_NODES * map.spacing());
         let fit = map.curvature_fit(radius)?;
         let radii = fit.principal_radii()?;
-        if !explains(map, &fit, radius) {
+        // A valley or a ridge (a wave extruded along one axis: one radius round-off large)
+        // has no apex; past the ellipsoid's largest ratio no contact of its normalisation is
+        // meant.
+        if !explains(map, &fit, radius) || radii.0 / radii.1 > super::MAX_RATIO {
             return None;
         }
         // Stationary point of the fit: K s = −g, relative to the lowest node.

@@ -202,6 +202,17 @@ fn a_wave_whose_fronts_run_along_the_grid_is_withheld_and_an_egg_crate_is_not() 
     );
     let text = crate::common::stdout(&o);
     assert!(text.contains("NO ADHESIVE FORCE"), "{text}");
+    // A valley has no apex: its results are in the user's units, not normalised by a fitted
+    // "apex" of radii 16220.6 and 1.27 (a round-off radius along the ridge).
+    let scene = &s["provenance"]["scene"];
+    assert!(scene["fitted_radii"].is_null(), "{scene}");
+    assert!(
+        scene["normalisation"]["by"]
+            .as_str()
+            .unwrap()
+            .starts_with("none"),
+        "{scene}"
+    );
 
     // An egg crate (a wave along both axes): each period's contact is a rounded patch.
     write_period(d, "egg.txt", (128, 128), |x, y| {
