@@ -33,9 +33,14 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
     /// Nodes along x, nx (4 to 16384; any count, though a power of two transforms fastest).
+    /// At most 67108864 nodes in all (8192², --grid × --grid-y), and within the memory
+    /// available: about 32 bytes per node while the surface is generated (free memory, the
+    /// control group's and the process's limits, or JKRBEM_MEMORY_LIMIT in bytes), checked
+    /// before any work.
     #[arg(long, value_name = "N", value_parser = value::<usize>(ROUGHNESS_GRID))]
     pub grid: usize,
-    /// Nodes along y, ny (4 to 16384) [default: as --grid].
+    /// Nodes along y, ny (4 to 16384; the total and the memory bound it as --grid says)
+    /// [default: as --grid].
     #[arg(long, value_name = "N", value_parser = value::<usize>(ROUGHNESS_GRID_Y))]
     pub grid_y: Option<usize>,
     /// The spacing Δ of the nodes (length L, in [1e-30, 1e30]); the domain is grid × spacing
@@ -78,6 +83,8 @@ pub fn run(args: Args) -> Result<(), CliError> {
         )));
     }
     let resolved = params.resolved().map_err(input)?;
+    // Before any work: the surface must fit in the memory this machine can give it.
+    params.check_memory().map_err(input)?;
     let sidecar = roughness::sidecar_path(&args.out);
     let _claimed = Outputs::claim(&[(args.out.clone(), OUT.into()), (sidecar, OUT.into())])?;
     let map = roughness::generate(&params).map_err(input)?;
