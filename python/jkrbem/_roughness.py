@@ -66,7 +66,9 @@ def roughness(
     parameters and seed give the same surface on every machine (to the rounding of the FFT).
 
     Raises :class:`InputError` (a ValueError) for a bad value and :class:`TypeError` for one
-    of the wrong type, each naming the keyword.
+    of the wrong type, each naming the keyword; an InputError naming ``grid`` and ``grid_y``,
+    before any work, for a surface past the memory available (about 32 bytes per node while it
+    is generated; ``JKRBEM_MEMORY_LIMIT``, in bytes, plans for less) or past 8192² nodes in all.
 
     >>> r = roughness(64, 0.5, 0.8, rms_height=0.1, seed=1)
     >>> r.heights.shape, round(float(r.heights.std()), 12)

@@ -666,6 +666,8 @@ fn roughness<'py>(py: Python<'py>, request: &str) -> PyResult<(String, Bound<'py
     guarded(|| {
         let params: RoughnessParams = parse(request)?;
         let resolved = params.resolved().map_err(input_error)?;
+        // Before any work: the surface must fit in the memory (JKRBEM_MEMORY_LIMIT honoured).
+        params.check_memory().map_err(input_error)?;
         let map = py.detach(|| generate(&params)).map_err(input_error)?;
         let bytes: Vec<u8> = map.heights().iter().flat_map(|h| h.to_ne_bytes()).collect();
         let answer = json!({"generator": GENERATOR_VERSION, "params": resolved,

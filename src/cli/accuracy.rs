@@ -1,10 +1,12 @@
 //! `jkrbem accuracy`: one scene on several grids, backends and ways of running; the error of
 //! the adhesive force against the wall time it cost, as CSV and a log–log chart.
 
+use super::parse::value;
 use super::progress::Progress;
 use super::{count_in, failures, no_repeats, run_error, CliError};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::run::accuracy::{accuracy, AccuracyRequest, Variant};
+use jkrbem::run::schema::{GRIDS, RATIO};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem accuracy`.
@@ -12,10 +14,10 @@ use std::path::PathBuf;
 pub struct Args {
     /// Axis ratio R1/R2, in [1, 1000] (1 is the sphere, whose exact answer is JKR's 1/2;
     /// otherwise the reference is the first backend's own extrapolation to Δx → 0).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = value::<f64>(RATIO))]
     pub ratio: f64,
     /// Grids Nx, coarse to fine: 2 to 12 increasing powers of two from 16 to 65536.
-    #[arg(long, value_delimiter = ',', default_value = "32,64,128")]
+    #[arg(long, value_delimiter = ',', default_value = "32,64,128", value_parser = value::<usize>(GRIDS))]
     pub grids: Vec<usize>,
     /// Backends, comma-separated, none repeated: `cpu` (f64), `gpu` (f32), `auto`. The
     /// precision follows the backend.

@@ -4,9 +4,11 @@
 //! and `jkrbem collect DIR` merges them into `DIR/batch.csv`. The work is
 //! [`jkrbem::run::scenes::batch`].
 
+use super::parse::value;
 use super::progress::Progress;
-use super::{run_error, CliError, MAX_JOBS};
+use super::{run_error, CliError};
 use jkrbem::run::scenes::batch::{batch, BatchRequest};
+use jkrbem::run::schema::JOBS;
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem batch`.
@@ -34,7 +36,7 @@ pub struct Args {
     pub resume: bool,
     /// Scenes run at the same time, 1 to 256 (each opens its own backend; together they must
     /// fit in memory).
-    #[arg(long, default_value_t = 1, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_JOBS as u64))]
+    #[arg(long, default_value_t = 1, value_parser = value::<usize>(JOBS))]
     pub jobs: usize,
 }
 

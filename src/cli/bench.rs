@@ -2,12 +2,16 @@
 //! grid; print a table and GPU/CPU ratios, write a CSV and an SVG chart. The work is
 //! [`jkrbem::run::bench`].
 
+use super::parse::value;
 use super::progress::Progress;
 use super::{failures, run_error, CliError};
 use jkrbem::backend::select::{BackendKind, Precision};
 use jkrbem::model::Measure;
 use jkrbem::output::bench as bench_text;
 use jkrbem::run::bench::{bench, BenchRequest};
+use jkrbem::run::schema::{
+    CG_ITERATIONS, GRIDS, MARGIN, PULLOFF_MAX_GRID, RATIO, REPEATS, START_RADIUS,
+};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem bench`.
@@ -22,34 +26,35 @@ pub struct Args {
     /// f32) [default: auto].
     #[arg(long, value_enum, value_delimiter = ',')]
     pub precisions: Vec<Precision>,
-    /// Grids to time, Nx (elements along x), comma-separated powers of two ≥ 16. Ny is fitted
-    /// to the contact (Ny = Nx for the sphere).
-    #[arg(long, value_delimiter = ',', default_values_t = [64, 128, 256])]
+    /// Grids to time, Nx (elements along x), comma-separated powers of two from 16 to 65536.
+    /// Ny is fitted to the contact (Ny = Nx for the sphere).
+    #[arg(long, value_delimiter = ',', default_values_t = [64, 128, 256], value_parser = value::<usize>(GRIDS))]
     pub grids: Vec<usize>,
     /// Time a whole pull-off only on grids up to this Nx (they are slow: about 1 s at 64, 7 s
-    /// at 128 and 140 s at 256 on two CPU cores). 0 skips them.
-    #[arg(long, default_value_t = 128)]
+    /// at 128 and 140 s at 256 on two CPU cores). 0 skips them; at most 65536.
+    #[arg(long, default_value_t = 128, value_parser = value::<usize>(PULLOFF_MAX_GRID))]
     pub pulloff_max_grid: usize,
     /// What the timed pull-off computes: the whole `curve`, or only the `adhesive-force` (it
     /// stops once the force minimum is confirmed; 20 load steps, as `simulate` takes them).
     #[arg(long, value_enum, default_value_t = Measure::Curve)]
     pub measure: Measure,
     /// Timed samples of the convolution and of the CG solve, after 0.2 s of untimed warm-up
-    /// each; a sample is the mean over calls lasting ≥ 20 ms. The median is reported.
-    #[arg(long, default_value_t = 5)]
+    /// each; a sample is the mean over calls lasting ≥ 20 ms. The median is reported. 1 to
+    /// 1000.
+    #[arg(long, default_value_t = 5, value_parser = value::<usize>(REPEATS))]
     pub repeats: usize,
-    /// CG iterations per timed solve (tolerance 0, so exactly this many).
-    #[arg(long, default_value_t = 20)]
+    /// CG iterations per timed solve (tolerance 0, so exactly this many), 1 to 100000.
+    #[arg(long, default_value_t = 20, value_parser = value::<usize>(CG_ITERATIONS))]
     pub cg_iterations: usize,
     /// Axis ratio R1/R2 of the scene (≥ 1; 1 is a sphere); R2 = E* = Δγ = 1.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = value::<f64>(RATIO))]
     pub ratio: f64,
     /// Mean radius c̄0 of the initial non-adhesive contact (in c_r), as in `simulate`.
-    #[arg(long, default_value_t = 1.5)]
+    #[arg(long, default_value_t = 1.5, value_parser = value::<f64>(START_RADIUS))]
     pub start_radius: f64,
     /// Free margin around the initial contact, relative to its half-axes, as in `simulate`
     /// [default: 0.08, or at least one element on each side: 0.143 on a 16-element grid].
-    #[arg(long)]
+    #[arg(long, value_parser = value::<f64>(MARGIN))]
     pub margin: Option<f64>,
     /// Also profile the GPU's kernels with timestamp queries (where the adapter has them):
     /// per kernel, its time, bytes and achieved bandwidth per CG iteration, printed and

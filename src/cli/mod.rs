@@ -75,9 +75,6 @@ pub fn failed(e: impl fmt::Display) -> CliError {
     CliError::Run(e.to_string())
 }
 
-/// Most pull-offs a command runs at the same time (`--jobs`): the schema's.
-pub use jkrbem::run::schema::MAX_JOBS;
-
 /// Refuse a list flag with a repeated value, naming the flag and the value.
 pub fn no_repeats<T: PartialEq + fmt::Display>(flag: &str, values: &[T]) -> Result<(), CliError> {
     for (i, v) in values.iter().enumerate() {

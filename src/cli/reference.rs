@@ -1,11 +1,13 @@
 //! `jkrbem reference`: the table of converged adhesive forces per R1/R2 that the convergence law
 //! is fitted to. Parses the flags; the work is [`jkrbem::run::reference`].
 
+use super::parse::value;
 use super::progress::Progress;
 use super::{run_error, CliError};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::run::open::BackendRequest;
 use jkrbem::run::reference::{reference, ReferenceRequest, REFERENCE_RATIOS};
+use jkrbem::run::schema::{FIRST_GRID, MAX_GRID, PHASES, RATIOS, TARGET};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem reference`.
@@ -13,30 +15,30 @@ use std::path::PathBuf;
 pub struct Args {
     /// Ratios R1/R2, comma-separated, each in [1, 1000] [default: 1, 1.5, 2, 3, 5, 7, 10, 15,
     /// 20, 25, 35, 50].
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', value_parser = value::<f64>(RATIOS))]
     pub ratios: Vec<f64>,
-    /// The relative uncertainty wanted of each |min F̄| at Δx → 0 (a percentage, the unit
-    /// required). Each ratio's grids double (at least three) until it is reached, or
+    /// The relative uncertainty wanted of each |min F̄| at Δx → 0 (a percentage in [0.1, 50],
+    /// the unit required). Each ratio's grids double (at least three) until it is reached, or
     /// --max-grid or the memory is.
-    #[arg(long, default_value = "0.3%", value_parser = super::parse::percentage)]
+    #[arg(long, default_value = "0.3%", value_parser = value::<f64>(TARGET))]
     pub target: f64,
     /// Nx of the finest grid a ratio's ladder may use (a power of two from 32 to 65536). Every
     /// ratio's ladder is checked before any work: from its first grid, at least three grids
     /// must fit below this and in the memory available, else the request is refused (exit
     /// code 2) naming the --max-grid or --first-grid that would.
-    #[arg(long, default_value_t = 2048)]
+    #[arg(long, default_value_t = 2048, value_parser = value::<usize>(MAX_GRID))]
     pub max_grid: usize,
     /// Nx of the first (coarsest) grid of every ladder (a power of two, at least 32) [default:
     /// the grid a 5 % --accuracy plan takes for the ratio, about 20–40 elements across the
     /// contact's minor axis at the minimum]. A coarser start gives a slender ratio its three
     /// grids below --max-grid.
-    #[arg(long)]
+    #[arg(long, value_parser = value::<usize>(FIRST_GRID))]
     pub first_grid: Option<usize>,
     /// Runs per grid (1 to 8), each at another domain margin (0.08, 0.13, 0.18, …, relative to
     /// the initial contact's half-axes): where the contact's edge falls between element
     /// centres (the grid phase) differs from run to run, so the fit averages its scatter
     /// instead of taking one sample of it per grid.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = value::<usize>(PHASES))]
     pub phases: usize,
     /// Backend: `auto` (a hardware GPU if present, else the CPU), `cpu` or `gpu`.
     #[arg(long, value_enum, default_value_t = BackendKind::Auto)]

@@ -2,8 +2,10 @@
 //! the fits, the crossed cylinders — with every chart as SVG and an index.html that shows
 //! them. The work is [`jkrbem::run::study`].
 
+use super::parse::value;
 use super::progress::Progress;
-use super::{failures, run_error, CliError, MAX_JOBS};
+use super::{failures, run_error, CliError};
+use jkrbem::run::schema::JOBS;
 use jkrbem::run::study::{study, StudyRequest};
 use std::path::PathBuf;
 
@@ -24,7 +26,7 @@ pub struct Args {
     #[command(flatten)]
     pub backend: super::study_backend::StudyBackendArgs,
     /// Pull-offs run at the same time (1 to 256).
-    #[arg(long, default_value_t = 1, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_JOBS as u64))]
+    #[arg(long, default_value_t = 1, value_parser = value::<usize>(JOBS))]
     pub jobs: usize,
     // The formats of the charts besides SVG (which index.html shows, and is always written).
     #[command(flatten)]

@@ -1,12 +1,13 @@
 //! `jkrbem roughness`: a random self-affine rough surface (Fourier synthesis), written as a
 //! NumPy `.npy` height map with a JSON sidecar of its parameters and statistics.
 
+use super::parse::value;
 use super::stdout::is_stdout;
 use super::{input, CliError};
 use jkrbem::run::claim::{write_error, Outputs};
 use jkrbem::run::schema::{
     words::flags, Spec, CUTOFF, HURST, LARGEST_WAVELENGTH, OUT, RMS_HEIGHT, RMS_SLOPE, ROLLOFF,
-    SEED,
+    ROUGHNESS_GRID, ROUGHNESS_GRID_Y, SEED, SPACING,
 };
 use jkrbem::scene::roughness::{self, RoughnessParams};
 use jkrbem::text::compact;
@@ -32,28 +33,33 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
     /// Nodes along x, nx (4 to 16384; any count, though a power of two transforms fastest).
-    #[arg(long, value_name = "N")]
+    /// At most 67108864 nodes in all (8192², --grid × --grid-y), and within the memory
+    /// available: about 32 bytes per node while the surface is generated (free memory, the
+    /// control group's and the process's limits, or JKRBEM_MEMORY_LIMIT in bytes), checked
+    /// before any work.
+    #[arg(long, value_name = "N", value_parser = value::<usize>(ROUGHNESS_GRID))]
     pub grid: usize,
-    /// Nodes along y, ny (4 to 16384) [default: as --grid].
-    #[arg(long, value_name = "N")]
+    /// Nodes along y, ny (4 to 16384; the total and the memory bound it as --grid says)
+    /// [default: as --grid].
+    #[arg(long, value_name = "N", value_parser = value::<usize>(ROUGHNESS_GRID_Y))]
     pub grid_y: Option<usize>,
-    /// The spacing Δ of the nodes (length L); the domain is grid × spacing along x and
-    /// grid-y × spacing along y, and the surface is periodic over it.
-    #[arg(long, value_name = "X")]
+    /// The spacing Δ of the nodes (length L, in [1e-30, 1e30]); the domain is grid × spacing
+    /// along x and grid-y × spacing along y, and the surface is periodic over it.
+    #[arg(long, value_name = "X", value_parser = value::<f64>(SPACING))]
     pub spacing: f64,
-    #[arg(long, value_name = "X", help = help(HURST))]
+    #[arg(long, value_name = "X", help = help(HURST), value_parser = value::<f64>(HURST))]
     pub hurst: f64,
-    #[arg(long, value_name = "X", help = help(RMS_HEIGHT))]
+    #[arg(long, value_name = "X", help = help(RMS_HEIGHT), value_parser = value::<f64>(RMS_HEIGHT))]
     pub rms_height: Option<f64>,
-    #[arg(long, value_name = "X", help = help(RMS_SLOPE))]
+    #[arg(long, value_name = "X", help = help(RMS_SLOPE), value_parser = value::<f64>(RMS_SLOPE))]
     pub rms_slope: Option<f64>,
-    #[arg(long, value_name = "X", help = help(ROLLOFF))]
+    #[arg(long, value_name = "X", help = help(ROLLOFF), value_parser = value::<f64>(ROLLOFF))]
     pub rolloff: Option<f64>,
-    #[arg(long, value_name = "X", help = help(CUTOFF))]
+    #[arg(long, value_name = "X", help = help(CUTOFF), value_parser = value::<f64>(CUTOFF))]
     pub cutoff: Option<f64>,
-    #[arg(long, value_name = "X", help = help(LARGEST_WAVELENGTH))]
+    #[arg(long, value_name = "X", help = help(LARGEST_WAVELENGTH), value_parser = value::<f64>(LARGEST_WAVELENGTH))]
     pub largest_wavelength: Option<f64>,
-    #[arg(long, value_name = "N", default_value_t = 0, hide_default_value = true, help = help(SEED))]
+    #[arg(long, value_name = "N", default_value_t = 0, hide_default_value = true, help = help(SEED), value_parser = value::<u64>(SEED))]
     pub seed: u64,
 }
 
@@ -77,6 +83,8 @@ pub fn run(args: Args) -> Result<(), CliError> {
         )));
     }
     let resolved = params.resolved().map_err(input)?;
+    // Before any work: the surface must fit in the memory this machine can give it.
+    params.check_memory().map_err(input)?;
     let sidecar = roughness::sidecar_path(&args.out);
     let _claimed = Outputs::claim(&[(args.out.clone(), OUT.into()), (sidecar, OUT.into())])?;
     let map = roughness::generate(&params).map_err(input)?;

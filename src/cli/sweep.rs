@@ -2,9 +2,11 @@
 //! a summary CSV; `--shard K/N` runs every N-th ratio so a cluster can split the sweep, and
 //! `jkrbem collect` merges the shards. The work is [`jkrbem::run::sweep`].
 
+use super::parse::value;
 use super::progress::Progress;
 use super::stdout::not_stdout;
-use super::{count_in, no_repeats, run_error, CliError, MAX_JOBS};
+use super::{count_in, no_repeats, run_error, CliError};
+use jkrbem::run::schema::{ACCURACY, GRID, JOBS, MARGIN, RATIOS, START_RADIUS, STEPS};
 use jkrbem::run::sweep::{sweep, SweepRequest};
 use std::path::PathBuf;
 
@@ -12,27 +14,27 @@ use std::path::PathBuf;
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Axis ratios R1/R2, comma-separated: 1 to 1000 values, each in [1, 1000], none repeated.
-    #[arg(long, value_delimiter = ',', default_value = "1,2,5,10,25,50")]
+    #[arg(long, value_delimiter = ',', default_value = "1,2,5,10,25,50", value_parser = value::<f64>(RATIOS))]
     pub ratios: Vec<f64>,
     /// Elements along x, Nx, for every ratio (a power of two from 16 to 65536); Ny is fitted
     /// per ratio. Each ratio's contact must be resolved (see `simulate --grid`). Each
     /// estimate then states its expected bias [default: the grid --accuracy chooses].
-    #[arg(long)]
+    #[arg(long, value_parser = value::<usize>(GRID))]
     pub grid: Option<usize>,
     /// The relative accuracy of each adhesive force |min F̄| at Δx → 0 (a percentage such as
     /// `2%`, the unit required): each ratio gets the one grid, re-gridded, whose estimate is
     /// predicted to state an uncertainty within it [default: 2% unless --grid is given].
-    #[arg(long, value_parser = super::parse::percentage, conflicts_with = "grid")]
+    #[arg(long, value_parser = value::<f64>(ACCURACY), conflicts_with = "grid")]
     pub accuracy: Option<f64>,
 
     /// Load steps from the initial approach to the expected end of contact (1 to 100000).
-    #[arg(long, default_value_t = 200)]
+    #[arg(long, default_value_t = 200, value_parser = value::<usize>(STEPS))]
     pub steps: usize,
     /// Mean radius c̄0 of the initial non-adhesive contact (in c_r, in [1, 20]).
-    #[arg(long, default_value_t = 1.5)]
+    #[arg(long, default_value_t = 1.5, value_parser = value::<f64>(START_RADIUS))]
     pub start_radius: f64,
     /// Free margin around the initial contact, relative to its half-axes (in [0, 10]).
-    #[arg(long, default_value_t = 0.08)]
+    #[arg(long, default_value_t = 0.08, value_parser = value::<f64>(MARGIN))]
     pub margin: f64,
     // The backend of every run, and its arithmetic.
     #[command(flatten)]
@@ -44,7 +46,7 @@ pub struct Args {
     pub shard: Option<String>,
     /// Pull-offs run at the same time, 1 to 256 (each opens its own backend; together they
     /// must fit in memory).
-    #[arg(long, default_value_t = 1, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_JOBS as u64))]
+    #[arg(long, default_value_t = 1, value_parser = value::<usize>(JOBS))]
     pub jobs: usize,
     /// Output folder: r<ratio>-n<grid>.csv (states), .json (summary) and .contours.csv per
     /// ratio, and sweep.csv (or sweep-shard-K-of-N.json) with the charts.

@@ -1,10 +1,11 @@
 //! `jkrbem theory`: closed-form curves.
 
+use super::parse::value;
 use super::stdout::{is_stdout, write_stdout_bytes, Channel};
 use super::{input, CliError};
 use clap::ValueEnum;
 use jkrbem::run::claim::{write_error, Outputs};
-use jkrbem::run::schema::OUT;
+use jkrbem::run::schema::{OUT, POINTS, RATIO};
 use jkrbem::theory::{self, TheoryModel};
 use std::path::PathBuf;
 
@@ -26,10 +27,10 @@ pub struct Args {
     #[arg(long, value_enum)]
     pub model: ModelChoice,
     /// Axis ratio R1/R2, in [1, 1000] (exactly 1 for JKR).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = value::<f64>(RATIO))]
     pub ratio: f64,
     /// Number of points on the curve, 2 to 1000000.
-    #[arg(long, default_value_t = 400, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(2..=jkrbem::theory::MAX_CURVE_POINTS as u64))]
+    #[arg(long, default_value_t = 400, value_parser = value::<usize>(POINTS))]
     pub points: usize,
     /// Output CSV with columns c_bar,f_bar,d_bar,a_bar,b_bar (`-`: standard output, the
     /// other lines then on standard error) [default: jkrbem-out/theory-<model>-r<ratio>.csv].

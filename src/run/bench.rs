@@ -11,14 +11,24 @@ use super::{input, RunError};
 use crate::backend::select::AnyBackend;
 use crate::backend::select::{self, BackendKind, Opened, Precision};
 use crate::bench::{self, BenchOptions, GridProfile, Measurement, PulloffProfile};
-use crate::model::{default_steps, Measure, Model, ModelOptions, Onsets, MIN_GRID};
+use crate::model::{default_steps, Measure, Model, ModelOptions, Onsets, MAX_GRID, MIN_GRID};
 use crate::output::bench::{timing_chart, write_csv, BenchRow};
 use crate::output::figure::FigureFormats;
 #[cfg(feature = "gpu")]
 use crate::output::profile::{self, ProfileRow};
-use crate::run::schema::{BACKENDS, CG_ITERATIONS, GRIDS, OUT, PRECISIONS, PROFILE, REPEATS};
+use crate::run::schema::{
+    BACKENDS, CG_ITERATIONS, GRIDS, OUT, PRECISIONS, PROFILE, PULLOFF_MAX_GRID, REPEATS,
+};
 use crate::scene::Scene;
 use std::path::PathBuf;
+
+/// Most timed samples of one measurement (`repeats`): each is at least 20 ms after 0.2 s of
+/// warm-up, so a thousand already take minutes per grid and backend; the median of more moves
+/// no further.
+pub const MAX_REPEATS: usize = 1000;
+/// Most CG iterations of one timed solve (`cg_iterations`): a hundred thousand take about a
+/// minute at 256² on two cores; more time the same iteration for longer.
+pub const MAX_TIMED_CG_ITERATIONS: usize = 100_000;
 
 /// A request to time the backends.
 #[derive(Debug, Clone)]
@@ -80,7 +90,8 @@ fn flag(kind: BackendKind, precision: Precision) -> String {
     }
 }
 
-/// The grids asked for, sorted and without repeats; refused unless all are powers of two ≥ 16.
+/// The grids asked for, sorted and without repeats; refused unless all are powers of two from
+/// 16 to 65536.
 fn grids(args: &BenchRequest) -> Result<Vec<usize>, RunError> {
     if args.grids.is_empty() {
         return Err(input(format!(
@@ -90,11 +101,11 @@ fn grids(args: &BenchRequest) -> Result<Vec<usize>, RunError> {
     if let Some(bad) = args
         .grids
         .iter()
-        .find(|&&g| g < MIN_GRID || !g.is_power_of_two())
+        .find(|&&g| !(MIN_GRID..=MAX_GRID).contains(&g) || !g.is_power_of_two())
     {
         return Err(input(format!(
-            "{GRIDS} {bad} is invalid: every grid must be a power of two ≥ {MIN_GRID} \
-             (e.g. {GRIDS} 64,128,256)"
+            "{GRIDS} {bad} is invalid: every grid must be a power of two from {MIN_GRID} to \
+             {MAX_GRID} (e.g. {GRIDS} 64,128,256)"
         )));
     }
     let mut g = args.grids.clone();
@@ -214,12 +225,22 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
 /// The scene and one model per grid, every parameter checked and the largest grid's memory
 /// too.
 fn bench_models(args: &BenchRequest, grids: &[usize]) -> Result<(Scene, Vec<Model>), RunError> {
-    if args.repeats == 0 {
-        return Err(input(format!("{REPEATS} 0 is invalid: give at least 1")));
-    }
-    if args.cg_iterations == 0 {
+    if !(1..=MAX_REPEATS).contains(&args.repeats) {
         return Err(input(format!(
-            "{CG_ITERATIONS} 0 is invalid: give at least 1"
+            "{REPEATS} {} is invalid: give 1 to {MAX_REPEATS}",
+            args.repeats
+        )));
+    }
+    if !(1..=MAX_TIMED_CG_ITERATIONS).contains(&args.cg_iterations) {
+        return Err(input(format!(
+            "{CG_ITERATIONS} {} is invalid: give 1 to {MAX_TIMED_CG_ITERATIONS}",
+            args.cg_iterations
+        )));
+    }
+    if args.pulloff_max_grid > MAX_GRID {
+        return Err(input(format!(
+            "{PULLOFF_MAX_GRID} {} is invalid: give 0 (no pull-off) to {MAX_GRID}",
+            args.pulloff_max_grid
         )));
     }
     let scene = Scene::from_ratio(args.ratio, 1.0, 1.0, 1.0).map_err(input)?;

@@ -32,6 +32,10 @@ pub const LEVELS_BELOW_REFERENCE: u32 = 2;
 /// The sphere's case grids (its reference, 1/2, is exact).
 pub const SPHERE_GRIDS: [usize; 3] = [32, 64, 128];
 
+/// Most runs one case is estimated from (`runs_per_case`; also at most the number of margins):
+/// more than any list of margins a study gives (the default has 5).
+pub const MAX_RUNS_PER_CASE: usize = 100;
+
 /// The default domain margins: the default one and four more, 0.05 apart.
 pub const DEFAULT_MARGINS: [f64; 5] = [0.08, 0.13, 0.18, 0.23, 0.28];
 
@@ -514,9 +518,10 @@ fn check_request(req: &CoverageRequest) -> Result<(), RunError> {
              one of each"
         )));
     }
-    if !(1..=req.margins.len()).contains(&req.runs_per_case) {
+    if !(1..=req.margins.len().min(MAX_RUNS_PER_CASE)).contains(&req.runs_per_case) {
         return Err(input(format!(
-            "{RUNS_PER_CASE} {}: give 1 to the number of {MARGINS} ({})",
+            "{RUNS_PER_CASE} {}: give 1 to the number of {MARGINS} ({}), at most \
+             {MAX_RUNS_PER_CASE}",
             req.runs_per_case,
             req.margins.len()
         )));

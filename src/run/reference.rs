@@ -35,6 +35,12 @@ pub const MIN_FIRST_GRID: usize = crate::plan::MIN_PLAN_GRID;
 /// Runs per grid at the most ([`ReferenceRequest::phases`]).
 pub const MAX_PHASES: usize = 8;
 
+/// The tightest target a ladder may aim at (relative uncertainty, 0.1 %): tighter takes grids
+/// past any machine's memory.
+pub const MIN_TARGET: f64 = 0.001;
+/// The loosest target (relative uncertainty, 50 %): a looser one is no reference.
+pub const MAX_TARGET: f64 = 0.5;
+
 /// The step between the domain margins of one grid's runs (relative to the initial contact's
 /// half-axes): the first run has the margin asked for, each further one this much more. 0.05
 /// moves Δx by about 5 %, which moves the contact's edge by a few elements across a resolved
@@ -537,9 +543,11 @@ fn existing_rows(path: &std::path::Path) -> Result<Vec<ReferenceRow>, RunError> 
 /// ratios are kept, so a table grows over several jobs; it is rewritten (whole, atomically,
 /// sorted by ratio) after each ratio so that a long job keeps what it has finished.
 pub fn reference(req: &ReferenceRequest, watch: &dyn Watch) -> Result<ReferenceDone, RunError> {
-    if !(req.target > 0.0 && req.target < 1.0) {
+    if !(MIN_TARGET..=MAX_TARGET).contains(&req.target) {
         return Err(input(format!(
-            "{TARGET}: give a percentage in (0, 100), e.g. 0.3%"
+            "{TARGET}: give a percentage in [{}, {}], e.g. 0.3%",
+            crate::text::compact(MIN_TARGET * 100.0),
+            crate::text::compact(MAX_TARGET * 100.0)
         )));
     }
     if req.ratios.is_empty() || req.ratios.iter().any(|r| !(1.0..=1000.0).contains(r)) {

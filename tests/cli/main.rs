@@ -18,6 +18,7 @@ mod hardening_inputs;
 mod hardening_reference;
 mod periodic_map;
 mod print_quality;
+mod ranges;
 mod robustness;
 mod roughness;
 mod streams;

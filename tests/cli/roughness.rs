@@ -176,3 +176,93 @@ fn help_states_the_units_and_defaults() {
         assert!(text.contains(word), "{word} missing from:\n{text}");
     }
 }
+
+/// `roughness` checks, before any work, that the surface fits in the memory the machine can
+/// give it, honouring `JKRBEM_MEMORY_LIMIT` as `simulate` does (issue 55, item 21): a
+/// 4096² surface (about 0.55 GB at 32 bytes per node) is refused under a 100 MB limit, naming
+/// the flags that set its size and the largest that fits, with nothing written; a 64² one
+/// passes under the same limit. Before, it generated the big one (exit 0) and never read
+/// the variable.
+#[test]
+fn a_surface_past_the_memory_is_refused_before_any_work() {
+    use crate::common::run_in;
+    let dir = tempfile::tempdir().unwrap();
+    let limit = [("JKRBEM_MEMORY_LIMIT", "1e8")];
+    let big = |more: &[&str]| {
+        let mut args = vec![
+            "roughness",
+            "--out",
+            "big.npy",
+            "--spacing",
+            "1",
+            "--hurst",
+            "0.8",
+            "--rms-height",
+            "1",
+        ];
+        args.extend_from_slice(more);
+        let start = std::time::Instant::now();
+        let o = run_in(dir.path(), &args, &limit);
+        (o, start.elapsed())
+    };
+    let (o, wall) = big(&["--grid", "4096"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains(
+            "--grid = 4096 is invalid: a surface of --grid × --grid-y = 4096 × 4096 nodes"
+        ) && err.contains("more than the 100 MB this machine has available")
+            && err.contains("the largest that fits is --grid 1612"),
+        "{err}"
+    );
+    // Refused at once: generating it takes seconds.
+    assert!(wall.as_secs_f64() < 2.0, "{wall:?}");
+    // With --grid-y, both flags in the advice.
+    let (o, _) = big(&["--grid", "4096", "--grid-y", "1024"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("the largest of this shape that fits is --grid 3225 --grid-y 806"),
+        "{err}"
+    );
+    // A limit that is no number of bytes is refused, naming the variable.
+    let o = run_in(
+        dir.path(),
+        &[
+            "roughness",
+            "--out",
+            "big.npy",
+            "--grid",
+            "64",
+            "--spacing",
+            "1",
+            "--hurst",
+            "0.8",
+            "--rms-height",
+            "1",
+        ],
+        &[("JKRBEM_MEMORY_LIMIT", "lots")],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("JKRBEM_MEMORY_LIMIT"), "{}", stderr(&o));
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert!(left.is_empty(), "{left:?}");
+    // A small surface fits under the same limit.
+    let (o, _) = big(&["--grid", "64"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(dir.path().join("big.npy").exists());
+}
+
+/// `roughness --help` states the total node cap and the memory check with --grid.
+#[test]
+fn help_states_the_total_node_cap_and_the_memory_check() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = stdout(&jkrbem(&["roughness", "--help"], dir.path()));
+    for word in [
+        "67108864 nodes in all",
+        "32 bytes per node",
+        "JKRBEM_MEMORY_LIMIT",
+    ] {
+        assert!(text.contains(word), "{word} missing from:\n{text}");
+    }
+}

@@ -245,6 +245,25 @@ pub fn by_flag(flag: &str) -> Option<&'static Spec> {
     all().find(|s| s.flag == flag)
 }
 
+/// The parameters a command takes under a flag that another command spells alike but
+/// bounds otherwise: (command, its parameter). They are no parameters of their own (their
+/// names and flags are those of [`all`]'s, which a message names), only their ranges differ.
+pub const COMMAND_SPECS: &[(&str, &Spec)] = &[
+    ("roughness", ROUGHNESS_GRID),
+    ("roughness", ROUGHNESS_GRID_Y),
+];
+
+/// The parameter `command` (`sweep`, `roughness`, …) takes under `flag`, with the range its
+/// values are checked against: the command's own where it bounds the flag otherwise
+/// ([`COMMAND_SPECS`]), else the parameter of that flag ([`by_flag`]), if any.
+pub fn of_command(command: &str, flag: &str) -> Option<&'static Spec> {
+    COMMAND_SPECS
+        .iter()
+        .find(|(c, s)| *c == command && s.flag == flag)
+        .map(|(_, s)| *s)
+        .or_else(|| by_flag(flag))
+}
+
 /// The parameter a column of a batch's table names: by its name (`mesh_angle`) or its flag,
 /// with or without the dashes (`--mesh-angle`, `mesh-angle`), if any.
 pub fn by_column(header: &str) -> Option<&'static Spec> {

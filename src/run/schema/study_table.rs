@@ -33,8 +33,6 @@ const LADDER_GRID: Kind = Kind::PowerOfTwo(
     crate::run::reference::MIN_FIRST_GRID as u64,
     crate::model::MAX_GRID as u64,
 );
-/// A count with no upper bound of its own (at least 1).
-const AT_LEAST_ONE: Kind = Kind::Count(1, u32::MAX as u64);
 
 /// A parameter of one or more of these commands, which only the command line takes.
 const fn cli(
@@ -116,10 +114,14 @@ pub const TARGET: &Spec = &cli(
     "target",
     "--target",
     "",
-    Kind::Fraction(0.0, 1.0),
+    Kind::Fraction(
+        crate::run::reference::MIN_TARGET,
+        crate::run::reference::MAX_TARGET,
+    ),
     Value("0.3%"),
-    "Reference: the relative uncertainty wanted of each |min F̄| at Δx → 0 (a percentage in \
-     (0, 100), the unit required); each ladder's grids double until it is reached.",
+    "Reference: the relative uncertainty wanted of each |min F̄| at Δx → 0 (a percentage, the \
+     unit required); each ladder's grids double until it is reached. Tighter than 0.1 % takes \
+     grids past any memory, looser than 50 % is no reference.",
 );
 /// The domain margins of coverage's cases.
 pub const MARGINS: &Spec = &cli(
@@ -186,7 +188,7 @@ pub const RUNS_PER_CASE: &Spec = &cli(
     "runs_per_case",
     "--runs-per-case",
     "",
-    AT_LEAST_ONE,
+    Kind::Count(1, crate::run::coverage::MAX_RUNS_PER_CASE as u64),
     Value("1"),
     "Coverage: runs per case, at consecutive margins of one grid (up to the number of \
      margins); every window of consecutive margins is a case.",
@@ -262,7 +264,7 @@ pub const REPEATS: &Spec = &cli(
     "repeats",
     "--repeats",
     "",
-    AT_LEAST_ONE,
+    Kind::Count(1, crate::run::bench::MAX_REPEATS as u64),
     Value("5"),
     "Bench: timed samples of the convolution and of the CG solve; the median is reported.",
 );
@@ -271,7 +273,7 @@ pub const CG_ITERATIONS: &Spec = &cli(
     "cg_iterations",
     "--cg-iterations",
     "",
-    AT_LEAST_ONE,
+    Kind::Count(1, crate::run::bench::MAX_TIMED_CG_ITERATIONS as u64),
     Value("20"),
     "Bench: CG iterations per timed solve (tolerance 0, so exactly this many).",
 );
@@ -284,6 +286,46 @@ pub const PROFILE: &Spec = &cli(
     Value("false"),
     "Bench: also profile the GPU's kernels with timestamp queries (where the adapter has \
      them).",
+);
+/// The largest grid of bench's timed pull-offs.
+pub const PULLOFF_MAX_GRID: &Spec = &cli(
+    "pulloff_max_grid",
+    "--pulloff-max-grid",
+    "elements",
+    // 0 times no pull-off; no grid is finer than the largest a run takes.
+    Kind::Count(0, crate::model::MAX_GRID as u64),
+    Value("128"),
+    "Bench: time a whole pull-off only on grids up to this Nx (0: none).",
+);
+/// The seeds of coverage's rough spheres.
+pub const SEEDS: &Spec = &cli(
+    "seeds",
+    "--seeds",
+    "",
+    // Every seed the generator takes (its own seed's range).
+    Kind::Count(0, u64::MAX),
+    Chosen("1, 2, 3"),
+    "Coverage: the seeds of the rough spheres' roughness, comma-separated; one scene per seed.",
+);
+/// The points of a closed-form curve.
+pub const POINTS: &Spec = &cli(
+    "points",
+    "--points",
+    "",
+    // A curve needs two points; a million already resolves it far below plotting.
+    Kind::Count(2, crate::theory::MAX_CURVE_POINTS as u64),
+    Value("400"),
+    "Theory: the number of points on the curve.",
+);
+/// The closed form of `theory`.
+pub const MODEL: &Spec = &cli(
+    "model",
+    "--model",
+    "",
+    Kind::Choice(&["hertz", "jkr", "jg"]),
+    Chosen("none: required"),
+    "Theory: the closed form: `hertz` (non-adhesive elliptic Hertz), `jkr` (the sphere) or \
+     `jg` (Johnson–Greenwood).",
 );
 /// Replacing write-protected outputs.
 pub const FORCE: &Spec = &Spec {
@@ -381,6 +423,10 @@ pub const STUDY_SPECS: &[&Spec] = &[
     REPEATS,
     CG_ITERATIONS,
     PROFILE,
+    PULLOFF_MAX_GRID,
+    SEEDS,
+    POINTS,
+    MODEL,
     FORCE,
     ANGLE,
     ANGLES,

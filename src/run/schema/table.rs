@@ -708,6 +708,36 @@ pub const SEED: &Spec = &spec(
      surface on every machine (to the rounding of the FFT); another seed an independent one.",
 );
 
+/// The roughness generator's ⟨grid⟩: nodes along x, any count (not a simulation's power of
+/// two). The same parameter as [`GRID`] in messages (its name and flag); its own range.
+pub const ROUGHNESS_GRID: &Spec = &spec(
+    "grid",
+    "--grid",
+    Study,
+    "nodes",
+    // A map needs 4 nodes a side; past 16384 its transforms leave any machine's memory (and
+    // the total is capped lower still, at MAX_TOTAL_NODES).
+    Kind::Count(
+        crate::scene::roughness::MIN_NODES as u64,
+        crate::scene::roughness::MAX_NODES as u64,
+    ),
+    Chosen("none: required"),
+    "Roughness: nodes along x, nx (any count, though a power of two transforms fastest).",
+);
+/// The roughness generator's ⟨grid_y⟩: nodes along y (see [`ROUGHNESS_GRID`]).
+pub const ROUGHNESS_GRID_Y: &Spec = &spec(
+    "grid_y",
+    "--grid-y",
+    Study,
+    "nodes",
+    Kind::Count(
+        crate::scene::roughness::MIN_NODES as u64,
+        crate::scene::roughness::MAX_NODES as u64,
+    ),
+    Chosen("as ⟨grid⟩"),
+    "Roughness: nodes along y, ny.",
+);
+
 /// The roughness generator's own parameters (it also takes ⟨grid⟩, ⟨grid_y⟩ and ⟨spacing⟩),
 /// in the order its `--help` shows them.
 pub const ROUGHNESS_SPECS: &[&Spec] = &[

@@ -292,3 +292,23 @@ fn a_column_names_a_parameter_by_its_name_or_its_flag() {
     assert_eq!(by_column("mesh angle"), None);
     assert_eq!(by_column("-mesh-angle"), None);
 }
+
+/// A command's own range for a flag ([`COMMAND_SPECS`]) is a parameter a message names as any
+/// other (its name is one of [`all`]'s, with the same flag); every other flag's is its own.
+#[test]
+fn a_command_s_own_ranges_name_the_same_parameter() {
+    for (command, spec) in COMMAND_SPECS {
+        let named = by_name(spec.name).expect("a parameter of the schema");
+        assert_eq!(named.flag, spec.flag, "{command}");
+        assert_ne!(
+            named.kind, spec.kind,
+            "{command} {}: the same range",
+            spec.flag
+        );
+        assert_eq!(of_command(command, spec.flag), Some(*spec));
+    }
+    assert_eq!(of_command("simulate", "--grid"), Some(GRID));
+    assert_eq!(of_command("roughness", "--grid"), Some(ROUGHNESS_GRID));
+    assert_eq!(of_command("bench", "--repeats"), Some(REPEATS));
+    assert_eq!(of_command("bench", "--no-such-flag"), None);
+}

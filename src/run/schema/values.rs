@@ -40,9 +40,13 @@ pub fn expected(spec: &Spec) -> String {
         ),
         Kind::File => "a file's path".to_string(),
         Kind::Fraction(lo, hi) => format!(
-            "a percentage in [{}, {}] (e.g. 2% on the command line, 0.02 from Python)",
+            "a percentage in [{}, {}] (e.g. 2%{})",
             compact(lo * 100.0),
-            compact(hi * 100.0)
+            compact(hi * 100.0),
+            match spec.fronts {
+                super::Fronts::Both => " on the command line, 0.02 from Python",
+                super::Fronts::Cli => "",
+            }
         ),
         Kind::Seconds(..) => {
             "a duration in [1 s, 30 days] (e.g. 90s, 20min or 2h on the command line; seconds \

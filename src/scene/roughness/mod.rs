@@ -57,6 +57,7 @@ pub use stats::{
 
 use super::height_map::HeightMap;
 use super::SceneError;
+use crate::model::ModelError;
 use crate::run::schema::{
     Kind, Spec, CUTOFF, GRID, GRID_Y, HURST, LARGEST_WAVELENGTH, RMS_HEIGHT, RMS_SLOPE, ROLLOFF,
     SPACING,
@@ -78,6 +79,13 @@ pub const MIN_NODES: usize = 4;
 pub const MAX_NODES: usize = 16384;
 /// Most nodes in all (a count): 8192², about 1.6 GB of heights and spectrum while generating.
 pub const MAX_TOTAL_NODES: usize = 1 << 26;
+/// Memory a surface takes per node while it is generated and written (bytes): the heights,
+/// the half spectrum, the transforms' scratch and the scaled copy; measured at its peak 28
+/// (`jkrbem roughness`, peak resident set at 4096² and 8192²), Python's copy into an array
+/// within it.
+pub const BYTES_PER_NODE: u64 = 32;
+/// Memory besides the nodes (bytes): the program itself, 8 MB measured at 16².
+pub const BASE_BYTES: u64 = 16 << 20;
 /// The default cut-off λ_s in spacings: the shortest wave is sampled by 4 nodes.
 pub const DEFAULT_CUTOFF_SPACINGS: f64 = 4.0;
 /// Relative slack with which a Fourier mode on a band edge counts as inside it, and a
@@ -202,6 +210,62 @@ impl RoughnessParams {
     /// Nodes along y (a count).
     pub fn ny(&self) -> usize {
         self.grid_y.unwrap_or(self.grid)
+    }
+
+    /// The memory generating this surface takes at its peak (bytes): [`memory_estimate`].
+    pub fn memory_estimate(&self) -> u64 {
+        memory_estimate(self.nx(), self.ny())
+    }
+
+    /// Refuses, before any work, a surface whose generation does not fit in the memory this
+    /// machine can give a run ([`crate::plan::available_memory`]: free memory, the control
+    /// group's and the process's limits, or `JKRBEM_MEMORY_LIMIT` where set).
+    ///
+    /// # Errors
+    ///
+    /// [`ModelError::Invalid`] naming ⟨grid⟩ (and ⟨grid_y⟩) with the estimate, what is
+    /// available and the largest surface of the same shape that fits; [`ModelError::Environment`]
+    /// for a `JKRBEM_MEMORY_LIMIT` that is no number of bytes.
+    pub fn check_memory(&self) -> Result<(), ModelError> {
+        self.check_memory_within(crate::plan::available_memory()?)
+    }
+
+    /// [`RoughnessParams::check_memory`] against `available` bytes (no check if `None`).
+    ///
+    /// # Errors
+    ///
+    /// [`ModelError::Invalid`], as [`RoughnessParams::check_memory`].
+    pub fn check_memory_within(&self, available: Option<u64>) -> Result<(), ModelError> {
+        let (nx, ny) = (self.nx(), self.ny());
+        let need = memory_estimate(nx, ny);
+        let Some(available) = available.filter(|&a| need > a) else {
+            return Ok(());
+        };
+        // The largest surface of the same aspect whose nodes fit in what is left.
+        let nodes = available.saturating_sub(BASE_BYTES) / BYTES_PER_NODE;
+        let scale = (nodes as f64 / (nx as f64 * ny as f64)).sqrt();
+        let (fx, fy) = (
+            (nx as f64 * scale).floor() as usize,
+            (ny as f64 * scale).floor() as usize,
+        );
+        let fits = if fx < MIN_NODES || fy < MIN_NODES {
+            "not even the smallest surface of this shape fits".to_string()
+        } else if self.grid_y.is_some() {
+            format!("the largest of this shape that fits is {GRID} {fx} {GRID_Y} {fy}")
+        } else {
+            format!("the largest that fits is {GRID} {fx}")
+        };
+        Err(ModelError::Invalid {
+            param: GRID,
+            value: nx.to_string(),
+            expected: format!(
+                "a surface of {GRID} × {GRID_Y} = {nx} × {ny} nodes needs about {} while it is \
+                 generated ({BYTES_PER_NODE} bytes per node), more than the {} this machine has \
+                 available (free memory, control group and process limits); {fits}",
+                crate::plan::bytes_text(need),
+                crate::plan::bytes_text(available)
+            ),
+        })
     }
 
     /// Checks the parameters, naming the first one that is wrong.
@@ -349,6 +413,15 @@ impl RoughnessParams {
             cutoff,
         })
     }
+}
+
+/// The memory generating a surface of `nx` × `ny` nodes takes at its peak (bytes):
+/// [`BYTES_PER_NODE`] per node and [`BASE_BYTES`] besides.
+pub fn memory_estimate(nx: usize, ny: usize) -> u64 {
+    (nx as u64)
+        .saturating_mul(ny as u64)
+        .saturating_mul(BYTES_PER_NODE)
+        .saturating_add(BASE_BYTES)
 }
 
 /// A [`SceneError::Invalid`].

@@ -476,3 +476,38 @@ fn the_shortest_wavelength_is_the_cut_off_of_a_band_and_long_for_a_smooth_tip() 
     let l = shortest_wavelength(&HeightMap::new(64, 64, 0.5, h).unwrap());
     assert!((1.0..1.5).contains(&l), "white noise: {l}");
 }
+
+/// The memory check refuses a surface past what is available, naming ⟨grid⟩ (and ⟨grid_y⟩
+/// where given) with the largest surface of the same shape that fits, which itself fits.
+#[test]
+fn the_memory_check_names_the_grid_and_the_largest_that_fits() {
+    let big = RoughnessParams::with_rms_height(4096, 1.0, 0.8, 1.0);
+    assert_eq!(big.memory_estimate(), 4096 * 4096 * 32 + (16 << 20));
+    assert!(big.check_memory_within(None).is_ok());
+    assert!(big.check_memory_within(Some(big.memory_estimate())).is_ok());
+    let e = big
+        .check_memory_within(Some(100_000_000))
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with(&format!("{GRID} = 4096 is invalid")), "{e}");
+    assert!(
+        e.contains(&format!("the largest that fits is {GRID} 1612")),
+        "{e}"
+    );
+    assert!(memory_estimate(1612, 1612) <= 100_000_000);
+    assert!(memory_estimate(1613, 1613) > 100_000_000);
+    let wide = RoughnessParams {
+        grid_y: Some(1024),
+        ..big.clone()
+    };
+    let e = wide
+        .check_memory_within(Some(100_000_000))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains(&format!("{GRID} 3225 {GRID_Y} 806")), "{e}");
+    let e = big
+        .check_memory_within(Some(1 << 20))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("not even the smallest surface"), "{e}");
+}
