@@ -592,6 +592,7 @@ mod tests {
             warnings: Vec::new(),
             cost: Default::default(),
             refinement: None,
+            min_contact: None,
         }
     }
 

@@ -163,7 +163,7 @@ fn a_wave_whose_fronts_run_along_the_grid_is_withheld_and_an_egg_crate_is_not() 
     write_period(d, "ridge.txt", (128, 32), |x, _| {
         0.02 * (1.0 - (2.0 * PI * x).cos())
     });
-    let mut args = vec!["--grid", "128", "--summary", "r.json", "--out", "r.csv"];
+    let mut args = ["--grid", "128", "--summary", "r.json", "--out", "r.csv"];
     let o = jkrbem(
         &[
             "simulate",
