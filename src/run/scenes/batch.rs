@@ -13,7 +13,7 @@ use crate::output::file::{note_input, read_regular};
 use crate::output::names;
 use crate::output::NamedBy;
 use crate::run::claim::{write_error, Outputs};
-use crate::run::request::Request;
+use crate::run::request::{MapReads, Request};
 use crate::run::schema::OUT;
 use crate::run::simulate::{planned_outputs, SimulateRequest, Sink};
 use crate::run::{input, RunError, Watch};
@@ -72,14 +72,16 @@ impl BatchDone {
     }
 }
 
-/// A scene's simulation, to its own files in `dir`.
-fn scene_request(row: &Row, dir: &Path) -> Result<SimulateRequest, RunError> {
-    row.request.simulate_request(
+/// A scene's simulation, to its own files in `dir`, its files read through `reads` (each file
+/// once, however many rows name it).
+fn scene_request(row: &Row, dir: &Path, reads: &mut MapReads) -> Result<SimulateRequest, RunError> {
+    row.request.simulate_request_sharing(
         Sink::Files {
             out: Some(names::scene_states(dir, &row.id)),
             summary: Some(names::scene_summary(dir, &row.id)),
         },
         None,
+        reads,
     )
 }
 
@@ -125,13 +127,16 @@ struct Checked {
 }
 
 /// Every row's simulation, checked as `simulate` checks it before any work, with the files
-/// each writes; two rows that would write one file are refused, naming both.
+/// each writes; two rows that would write one file are refused, naming both. Each file the
+/// rows read (a height map, a roughness) is read once, and its map shared by the rows naming
+/// it.
 fn checked_scenes(table: &Table, dir: &Path) -> Result<Vec<Checked>, RunError> {
     let mut writers: HashMap<PathBuf, usize> = HashMap::new();
     let mut out = Vec::with_capacity(table.rows.len());
+    let mut reads = MapReads::default();
     for row in &table.rows {
         let refused = |e: RunError| table.refusal(row, &e.to_string());
-        let sim = scene_request(row, dir).map_err(refused)?;
+        let sim = scene_request(row, dir, &mut reads).map_err(refused)?;
         let targets = planned_outputs(&sim).map_err(refused)?;
         for (path, _) in &targets {
             if let Some(other) = writers.insert(path.clone(), row.index) {
@@ -240,4 +245,83 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
         skipped,
         manifest,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Indenter;
+
+    /// A sphere of unit radius sampled on `n`² nodes `spacing` apart, as text, its heights
+    /// scaled by `scale`.
+    fn sphere(n: usize, spacing: f64, scale: f64) -> String {
+        let c = (n - 1) as f64 / 2.0;
+        (0..n)
+            .map(|j| {
+                let y = (j as f64 - c) * spacing;
+                let row: Vec<String> = (0..n)
+                    .map(|i| {
+                        let x = (i as f64 - c) * spacing;
+                        format!("{:e}", scale * 0.5 * (x * x + y * y))
+                    })
+                    .collect();
+                row.join(" ") + "\n"
+            })
+            .collect()
+    }
+
+    /// The heights of a checked scene's measured surface.
+    fn heights(c: &Checked) -> &[f64] {
+        match &c.request.scene.indenter {
+            Indenter::HeightMap(s) => s.map.heights(),
+            other => panic!("not a height map: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn rows_naming_one_file_share_one_read_of_it_and_record_it_as_each_names_it() {
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
+        std::fs::create_dir(dir.join("sub")).unwrap();
+        std::fs::write(dir.join("map.txt"), sphere(41, 0.05, 1.0)).unwrap();
+        std::fs::write(dir.join("other.txt"), sphere(41, 0.05, 2.0)).unwrap();
+        let d = dir.display();
+        let table = format!(
+            "id,indenter,height_map,spacing,grid,measure,backend\n\
+             a,height-map,{d}/map.txt,0.05,32,adhesive-force,cpu\n\
+             b,height-map,{d}/sub/../map.txt,0.05,32,adhesive-force,cpu\n\
+             c,height-map,{d}/map.txt,0.05,32,adhesive-force,cpu\n\
+             d,height-map,{d}/map.txt,0.06,32,adhesive-force,cpu\n\
+             e,height-map,{d}/other.txt,0.05,32,adhesive-force,cpu\n"
+        );
+        let table = table::parse(&table, "t.csv").unwrap();
+        let checked = checked_scenes(&table, &dir.join("runs")).unwrap();
+        let at = |k: usize| heights(&checked[k]).as_ptr();
+        for k in 1..4 {
+            assert_eq!(
+                at(k),
+                at(0),
+                "row {} holds a copy of the map of row 1",
+                k + 1
+            );
+        }
+        assert_ne!(at(4), at(0), "another file, another map");
+        assert_eq!(heights(&checked[4])[0], 2.0 * heights(&checked[0])[0]);
+        // Each row records the file as it names it, with what was read.
+        let files: Vec<&InputFile> = checked.iter().map(|c| &c.request.input_files[0]).collect();
+        assert_eq!(files[1].path, format!("{d}/sub/../map.txt"));
+        assert_eq!(files[0].path, format!("{d}/map.txt"));
+        for f in &files[1..4] {
+            assert_eq!(f.parameter, "height_map");
+            assert_eq!(f.resolved, files[0].resolved);
+            assert_eq!(f.digest, files[0].digest);
+        }
+        assert_ne!(files[4].digest, files[0].digest);
+        // The spacing of each row is its own.
+        let spacing = |k: usize| match &checked[k].request.scene.indenter {
+            Indenter::HeightMap(s) => s.map.spacing(),
+            _ => unreachable!(),
+        };
+        assert_eq!((spacing(0), spacing(3)), (0.05, 0.06));
+    }
 }
