@@ -5,8 +5,9 @@
 //! `resume`, a scene whose summary is complete, records the same request and read the same
 //! files (size and CRC-32) is not run again.
 
-use super::pool::{run_all, SceneJob};
+use super::pool::{run_all, SceneEnded, SceneJob};
 use super::table::{self, Row, Table};
+use crate::model::Model;
 use crate::output::batch_csv::{Manifest, ManifestScene, MANIFEST_FORMAT};
 use crate::output::digest::InputFile;
 use crate::output::file::{note_input, read_regular};
@@ -14,9 +15,10 @@ use crate::output::names;
 use crate::output::NamedBy;
 use crate::run::claim::{write_error, Outputs};
 use crate::run::request::{MapReads, Request};
-use crate::run::schema::OUT;
+use crate::run::schema::{words, OUT};
 use crate::run::simulate::{planned_outputs, SimulateRequest, Sink};
 use crate::run::{input, RunError, Watch};
+use crate::solver::State;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -120,6 +122,42 @@ pub fn is_done(path: &Path, request: &Request, read: &[InputFile]) -> bool {
         && files.is_some_and(|f| contents(&f) == contents(read))
 }
 
+/// A batch's [`Watch`]: what its scenes say, in the table's words (each parameter as its
+/// column's name, `cg_max_iterations`, where a scene's own run would name `simulate`'s flag),
+/// passed on to `inner`.
+struct TableWords<'a>(&'a dyn Watch);
+
+impl Watch for TableWords<'_> {
+    fn note(&self, line: &str) {
+        self.0.note(&words::keywords(line))
+    }
+    fn pulloff_started(&self, model: &Model) {
+        self.0.pulloff_started(model)
+    }
+    fn state(&self, model: &Model, state: &State) {
+        self.0.state(model, state)
+    }
+    fn state_held(&self, model: &Model, state: &State) {
+        self.0.state_held(model, state)
+    }
+    fn pulloff_ended(&self) {
+        self.0.pulloff_ended()
+    }
+    fn warning(&self, line: &str) {
+        self.0.warning(&words::keywords(line))
+    }
+    fn scene_ended(&self, scene: &SceneEnded) {
+        let failure = scene.failure.map(words::keywords);
+        self.0.scene_ended(&SceneEnded {
+            failure: failure.as_deref(),
+            ..scene.clone()
+        })
+    }
+    fn keep_going(&self) -> bool {
+        self.0.keep_going()
+    }
+}
+
 /// A row's simulation, checked, and the files it writes (each with the flag that names it).
 struct Checked {
     request: SimulateRequest,
@@ -137,7 +175,13 @@ fn checked_scenes(table: &Table, dir: &Path) -> Result<Vec<Checked>, RunError> {
     for row in &table.rows {
         let refused = |e: RunError| table.refusal(row, &e.to_string());
         let sim = scene_request(row, dir, &mut reads).map_err(refused)?;
-        let targets = planned_outputs(&sim).map_err(refused)?;
+        // Every file of a scene is in the batch's folder, named by the batch's flag (the
+        // scene's own, its states' and summary's, are no column of the table).
+        let targets: Vec<(PathBuf, NamedBy)> = planned_outputs(&sim)
+            .map_err(refused)?
+            .into_iter()
+            .map(|(path, _)| (path, OUT.into()))
+            .collect();
         for (path, _) in &targets {
             if let Some(other) = writers.insert(path.clone(), row.index) {
                 return Err(input(format!(
@@ -165,7 +209,18 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
     let mine: Vec<usize> = (0..table.rows.len())
         .filter(|j| req.shard.is_none_or(|(k, n)| j % n == k - 1))
         .collect();
-    for &j in &mine {
+    // What `resume` finds done is skipped, its files untouched (a write-protected one too);
+    // the files of every other scene of the shard are checked before any work.
+    let (done, to_run): (Vec<usize>, Vec<usize>) = mine.iter().partition(|&&j| {
+        let row = &table.rows[j];
+        req.resume
+            && is_done(
+                &names::scene_summary(&req.out, &row.id),
+                &row.request,
+                &scenes[j].request.input_files,
+            )
+    });
+    for &j in &to_run {
         Outputs::check(&scenes[j].targets)?;
     }
     let manifest = names::batch_manifest(&req.out, req.shard);
@@ -183,16 +238,11 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
             .collect(),
     };
     record.write(&manifest).map_err(write_error(OUT))?;
-    let mut skipped = Vec::new();
+    let skipped: Vec<String> = done.iter().map(|&j| table.rows[j].id.clone()).collect();
     let mut jobs = Vec::new();
     let mut ran_rows = Vec::new();
-    for &j in &mine {
+    for &j in &to_run {
         let row = &table.rows[j];
-        let summary = names::scene_summary(&req.out, &row.id);
-        if req.resume && is_done(&summary, &row.request, &scenes[j].request.input_files) {
-            skipped.push(row.id.clone());
-            continue;
-        }
         jobs.push(SceneJob {
             request: scenes[j].request.clone(),
             label: format!("scene {}", row.id),
@@ -217,7 +267,7 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
         },
         req.jobs
     ));
-    let ran = run_all(jobs, req.jobs, watch, &|i, outcome| {
+    let ran = run_all(jobs, req.jobs, &TableWords(watch), &|i, outcome| {
         let row = ran_rows[i];
         let summary = names::scene_summary(&req.out, &row.id);
         let label = format!("scene {}", row.id);
@@ -227,14 +277,16 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
                 summary,
                 f_ad_bar: done.summary.f_ad_bar,
                 f_ad_bar_uncertainty: done.summary.f_ad_bar_uncertainty,
-                failure: done.failure.map(|f| format!("{label}: {f}")),
+                failure: done
+                    .failure
+                    .map(|f| format!("{label}: {}", words::keywords(&f))),
             },
             Err(e) => SceneOutcome {
                 id: row.id.clone(),
                 summary,
                 f_ad_bar: None,
                 f_ad_bar_uncertainty: None,
-                failure: Some(format!("{label}: {e}")),
+                failure: Some(format!("{label}: {}", words::keywords(&e.to_string()))),
             },
         }
     });
