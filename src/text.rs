@@ -2,6 +2,24 @@
 //! digits echoed back), with no "−0.0000", and with signs written as an operator ("− 1.010",
 //! not "+ -1.010").
 
+/// Items as text, the first [`SHOWN_ITEMS`] of them: "a, b, c", or "a, b, … and 3 more" (a
+/// message names a few thousand shards or scenes no better than twenty).
+pub fn listed<T: std::fmt::Display>(items: &[T]) -> String {
+    let mut text = items
+        .iter()
+        .take(SHOWN_ITEMS)
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join(", ");
+    if items.len() > SHOWN_ITEMS {
+        text.push_str(&format!(" and {} more", items.len() - SHOWN_ITEMS));
+    }
+    text
+}
+
+/// The most items [`listed`] shows.
+pub const SHOWN_ITEMS: usize = 20;
+
 /// A value in at most `digits` significant digits, in scientific notation outside
 /// [10⁻⁴, 10⁶): "1e300", "2.5e-12", "0.08", "1048576". Non-finite values as Rust writes them.
 pub fn compact(v: f64) -> String {

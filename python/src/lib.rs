@@ -741,12 +741,16 @@ fn batch<'py>(
         let given: Vec<serde_json::Map<String, Value>> = parse(requests)?;
         let mut requests = Vec::with_capacity(given.len());
         let mut jobs = Vec::with_capacity(given.len());
+        // Each file the scenes name is read once, its map shared by the scenes naming it.
+        let mut reads = jkrbem::run::request::MapReads::default();
         for (i, g) in given.iter().enumerate() {
             let at = |e: RunError| input_error(format!("scenes[{i}]: {e}"));
             let values = Request::check_json(g.iter().map(|(k, v)| (k.as_str(), v)))
                 .map_err(|r| refusal(&format!("scenes[{i}]: {}", r.message), r.wrong_type))?;
             let req = Request::from_values(values).map_err(at)?;
-            let sim = req.simulate_request(Sink::Memory, None).map_err(at)?;
+            let sim = req
+                .simulate_request_sharing(Sink::Memory, None, &mut reads)
+                .map_err(at)?;
             jkrbem::run::simulate::planned_outputs(&sim).map_err(at)?;
             jobs.push(SceneJob {
                 request: sim,

@@ -18,8 +18,9 @@ pub struct Args {
     /// parameter of `simulate` may be a column, by its name (`mesh_angle`) or its flag
     /// (`--mesh-angle`, `mesh-angle`), written as `simulate` takes it (`2%`, `90s`, `0.25,-0.5`);
     /// an empty cell takes the default. An optional `id` column names each scene (letters,
-    /// digits, `.`, `_`, `-`; default: its row number, from 1). Every row is checked before
-    /// any scene runs.
+    /// digits, `.`, `_`, `-`, differing in more than case; default: its row number, from 1).
+    /// At most 10000 scenes (split a larger table). Every row is checked before any scene
+    /// runs.
     pub scenes: PathBuf,
     /// Output folder: scene-<id>.csv (states) and scene-<id>.json (summary) per scene, and the
     /// batch's record batch.json (or batch-shard-K-of-N.json) for `jkrbem collect`.
@@ -42,6 +43,7 @@ pub struct Args {
 
 /// Run `jkrbem batch`.
 pub fn run(args: Args) -> Result<(), CliError> {
+    super::stdout::not_stdout("--out", &args.out, "batch")?;
     let shard = super::shard(args.shard.as_deref())?;
     let request = BatchRequest {
         scenes: args.scenes,

@@ -582,10 +582,13 @@ pub struct PartialFile {
 impl PartialFile {
     /// Start writing the partial file of `target` (creating its folder). A `target` that
     /// exists and is not a regular file is refused; an existing regular one is left as it is.
+    /// The partial files of `target` that runs no longer alive left holding nothing past
+    /// their first line are removed first (see the `temporary` module).
     pub fn create(target: &Path) -> Result<Self, OutputError> {
         check_target(target)?;
         let target = resolved(target);
         create_folder(&target)?;
+        temporary::remove_empty_partials(&folder(&target), &file_name(&target));
         let candidates: Vec<PathBuf> = partial_candidates(&target).take(1000).collect();
         for partial in candidates {
             let mut open = OpenOptions::new();

@@ -30,6 +30,8 @@ use std::time::Duration;
 
 mod map_file;
 
+pub use map_file::MapReads;
+
 /// The indenter shapes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -263,6 +265,16 @@ impl Request {
     /// Like [`Request::scene`], with the record of every file read for it (none where the
     /// maps are in memory).
     pub fn scene_read(&self, map: Option<HeightMap>) -> Result<(Scene, Vec<InputFile>), RunError> {
+        self.scene_sharing(map, &mut MapReads::default())
+    }
+
+    /// Like [`Request::scene_read`], its files read through `reads`: a file another request
+    /// read there is not read again, and its map is shared.
+    pub fn scene_sharing(
+        &self,
+        map: Option<HeightMap>,
+        reads: &mut MapReads,
+    ) -> Result<(Scene, Vec<InputFile>), RunError> {
         let mut read = Vec::new();
         let is_map = self.indenter == Shape::HeightMap;
         let (map, rough_map) = if is_map { (map, None) } else { (None, map) };
@@ -285,9 +297,9 @@ impl Request {
                 n: self.exponent.unwrap_or(2.0),
                 scale: self.scale.unwrap_or(crate::scene::DEFAULT_POWER_LAW_SCALE),
             },
-            Shape::HeightMap => self.height_map_indenter(map, &mut read)?,
+            Shape::HeightMap => self.height_map_indenter(map, reads, &mut read)?,
         };
-        let shape = match self.roughness_map(rough_map, &mut read)? {
+        let shape = match self.roughness_map(rough_map, reads, &mut read)? {
             Some((map, name)) => {
                 let base = shape.checked().map_err(input)?;
                 Indenter::Rough(Arc::new(RoughShape::new(base, map, &name).map_err(input)?))
@@ -298,10 +310,12 @@ impl Request {
     }
 
     /// The roughness to add to the base shape, with its name: `map` if given, else read
-    /// from [`Request::roughness`] (its record added to `read`); `None` for a smooth shape.
+    /// from [`Request::roughness`] through `reads` (its record added to `read`); `None` for a
+    /// smooth shape.
     fn roughness_map(
         &self,
         map: Option<HeightMap>,
+        reads: &mut MapReads,
         read: &mut Vec<InputFile>,
     ) -> Result<Option<(HeightMap, String)>, RunError> {
         match (map, &self.roughness) {
@@ -313,7 +327,7 @@ impl Request {
                     )));
                 };
                 let name = crate::text::printable(&path.display().to_string(), 200);
-                let (map, file) = map_file::read_as(path, &name, spacing, ROUGHNESS)?;
+                let (map, file) = reads.read(path, &name, spacing, ROUGHNESS)?;
                 read.push(file);
                 Ok(Some((map, name)))
             }
@@ -321,12 +335,14 @@ impl Request {
         }
     }
 
-    /// The measured surface: `map` if given, else read from [`Request::height_map`] (its
-    /// record added to `read`); placed on its period under the periodic convolution, else on
-    /// the window asked for, else at its apex where it has one, else on the whole map.
+    /// The measured surface: `map` if given, else read from [`Request::height_map`] through
+    /// `reads` (its record added to `read`); placed on its period under the periodic
+    /// convolution, else on the window asked for, else at its apex where it has one, else on
+    /// the whole map.
     fn height_map_indenter(
         &self,
         map: Option<HeightMap>,
+        reads: &mut MapReads,
         read: &mut Vec<InputFile>,
     ) -> Result<Indenter, RunError> {
         let (map, name) = match (map, &self.height_map) {
@@ -339,7 +355,7 @@ impl Request {
                     )));
                 };
                 let name = crate::text::printable(&path.display().to_string(), 200);
-                let (map, file) = map_file::read(path, &name, spacing)?;
+                let (map, file) = reads.read(path, &name, spacing, HEIGHT_MAP)?;
                 read.push(file);
                 (map, name)
             }
@@ -471,6 +487,17 @@ impl Request {
         sink: Sink,
         map: Option<HeightMap>,
     ) -> Result<SimulateRequest, RunError> {
+        self.simulate_request_sharing(sink, map, &mut MapReads::default())
+    }
+
+    /// Like [`Request::simulate_request`], its files read through `reads` (a batch's rows:
+    /// each file read once, its map shared by the rows that name it).
+    pub fn simulate_request_sharing(
+        &self,
+        sink: Sink,
+        map: Option<HeightMap>,
+        reads: &mut MapReads,
+    ) -> Result<SimulateRequest, RunError> {
         let mode = self.mode()?;
         let fields = FieldChoice::parse(&self.fields).map_err(|_| {
             input(format!(
@@ -489,7 +516,7 @@ impl Request {
             None => None,
         };
         self.backend().check()?;
-        let (scene, input_files) = self.scene_read(map)?;
+        let (scene, input_files) = self.scene_sharing(map, reads)?;
         if self.convolution == Convolution::Periodic && scene.window_half().is_none() {
             return Err(input(format!(
                 "{CONVOLUTION} periodic is for a surface periodic over the domain, a height map \

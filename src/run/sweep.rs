@@ -279,13 +279,10 @@ fn note_read_files(dir: &Path, c: &sweep_csv::Collected) {
     }
 }
 
-/// Ratios as text: "2, 25".
+/// Ratios as text: "2, 25", or the first twenty "and 3 more".
 fn listed(ratios: &[f64]) -> String {
-    ratios
-        .iter()
-        .map(|r| crate::text::compact(*r))
-        .collect::<Vec<_>>()
-        .join(", ")
+    let shown: Vec<String> = ratios.iter().map(|r| crate::text::compact(*r)).collect();
+    crate::text::listed(&shown)
 }
 
 /// `collect`'s folder, which names its outputs (an argument, not a parameter).
@@ -317,8 +314,9 @@ pub fn collect_shards(
                 String::new()
             } else {
                 format!(
-                    " (shards {:?} of {} have not written their file: run them)",
-                    c.missing_shards, c.shards
+                    " (shards [{}] of {} have not written their file: run them)",
+                    crate::text::listed(&c.missing_shards),
+                    c.shards
                 )
             }
         ));

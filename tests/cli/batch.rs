@@ -379,3 +379,176 @@ fn resume_runs_a_scene_whose_height_map_was_replaced_and_collect_refuses_its_old
         stdout(&o)
     );
 }
+
+/// The text of a run's standard output and error together.
+fn said(o: &Output) -> String {
+    format!("{}{}", stdout(o), stderr(o))
+}
+
+#[test]
+fn a_batch_speaks_of_its_table_s_columns_not_of_simulate_s_flags() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    // A scene whose run fails: CG stops at its 3rd iteration.
+    std::fs::write(
+        dir.join("scenes.csv"),
+        "id,ratio,grid,measure,backend,cg_max_iterations\na,1,64,adhesive-force,cpu,3\n\
+         b,1,32,adhesive-force,cpu,\n",
+    )
+    .unwrap();
+    let o = run_ok(dir, &["batch", "scenes.csv", "--out", "runs"], 1);
+    let text = said(&o);
+    assert!(text.contains("raise cg_max_iterations"), "{text}");
+    assert!(
+        !text.contains("--cg-") && !text.contains("--preconditioner"),
+        "{text}"
+    );
+    // A scene's file the batch may not replace is named by the batch's own flag.
+    let b = dir.join("runs/scene-b.json");
+    let mut perms = std::fs::metadata(&b).unwrap().permissions();
+    perms.set_readonly(true);
+    std::fs::set_permissions(&b, perms).unwrap();
+    let o = run_ok(dir, &["batch", "scenes.csv", "--out", "runs"], 2);
+    let text = stderr(&o);
+    assert!(
+        text.contains("runs/scene-b.json (--out)") && text.contains("write-protected"),
+        "{text}"
+    );
+    assert!(!text.contains("--summary"), "{text}");
+}
+
+#[test]
+fn standard_output_is_no_batch_or_sweep_folder() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(dir.join("scenes.csv"), "id,ratio,grid\na,1,32\n").unwrap();
+    for args in [
+        &["batch", "scenes.csv", "--out", "-"][..],
+        &["sweep", "--ratios", "1", "--grid", "32", "--out", "-"][..],
+    ] {
+        let o = run_ok(dir, args, 2);
+        assert!(
+            stderr(&o).contains("--out -: standard output holds a single file"),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+        assert!(!dir.join("-").exists(), "{args:?} wrote a folder named -");
+    }
+}
+
+#[test]
+fn the_scene_limit_is_told_and_ids_that_differ_only_in_case_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let o = run_ok(dir, &["batch", "--help"], 0);
+    assert!(stdout(&o).contains("10000 scenes"), "{}", stdout(&o));
+    let docs =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/batch.md")).unwrap();
+    assert!(
+        docs.contains("10000 scenes"),
+        "docs/batch.md says nothing of the limit"
+    );
+    // "A" and "a" name one file on a case-insensitive file system.
+    std::fs::write(
+        dir.join("scenes.csv"),
+        "id,ratio,grid\nx,1,32\nScene-A,1,32\nscene-a,2,32\n",
+    )
+    .unwrap();
+    let o = run_ok(dir, &["batch", "scenes.csv", "--out", "runs"], 2);
+    let err = stderr(&o);
+    assert!(
+        err.contains("rows 2 and 3")
+            && err.contains("\"Scene-A\" and \"scene-a\"")
+            && err.contains("differ only in case"),
+        "{err}"
+    );
+    assert!(!dir.join("runs").exists());
+}
+
+#[test]
+fn collect_names_the_shards_that_left_no_record_at_most_twenty() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(dir.join("scenes.csv"), scenes(30)).unwrap();
+    run_ok(
+        dir,
+        &["batch", "scenes.csv", "--out", "runs", "--shard", "1/30"],
+        0,
+    );
+    let o = run_ok(dir, &["collect", "runs"], 1);
+    let err = stderr(&o);
+    assert!(
+        err.contains("(shards [2, 3, 4, ") && err.contains(", 21 and 9 more] of 30"),
+        "{err}"
+    );
+    assert!(!err.contains("30 of 30") && !err.contains(" 22,"), "{err}");
+}
+
+#[test]
+fn resume_skips_a_finished_scene_whose_files_are_write_protected() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(
+        dir.join("scenes.csv"),
+        "id,ratio,grid,measure,backend\na,1,32,adhesive-force,cpu\nb,2,32,adhesive-force,cpu\n",
+    )
+    .unwrap();
+    let args = ["batch", "scenes.csv", "--out", "runs", "--resume"];
+    run_ok(dir, &args, 0);
+    for name in ["scene-a.json", "scene-a.csv"] {
+        let path = dir.join("runs").join(name);
+        let mut perms = std::fs::metadata(&path).unwrap().permissions();
+        perms.set_readonly(true);
+        std::fs::set_permissions(&path, perms).unwrap();
+    }
+    let o = run_ok(dir, &args, 0);
+    assert!(
+        stdout(&o).contains("0 ran (0 failed), 2 skipped"),
+        "{}",
+        said(&o)
+    );
+}
+
+#[test]
+fn a_scene_rerun_under_resume_leaves_no_pile_of_empty_partial_states() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let runs = dir.join("runs");
+    // Scene a fails at its first state (CG stops at its 3rd iteration): each run of it leaves
+    // its partial states, the header alone.
+    std::fs::write(
+        dir.join("scenes.csv"),
+        "id,ratio,grid,measure,backend,cg_max_iterations\na,1,64,adhesive-force,cpu,3\n",
+    )
+    .unwrap();
+    let partials = || names_in(&runs, |n| n.starts_with("scene-a.incomplete-"));
+    let args = ["batch", "scenes.csv", "--out", "runs", "--resume"];
+    for _ in 0..3 {
+        run_ok(dir, &args, 1);
+    }
+    assert_eq!(partials().len(), 1, "{:?}", partials());
+    // A killed run's partial that holds states is kept, as is a live run's, whatever it holds.
+    let dead = {
+        let mut child = Command::new("true").spawn().unwrap();
+        let pid = child.id();
+        child.wait().unwrap();
+        pid
+    };
+    let kept = [
+        (format!("scene-a.incomplete-{dead}-2.csv"), "h\n1\n"),
+        (format!("scene-a.incomplete-{}.csv", std::process::id()), ""),
+    ];
+    let gone = [
+        (format!("scene-a.incomplete-{dead}.csv"), ""),
+        (format!("scene-a.incomplete-{dead}-3.csv"), "header only\n"),
+    ];
+    for (name, text) in kept.iter().chain(&gone) {
+        std::fs::write(runs.join(name), text).unwrap();
+    }
+    run_ok(dir, &args, 1);
+    let now = partials();
+    assert_eq!(now.len(), 3, "{now:?}");
+    for (name, _) in &kept {
+        assert!(now.contains(name), "{name} removed: {now:?}");
+    }
+}

@@ -492,10 +492,16 @@ fn a_second_run_on_the_same_output_is_refused_and_a_killed_runs_lock_is_taken_ov
     let dir = tempfile::tempdir().unwrap();
     let mut first = long_run(dir.path(), "s.csv");
     let lock = dir.path().join(".s.csv.lock");
-    // Both the lock and the run's partial states (written once its backend is open: under
-    // load that comes well after the lock).
-    let started =
-        || lock.exists() && !names_in(dir.path(), |n| n.starts_with("s.incomplete-")).is_empty();
+    // Both the lock and the run's partial states, a state in them (written once its backend
+    // is open: under load that comes well after the lock; a partial file that holds nothing
+    // past its header is removed by the next run on s.csv).
+    let started = || {
+        lock.exists()
+            && names_in(dir.path(), |n| n.starts_with("s.incomplete-"))
+                .first()
+                .and_then(|n| std::fs::read_to_string(dir.path().join(n)).ok())
+                .is_some_and(|t| t.lines().count() > 1)
+    };
     assert!(wait_for(Duration::from_secs(60), started));
     let mut args = SHORT.to_vec();
     args.extend(["--out", "s.csv"]);
@@ -842,6 +848,28 @@ mod collect {
         let rows = jkrbem::output::sweep_csv::read_rows(&dir.path().join("sw/sweep.csv")).unwrap();
         assert_eq!(rows.len(), 2);
         assert!(!rows[1].complete);
+    }
+
+    #[test]
+    fn the_missing_ratios_and_shards_are_named_at_most_twenty() {
+        // Before: every missing ratio and shard was listed (9999 shards of a 10000-way split).
+        let dir = tempfile::tempdir().unwrap();
+        let ratios: Vec<f64> = (0..30).map(|k| 1.0 + 0.5 * k as f64).collect();
+        let settings = common::sweep_rows::settings(&ratios, 32);
+        Shard::new(settings, (1, 30), vec![row(1.0)])
+            .write(&shard_path(&dir.path().join("sw"), (1, 30)))
+            .unwrap();
+        refused(
+            dir.path(),
+            &[
+                "R1/R2 = 1.5, 2, 2.5, ",
+                ", 11 and 9 more missing",
+                "(shards [2, 3, 4, ",
+                ", 21 and 9 more] of 30",
+            ],
+        );
+        let err = stderr(&collect(dir.path(), &[]));
+        assert!(!err.contains("11.5") && !err.contains(" 22,"), "{err}");
     }
 
     #[test]

@@ -1,11 +1,18 @@
 //! The names of [`super::write_atomic`]'s temporary files, and the removal of those that a
-//! killed run left.
+//! killed run left; and the removal of the partial files (see [`super::PartialFile`]) that
+//! a run which ended without its result left holding nothing.
 //!
 //! A temporary file of a target `<name>` is `.<name>.<pid>.<random>.tmp` beside it: the
 //! process id says whose it is. A run that is killed (SIGKILL runs no handler) leaves it; a
 //! later run that holds the target's lock removes those of its temporaries whose process is
 //! no longer alive, and nothing else: only regular files of this user with one name, whose
 //! name is exactly of that pattern for that target.
+//!
+//! A partial file `<stem>.incomplete-<pid>[-k].<ext>` is kept when its run ends short (it
+//! holds the states computed); one that holds nothing past its first line (the header, or not
+//! even that: a run killed or failed before its first state) is removed, under the same
+//! conditions, by the next run that writes the target, so that a scene run again and again
+//! (`batch --resume`) leaves no pile of them.
 
 use std::fs;
 use std::path::Path;
@@ -99,6 +106,70 @@ pub fn remove_stale(dir: &Path, target_name: &str) -> usize {
         .count()
 }
 
+/// The process that wrote `name` if it is the name of a partial file of `target_name`
+/// (`<stem>.incomplete-<pid>[-k]<ext>`).
+pub fn partial_writer_of(name: &str, target_name: &str) -> Option<u32> {
+    let (stem, ext) = match target_name.rsplit_once('.') {
+        Some((s, e)) => (s, format!(".{e}")),
+        None => (target_name, String::new()),
+    };
+    let id = name
+        .strip_prefix(stem)?
+        .strip_prefix(".incomplete-")?
+        .strip_suffix(ext.as_str())?;
+    let (pid, k) = id.split_once('-').unwrap_or((id, "1"));
+    let digits = |t: &str| !t.is_empty() && t.len() <= 10 && t.bytes().all(|b| b.is_ascii_digit());
+    (digits(pid) && digits(k))
+        .then(|| pid.parse().ok())
+        .flatten()
+        .filter(|&p| p > 0)
+}
+
+/// The longest partial file read to tell whether it holds anything past its first line
+/// (bytes): a longer one does.
+const EMPTY_PARTIAL_BYTES: u64 = 1 << 16;
+
+/// Whether the file at `path` holds nothing past its first line.
+fn holds_nothing(path: &Path, m: &fs::Metadata) -> bool {
+    if m.len() == 0 {
+        return true;
+    }
+    if m.len() > EMPTY_PARTIAL_BYTES {
+        return false;
+    }
+    fs::read(path).is_ok_and(|b| match b.iter().position(|&c| c == b'\n') {
+        Some(end) => end + 1 == b.len(),
+        None => true,
+    })
+}
+
+/// Remove the partial files of `target` (a file name in `dir`) left by processes that no
+/// longer exist and holding nothing past their first line (see the module's description).
+/// The caller is about to write the target. Returns how many were removed.
+pub fn remove_empty_partials(dir: &Path, target_name: &str) -> usize {
+    let Ok(entries) = fs::read_dir(dir) else {
+        return 0;
+    };
+    let own = std::process::id();
+    entries
+        .filter_map(Result::ok)
+        .filter(|e| {
+            let name = e.file_name();
+            let Some(pid) = name
+                .to_str()
+                .and_then(|n| partial_writer_of(n, target_name))
+            else {
+                return false;
+            };
+            let path = e.path();
+            pid != own
+                && !alive(pid)
+                && fs::symlink_metadata(&path).is_ok_and(|m| ours(&m) && holds_nothing(&path, &m))
+                && fs::remove_file(&path).is_ok()
+        })
+        .count()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -121,6 +192,28 @@ mod tests {
             ".s.fields.npz.12.a/3dE9.tmp",
         ] {
             assert_eq!(writer_of(other, "s.fields.npz"), None, "{other}");
+        }
+    }
+
+    #[test]
+    fn only_names_of_the_pattern_are_partial_files() {
+        assert_eq!(partial_writer_of("s.incomplete-12.csv", "s.csv"), Some(12));
+        assert_eq!(
+            partial_writer_of("s.incomplete-12-3.csv", "s.csv"),
+            Some(12)
+        );
+        assert_eq!(partial_writer_of("s.incomplete-12", "s"), Some(12));
+        for other in [
+            "s.incomplete-.csv",
+            "s.incomplete-12-.csv",
+            "s.incomplete-12-3-4.csv",
+            "s.incomplete-0.csv",
+            "s.incomplete-x.csv",
+            "t.incomplete-12.csv",
+            "s.incomplete-12.json",
+            "s.csv",
+        ] {
+            assert_eq!(partial_writer_of(other, "s.csv"), None, "{other}");
         }
     }
 

@@ -1,12 +1,14 @@
 //! A height map read from its file (`.npy` or text), refused before reading where it would not
 //! fit in memory.
 
-use super::super::schema::{Spec, HEIGHT_MAP, SPACING};
+use super::super::schema::{Spec, SPACING};
 use super::super::{input, RunError};
 use crate::output::digest::InputFile;
 use crate::output::file::{read_regular, ReadError};
 use crate::scene::height_map::{HeightMap, HeightMapError};
-use std::path::Path;
+use std::collections::HashMap;
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
 
 /// The largest height-map file read (bytes): the largest map, 16384², as text of up to 32
 /// characters a value.
@@ -58,16 +60,11 @@ fn check_map_memory(path: &Path, name: &str, param: &Spec) -> Result<(), RunErro
     }
 }
 
-/// The map of the file at `path` (shown as `name`) with nodes `spacing` apart (length), with
-/// the record of what was read. The file is noted as this run's input, so that no output of
-/// the run may be it.
-pub fn read(path: &Path, name: &str, spacing: f64) -> Result<(HeightMap, InputFile), RunError> {
-    read_as(path, name, spacing, HEIGHT_MAP)
-}
-
-/// Like [`read`], the file given by `param` (the height map, or the roughness added to a
-/// base shape), which errors name.
-pub fn read_as(
+/// The map of the file at `path` (shown as `name`) given by `param` (the height map, or the
+/// roughness added to a base shape), which errors name, with nodes `spacing` apart (length),
+/// and the record of what was read. The file is noted as this run's input, so that no output
+/// of the run may be it.
+fn read_as(
     path: &Path,
     name: &str,
     spacing: f64,
@@ -86,4 +83,48 @@ pub fn read_as(
         e => input(format!("{param}: {e}")),
     })?;
     Ok((map, read))
+}
+
+/// Height-map files read for many requests (a batch's rows): each file, by its resolved path,
+/// read and checked once, its heights shared by every request that names it (whatever the
+/// spacing each gives), so that 200 rows naming one 8 MB map hold it once, not 200 times.
+#[derive(Debug, Default)]
+pub struct MapReads {
+    /// Each file read, by its resolved path and its name's extension (which chooses how its
+    /// bytes are read): its map and the record of what was read.
+    read: HashMap<(PathBuf, Option<OsString>), (HeightMap, InputFile)>,
+}
+
+impl MapReads {
+    /// Like [`read_as`], the file read only where no request before read it (the same file
+    /// by its resolved path, under a name of the same extension): then its map is shared, with
+    /// `spacing`, and its record names it as `path` gives it, with the content first read.
+    pub fn read(
+        &mut self,
+        path: &Path,
+        name: &str,
+        spacing: f64,
+        param: &'static Spec,
+    ) -> Result<(HeightMap, InputFile), RunError> {
+        let key = std::fs::canonicalize(path)
+            .ok()
+            .map(|p| (p, path.extension().map(|e| e.to_ascii_lowercase())));
+        if let Some((map, file)) = key.as_ref().and_then(|k| self.read.get(k)) {
+            crate::output::file::note_input(path, &param.to_string());
+            let map = map
+                .with_spacing(spacing, name)
+                .map_err(|e| input(format!("{SPACING}: {e}")))?;
+            let record = InputFile {
+                parameter: param.name.to_string(),
+                path: path.display().to_string(),
+                ..file.clone()
+            };
+            return Ok((map, record));
+        }
+        let (map, file) = read_as(path, name, spacing, param)?;
+        if let Some(key) = key {
+            self.read.insert(key, (map.clone(), file.clone()));
+        }
+        Ok((map, file))
+    }
 }

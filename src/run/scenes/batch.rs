@@ -5,18 +5,20 @@
 //! `resume`, a scene whose summary is complete, records the same request and read the same
 //! files (size and CRC-32) is not run again.
 
-use super::pool::{run_all, SceneJob};
+use super::pool::{run_all, SceneEnded, SceneJob};
 use super::table::{self, Row, Table};
+use crate::model::Model;
 use crate::output::batch_csv::{Manifest, ManifestScene, MANIFEST_FORMAT};
 use crate::output::digest::InputFile;
 use crate::output::file::{note_input, read_regular};
 use crate::output::names;
 use crate::output::NamedBy;
 use crate::run::claim::{write_error, Outputs};
-use crate::run::request::Request;
-use crate::run::schema::OUT;
+use crate::run::request::{MapReads, Request};
+use crate::run::schema::{words, OUT};
 use crate::run::simulate::{planned_outputs, SimulateRequest, Sink};
 use crate::run::{input, RunError, Watch};
+use crate::solver::State;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -72,14 +74,16 @@ impl BatchDone {
     }
 }
 
-/// A scene's simulation, to its own files in `dir`.
-fn scene_request(row: &Row, dir: &Path) -> Result<SimulateRequest, RunError> {
-    row.request.simulate_request(
+/// A scene's simulation, to its own files in `dir`, its files read through `reads` (each file
+/// once, however many rows name it).
+fn scene_request(row: &Row, dir: &Path, reads: &mut MapReads) -> Result<SimulateRequest, RunError> {
+    row.request.simulate_request_sharing(
         Sink::Files {
             out: Some(names::scene_states(dir, &row.id)),
             summary: Some(names::scene_summary(dir, &row.id)),
         },
         None,
+        reads,
     )
 }
 
@@ -118,6 +122,42 @@ pub fn is_done(path: &Path, request: &Request, read: &[InputFile]) -> bool {
         && files.is_some_and(|f| contents(&f) == contents(read))
 }
 
+/// A batch's [`Watch`]: what its scenes say, in the table's words (each parameter as its
+/// column's name, `cg_max_iterations`, where a scene's own run would name `simulate`'s flag),
+/// passed on to `inner`.
+struct TableWords<'a>(&'a dyn Watch);
+
+impl Watch for TableWords<'_> {
+    fn note(&self, line: &str) {
+        self.0.note(&words::keywords(line))
+    }
+    fn pulloff_started(&self, model: &Model) {
+        self.0.pulloff_started(model)
+    }
+    fn state(&self, model: &Model, state: &State) {
+        self.0.state(model, state)
+    }
+    fn state_held(&self, model: &Model, state: &State) {
+        self.0.state_held(model, state)
+    }
+    fn pulloff_ended(&self) {
+        self.0.pulloff_ended()
+    }
+    fn warning(&self, line: &str) {
+        self.0.warning(&words::keywords(line))
+    }
+    fn scene_ended(&self, scene: &SceneEnded) {
+        let failure = scene.failure.map(words::keywords);
+        self.0.scene_ended(&SceneEnded {
+            failure: failure.as_deref(),
+            ..scene.clone()
+        })
+    }
+    fn keep_going(&self) -> bool {
+        self.0.keep_going()
+    }
+}
+
 /// A row's simulation, checked, and the files it writes (each with the flag that names it).
 struct Checked {
     request: SimulateRequest,
@@ -125,14 +165,23 @@ struct Checked {
 }
 
 /// Every row's simulation, checked as `simulate` checks it before any work, with the files
-/// each writes; two rows that would write one file are refused, naming both.
+/// each writes; two rows that would write one file are refused, naming both. Each file the
+/// rows read (a height map, a roughness) is read once, and its map shared by the rows naming
+/// it.
 fn checked_scenes(table: &Table, dir: &Path) -> Result<Vec<Checked>, RunError> {
     let mut writers: HashMap<PathBuf, usize> = HashMap::new();
     let mut out = Vec::with_capacity(table.rows.len());
+    let mut reads = MapReads::default();
     for row in &table.rows {
         let refused = |e: RunError| table.refusal(row, &e.to_string());
-        let sim = scene_request(row, dir).map_err(refused)?;
-        let targets = planned_outputs(&sim).map_err(refused)?;
+        let sim = scene_request(row, dir, &mut reads).map_err(refused)?;
+        // Every file of a scene is in the batch's folder, named by the batch's flag (the
+        // scene's own, its states' and summary's, are no column of the table).
+        let targets: Vec<(PathBuf, NamedBy)> = planned_outputs(&sim)
+            .map_err(refused)?
+            .into_iter()
+            .map(|(path, _)| (path, OUT.into()))
+            .collect();
         for (path, _) in &targets {
             if let Some(other) = writers.insert(path.clone(), row.index) {
                 return Err(input(format!(
@@ -160,7 +209,18 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
     let mine: Vec<usize> = (0..table.rows.len())
         .filter(|j| req.shard.is_none_or(|(k, n)| j % n == k - 1))
         .collect();
-    for &j in &mine {
+    // What `resume` finds done is skipped, its files untouched (a write-protected one too);
+    // the files of every other scene of the shard are checked before any work.
+    let (done, to_run): (Vec<usize>, Vec<usize>) = mine.iter().partition(|&&j| {
+        let row = &table.rows[j];
+        req.resume
+            && is_done(
+                &names::scene_summary(&req.out, &row.id),
+                &row.request,
+                &scenes[j].request.input_files,
+            )
+    });
+    for &j in &to_run {
         Outputs::check(&scenes[j].targets)?;
     }
     let manifest = names::batch_manifest(&req.out, req.shard);
@@ -178,16 +238,11 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
             .collect(),
     };
     record.write(&manifest).map_err(write_error(OUT))?;
-    let mut skipped = Vec::new();
+    let skipped: Vec<String> = done.iter().map(|&j| table.rows[j].id.clone()).collect();
     let mut jobs = Vec::new();
     let mut ran_rows = Vec::new();
-    for &j in &mine {
+    for &j in &to_run {
         let row = &table.rows[j];
-        let summary = names::scene_summary(&req.out, &row.id);
-        if req.resume && is_done(&summary, &row.request, &scenes[j].request.input_files) {
-            skipped.push(row.id.clone());
-            continue;
-        }
         jobs.push(SceneJob {
             request: scenes[j].request.clone(),
             label: format!("scene {}", row.id),
@@ -212,7 +267,7 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
         },
         req.jobs
     ));
-    let ran = run_all(jobs, req.jobs, watch, &|i, outcome| {
+    let ran = run_all(jobs, req.jobs, &TableWords(watch), &|i, outcome| {
         let row = ran_rows[i];
         let summary = names::scene_summary(&req.out, &row.id);
         let label = format!("scene {}", row.id);
@@ -222,14 +277,16 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
                 summary,
                 f_ad_bar: done.summary.f_ad_bar,
                 f_ad_bar_uncertainty: done.summary.f_ad_bar_uncertainty,
-                failure: done.failure.map(|f| format!("{label}: {f}")),
+                failure: done
+                    .failure
+                    .map(|f| format!("{label}: {}", words::keywords(&f))),
             },
             Err(e) => SceneOutcome {
                 id: row.id.clone(),
                 summary,
                 f_ad_bar: None,
                 f_ad_bar_uncertainty: None,
-                failure: Some(format!("{label}: {e}")),
+                failure: Some(format!("{label}: {}", words::keywords(&e.to_string()))),
             },
         }
     });
@@ -240,4 +297,83 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
         skipped,
         manifest,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Indenter;
+
+    /// A sphere of unit radius sampled on `n`² nodes `spacing` apart, as text, its heights
+    /// scaled by `scale`.
+    fn sphere(n: usize, spacing: f64, scale: f64) -> String {
+        let c = (n - 1) as f64 / 2.0;
+        (0..n)
+            .map(|j| {
+                let y = (j as f64 - c) * spacing;
+                let row: Vec<String> = (0..n)
+                    .map(|i| {
+                        let x = (i as f64 - c) * spacing;
+                        format!("{:e}", scale * 0.5 * (x * x + y * y))
+                    })
+                    .collect();
+                row.join(" ") + "\n"
+            })
+            .collect()
+    }
+
+    /// The heights of a checked scene's measured surface.
+    fn heights(c: &Checked) -> &[f64] {
+        match &c.request.scene.indenter {
+            Indenter::HeightMap(s) => s.map.heights(),
+            other => panic!("not a height map: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn rows_naming_one_file_share_one_read_of_it_and_record_it_as_each_names_it() {
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
+        std::fs::create_dir(dir.join("sub")).unwrap();
+        std::fs::write(dir.join("map.txt"), sphere(41, 0.05, 1.0)).unwrap();
+        std::fs::write(dir.join("other.txt"), sphere(41, 0.05, 2.0)).unwrap();
+        let d = dir.display();
+        let table = format!(
+            "id,indenter,height_map,spacing,grid,measure,backend\n\
+             a,height-map,{d}/map.txt,0.05,32,adhesive-force,cpu\n\
+             b,height-map,{d}/sub/../map.txt,0.05,32,adhesive-force,cpu\n\
+             c,height-map,{d}/map.txt,0.05,32,adhesive-force,cpu\n\
+             d,height-map,{d}/map.txt,0.06,32,adhesive-force,cpu\n\
+             e,height-map,{d}/other.txt,0.05,32,adhesive-force,cpu\n"
+        );
+        let table = table::parse(&table, "t.csv").unwrap();
+        let checked = checked_scenes(&table, &dir.join("runs")).unwrap();
+        let at = |k: usize| heights(&checked[k]).as_ptr();
+        for k in 1..4 {
+            assert_eq!(
+                at(k),
+                at(0),
+                "row {} holds a copy of the map of row 1",
+                k + 1
+            );
+        }
+        assert_ne!(at(4), at(0), "another file, another map");
+        assert_eq!(heights(&checked[4])[0], 2.0 * heights(&checked[0])[0]);
+        // Each row records the file as it names it, with what was read.
+        let files: Vec<&InputFile> = checked.iter().map(|c| &c.request.input_files[0]).collect();
+        assert_eq!(files[1].path, format!("{d}/sub/../map.txt"));
+        assert_eq!(files[0].path, format!("{d}/map.txt"));
+        for f in &files[1..4] {
+            assert_eq!(f.parameter, "height_map");
+            assert_eq!(f.resolved, files[0].resolved);
+            assert_eq!(f.digest, files[0].digest);
+        }
+        assert_ne!(files[4].digest, files[0].digest);
+        // The spacing of each row is its own.
+        let spacing = |k: usize| match &checked[k].request.scene.indenter {
+            Indenter::HeightMap(s) => s.map.spacing(),
+            _ => unreachable!(),
+        };
+        assert_eq!((spacing(0), spacing(3)), (0.05, 0.06));
+    }
 }

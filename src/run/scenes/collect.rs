@@ -15,6 +15,7 @@ use crate::run::request::Request;
 use crate::run::schema::{values, Fronts, SPECS};
 use crate::run::schema::{ALLOW_MISSING, HEIGHT_MAP, RESUME, ROUGHNESS};
 use crate::run::{failed, input, RunError};
+use crate::text::listed;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -212,21 +213,6 @@ fn shards_not_started(
     (!missing.is_empty()).then_some((missing, n))
 }
 
-/// Ids as text: "a, b and 3 more".
-fn listed(ids: &[String]) -> String {
-    const SHOWN: usize = 20;
-    let mut text = ids
-        .iter()
-        .take(SHOWN)
-        .cloned()
-        .collect::<Vec<_>>()
-        .join(", ");
-    if ids.len() > SHOWN {
-        text.push_str(&format!(" and {} more", ids.len() - SHOWN));
-    }
-    text
-}
-
 /// Merge the batch in `dir` into `batch.csv` and `batch-timings.csv`, after checking that its
 /// records are of one batch. Missing, stale or incomplete scenes stop the merge (naming them)
 /// unless `allow_missing`.
@@ -262,7 +248,10 @@ pub fn collect_batch(dir: &Path, allow_missing: bool) -> Result<BatchMerged, Run
     let mut problems = Vec::new();
     if !missing.is_empty() {
         let shards = shards_not_started(&records).map_or(String::new(), |(ks, n)| {
-            format!(" (shards {ks:?} of {n} have left no record: run them)")
+            format!(
+                " (shards [{}] of {n} have left no record: run them)",
+                listed(&ks)
+            )
         });
         problems.push(format!(
             "{} scene(s) missing, with no summary: {}{shards}",

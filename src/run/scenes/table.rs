@@ -184,7 +184,9 @@ pub fn parse(text: &str, source: &str) -> Result<Table, RunError> {
         rows: Vec::new(),
         columns: table_columns,
     };
-    let mut ids: HashMap<String, usize> = HashMap::new();
+    // Each id by its lower case: ids that differ only in case name one file on a file system
+    // that ignores case (macOS's, Windows').
+    let mut ids: HashMap<String, (usize, String)> = HashMap::new();
     for (index, record) in reader.records().enumerate() {
         if index >= MAX_SCENES {
             return Err(input(format!(
@@ -226,14 +228,26 @@ pub fn parse(text: &str, source: &str) -> Result<Table, RunError> {
         }
         row.request = Request::from_texts(given.iter().map(|(s, c)| (s.name, *c)))
             .map_err(|e| table.refusal(&row, &e.to_string()))?;
-        if let Some(first) = ids.insert(row.id.clone(), index) {
-            return Err(input(format!(
-                "{source} rows {} and {} have the same id {}: each scene needs its own (it \
-                 names the scene's files)",
-                first + 1,
-                index + 1,
-                values::shown(&row.id)
-            )));
+        if let Some((first, other)) = ids.insert(row.id.to_lowercase(), (index, row.id.clone())) {
+            return Err(input(if other == row.id {
+                format!(
+                    "{source} rows {} and {} have the same id {}: each scene needs its own (it \
+                     names the scene's files)",
+                    first + 1,
+                    index + 1,
+                    values::shown(&row.id)
+                )
+            } else {
+                format!(
+                    "{source} rows {} and {} have the ids {} and {}, which differ only in \
+                     case: on a file system that ignores case (macOS, Windows) they name the \
+                     same files; give ids that differ in more than case",
+                    first + 1,
+                    index + 1,
+                    values::shown(&other),
+                    values::shown(&row.id)
+                )
+            }));
         }
         table.rows.push(row);
     }
@@ -304,6 +318,13 @@ mod tests {
         assert!(e.contains("repeats column 1"), "{e}");
         let e = refused("id,ratio\na,2\na,3\n");
         assert!(e.contains("rows 1 and 2 have the same id"), "{e}");
+        let e = refused("id,ratio\nb,2\nAb-1,2\naB-1,3\n");
+        assert!(
+            e.contains(
+                "rows 2 and 3 have the ids \"Ab-1\" and \"aB-1\", which differ only in case"
+            ),
+            "{e}"
+        );
         let e = refused("id,ratio\n../x,2\n");
         assert!(e.contains("row 1 (line 2), column id"), "{e}");
         let e = refused("id,ratio\na,2,3\n");

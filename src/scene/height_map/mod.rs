@@ -34,6 +34,7 @@
 //! [`HeightMapError`] or, for queries, as `None`.
 
 use std::path::Path;
+use std::sync::Arc;
 
 mod error;
 mod fit;
@@ -106,8 +107,9 @@ pub struct HeightMap {
     ny: usize,
     /// Lattice spacing (length).
     spacing: f64,
-    /// Heights, row-major with x fastest (length).
-    heights: Vec<f64>,
+    /// Heights, row-major with x fastest (length), shared by the map's clones (a batch's rows
+    /// that name one file hold one copy of its heights).
+    heights: Arc<Vec<f64>>,
     /// The smallest height (length), cached at construction.
     min: f64,
     /// Row-major index of the first node holding `min`.
@@ -203,10 +205,26 @@ impl HeightMap {
             nx,
             ny,
             spacing,
-            heights,
+            heights: Arc::new(heights),
             min,
             lowest,
             shortest: std::sync::OnceLock::new(),
+        })
+    }
+
+    /// The same heights with nodes `spacing` apart (length), sharing them (no copy); `name`
+    /// identifies the map in an error.
+    ///
+    /// # Errors
+    ///
+    /// [`HeightMapError::Spacing`] outside the spacings a map may have.
+    pub fn with_spacing(&self, spacing: f64, name: &str) -> Result<Self, HeightMapError> {
+        check_spacing(name, spacing)?;
+        Ok(Self {
+            spacing,
+            heights: Arc::clone(&self.heights),
+            shortest: std::sync::OnceLock::new(),
+            ..*self
         })
     }
 
