@@ -23,7 +23,8 @@ pub struct Args {
     /// runs.
     pub scenes: PathBuf,
     /// Output folder: scene-<id>.csv (states) and scene-<id>.json (summary) per scene, and the
-    /// batch's record batch.json (or batch-shard-K-of-N.json) for `jkrbem collect`.
+    /// batch's record batch.json (or batch-shard-K-of-N.json: its own rows and the table's
+    /// digest) for `jkrbem collect`.
     #[arg(long, default_value = "jkrbem-out/batch")]
     pub out: PathBuf,
     /// Run only shard K of N (1 ≤ K ≤ N ≤ 10000): the rows at positions K, K+N, K+2N, … of the

@@ -552,3 +552,165 @@ fn a_scene_rerun_under_resume_leaves_no_pile_of_empty_partial_states() {
         assert!(now.contains(name), "{name} removed: {now:?}");
     }
 }
+
+/// The JSON document at `path`.
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+#[test]
+fn a_shard_s_record_holds_its_own_rows_and_collect_checks_the_table_s_digest() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let runs = dir.join("runs");
+    std::fs::write(dir.join("scenes.csv"), scenes(12)).unwrap();
+    let shard = |k: usize| {
+        let kn = format!("{k}/4");
+        run_ok(
+            dir,
+            &[
+                "batch",
+                "scenes.csv",
+                "--out",
+                "runs",
+                "--shard",
+                &kn,
+                "--jobs",
+                "2",
+            ],
+            0,
+        );
+    };
+    shard(1);
+    shard(2);
+    let record = json(&runs.join("batch-shard-1-of-4.json"));
+    let rows: Vec<(u64, &str)> = record["scenes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| (s["row"].as_u64().unwrap(), s["id"].as_str().unwrap()))
+        .collect();
+    assert_eq!(rows, [(1, "s001"), (5, "s005"), (9, "s009")]);
+    assert_eq!(record["table"]["scenes"], 12);
+    let digest = record["table"]["crc32"].as_str().unwrap().to_string();
+    assert_eq!(digest.len(), 8);
+    assert_eq!(
+        json(&runs.join("batch-shard-2-of-4.json"))["table"]["crc32"],
+        digest
+    );
+    // Two shards of four: collect names the two that left no record, and the scenes they hold.
+    let o = run_ok(dir, &["collect", "runs"], 1);
+    assert!(
+        stderr(&o).contains("6 of the 12 scene(s) are in no record (shards [3, 4] of 4"),
+        "{}",
+        stderr(&o)
+    );
+    let o = run_ok(dir, &["collect", "runs", "--allow-missing"], 0);
+    assert!(
+        stdout(&o).contains("merged 6 of 12 scene(s) from 2 record(s)"),
+        "{}",
+        stdout(&o)
+    );
+    // A shard of another table (one row changed) is refused by the digest.
+    std::fs::write(
+        dir.join("scenes.csv"),
+        scenes(12).replacen("s002,,1,", "s002,,1.25,", 1),
+    )
+    .unwrap();
+    shard(3);
+    let o = run_ok(dir, &["collect", "runs"], 1);
+    assert!(
+        stderr(&o).contains("record different batches") && stderr(&o).contains(&digest),
+        "{}",
+        stderr(&o)
+    );
+    std::fs::write(dir.join("scenes.csv"), scenes(12)).unwrap();
+    shard(3);
+    shard(4);
+    let o = run_ok(dir, &["collect", "runs"], 0);
+    assert!(
+        stdout(&o).contains("merged 12 of 12 scene(s) from 4 record(s)"),
+        "{}",
+        stdout(&o)
+    );
+
+    // A record of the earlier format (every scene of the table, no digest) is still read, and
+    // must be of the same table.
+    let mut every = Vec::new();
+    for k in 1..=4 {
+        let r = json(&runs.join(format!("batch-shard-{k}-of-4.json")));
+        every.extend(r["scenes"].as_array().unwrap().iter().cloned());
+    }
+    every.sort_by_key(|s| s["row"].as_u64());
+    let old = |scenes: &[serde_json::Value]| {
+        let scenes: Vec<serde_json::Value> = scenes
+            .iter()
+            .map(|s| serde_json::json!({"id": s["id"], "request": s["request"]}))
+            .collect();
+        serde_json::json!({"format": "jkrbem batch 1", "shard": null, "scenes": scenes}).to_string()
+    };
+    std::fs::write(runs.join("batch.json"), old(&every)).unwrap();
+    let o = run_ok(dir, &["collect", "runs"], 0);
+    assert!(
+        stdout(&o).contains("merged 12 of 12 scene(s) from 5 record(s)"),
+        "{}",
+        stdout(&o)
+    );
+    every[4]["request"]["ratio"] = serde_json::json!(2.25);
+    std::fs::write(runs.join("batch.json"), old(&every)).unwrap();
+    let o = run_ok(dir, &["collect", "runs"], 1);
+    assert!(
+        stderr(&o).contains("record different batches"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn collect_refuses_a_record_that_was_edited() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let runs = dir.join("runs");
+    std::fs::write(dir.join("scenes.csv"), scenes(4)).unwrap();
+    for kn in ["1/2", "2/2"] {
+        run_ok(
+            dir,
+            &["batch", "scenes.csv", "--out", "runs", "--shard", kn],
+            0,
+        );
+    }
+    run_ok(dir, &["collect", "runs"], 0);
+    let path = runs.join("batch-shard-1-of-2.json");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let refused = |edited: String, words: &[&str]| {
+        std::fs::write(&path, edited).unwrap();
+        let o = run_ok(dir, &["collect", "runs"], 1);
+        for w in words {
+            assert!(stderr(&o).contains(w), "{w:?} not in {}", stderr(&o));
+        }
+    };
+    // A request changed, the digest left as it was.
+    refused(
+        text.replacen("\"ratio\":1.0", "\"ratio\":1.5", 1),
+        &["do not make the table their digest names"],
+    );
+    // A row taken out; a row of the other shard put in.
+    let lines: Vec<&str> = text.lines().collect();
+    let row3 = lines.iter().position(|l| l.contains("\"row\":3")).unwrap();
+    let mut cut = lines.clone();
+    cut.remove(row3);
+    cut[row3 - 1] = cut[row3 - 1].trim_end_matches(',');
+    refused(
+        cut.join("\n"),
+        &[
+            "not a valid batch record",
+            "holds 1 row(s), not the 2 of shard 1 of 2",
+        ],
+    );
+    refused(
+        text.replacen("\"row\":3", "\"row\":4", 1),
+        &["not a valid batch record", "not the 2 of shard 1 of 2"],
+    );
+    std::fs::write(&path, &text).unwrap();
+    run_ok(dir, &["collect", "runs"], 0);
+}

@@ -1,14 +1,15 @@
 //! `jkrbem batch`: every scene of a table (or one shard of them) simulated to its own files,
 //! `DIR/scene-<id>.csv` (states) and `DIR/scene-<id>.json` (summary, its provenance holding the
 //! scene's request), with the batch's record beside them (`batch.json`, or
-//! `batch-shard-K-of-N.json`) for `collect`. Every row is checked before any work; with
+//! `batch-shard-K-of-N.json`: the run's own rows and the whole table's digest) for `collect`.
+//! Every row is checked before any work; with
 //! `resume`, a scene whose summary is complete, records the same request and read the same
 //! files (size and CRC-32) is not run again.
 
 use super::pool::{run_all, SceneEnded, SceneJob};
 use super::table::{self, Row, Table};
 use crate::model::Model;
-use crate::output::batch_csv::{Manifest, ManifestScene, MANIFEST_FORMAT};
+use crate::output::batch_csv::{Manifest, ManifestScene, TableHasher, MANIFEST_FORMAT};
 use crate::output::digest::InputFile;
 use crate::output::file::{note_input, read_regular};
 use crate::output::names;
@@ -225,17 +226,26 @@ pub fn batch(req: &BatchRequest, watch: &dyn Watch) -> Result<BatchDone, RunErro
     }
     let manifest = names::batch_manifest(&req.out, req.shard);
     let _claimed = Outputs::claim(&[(manifest.clone(), OUT.into())])?;
+    // The shard's own rows, and the digest of the whole table (so that `collect` tells the
+    // shards of one table from another's without every record holding every row).
+    let mut digest = TableHasher::default();
+    let mut own = Vec::with_capacity(mine.len());
+    for (j, row) in table.rows.iter().enumerate() {
+        let request = row.request.to_json();
+        digest.add(&row.id, &request);
+        if req.shard.is_none_or(|(k, n)| j % n == k - 1) {
+            own.push(ManifestScene {
+                row: j + 1,
+                id: row.id.clone(),
+                request,
+            });
+        }
+    }
     let record = Manifest {
         format: MANIFEST_FORMAT.to_string(),
         shard: req.shard,
-        scenes: table
-            .rows
-            .iter()
-            .map(|r| ManifestScene {
-                id: r.id.clone(),
-                request: r.request.to_json(),
-            })
-            .collect(),
+        table: digest.finish(),
+        scenes: own,
     };
     record.write(&manifest).map_err(write_error(OUT))?;
     let skipped: Vec<String> = done.iter().map(|&j| table.rows[j].id.clone()).collect();

@@ -1,11 +1,14 @@
 //! `jkrbem collect DIR` for a batch: the records its runs left (`batch.json`,
-//! `batch-shard-K-of-N.json`) checked to be of one batch, and every scene's summary merged, in
+//! `batch-shard-K-of-N.json`, each holding its own rows and the table's digest) checked to be
+//! of one table and to hold its shard's rows, the scenes of the shards that left no record
+//! named, and every recorded scene's summary merged, in
 //! the table's order, into `DIR/batch.csv` (its id, every parameter as its request recorded
 //! it, its results) and `DIR/batch-timings.csv` (the wall times, kept apart so that a batch
 //! collects to the same table however it was split). Missing, stale and incomplete scenes
 //! are named.
 
-use crate::output::batch_csv::{self, BatchRow, Manifest, ManifestScene};
+use super::table::MAX_SCENES;
+use crate::output::batch_csv::{self, BatchRow, Manifest, ManifestScene, TableDigest};
 use crate::output::digest::{CurrentDigests, InputFile};
 use crate::output::file::{note_input, read_regular, ReadError};
 use crate::output::names;
@@ -54,52 +57,122 @@ pub fn records_in(dir: &Path) -> Vec<(PathBuf, Option<(usize, usize)>)> {
     found
 }
 
-/// The scenes every record in `dir` holds, after checking that they hold the same ones.
+/// Whether row `j` (from 0) of a table is of `shard` (every row is of a whole batch).
+fn of_shard(j: usize, shard: Option<(usize, usize)>) -> bool {
+    shard.is_none_or(|(k, n)| j % n + 1 == k)
+}
+
+/// "shard 2 of 4", or "the whole batch".
+fn shard_text(shard: Option<(usize, usize)>) -> String {
+    shard.map_or_else(
+        || "the whole batch".into(),
+        |(k, n)| format!("shard {k} of {n}"),
+    )
+}
+
+/// The scenes of the batch whose records are in `dir`, by their place in its table: each
+/// that a record holds (`None` where none does: its shard left no record). Every record is
+/// checked to be of one table (its number of scenes and digest), to hold exactly its shard's
+/// rows, and to agree with the others on a row they both hold; where together they hold every
+/// row, those rows must make the table their digest names.
 fn batch_scenes(
     dir: &Path,
     records: &[(PathBuf, Option<(usize, usize)>)],
-) -> Result<Vec<ManifestScene>, RunError> {
-    let mut first: Option<(&Path, Manifest)> = None;
+) -> Result<Vec<Option<ManifestScene>>, RunError> {
+    let mut first: Option<(&Path, TableDigest)> = None;
+    let mut scenes: Vec<Option<(ManifestScene, &Path)>> = Vec::new();
     for (path, shard) in records {
-        let m = Manifest::read(path).map_err(|why| {
+        let invalid = |why: String| {
             failed(format!(
                 "{} is not a valid batch record: {why}",
                 path.display()
             ))
-        })?;
+        };
+        let m = Manifest::read(path).map_err(invalid)?;
         let valid = |(k, n): (usize, usize)| (1..=n).contains(&k) && n <= MAX_SHARDS;
         if m.shard != *shard || !shard.is_none_or(valid) {
-            return Err(failed(format!(
-                "{} is not a valid batch record: its name and its content name different \
-                 shards, or a shard K of N outside 1 ≤ K ≤ N ≤ {MAX_SHARDS}",
-                path.display()
+            return Err(invalid(format!(
+                "its name and its content name different shards, or a shard K of N outside \
+                 1 ≤ K ≤ N ≤ {MAX_SHARDS}"
+            )));
+        }
+        if m.table.scenes == 0 || m.table.scenes > MAX_SCENES {
+            return Err(invalid(format!(
+                "a table of {} scenes, outside 1 to {MAX_SCENES} (edited?)",
+                m.table.scenes
             )));
         }
         match &first {
-            None => first = Some((path, m)),
-            Some((p, f)) if f.scenes != m.scenes => {
-                let differs = f
-                    .scenes
-                    .iter()
-                    .zip(&m.scenes)
-                    .find(|(a, b)| a != b)
-                    .map_or_else(
-                        || format!("{} against {} scenes", f.scenes.len(), m.scenes.len()),
-                        |(a, b)| format!("scene {} against {}", a.id, b.id),
-                    );
+            None => {
+                scenes = vec![None; m.table.scenes];
+                first = Some((path, m.table.clone()));
+            }
+            Some((p, t)) if *t != m.table => {
                 return Err(failed(format!(
-                    "{} and {} record different batches ({differs}; the table changed between \
-                     runs): run every shard of the same table again with {RESUME} (it skips \
-                     the scenes already done), or remove the older record from {}",
+                    "{} and {} record different batches (a table of {} scenes, CRC-32 {}, \
+                     against {}, CRC-32 {}: the table changed between runs): run every shard \
+                     of the same table again with {RESUME} (it skips the scenes already done), \
+                     or remove the older record from {}",
                     p.display(),
                     path.display(),
+                    t.scenes,
+                    t.crc32,
+                    m.table.scenes,
+                    m.table.crc32,
                     dir.display()
                 )));
             }
             Some(_) => {}
         }
+        let total = m.table.scenes;
+        let expected: Vec<usize> = (0..total).filter(|&j| of_shard(j, *shard)).collect();
+        let held: Vec<usize> = m.scenes.iter().map(|s| s.row.wrapping_sub(1)).collect();
+        if held != expected {
+            return Err(invalid(format!(
+                "it holds {} row(s), not the {} of {} in the table's order (truncated or \
+                 edited?); run the batch again",
+                held.len(),
+                expected.len(),
+                shard_text(*shard)
+            )));
+        }
+        for scene in m.scenes {
+            let j = scene.row - 1;
+            match &scenes[j] {
+                Some((other, p)) if *other != scene => {
+                    return Err(failed(format!(
+                        "{} and {} hold different scenes at row {} ({} against {}): one of \
+                         them was edited; run the batch again",
+                        p.display(),
+                        path.display(),
+                        scene.row,
+                        other.id,
+                        scene.id
+                    )))
+                }
+                Some(_) => {}
+                None => scenes[j] = Some((scene, path)),
+            }
+        }
     }
-    Ok(first.map(|(_, m)| m.scenes).unwrap_or_default())
+    if let (Some((_, table)), true) = (&first, scenes.iter().all(Option::is_some)) {
+        let made = TableDigest::of(
+            scenes
+                .iter()
+                .flatten()
+                .map(|(s, _)| (s.id.as_str(), &s.request)),
+        );
+        if made != *table {
+            return Err(failed(format!(
+                "the records in {} hold rows that do not make the table their digest names \
+                 (CRC-32 {} against {}): a record was edited; run the batch again",
+                dir.display(),
+                made.crc32,
+                table.crc32
+            )));
+        }
+    }
+    Ok(scenes.into_iter().map(|s| s.map(|(s, _)| s)).collect())
 }
 
 /// What a scene's summary says, or why it is no row.
@@ -228,12 +301,15 @@ pub fn collect_batch(dir: &Path, allow_missing: bool) -> Result<BatchMerged, Run
         note_input(path, "DIR");
     }
     let scenes = batch_scenes(dir, &records)?;
+    let unrecorded: Vec<usize> = (1..=scenes.len())
+        .filter(|&row| scenes[row - 1].is_none())
+        .collect();
     let mut rows = Vec::new();
     let mut missing = Vec::new();
     let mut stale = Vec::new();
     let mut incomplete = Vec::new();
     let mut now = CurrentDigests::default();
-    for scene in &scenes {
+    for scene in scenes.iter().flatten() {
         match scene_row(dir, scene, &mut now) {
             Scene::Row(row) => {
                 if !row.complete {
@@ -246,15 +322,30 @@ pub fn collect_batch(dir: &Path, allow_missing: bool) -> Result<BatchMerged, Run
         }
     }
     let mut problems = Vec::new();
-    if !missing.is_empty() {
-        let shards = shards_not_started(&records).map_or(String::new(), |(ks, n)| {
-            format!(
-                " (shards [{}] of {n} have left no record: run them)",
-                listed(&ks)
-            )
-        });
+    if !unrecorded.is_empty() {
+        let which = shards_not_started(&records).map_or_else(
+            || {
+                format!(
+                    "rows [{}] of the table: run the shards that hold them",
+                    listed(&unrecorded)
+                )
+            },
+            |(ks, n)| {
+                format!(
+                    "shards [{}] of {n} have left no record: run them",
+                    listed(&ks)
+                )
+            },
+        );
         problems.push(format!(
-            "{} scene(s) missing, with no summary: {}{shards}",
+            "{} of the {} scene(s) are in no record ({which})",
+            unrecorded.len(),
+            scenes.len()
+        ));
+    }
+    if !missing.is_empty() {
+        problems.push(format!(
+            "{} scene(s) missing, with no summary: {}",
             missing.len(),
             listed(&missing)
         ));
