@@ -96,7 +96,7 @@ pub struct MapReads {
 }
 
 impl MapReads {
-    /// Like [`read_as`], the file read only where no request before read it (the same file
+    /// Like `read_as`, the file read only where no request before read it (the same file
     /// by its resolved path, under a name of the same extension): then its map is shared, with
     /// `spacing`, and its record names it as `path` gives it, with the content first read.
     pub fn read(
