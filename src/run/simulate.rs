@@ -489,11 +489,10 @@ fn run_grids(
         let mut fields = Vec::new();
         let unrecorded = picks.unrecorded();
         if !unrecorded.is_empty() {
-            let list: Vec<String> = unrecorded.iter().map(|i| i.to_string()).collect();
             watch.warning(&format!(
                 "{FIELDS}: no fields for state(s) {}: the {}×{} run recorded {} states \
                  (numbered from 0)",
-                list.join(", "),
+                crate::text::listed(&unrecorded),
                 model.nx,
                 model.ny,
                 run.outcome.states.len()

@@ -448,6 +448,36 @@ fn states_that_the_run_never_recorded_are_named() {
         "{}",
         stderr(&o)
     );
+    // A long list of them is named in a line, not a screenful: the first twenty and a count.
+    let many: Vec<String> = (100_000..105_000).map(|i| i.to_string()).collect();
+    let fields = format!("states:{}", many.join(","));
+    let o = run_in(
+        dir.path(),
+        &[
+            "simulate",
+            "--ratio",
+            "1",
+            "--grid",
+            "32",
+            "--fields",
+            &fields,
+            "--backend",
+            "cpu",
+            "--out",
+            "g.csv",
+        ],
+        &[],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    let line = err
+        .lines()
+        .find(|l| l.contains("no fields for state(s)"))
+        .unwrap_or_else(|| panic!("{err}"));
+    assert!(
+        line.contains("100019 and 4980 more") && line.len() < 400,
+        "{line}"
+    );
 }
 
 #[test]
