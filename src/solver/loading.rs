@@ -13,6 +13,7 @@ use super::state::{Phase, State};
 use super::SolverError;
 use crate::backend::Backend;
 use crate::model::{LoadTarget, Model, MAX_LOADING_STEPS};
+use crate::scene::Indenter;
 
 /// A force or area target counts as reached within this fraction of it (dimensionless).
 const TARGET_TOLERANCE: f64 = 1e-3;
@@ -35,10 +36,40 @@ const SMOOTH_PART: (f64, f64) = (0.2, 0.8);
 /// of the contact set it started from, solved at the step's end, is taken again in halves, up to [`JUMP_HALVINGS`]
 /// times: a smooth growth of the contact then falls below the fraction, while a jump does
 /// not, and is recorded as [`Phase::LoadingJump`] within 1/64 of a step of the state before it.
+///
+/// Under the periodic convolution, a press that drives the contact towards the whole period
+/// meets a problem with no finite answer (a period in full contact is the half-space pressed
+/// uniformly: its mean pressure is not set by the displacements), where CG fails: that
+/// failure is the preload's, said so.
 pub(super) fn press<B: Backend>(
     backend: &mut B,
     model: &Model,
     out: &mut Emitter,
+) -> Result<Reached<B::Field, B::Mask>, SolverError> {
+    let periodic = matches!(model.scene.indenter, Indenter::HeightMap(ref m) if m.is_periodic());
+    let steps = std::cell::Cell::new(0usize);
+    match press_on(backend, model, out, &steps) {
+        Err(SolverError::CgNotConverged { d_bar, .. }) if periodic => {
+            Err(SolverError::PreloadUnreachable {
+                d_bar,
+                steps: steps.get(),
+                why: "under the periodic convolution the contact neared the whole period, \
+                      where the press has no finite answer (a period in full contact is the \
+                      half-space pressed uniformly, its mean pressure set by nothing), and \
+                      conjugate gradients failed there"
+                    .into(),
+            })
+        }
+        other => other,
+    }
+}
+
+/// [`press`], counting the loading steps recorded in `steps`.
+fn press_on<B: Backend>(
+    backend: &mut B,
+    model: &Model,
+    out: &mut Emitter,
+    steps: &std::cell::Cell<usize>,
 ) -> Result<Reached<B::Field, B::Mask>, SolverError> {
     let loading = model.loading.expect("a model that presses on");
     let profile = model.profile();
@@ -170,6 +201,7 @@ pub(super) fn press<B: Backend>(
         // beyond it is not modelled (a window of a height map ends there).
         let full_cover = !done && state.area >= domain * (1.0 - 1e-12);
         out.emit(backend, &fields.c, state.clone(), &mut eq, false)?;
+        steps.set(recorded + 1);
         if let Some(l) = &last {
             before = Some((l.d, value_of(&loading.target, l)));
         }

@@ -251,3 +251,46 @@ fn a_wave_whose_fronts_run_along_the_grid_is_withheld_and_an_egg_crate_is_not() 
     assert!(run.get("withheld").is_none(), "{run}");
     assert!(run["f_ad_bar"].as_f64().unwrap() > 0.0, "{run}");
 }
+
+#[test]
+fn a_period_pressed_towards_full_contact_fails_naming_the_cause() {
+    // An egg crate 0.04 deep pressed 0.05 in (or to 97 % of its period): the contact nears the
+    // whole period, where a periodic press has no finite answer. CG failed there with "CG
+    // diverged" and advice about the preconditioner and the steps.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write_period(d, "egg.txt", (64, 64), |x, y| {
+        0.01 * (2.0 - (2.0 * PI * x).cos() - (2.0 * PI * y).cos())
+    });
+    for preload in [["--preload-depth", "0.05"], ["--preload-area", "0.97"]] {
+        let mut args = vec![
+            "simulate",
+            "--indenter",
+            "height-map",
+            "--height-map",
+            "egg.txt",
+            "--spacing",
+            "0.015625",
+            "--e-star",
+            "1",
+            "--work-of-adhesion",
+            "1.7765e-4",
+            "--convolution",
+            "periodic",
+            "--grid",
+            "64",
+            "--backend",
+            "cpu",
+            "--out",
+            "x.csv",
+        ];
+        args.extend(preload);
+        let o = jkrbem(&args, d);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{preload:?}: {err}");
+        assert!(
+            err.contains("neared the whole period") && err.contains("--preload-depth"),
+            "{preload:?}: {err}"
+        );
+    }
+}
