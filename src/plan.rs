@@ -5,6 +5,7 @@
 use crate::analysis::fields::{FieldChoice, FIELD_BYTES_PER_ELEMENT};
 use crate::analysis::{convergence, estimate};
 use crate::model::{self, Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID};
+use crate::run::schema::GRID;
 use crate::run::schema::{
     Kind, Spec, ACCURACY, EXTRAPOLATE_GRIDS, FIELDS, JOBS, MARGIN, MEASURE, START_RADIUS,
 };
@@ -439,6 +440,11 @@ fn generic_resolves(model: &Model) -> bool {
 pub fn generic_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usize>, ModelError> {
     let top = MAX_GRID >> (EXTRAPOLATION_LEVELS - 1);
     let mut nx = MIN_PLAN_GRID;
+    // One period of a periodic map: a grid whose Δx leaves too few rows (or not a power of
+    // two) along the period is passed over, not planned; if no grid is accepted, that is why.
+    let periodic =
+        matches!(scene.indenter, crate::scene::Indenter::HeightMap(ref m) if m.is_periodic());
+    let mut refused = None;
     while nx <= top {
         let options = ModelOptions {
             nx,
@@ -447,6 +453,9 @@ pub fn generic_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usize>, M
         };
         match Model::build(scene, &options) {
             Err(ModelError::TooCoarse { .. }) => {}
+            Err(e @ ModelError::Invalid { param, .. }) if periodic && param.name == GRID.name => {
+                refused.get_or_insert(e);
+            }
             Err(e) => return Err(e),
             Ok(model) if generic_resolves(&model) => {
                 return Ok((0..EXTRAPOLATION_LEVELS).map(|i| nx << i).collect());
@@ -454,6 +463,9 @@ pub fn generic_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usize>, M
             Ok(_) => {}
         }
         nx *= 2;
+    }
+    if let Some(e) = refused {
+        return Err(e);
     }
     Err(ModelError::Invalid {
         param: EXTRAPOLATE_GRIDS,
@@ -833,6 +845,39 @@ pub fn check_memory_within(
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn a_periodic_map_16_rows_high_is_planned_from_a_grid_its_period_accepts() {
+        // An egg crate of 64 × 16 nodes, one period: at 32 columns the period holds 8 rows,
+        // which the periodic check refuses; the plan starts at 64 (16 rows), not at 32.
+        use crate::scene::height_map::HeightMap;
+        use crate::scene::{Indenter, MeasuredSurface};
+        use std::f64::consts::PI;
+        let (nx, ny) = (64usize, 16usize);
+        let heights = (0..nx * ny)
+            .map(|k| {
+                let (i, j) = ((k % nx) as f64 + 0.5, (k / nx) as f64 + 0.5);
+                0.01 * (2.0 - (2.0 * PI * i / nx as f64).cos() - (2.0 * PI * j / ny as f64).cos())
+            })
+            .collect();
+        let map = HeightMap::new(nx, ny, 1.0 / 64.0, heights).unwrap();
+        let surface = MeasuredSurface::on_period(map, "egg", None, None).unwrap();
+        let scene = Scene::with_indenter(
+            Indenter::HeightMap(std::sync::Arc::new(surface)),
+            1.0,
+            1.7765e-4,
+        )
+        .unwrap();
+        let grids = generic_grids(&scene, &ModelOptions::default()).unwrap();
+        assert!(grids[0] >= 64, "{grids:?}");
+        for nx in grids {
+            let options = ModelOptions {
+                nx,
+                ..ModelOptions::default()
+            };
+            assert!(Model::build(&scene, &options).is_ok(), "grid {nx}");
+        }
+    }
 
     #[test]
     fn regrid_gains_from_the_table_are_physical() {
