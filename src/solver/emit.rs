@@ -190,10 +190,16 @@ impl<'a> Emitter<'a> {
         } else {
             None
         };
+        let mut mask = mask;
         if lowers {
-            self.min_contact = Some((state.clone(), mask.clone().unwrap_or_default()));
+            // Moved where the observer does not see masks, copied where it does.
+            let kept = if self.with_contact {
+                mask.clone()
+            } else {
+                mask.take()
+            };
+            self.min_contact = Some((state.clone(), kept.unwrap_or_default()));
         }
-        let mask = mask.filter(|_| self.with_contact);
         self.cost.states += 1;
         if hold && !(self.held)(&state) {
             self.go_on.set(false);

@@ -425,35 +425,10 @@ fn map_files_are_echoed_safely_and_their_format_named() {
 #[test]
 fn states_that_the_run_never_recorded_are_named() {
     let dir = tempfile::tempdir().unwrap();
-    let o = run_in(
-        dir.path(),
-        &[
-            "simulate",
-            "--ratio",
-            "1",
-            "--grid",
-            "32",
-            "--fields",
-            "states:3,999999",
-            "--backend",
-            "cpu",
-            "--out",
-            "f.csv",
-        ],
-        &[],
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("no fields for state(s) 999999"),
-        "{}",
-        stderr(&o)
-    );
-    // A long list of them is named in a line, not a screenful: the first twenty and a count.
-    let many: Vec<String> = (100_000..105_000).map(|i| i.to_string()).collect();
-    let fields = format!("states:{}", many.join(","));
-    let o = run_in(
-        dir.path(),
-        &[
+    // The sphere at 32² keeping the fields of `states`, its states in `out`.
+    let run = |states: &str, out: &str| {
+        let fields = format!("states:{states}");
+        let args = [
             "simulate",
             "--ratio",
             "1",
@@ -464,10 +439,20 @@ fn states_that_the_run_never_recorded_are_named() {
             "--backend",
             "cpu",
             "--out",
-            "g.csv",
-        ],
-        &[],
+            out,
+        ];
+        run_in(dir.path(), &args, &[])
+    };
+    let o = run("3,999999", "f.csv");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("no fields for state(s) 999999"),
+        "{}",
+        stderr(&o)
     );
+    // A long list of them is named in a line, not a screenful: the first twenty and a count.
+    let many: Vec<String> = (100_000..105_000).map(|i| i.to_string()).collect();
+    let o = run(&many.join(","), "g.csv");
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
     let line = err

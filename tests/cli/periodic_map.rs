@@ -28,8 +28,17 @@ fn wave(i: usize, _j: usize) -> f64 {
     0.02 * (1.0 - (2.0 * PI * (i as f64 + 0.5) / NX as f64).cos())
 }
 
-/// `simulate` of the map `name` with the periodic convolution and `extra` flags.
+/// `simulate` of the map `name` with the periodic convolution, pressed on to 40 % of the
+/// period, and `extra` flags.
 fn run(dir: &Path, name: &str, extra: &[&str]) -> std::process::Output {
+    let mut args = vec!["--preload-area", "0.4"];
+    args.extend_from_slice(extra);
+    periodic(dir, name, SPACING, &args)
+}
+
+/// `simulate` on the CPU of the map `name` of node spacing `spacing` (E* = 1, Δγ = 1.7765e-4)
+/// with the periodic convolution and `extra` flags.
+fn periodic(dir: &Path, name: &str, spacing: &str, extra: &[&str]) -> std::process::Output {
     let mut args = vec![
         "simulate",
         "--indenter",
@@ -37,7 +46,7 @@ fn run(dir: &Path, name: &str, extra: &[&str]) -> std::process::Output {
         "--height-map",
         name,
         "--spacing",
-        SPACING,
+        spacing,
         "--e-star",
         "1",
         "--work-of-adhesion",
@@ -46,8 +55,6 @@ fn run(dir: &Path, name: &str, extra: &[&str]) -> std::process::Output {
         "periodic",
         "--backend",
         "cpu",
-        "--preload-area",
-        "0.4",
     ];
     args.extend_from_slice(extra);
     jkrbem(&args, dir)
@@ -164,30 +171,11 @@ fn a_wave_whose_fronts_run_along_the_grid_is_withheld_and_an_egg_crate_is_not() 
         0.02 * (1.0 - (2.0 * PI * x).cos())
     });
     let mut args = ["--grid", "128", "--summary", "r.json", "--out", "r.csv"];
-    let o = jkrbem(
-        &[
-            "simulate",
-            "--indenter",
-            "height-map",
-            "--height-map",
-            "ridge.txt",
-            "--spacing",
-            "0.0078125",
-            "--e-star",
-            "1",
-            "--work-of-adhesion",
-            "1.7765e-4",
-            "--convolution",
-            "periodic",
-            "--backend",
-            "cpu",
-            "--preload-area",
-            "0.4",
-        ]
-        .into_iter()
-        .chain(args.iter().copied())
-        .collect::<Vec<_>>(),
+    let o = periodic(
         d,
+        "ridge.txt",
+        "0.0078125",
+        &[&["--preload-area", "0.4"][..], &args].concat(),
     );
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let s: serde_json::Value =
@@ -220,29 +208,7 @@ fn a_wave_whose_fronts_run_along_the_grid_is_withheld_and_an_egg_crate_is_not() 
     });
     args[3] = "e.json";
     args[5] = "e.csv";
-    let o = jkrbem(
-        &[
-            "simulate",
-            "--indenter",
-            "height-map",
-            "--height-map",
-            "egg.txt",
-            "--spacing",
-            "0.0078125",
-            "--e-star",
-            "1",
-            "--work-of-adhesion",
-            "1.7765e-4",
-            "--convolution",
-            "periodic",
-            "--backend",
-            "cpu",
-        ]
-        .into_iter()
-        .chain(args.iter().copied())
-        .collect::<Vec<_>>(),
-        d,
-    );
+    let o = periodic(d, "egg.txt", "0.0078125", &args);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(d.join("e.json")).unwrap()).unwrap();
@@ -263,29 +229,9 @@ fn a_period_pressed_towards_full_contact_fails_naming_the_cause() {
         0.01 * (2.0 - (2.0 * PI * x).cos() - (2.0 * PI * y).cos())
     });
     for preload in [["--preload-depth", "0.05"], ["--preload-area", "0.97"]] {
-        let mut args = vec![
-            "simulate",
-            "--indenter",
-            "height-map",
-            "--height-map",
-            "egg.txt",
-            "--spacing",
-            "0.015625",
-            "--e-star",
-            "1",
-            "--work-of-adhesion",
-            "1.7765e-4",
-            "--convolution",
-            "periodic",
-            "--grid",
-            "64",
-            "--backend",
-            "cpu",
-            "--out",
-            "x.csv",
-        ];
+        let mut args = vec!["--grid", "64", "--out", "x.csv"];
         args.extend(preload);
-        let o = jkrbem(&args, d);
+        let o = periodic(d, "egg.txt", "0.015625", &args);
         let err = stderr(&o);
         assert_eq!(o.status.code(), Some(1), "{preload:?}: {err}");
         assert!(
