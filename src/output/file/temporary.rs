@@ -87,6 +87,17 @@ fn ours(m: &fs::Metadata) -> bool {
 /// no longer exist (see the module's description). The caller holds the target's lock.
 /// Returns how many were removed.
 pub fn remove_stale(dir: &Path, target_name: &str) -> usize {
+    remove_left_by_dead(dir, |n| writer_of(n, target_name), |_, m| ours(m))
+}
+
+/// Remove the files in `dir` whose name `writer` gives the process of, where that process
+/// is another and no longer exists and the file is `removable`. Returns how many were
+/// removed.
+fn remove_left_by_dead(
+    dir: &Path,
+    writer: impl Fn(&str) -> Option<u32>,
+    removable: impl Fn(&Path, &fs::Metadata) -> bool,
+) -> usize {
     let Ok(entries) = fs::read_dir(dir) else {
         return 0;
     };
@@ -94,14 +105,14 @@ pub fn remove_stale(dir: &Path, target_name: &str) -> usize {
     entries
         .filter_map(Result::ok)
         .filter(|e| {
-            let name = e.file_name();
-            let Some(pid) = name.to_str().and_then(|n| writer_of(n, target_name)) else {
+            let Some(pid) = e.file_name().to_str().and_then(&writer) else {
                 return false;
             };
+            let path = e.path();
             pid != own
                 && !alive(pid)
-                && fs::symlink_metadata(e.path()).is_ok_and(|m| ours(&m))
-                && fs::remove_file(e.path()).is_ok()
+                && fs::symlink_metadata(&path).is_ok_and(|m| removable(&path, &m))
+                && fs::remove_file(&path).is_ok()
         })
         .count()
 }
@@ -147,27 +158,11 @@ fn holds_nothing(path: &Path, m: &fs::Metadata) -> bool {
 /// longer exist and holding nothing past their first line (see the module's description).
 /// The caller is about to write the target. Returns how many were removed.
 pub fn remove_empty_partials(dir: &Path, target_name: &str) -> usize {
-    let Ok(entries) = fs::read_dir(dir) else {
-        return 0;
-    };
-    let own = std::process::id();
-    entries
-        .filter_map(Result::ok)
-        .filter(|e| {
-            let name = e.file_name();
-            let Some(pid) = name
-                .to_str()
-                .and_then(|n| partial_writer_of(n, target_name))
-            else {
-                return false;
-            };
-            let path = e.path();
-            pid != own
-                && !alive(pid)
-                && fs::symlink_metadata(&path).is_ok_and(|m| ours(&m) && holds_nothing(&path, &m))
-                && fs::remove_file(&path).is_ok()
-        })
-        .count()
+    remove_left_by_dead(
+        dir,
+        |n| partial_writer_of(n, target_name),
+        |p, m| ours(m) && holds_nothing(p, m),
+    )
 }
 
 #[cfg(test)]
