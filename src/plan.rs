@@ -406,15 +406,25 @@ pub const GENERIC_MIN_N_D: f64 = 24.0;
 /// `coverage` run their coarsest grid at this resolution.
 pub const GENERIC_ELEMENTS_PER_MAP_WAVELENGTH: f64 = 2.0;
 
+/// Elements per wavelength that carries a share of a height map's surface less its smooth
+/// shape, or of a rough shape's roughness (a tenth of its mean-square height or slope in one
+/// ring of wavenumbers, [`crate::scene::height_map::HeightMap::carrying_wavelength`]: a wavy
+/// sphere's waviness), the coarsest grid of its extrapolation needs: the first contact's rule
+/// (8 elements across), applied to each wave the contact's edge must follow. A wavy sphere
+/// (R = 1, amplitude 0.02, wavelength 0.3) planned from 3 elements per wave did not
+/// converge; the slope of the sphere hid its waviness from the shortest-wavelength rule.
+pub const GENERIC_ELEMENTS_PER_CARRIED_WAVELENGTH: f64 = 8.0;
+
 /// Finer grids an accuracy run of a shape without a convergence law adds at most, one at a
 /// time, beyond its first [`EXTRAPOLATION_LEVELS`], while its stated uncertainty exceeds the
 /// target.
 pub const GENERIC_MAX_EXTRA_LEVELS: usize = 3;
 
 /// What a grid of a shape without a convergence law resolves: the elements across the
-/// contact at the force minimum, and per shortest wavelength of a height map or roughness
-/// (`None` for the other shapes).
-pub fn generic_resolution(model: &Model) -> (f64, Option<f64>) {
+/// contact at the force minimum, per shortest wavelength of a height map or roughness, and
+/// per wavelength carrying a share of its surface less its smooth shape (`None` for the
+/// other shapes, and the last for a map that is its quadratic).
+pub fn generic_resolution(model: &Model) -> (f64, Option<f64>, Option<f64>) {
     let scene = &model.scene;
     let b_bar = scene
         .indenter
@@ -422,20 +432,23 @@ pub fn generic_resolution(model: &Model) -> (f64, Option<f64>) {
         .map_or(0.5, |h| h.b_bar_at_min);
     let n_d = 2.0 * b_bar * scene.scales().length / model.dx;
     let per_wavelength = scene.indenter.shortest_wavelength().map(|l| l / model.dx);
-    (n_d, per_wavelength)
+    let per_carried = scene.indenter.carrying_wavelength().map(|l| l / model.dx);
+    (n_d, per_wavelength, per_carried)
 }
 
 /// Whether `model` is fine enough to be the coarsest grid of a generic extrapolation.
 fn generic_resolves(model: &Model) -> bool {
-    let (n_d, per_wavelength) = generic_resolution(model);
+    let (n_d, per_wavelength, per_carried) = generic_resolution(model);
     n_d >= GENERIC_MIN_N_D
         && per_wavelength.is_none_or(|w| w >= GENERIC_ELEMENTS_PER_MAP_WAVELENGTH)
+        && per_carried.is_none_or(|w| w >= GENERIC_ELEMENTS_PER_CARRIED_WAVELENGTH)
 }
 
 /// The grids Nx of an extrapolation of a shape without a convergence law when none are given:
 /// the coarsest grid (from [`MIN_PLAN_GRID`], doubling) that the model accepts with `base`
 /// and that resolves the surface ([`GENERIC_MIN_N_D`] elements across the contact at the force
-/// minimum, and for a height map [`GENERIC_ELEMENTS_PER_MAP_WAVELENGTH`]), and its doublings,
+/// minimum, and for a height map [`GENERIC_ELEMENTS_PER_MAP_WAVELENGTH`] and
+/// [`GENERIC_ELEMENTS_PER_CARRIED_WAVELENGTH`]), and its doublings,
 /// [`EXTRAPOLATION_LEVELS`] grids in all. Each grid runs at every [`GENERIC_PHASES`] offset.
 pub fn generic_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usize>, ModelError> {
     let top = MAX_GRID >> (EXTRAPOLATION_LEVELS - 1);
@@ -477,9 +490,19 @@ pub fn generic_grids(scene: &Scene, base: &ModelOptions) -> Result<Vec<usize>, M
              {START_RADIUS}",
             scene.indenter.name(),
             if scene.indenter.map_spacing().is_some() {
+                let carried = scene
+                    .indenter
+                    .carrying_wavelength()
+                    .map_or(String::new(), |l| {
+                        format!(
+                            ", {GENERIC_ELEMENTS_PER_CARRIED_WAVELENGTH} per wavelength carrying \
+                         its waviness, {}",
+                            compact(l)
+                        )
+                    });
                 format!(
                     ", {GENERIC_ELEMENTS_PER_MAP_WAVELENGTH} per shortest wavelength of the \
-                     map, {}",
+                     map, {}{carried}",
                     compact(scene.indenter.shortest_wavelength().unwrap_or(f64::NAN))
                 )
             } else {
@@ -877,6 +900,52 @@ mod tests {
             };
             assert!(Model::build(&scene, &options).is_ok(), "grid {nx}");
         }
+    }
+
+    #[test]
+    fn a_wavy_sphere_is_planned_from_grids_that_resolve_its_waviness() {
+        // Issue 55, item 13: R = 1 with waviness 0.02·(1 − cos(2πx/0.3)·cos(2πy/0.3)) on a
+        // 901² map 0.01 apart, E* = Δγ = 1. The plan started at 64² (Δx ≈ 0.097: 3 elements
+        // per wavelength), which the sphere's slope spectrum allowed; now every grid has
+        // 8 elements per carried wavelength (0.3/√2 along the diagonal wavevector).
+        use crate::scene::height_map::HeightMap;
+        use crate::scene::{Indenter, MeasuredSurface};
+        use std::f64::consts::PI;
+        let n = 901usize;
+        let heights = (0..n * n)
+            .map(|k| {
+                let (x, y) = (
+                    ((k % n) as f64 - 450.0) * 0.01,
+                    ((k / n) as f64 - 450.0) * 0.01,
+                );
+                0.5 * (x * x + y * y)
+                    + 0.02 * (1.0 - (2.0 * PI * x / 0.3).cos() * (2.0 * PI * y / 0.3).cos())
+            })
+            .collect();
+        let map = HeightMap::new(n, n, 0.01, heights).unwrap();
+        let surface = MeasuredSurface::new(map, "wavy").unwrap();
+        let scene =
+            Scene::with_indenter(Indenter::HeightMap(std::sync::Arc::new(surface)), 1.0, 1.0)
+                .unwrap();
+        let grids = generic_grids(&scene, &ModelOptions::default()).unwrap();
+        let model = |nx| {
+            let options = ModelOptions {
+                nx,
+                ..ModelOptions::default()
+            };
+            Model::build(&scene, &options).unwrap()
+        };
+        let (_, _, per_carried) = generic_resolution(&model(grids[0]));
+        assert!(
+            per_carried.unwrap() >= GENERIC_ELEMENTS_PER_CARRIED_WAVELENGTH,
+            "{grids:?}: {per_carried:?}"
+        );
+        let (n_d, per_wavelength, per_carried) = generic_resolution(&model(grids[0] / 2));
+        assert!(
+            n_d >= GENERIC_MIN_N_D && per_wavelength.unwrap() >= 2.0,
+            "{n_d}"
+        );
+        assert!(per_carried.unwrap() < GENERIC_ELEMENTS_PER_CARRIED_WAVELENGTH);
     }
 
     #[test]

@@ -299,6 +299,19 @@ def _load_summary(p: Path) -> Result:
         raise _refuse(p, f"not JSON ({e})") from None
     if not (isinstance(summary, dict) and isinstance(summary.get("runs"), list) and "f_ad_bar" in summary):
         raise _refuse(p, "not a jkrbem summary (it has no f_ad_bar and runs)")
+    try:
+        return _result_of_summary(p, summary)
+    except InputError:
+        raise
+    except (KeyError, TypeError, ValueError, AttributeError, IndexError) as e:
+        # A summary edited or written by something else: never a raw KeyError or TypeError.
+        raise _refuse(p, f"not a jkrbem summary: a field is missing or of the wrong type "
+                         f"({type(e).__name__}: {e})") from None
+
+
+def _result_of_summary(p: Path, summary: Dict[str, Any]) -> Result:
+    """The :class:`Result` of the summary `summary` read from `p`, its runs' states and fields
+    read from the files it names."""
     base = p.parent
     runs: List[Run] = []
     fields: List[Fields] = []

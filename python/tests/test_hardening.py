@@ -3,6 +3,7 @@ refusal is an InputError (a ValueError) or a TypeError naming the keyword, numpy
 numbers, nothing is coerced silently, and a slow progress callback cannot multiply a run's
 time. Grids stay at 32 or 64 on the CPU so that the file runs in a few minutes."""
 
+import json
 import time
 import warnings
 
@@ -451,3 +452,16 @@ def test_a_deeply_nested_summary_is_refused_as_a_load_error_not_a_recursion_erro
     np.savez(tmp_path / "deep.fields.npz", metadata=np.frombuffer(deep.encode(), dtype=np.uint8))
     e = refused(lambda: jkrbem.load(tmp_path / "deep.fields.npz"), "deep.fields.npz", jkrbem.InputError)
     assert "nested" in str(e), str(e)
+
+
+# A summary whose runs are malformed (edited by hand, or not ours): an InputError naming the
+# file, never a raw KeyError, TypeError or AttributeError.
+
+
+def test_a_summary_with_malformed_runs_is_refused_naming_the_file(tmp_path):
+    for i, runs in enumerate([[1], [{}], [{"nx": "x", "ny": 2, "dx": 1}], [{"states_csv": 3}],
+                              [None], [{"nx": 1, "ny": 1, "dx": [1]}]]):
+        summary = tmp_path / f"bad{i}.json"
+        summary.write_text(json.dumps({"f_ad_bar": 0.5, "runs": runs}))
+        e = refused(lambda: jkrbem.load(summary), f"bad{i}.json", jkrbem.InputError)
+        assert "not a jkrbem summary" in str(e), str(e)

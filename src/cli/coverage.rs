@@ -85,12 +85,38 @@ pub struct Args {
     pub out: PathBuf,
 }
 
+/// Refuse the ellipsoid's flags (--ratios, --variants, --mesh-angles, --runs-per-case) away
+/// from their defaults where --shapes holds no ellipsoid: they would be ignored.
+fn ellipsoid_flags_need_the_ellipsoid(args: &Args) -> Result<(), CliError> {
+    if args.shapes.contains(&CoverageShape::Ellipsoid) {
+        return Ok(());
+    }
+    let given = [
+        ("--ratios", !args.ratios.is_empty()),
+        (
+            "--variants",
+            args.variants != [CaseVariant::Fixed, CaseVariant::Regrid],
+        ),
+        ("--mesh-angles", args.mesh_angles != [0.0]),
+        ("--runs-per-case", args.runs_per_case != 1),
+    ];
+    match given.iter().find(|g| g.1) {
+        Some((flag, _)) => Err(super::input(format!(
+            "{flag}: it sets the ellipsoid's cases, and --shapes holds no ellipsoid (the other \
+             shapes are extrapolated over --grids at four grid phases, shifted by each \
+             --apex-offsets entry); add ellipsoid to --shapes or leave {flag} out"
+        ))),
+        None => Ok(()),
+    }
+}
+
 /// Run `jkrbem coverage`.
 pub fn run(args: Args) -> Result<(), CliError> {
     super::stdout::not_stdout("--out", &args.out, "coverage")?;
     no_repeats("--shapes", &args.shapes)?;
     no_repeats("--exponents", &args.exponents)?;
     no_repeats("--seeds", &args.seeds)?;
+    ellipsoid_flags_need_the_ellipsoid(&args)?;
     let generic: Vec<CoverageShape> = args
         .shapes
         .iter()

@@ -230,6 +230,18 @@ impl Indenter {
         }
     }
 
+    /// The shortest wavelength that carries a share of a height map's surface less its smooth
+    /// shape, or of a rough shape's roughness (length,
+    /// [`crate::scene::height_map::HeightMap::carrying_wavelength`]); `None` for the other
+    /// shapes and for a map that is its quadratic.
+    pub fn carrying_wavelength(&self) -> Option<f64> {
+        match *self {
+            Indenter::HeightMap(ref m) => m.map.carrying_wavelength(),
+            Indenter::Rough(ref r) => r.map.carrying_wavelength(),
+            _ => None,
+        }
+    }
+
     /// Whether the shape's height is known over the rectangle |x| ≤ `half_x`, |y| ≤ `half_y`
     /// (length) about the apex, in its own axes: everywhere but for a height map.
     pub fn covers(&self, half_x: f64, half_y: f64) -> bool {

@@ -433,3 +433,36 @@ fn coverage_advice_names_coverage_s_own_flags() {
         "{e}"
     );
 }
+
+#[test]
+fn the_ellipsoids_coverage_flags_are_refused_without_the_ellipsoid() {
+    // Issue 55 (found while hardening): `--shapes flat-punch --mesh-angles 0,45` ran the flat
+    // punch's cases and ignored the angles (and --runs-per-case, --ratios, --variants).
+    let dir = tempfile::tempdir().unwrap();
+    for (flag, value) in [
+        ("--mesh-angles", "0,45"),
+        ("--runs-per-case", "2"),
+        ("--ratios", "1"),
+        ("--variants", "fixed"),
+    ] {
+        let args = [
+            "coverage",
+            "--shapes",
+            "flat-punch",
+            flag,
+            value,
+            "--backend",
+            "cpu",
+            "--out",
+            "c",
+        ];
+        let o = run_in(dir.path(), &args, &[]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{flag}: {e}");
+        assert!(
+            e.contains(flag) && e.contains("no ellipsoid"),
+            "{flag}: {e}"
+        );
+        assert!(empty(dir.path()), "{flag}: work was done");
+    }
+}

@@ -29,6 +29,10 @@ mod gpu_rough;
 mod gpu_traffic;
 
 fn main() {
+    // Before any thread or adapter: no "XDG_RUNTIME_DIR is invalid" lines from the Vulkan
+    // device-select layer on a machine without a display (the command does the same).
+    #[cfg(feature = "gpu")]
+    jkrbem::backend::gpu::headless::quiet_display_probe();
     let args = libtest_mimic::Arguments::from_args();
     #[cfg(feature = "gpu")]
     let missing = common::gpu_missing();

@@ -117,6 +117,9 @@ pub struct HeightMap {
     /// The shortest wavelength the map holds (length), computed on first use
     /// ([`HeightMap::shortest_wavelength`]).
     shortest: std::sync::OnceLock<f64>,
+    /// The shortest wavelength carrying a share of the surface less its smooth shape (length),
+    /// computed on first use ([`HeightMap::carrying_wavelength`]).
+    carrying: std::sync::OnceLock<Option<f64>>,
 }
 
 impl HeightMap {
@@ -209,6 +212,7 @@ impl HeightMap {
             min,
             lowest,
             shortest: std::sync::OnceLock::new(),
+            carrying: std::sync::OnceLock::new(),
         })
     }
 
@@ -224,6 +228,7 @@ impl HeightMap {
             spacing,
             heights: Arc::clone(&self.heights),
             shortest: std::sync::OnceLock::new(),
+            carrying: std::sync::OnceLock::new(),
             ..*self
         })
     }
@@ -237,6 +242,15 @@ impl HeightMap {
         *self
             .shortest
             .get_or_init(|| crate::scene::roughness::shortest_wavelength(self))
+    }
+
+    /// The shortest wavelength that carries a share of the map's surface less its smooth
+    /// shape (length; [`crate::scene::roughness::carrying_wavelength`]): a wavy sphere's
+    /// waviness. `None` for a map that is its quadratic. Computed once.
+    pub fn carrying_wavelength(&self) -> Option<f64> {
+        *self
+            .carrying
+            .get_or_init(|| crate::scene::roughness::carrying_wavelength(self))
     }
 
     /// Reads a map from `path`, with lattice spacing `spacing` (length, the

@@ -51,8 +51,8 @@ mod stats;
 
 pub use save::{npy_bytes, save, sidecar, sidecar_path};
 pub use stats::{
-    radial_psd, rms_curvature, rms_height, rms_slope, shortest_wavelength, statistics, PsdBin,
-    Statistics, SLOPE_TAIL,
+    carrying_wavelength, radial_psd, rms_curvature, rms_height, rms_slope, shortest_wavelength,
+    statistics, PsdBin, Statistics, SLOPE_TAIL,
 };
 
 use super::height_map::HeightMap;

@@ -85,23 +85,10 @@ pub const SLOPE_TAIL: f64 = 0.01;
 /// of a map that is not periodic adds no spurious power at short wavelengths. At least two
 /// spacings (the shortest a lattice holds).
 pub fn shortest_wavelength(map: &HeightMap) -> f64 {
-    let (nx, ny, dx) = (map.nx(), map.ny(), map.spacing());
-    let floor = 2.0 * dx;
+    let floor = 2.0 * map.spacing();
     let mean = map.heights().iter().sum::<f64>() / map.heights().len() as f64;
-    let hann = |i: usize, n: usize| {
-        (std::f64::consts::PI * (i as f64 + 0.5) / n as f64)
-            .sin()
-            .powi(2)
-    };
-    let wx: Vec<f64> = (0..nx).map(|i| hann(i, nx)).collect();
-    let wy: Vec<f64> = (0..ny).map(|j| hann(j, ny)).collect();
-    let windowed: Vec<f64> = map
-        .heights()
-        .iter()
-        .enumerate()
-        .map(|(k, &h)| (h - mean) * wx[k % nx] * wy[k / nx])
-        .collect();
-    let Ok(windowed) = HeightMap::new(nx, ny, dx, windowed) else {
+    let centred: Vec<f64> = map.heights().iter().map(|h| h - mean).collect();
+    let Some(windowed) = hann_windowed(map, centred) else {
         // A map flat after the window (e.g. a single sloped plane of two nodes): nothing short.
         return floor;
     };
@@ -124,6 +111,111 @@ pub fn shortest_wavelength(map: &HeightMap) -> f64 {
         tail += s;
     }
     (2.0 * std::f64::consts::PI / q_s).max(floor)
+}
+
+/// The share of the mean-square height, or of the mean-square slope, of a map's surface less
+/// its smooth shape that one ring of wavenumbers (|q| within half a ring's width
+/// 2π/(max(n, m)·s) of its centre) must hold for its wavelength to be one the surface carries
+/// ([`carrying_wavelength`]): a tenth. A waviness puts most of both in one or two rings; a
+/// band of roughness spreads its slope over its many rings, so that only its long wavelengths,
+/// which hold its height, count.
+pub const CARRY_SHARE: f64 = 0.1;
+
+/// A residual (the map less its quadratic) whose rms height is below this fraction of the
+/// map's rms height about its mean is the map's round-off, not a surface it carries
+/// (dimensionless): a float32 map's round-off is ~1e-7.
+const SMOOTH_RESIDUAL: f64 = 1e-6;
+
+/// The shortest wavelength (length) that carries a share of the map's surface less its
+/// smooth shape: the map less its least-squares quadratic `c + a·x + b·y + p·x² + q·y² + r·xy`
+/// (the apex of a sphere or ellipsoid, a tilt), Hann-windowed as in [`shortest_wavelength`],
+/// split into rings of |q|; the ring of largest |q| holding at least [`CARRY_SHARE`] of the
+/// residual's mean-square height or of its mean-square slope. A wavy sphere's waviness (its
+/// wavelength holds nearly all the residual), where the slope of the sphere hides it from
+/// [`shortest_wavelength`]. `None` for a map that is its quadratic up to round-off.
+pub fn carrying_wavelength(map: &HeightMap) -> Option<f64> {
+    let residual = less_quadratic(map);
+    let rms = |v: &[f64]| (v.iter().map(|h| h * h).sum::<f64>() / v.len() as f64).sqrt();
+    let mean = map.heights().iter().sum::<f64>() / map.heights().len() as f64;
+    let centred: Vec<f64> = map.heights().iter().map(|h| h - mean).collect();
+    let (r, whole) = (rms(&residual), rms(&centred));
+    if !(r.is_finite() && r > SMOOTH_RESIDUAL * whole) {
+        return None;
+    }
+    let windowed = hann_windowed(map, residual)?;
+    let ring_width = 2.0 * std::f64::consts::PI / (map.nx().max(map.ny()) as f64 * map.spacing());
+    let mut rings: Vec<(f64, f64)> = Vec::new();
+    for m in modes(&windowed) {
+        let k = (m.q / ring_width).round() as usize;
+        if rings.len() <= k {
+            rings.resize(k + 1, (0.0, 0.0));
+        }
+        rings[k].0 += m.weight * m.psd;
+        rings[k].1 += m.weight * m.q * m.q * m.psd;
+    }
+    let (height, slope) = rings
+        .iter()
+        .fold((0.0, 0.0), |(h, s), r| (h + r.0, s + r.1));
+    if !(height > 0.0 && slope > 0.0) {
+        return None;
+    }
+    let k = rings
+        .iter()
+        .rposition(|r| r.0 >= CARRY_SHARE * height || r.1 >= CARRY_SHARE * slope)?;
+    Some((2.0 * std::f64::consts::PI / (k.max(1) as f64 * ring_width)).max(2.0 * map.spacing()))
+}
+
+/// The heights of `map` less their least-squares quadratic in the node coordinates (length).
+/// About the lattice's centre the six monomials 1, x, y, x² − ⟨x²⟩, y² − ⟨y²⟩, xy are
+/// orthogonal over the nodes, so each coefficient is one projection.
+fn less_quadratic(map: &HeightMap) -> Vec<f64> {
+    let (nx, ny) = (map.nx(), map.ny());
+    let centre = |i: usize, n: usize| i as f64 - 0.5 * (n as f64 - 1.0);
+    let mean_sq = |n: usize| (0..n).map(|i| centre(i, n).powi(2)).sum::<f64>() / n as f64;
+    let (mx, my) = (mean_sq(nx), mean_sq(ny));
+    let basis = |i: usize, j: usize| {
+        let (x, y) = (centre(i, nx), centre(j, ny));
+        [1.0, x, y, x * x - mx, y * y - my, x * y]
+    };
+    let (mut dot, mut norm) = ([0.0; 6], [0.0; 6]);
+    for (k, &h) in map.heights().iter().enumerate() {
+        let b = basis(k % nx, k / nx);
+        for t in 0..6 {
+            dot[t] += h * b[t];
+            norm[t] += b[t] * b[t];
+        }
+    }
+    let coef: Vec<f64> = (0..6)
+        .map(|t| if norm[t] > 0.0 { dot[t] / norm[t] } else { 0.0 })
+        .collect();
+    map.heights()
+        .iter()
+        .enumerate()
+        .map(|(k, &h)| {
+            let b = basis(k % nx, k / nx);
+            h - (0..6).map(|t| coef[t] * b[t]).sum::<f64>()
+        })
+        .collect()
+}
+
+/// `values` (length, one per node of `map`, row-major) multiplied by a Hann window along x
+/// and y, as a map of the same lattice; `None` where the window leaves nothing (a map of a
+/// node or two along an axis).
+fn hann_windowed(map: &HeightMap, values: Vec<f64>) -> Option<HeightMap> {
+    let (nx, ny, dx) = (map.nx(), map.ny(), map.spacing());
+    let hann = |i: usize, n: usize| {
+        (std::f64::consts::PI * (i as f64 + 0.5) / n as f64)
+            .sin()
+            .powi(2)
+    };
+    let wx: Vec<f64> = (0..nx).map(|i| hann(i, nx)).collect();
+    let wy: Vec<f64> = (0..ny).map(|j| hann(j, ny)).collect();
+    let windowed = values
+        .into_iter()
+        .enumerate()
+        .map(|(k, h)| h * wx[k % nx] * wy[k / nx])
+        .collect();
+    HeightMap::new(nx, ny, dx, windowed).ok()
 }
 
 /// The map's statistics, treating it as one period of a periodic surface.

@@ -477,6 +477,64 @@ fn the_shortest_wavelength_is_the_cut_off_of_a_band_and_long_for_a_smooth_tip() 
     assert!((1.0..1.5).contains(&l), "white noise: {l}");
 }
 
+#[test]
+fn the_carrying_wavelength_is_a_wavy_spheres_waviness_and_absent_for_a_smooth_tip() {
+    // R = 1 with waviness 0.02·cos(2πx/0.3)·cos(2πy/0.3) on 901² nodes 0.01 apart (issue 55,
+    // item 13): the sphere's slope hides the waviness from the shortest wavelength; the
+    // surface less its quadratic carries it (its ring blurs by a ring width, 1/9.01).
+    let n = 901;
+    let wavy = |amplitude: f64| {
+        let h: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let (x, y) = (
+                    ((k % n) as f64 - 450.0) * 0.01,
+                    ((k / n) as f64 - 450.0) * 0.01,
+                );
+                0.5 * (x * x + y * y)
+                    + amplitude * (2.0 * PI * x / 0.3).cos() * (2.0 * PI * y / 0.3).cos()
+            })
+            .collect();
+        HeightMap::new(n, n, 0.01, h).unwrap()
+    };
+    let map = wavy(0.02);
+    let l = map.carrying_wavelength().expect("a waviness");
+    // cos·cos holds the wavevector (±1, ±1)·2π/0.3: |q| = √2·2π/0.3, a wavelength 0.3/√2.
+    let expected = 0.3 / 2f64.sqrt();
+    assert!(
+        rel(l, expected) < 0.1,
+        "carrying wavelength {l}, not {expected}"
+    );
+    assert!(
+        map.shortest_wavelength() > 1.5 * l,
+        "the shortest-wavelength rule already saw it: {}",
+        map.shortest_wavelength()
+    );
+    // The sphere alone (and a tilted ellipsoid) is its quadratic: nothing carried.
+    assert_eq!(wavy(0.0).carrying_wavelength(), None);
+    let h: Vec<f64> = (0..64 * 64)
+        .map(|k| {
+            let (x, y) = ((k % 64) as f64, (k / 64) as f64);
+            0.01 * x * x + 0.03 * y * y + 0.002 * x * y + 0.1 * x + 3.0
+        })
+        .collect();
+    assert_eq!(
+        HeightMap::new(64, 64, 1.0, h)
+            .unwrap()
+            .carrying_wavelength(),
+        None
+    );
+    // A band of roughness: its slope spreads over many rings, so only its long wavelengths
+    // (which hold its height) count: at least a sixteenth of the map, far above its cut-off.
+    let params = RoughnessParams {
+        cutoff: Some(4.0),
+        seed: 5,
+        ..band_256(0.8, 5)
+    };
+    let rough = generate(&params).unwrap();
+    let l = rough.carrying_wavelength().expect("roughness");
+    assert!(l >= 16.0 * rough.spacing(), "rough band: {l}");
+}
+
 /// The memory check refuses a surface past what is available, naming ⟨grid⟩ (and ⟨grid_y⟩
 /// where given) with the largest surface of the same shape that fits, which itself fits.
 #[test]
