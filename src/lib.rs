@@ -2,7 +2,8 @@
 //! ellipsoid with an elastic half-space, with the Pohrt–Popov mesh-dependent detachment
 //! criterion.
 //!
-//! Data flows one way: [`scene`] → [`model`] → [`solver`] (over a [`backend`]) → states →
+//! [`params`] is the ground floor: every parameter's name, range, unit and words, which
+//! every room reads and which reads none of them. Data flows one way: [`scene`] → [`model`] → [`solver`] (over a [`backend`]) → states →
 //! [`output`]. [`theory`] holds the closed forms the results are checked against,
 //! [`analysis`] every number derived from the states (estimates and their uncertainties, fits,
 //! contours), [`run`] the session layer that plans, runs and hands results to `output`, and
@@ -15,6 +16,7 @@ pub mod backend;
 pub mod bench;
 pub mod model;
 pub mod output;
+pub mod params;
 pub mod plan;
 pub mod run;
 pub mod scene;

@@ -24,7 +24,7 @@ macro_rules! outln {
 macro_rules! errln {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
-        let text = jkrbem::run::schema::words::flags(&format!($($arg)*));
+        let text = jkrbem::params::words::flags(&format!($($arg)*));
         if !jkrbem::output::file::stream_is_input(2) {
             let _ = writeln!(std::io::stderr(), "{text}");
         } else if !jkrbem::output::file::stream_is_input(1) {
@@ -297,7 +297,7 @@ mod tests {
             .chain(command.get_arguments())
             .filter_map(|a| a.get_long().map(|l| format!("--{l}")))
             .collect();
-        for p in jkrbem::run::schema::all() {
+        for p in jkrbem::params::all() {
             let flag = cli::crossed::flag(p).flag;
             assert!(flags.iter().any(|f| f == flag), "{} is no flag", p.flag);
         }

@@ -5,8 +5,8 @@
 use crate::analysis::fields::{FieldChoice, FIELD_BYTES_PER_ELEMENT};
 use crate::analysis::{convergence, estimate};
 use crate::model::{self, Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID};
-use crate::run::schema::GRID;
-use crate::run::schema::{
+use crate::params::GRID;
+use crate::params::{
     Kind, Spec, ACCURACY, EXTRAPOLATE_GRIDS, FIELDS, JOBS, MARGIN, MEASURE, START_RADIUS,
 };
 use crate::scene::Scene;
@@ -14,9 +14,7 @@ use crate::solver::protocol::REGRID_ABOVE_C_BAR;
 use crate::text::compact;
 use crate::theory::{self, TheoryModel};
 
-/// Smallest grid side a plan uses (elements): coarser grids are not yet in the first-order
-/// regime (the observed order from 32/64/128 was 1.1, from 64/128/256 without re-gridding 0.6).
-pub const MIN_PLAN_GRID: usize = 32;
+pub use crate::params::limits::MIN_PLAN_GRID;
 
 /// Predicted elements across the minor axis at the minimum below which a grid is not used:
 /// the threshold below which an answer is too coarse ([`convergence::COARSE_N_D`]).
@@ -725,17 +723,30 @@ pub fn limits_room() -> Option<u64> {
     None
 }
 
-/// Bytes in words: "8.8 TB", "420 MB".
-pub fn bytes_text(b: u64) -> String {
-    let b = b as f64;
-    let (v, unit) = if b >= 1e12 {
-        (b / 1e12, "TB")
-    } else if b >= 1e9 {
-        (b / 1e9, "GB")
-    } else {
-        (b / 1e6, "MB")
-    };
-    format!("{} {unit}", compact(((v * 10.0).round() / 10.0).max(0.1)))
+pub use crate::text::bytes_text;
+
+/// Refuses, before any work, a generated roughness whose generation does not fit in the
+/// memory this machine can give a run ([`available_memory`]).
+///
+/// # Errors
+///
+/// [`ModelError::Invalid`] naming ⟨grid⟩ (and ⟨grid_y⟩) with the estimate, what is available
+/// and the largest surface of the same shape that fits
+/// ([`crate::scene::roughness::RoughnessParams::check_memory_within`]);
+/// [`ModelError::Environment`] for a `JKRBEM_MEMORY_LIMIT` that is no number of bytes.
+pub fn check_roughness_memory(
+    params: &crate::scene::roughness::RoughnessParams,
+) -> Result<(), ModelError> {
+    params
+        .check_memory_within(available_memory()?)
+        .map_err(|e| ModelError::Invalid {
+            param: e.param(),
+            value: params.nx().to_string(),
+            expected: match e {
+                crate::scene::SceneError::Invalid { expected, .. } => expected,
+                crate::scene::SceneError::Refused { why, .. } => why,
+            },
+        })
 }
 
 /// Refuse runs whose memory estimate exceeds what the machine has ([`available_memory`]):
@@ -967,7 +978,7 @@ mod tests {
     }
 
     use super::*;
-    use crate::run::schema::{words::flags, GRID};
+    use crate::params::{words::flags, GRID};
 
     fn sphere() -> Scene {
         Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap()

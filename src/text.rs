@@ -123,6 +123,19 @@ pub fn printable(text: &str, max: usize) -> String {
     out
 }
 
+/// Bytes in words: "8.8 TB", "420 MB".
+pub fn bytes_text(b: u64) -> String {
+    let b = b as f64;
+    let (v, unit) = if b >= 1e12 {
+        (b / 1e12, "TB")
+    } else if b >= 1e9 {
+        (b / 1e9, "GB")
+    } else {
+        (b / 1e6, "MB")
+    };
+    format!("{} {unit}", compact(((v * 10.0).round() / 10.0).max(0.1)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -5,7 +5,7 @@
 
 use jkrbem::model::{Measure, Model};
 use jkrbem::run::request::Request;
-use jkrbem::run::schema::{self, words::keywords};
+use jkrbem::params::{self, words::keywords};
 use jkrbem::run::simulate::{simulate as run_simulate, Simulated, Sink, DEFAULT_ACCURACY};
 use jkrbem::run::{RunError, Watch};
 use jkrbem::scene::height_map::HeightMap;
@@ -512,17 +512,17 @@ fn plan(request: &str, height_map: Option<Heights<'_>>) -> PyResult<String> {
 #[pyfunction]
 #[pyo3(name = "schema")]
 fn schema_json() -> String {
-    let specs: Vec<Value> = schema::SPECS
+    let specs: Vec<Value> = params::SPECS
         .iter()
-        .filter(|s| s.fronts == schema::Fronts::Both)
+        .filter(|s| s.fronts == params::Fronts::Both)
         .map(|s| {
             let default = match s.fallback {
-                schema::Fallback::Value(text) => schema::values::from_text(s, text).ok(),
-                schema::Fallback::Chosen(_) => None,
+                params::Fallback::Value(text) => params::values::from_text(s, text).ok(),
+                params::Fallback::Chosen(_) => None,
             };
             json!({"name": s.name, "unit": s.unit, "kind": format!("{:?}", s.kind),
                    "default": default, "terms": keywords(&s.terms()),
-                   "cli_terms": schema::words::flags(&s.terms()),
+                   "cli_terms": params::words::flags(&s.terms()),
                    "help": keywords(s.help), "cli_flag": s.flag})
         })
         .collect();
@@ -537,7 +537,7 @@ fn theory_model(model: &str) -> PyResult<TheoryModel> {
         "jg" => Ok(TheoryModel::Jg),
         m => Err(input_error(format!(
             "model = {} is invalid: \"hertz\", \"jkr\" or \"jg\"",
-            schema::values::shown(m)
+            params::values::shown(m)
         ))),
     }
 }
@@ -623,8 +623,8 @@ fn crossed_scene(
         };
         let refused = |e: jkrbem::scene::SceneError| {
             input_error(e.renamed(&|p| {
-                if p == schema::ANGLE {
-                    schema::ANGLES
+                if p == params::ANGLE {
+                    params::ANGLES
                 } else {
                     p
                 }
@@ -667,7 +667,7 @@ fn roughness<'py>(py: Python<'py>, request: &str) -> PyResult<(String, Bound<'py
         let params: RoughnessParams = parse(request)?;
         let resolved = params.resolved().map_err(input_error)?;
         // Before any work: the surface must fit in the memory (JKRBEM_MEMORY_LIMIT honoured).
-        params.check_memory().map_err(input_error)?;
+        jkrbem::plan::check_roughness_memory(&params).map_err(input_error)?;
         let map = py.detach(|| generate(&params)).map_err(input_error)?;
         let bytes: Vec<u8> = map.heights().iter().flat_map(|h| h.to_ne_bytes()).collect();
         let answer = json!({"generator": GENERATOR_VERSION, "params": resolved,

@@ -4,7 +4,7 @@
 //! choose a grid for a requested accuracy.
 
 use super::line_fit::{fit_free_line, Point};
-use crate::run::schema::{ACCURACY, EXTRAPOLATE, GRID, REGRID};
+use crate::params::{ACCURACY, EXTRAPOLATE, GRID, REGRID};
 
 /// The reference table (`jkrbem reference`), compiled in: the law is fitted to it.
 const REFERENCE_TABLE: &str = include_str!("../../data/reference/adhesive-force.csv");

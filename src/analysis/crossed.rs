@@ -1,13 +1,11 @@
 //! Two identical elastic cylinders crossed at an angle, as the equivalent ellipsoid scene
 //! (physics §1, §8.7).
 
-use crate::run::schema::{Spec, ANGLE, E_STAR, POISSON, RADIUS, RATIO, WORK_OF_ADHESION, YOUNG};
+use crate::params::{Spec, ANGLE, E_STAR, POISSON, RADIUS, RATIO, WORK_OF_ADHESION, YOUNG};
 use crate::scene::{self, Scene, SceneError, MAX_RATIO};
 use crate::text::compact;
 
-/// Smallest Poisson's ratio accepted (dimensionless): ν → −1 makes E* = E/(2(1 − ν²))
-/// unbounded.
-pub const MIN_POISSON: f64 = -0.99;
+pub use crate::params::limits::MIN_POISSON;
 
 /// Two identical elastic cylinders of radius R whose axes cross at angle θ, with JKR
 /// adhesion between them. Units as for [`Scene`]: with R in m, E in Pa and Δγ in J/m²,
@@ -109,7 +107,7 @@ impl CrossedCylinders {
     }
 
     /// The equivalent rigid ellipsoid on an elastic half-space. An error names this pair's
-    /// parameters ([`RADIUS`], [`YOUNG`], …), never the ellipsoid's ([`R1`](crate::run::schema::R1),
+    /// parameters ([`RADIUS`], [`YOUNG`], …), never the ellipsoid's ([`R1`](crate::params::R1),
     /// [`E_STAR`]).
     pub fn scene(&self) -> Result<Scene, SceneError> {
         let (r1, r2) = self.radii()?;
@@ -167,7 +165,7 @@ pub fn angle_for_ratio(ratio: f64) -> Result<f64, SceneError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::run::schema::R1;
+    use crate::params::R1;
     use std::f64::consts::PI;
 
     fn pair(angle_deg: f64) -> CrossedCylinders {

@@ -3,7 +3,7 @@
 
 use super::convergence;
 use crate::model::{Model, Onsets, MIN_MAP_SPACINGS_AT_MINIMUM};
-use crate::run::schema::{ONSETS, SPACING};
+use crate::params::{ONSETS, SPACING};
 use crate::solver::cost::CostAccount;
 use crate::solver::protocol::Confirmation;
 use crate::solver::window::Refinement;

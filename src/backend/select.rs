@@ -61,10 +61,10 @@ impl Precision {
             format!(
                 "{} f64 is not offered by {} gpu, which computes in f32 only: use {} cpu for \
                  f64, or {} f32 (or auto) on the GPU",
-                crate::run::schema::PRECISION,
-                crate::run::schema::BACKEND,
-                crate::run::schema::BACKEND,
-                crate::run::schema::PRECISION
+                crate::params::PRECISION,
+                crate::params::BACKEND,
+                crate::params::BACKEND,
+                crate::params::PRECISION
             )
         })
     }
@@ -148,7 +148,7 @@ pub fn open_in(
         BackendKind::Gpu => Err(BackendError::Unavailable(format!(
             "this jkrbem was built without the `gpu` feature: use {} cpu, or rebuild with the \
              default features",
-            crate::run::schema::BACKEND
+            crate::params::BACKEND
         ))),
         #[cfg(not(feature = "gpu"))]
         BackendKind::Auto => cpu(format!(
@@ -161,7 +161,7 @@ pub fn open_in(
             if !ctx.is_hardware() {
                 note.push_str(&format!(
                     " — a software adapter: expect it to be slower than {} cpu",
-                    crate::run::schema::BACKEND
+                    crate::params::BACKEND
                 ));
             }
             let backend = gpu(ctx)?;
@@ -173,7 +173,7 @@ pub fn open_in(
         #[cfg(feature = "gpu")]
         BackendKind::Auto if precision == Precision::F64 => cpu(format!(
             "cpu (f64, rustfft) (auto: {} f64, which only the CPU offers)",
-            crate::run::schema::PRECISION
+            crate::params::PRECISION
         )),
         #[cfg(feature = "gpu")]
         BackendKind::Auto => match GpuContext::new(AdapterPreference::Best) {

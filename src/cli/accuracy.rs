@@ -5,8 +5,8 @@ use super::parse::value;
 use super::progress::Progress;
 use super::{count_in, failures, no_repeats, run_error, CliError};
 use jkrbem::backend::select::BackendKind;
+use jkrbem::params::{GRIDS, RATIO};
 use jkrbem::run::accuracy::{accuracy, AccuracyRequest, Variant};
-use jkrbem::run::schema::{GRIDS, RATIO};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem accuracy`.

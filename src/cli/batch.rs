@@ -7,8 +7,8 @@
 use super::parse::value;
 use super::progress::Progress;
 use super::{run_error, CliError};
+use jkrbem::params::JOBS;
 use jkrbem::run::scenes::batch::{batch, BatchRequest};
-use jkrbem::run::schema::JOBS;
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem batch`.

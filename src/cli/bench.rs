@@ -8,10 +8,10 @@ use super::{failures, run_error, CliError};
 use jkrbem::backend::select::{BackendKind, Precision};
 use jkrbem::model::Measure;
 use jkrbem::output::bench as bench_text;
-use jkrbem::run::bench::{bench, BenchRequest};
-use jkrbem::run::schema::{
+use jkrbem::params::{
     CG_ITERATIONS, GRIDS, MARGIN, PULLOFF_MAX_GRID, RATIO, REPEATS, START_RADIUS,
 };
+use jkrbem::run::bench::{bench, BenchRequest};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem bench`.

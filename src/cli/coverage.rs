@@ -5,15 +5,15 @@ use super::parse::value;
 use super::progress::Progress;
 use super::{no_repeats, run_error, CliError};
 use jkrbem::backend::select::BackendKind;
+use jkrbem::params::{
+    APEX_OFFSETS, EXPONENTS, GRIDS, MARGINS, MESH_ANGLES, RATIOS, RUNS_PER_CASE, SEEDS,
+};
 use jkrbem::run::coverage::{
     coverage, generic_coverage, generic_scenes, CaseVariant, CoverageRequest, CoverageShape,
     CoverageSummary, GenericCoverageRequest, DEFAULT_MARGINS,
 };
 use jkrbem::run::open::BackendRequest;
 use jkrbem::run::reference::REFERENCE_RATIOS;
-use jkrbem::run::schema::{
-    APEX_OFFSETS, EXPONENTS, GRIDS, MARGINS, MESH_ANGLES, RATIOS, RUNS_PER_CASE, SEEDS,
-};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem coverage`.

@@ -6,11 +6,11 @@ use super::parse::value;
 use super::progress::Progress;
 use super::stdout::not_stdout;
 use super::{count_in, no_repeats, run_error, CliError};
-use jkrbem::run::crossed::{crossed, CrossedRequest};
-use jkrbem::run::schema::{
+use jkrbem::params::{
     Spec, ACCURACY, ANGLE, ANGLES, E, GRID, JOBS, MARGIN, NU, POISSON, RADIUS, STEPS,
     WORK_OF_ADHESION, YOUNG,
 };
+use jkrbem::run::crossed::{crossed, CrossedRequest};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem crossed`.

@@ -1,6 +1,6 @@
 //! `--figure-format` of the commands that draw charts besides `simulate` (sweep, collect,
 //! crossed, accuracy, bench, reproduce): the schema's parameter
-//! ([`FIGURE_FORMAT`](jkrbem::run::schema::FIGURE_FORMAT)), checked as `simulate` checks it.
+//! ([`FIGURE_FORMAT`](jkrbem::params::FIGURE_FORMAT)), checked as `simulate` checks it.
 
 use jkrbem::output::figure::FigureFormats;
 
@@ -24,5 +24,5 @@ pub struct FigureArgs {
 
 /// The formats of `text` ("svg,pdf"), or why not, naming the flag.
 fn formats(text: &str) -> Result<FigureFormats, String> {
-    FigureFormats::parse(text).map_err(|e| jkrbem::run::schema::words::flags(&e))
+    FigureFormats::parse(text).map_err(|e| jkrbem::params::words::flags(&e))
 }

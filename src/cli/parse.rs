@@ -2,7 +2,7 @@
 //! kind and range of its parameter ([`Spec`]) as clap reads it, so that a value past the range
 //! is refused (exit 2) naming the flag, by every command alike.
 
-use jkrbem::run::schema::{values, words, Kind, Spec};
+use jkrbem::params::{values, words, Kind, Spec};
 use serde::de::DeserializeOwned;
 
 /// A clap value parser of one value of `spec` (one item of a comma-separated list), checked
@@ -51,7 +51,7 @@ fn whole(spec: &Spec, text: &str, lo: u64, hi: u64) -> Result<serde_json::Value,
 #[cfg(test)]
 mod tests {
     use super::*;
-    use jkrbem::run::schema::{ACCURACY, JOBS, RATIO, SEEDS, TARGET};
+    use jkrbem::params::{ACCURACY, JOBS, RATIO, SEEDS, TARGET};
 
     #[test]
     fn values_are_checked_against_their_parameter() {

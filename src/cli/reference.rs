@@ -5,9 +5,9 @@ use super::parse::value;
 use super::progress::Progress;
 use super::{run_error, CliError};
 use jkrbem::backend::select::BackendKind;
+use jkrbem::params::{FIRST_GRID, MAX_GRID, PHASES, RATIOS, TARGET};
 use jkrbem::run::open::BackendRequest;
 use jkrbem::run::reference::{reference, ReferenceRequest, REFERENCE_RATIOS};
-use jkrbem::run::schema::{FIRST_GRID, MAX_GRID, PHASES, RATIOS, TARGET};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem reference`.

@@ -5,7 +5,7 @@
 use super::parse::value;
 use super::progress::Progress;
 use super::{failures, run_error, CliError};
-use jkrbem::run::schema::JOBS;
+use jkrbem::params::JOBS;
 use jkrbem::run::study::{study, StudyRequest};
 use std::path::PathBuf;
 

@@ -4,11 +4,12 @@
 use super::parse::value;
 use super::stdout::is_stdout;
 use super::{input, CliError};
-use jkrbem::run::claim::{write_error, Outputs};
-use jkrbem::run::schema::{
+use jkrbem::output::roughness_npy;
+use jkrbem::params::{
     words::flags, Spec, CUTOFF, HURST, LARGEST_WAVELENGTH, OUT, RMS_HEIGHT, RMS_SLOPE, ROLLOFF,
     ROUGHNESS_GRID, ROUGHNESS_GRID_Y, SEED, SPACING,
 };
+use jkrbem::run::claim::{write_error, Outputs};
 use jkrbem::scene::roughness::{self, RoughnessParams};
 use jkrbem::text::compact;
 use std::path::PathBuf;
@@ -84,11 +85,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
     let resolved = params.resolved().map_err(input)?;
     // Before any work: the surface must fit in the memory this machine can give it.
-    params.check_memory().map_err(input)?;
-    let sidecar = roughness::sidecar_path(&args.out);
+    jkrbem::plan::check_roughness_memory(&params).map_err(input)?;
+    let sidecar = roughness_npy::sidecar_path(&args.out);
     let _claimed = Outputs::claim(&[(args.out.clone(), OUT.into()), (sidecar, OUT.into())])?;
     let map = roughness::generate(&params).map_err(input)?;
-    let written = roughness::save(&map, &params, &args.out).map_err(write_error(OUT))?;
+    let written = roughness_npy::save(&map, &params, &args.out).map_err(write_error(OUT))?;
     let s = roughness::statistics(&map);
     let (nx, ny) = (map.nx(), map.ny());
     let c = |v: Option<f64>| v.map_or_else(|| "-".into(), compact);

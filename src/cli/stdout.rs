@@ -20,7 +20,7 @@ static STDOUT_ERROR: Mutex<Option<io::Error>> = Mutex::new(None);
 /// on and writes its files; any other error (`> /dev/full`) is kept and reported at the exit
 /// ([`finish_stdout`]), with exit code 1.
 pub fn write_stdout(args: fmt::Arguments) {
-    let text = jkrbem::run::schema::words::flags(&args.to_string());
+    let text = jkrbem::params::words::flags(&args.to_string());
     with_stdout(|w| w.write_all(text.as_bytes()));
 }
 
@@ -28,8 +28,8 @@ pub fn write_stdout(args: fmt::Arguments) {
 pub fn write_stdout_bytes(bytes: &[u8]) {
     match std::str::from_utf8(bytes) {
         // A summary's JSON names parameters by marker, as a file of it names them by flag.
-        Ok(text) if text.contains(jkrbem::run::schema::OPEN) => {
-            let text = jkrbem::run::schema::words::flags(text);
+        Ok(text) if text.contains(jkrbem::params::OPEN) => {
+            let text = jkrbem::params::words::flags(text);
             with_stdout(|w| w.write_all(text.as_bytes()))
         }
         _ => with_stdout(|w| w.write_all(bytes)),

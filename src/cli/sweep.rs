@@ -6,7 +6,7 @@ use super::parse::value;
 use super::progress::Progress;
 use super::stdout::not_stdout;
 use super::{count_in, no_repeats, run_error, CliError};
-use jkrbem::run::schema::{ACCURACY, GRID, JOBS, MARGIN, RATIOS, START_RADIUS, STEPS};
+use jkrbem::params::{ACCURACY, GRID, JOBS, MARGIN, RATIOS, START_RADIUS, STEPS};
 use jkrbem::run::sweep::{sweep, SweepRequest};
 use std::path::PathBuf;
 

@@ -4,7 +4,7 @@ use super::limits::{
     MAX_GRID, MIN_ELEMENTS_AT_MINIMUM, MIN_ELEMENTS_FIRST_CONTACT, MIN_GRID,
     MIN_MAP_SPACINGS_AT_MINIMUM,
 };
-use crate::run::schema::{Spec, GRID, HEIGHT_MAP, SPACING};
+use crate::params::{Spec, GRID, HEIGHT_MAP, SPACING};
 use crate::text::compact;
 use thiserror::Error;
 

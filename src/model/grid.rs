@@ -4,7 +4,7 @@
 use super::error::ModelError;
 use super::limits::*;
 use super::options::ModelOptions;
-use crate::run::schema::{Spec, GRID, GRID_Y, MARGIN, RATIO, START_RADIUS};
+use crate::params::{Spec, GRID, GRID_Y, MARGIN, RATIO, START_RADIUS};
 use crate::scene::{PullOffHint, Scene};
 use crate::setup::ChordAxes;
 use std::f64::consts::PI;

@@ -3,21 +3,13 @@
 
 use super::{Measure, Onsets};
 
-/// Smallest grid side accepted (elements).
-pub const MIN_GRID: usize = 16;
+pub use crate::params::limits::MIN_GRID;
 
-/// Largest grid side accepted (elements); the machine's memory usually refuses smaller ones
-/// first ([`crate::plan::check_memory`]).
-pub const MAX_GRID: usize = 65_536;
+pub use crate::params::limits::MAX_GRID;
 
-/// Valid mean radii c̄0 of the first contact (dimensionless). The lower end lies above the
-/// contact radius at the force minimum (c̄ = 0.63–0.79 in the closed forms, 0.74–0.84 in our
-/// runs), since the contact cannot grow past its first, pinned size: the branch must start
-/// above the minimum to pass through it.
-pub const START_RADIUS_RANGE: (f64, f64) = (1.0, 20.0);
+pub use crate::params::limits::START_RADIUS_RANGE;
 
-/// Most load steps.
-pub const MAX_STEPS: usize = 100_000;
+pub use crate::params::limits::MAX_STEPS;
 
 /// Load steps of a whole curve unless told otherwise: its resolution in d̄.
 pub const CURVE_STEPS: usize = 200;
@@ -39,31 +31,20 @@ pub fn default_steps(measure: Measure, onsets: Onsets, regrid: bool) -> usize {
     }
 }
 
-/// Largest relative margin around the first contact.
-pub const MAX_MARGIN: f64 = 10.0;
+pub use crate::params::limits::MAX_MARGIN;
 
-/// Most CG iterations per solve.
-pub const MAX_CG_ITERATIONS: usize = 10_000_000;
+pub use crate::params::limits::MAX_CG_ITERATIONS;
 
 /// Most loading steps of a preload (a target the surface never reaches, say an area it
 /// cannot cover, stops there with an error; a depth further than that many load steps is
 /// refused before any work).
 pub const MAX_LOADING_STEPS: usize = 100_000;
 
-/// Loosest CG tolerance accepted (relative residual, dimensionless). The stated
-/// uncertainties take each state's solve as exact: they hold only while the solves' error is
-/// far below them. Measured on the sphere at its default grid (64², CPU, the grid's |min F̄|
-/// against the default 1e-8's): 1e-6 and 1e-5 moved it by less than 5e-6 relative, 1e-4 by
-/// 1.4e-4, 1e-3 by 0.13 %, 1e-2 by 2.7 % (the estimate by as much); the loose cascade rounds
-/// are solved to 1e-5 themselves.
-pub const MAX_CG_TOLERANCE: f64 = 1e-5;
+pub use crate::params::limits::MAX_CG_TOLERANCE;
 
-/// Largest |mesh angle| (degrees).
-pub const MAX_MESH_ANGLE: f64 = 360.0;
+pub use crate::params::limits::MAX_MESH_ANGLE;
 
-/// Lowest final approach d̄ accepted (dimensionless; the contact jumps off at d̄ ≈ −0.44
-/// for the sphere, so anything far below only means "run to the end").
-pub const MIN_FINAL_D_BAR: f64 = -1000.0;
+pub use crate::params::limits::MIN_FINAL_D_BAR;
 
 /// The free margin around the first contact, relative to its half-axes, where none is given
 /// (dimensionless; [`default_margin`] raises it on the smallest grids).

@@ -3,7 +3,7 @@
 //! a caller chooses), `grid` (the grid against the scene) and `steps` (the load path); this
 //! module builds the model.
 
-use crate::run::schema::{
+use crate::params::{
     APEX_OFFSET, BACKEND, CG_ACCEPT, CG_MAX_ITERATIONS, CG_TOLERANCE, CONVOLUTION, E_STAR, GRID,
     GRID_Y, HEIGHT_MAP, INDENTER, MARGIN, MESH_ANGLE, PRECISION, PRELOAD_AREA, PRELOAD_DEPTH,
     PRELOAD_FORCE, ROUGHNESS, START_RADIUS, STEPS, WORK_OF_ADHESION,
@@ -54,8 +54,8 @@ pub struct Model {
     pub margin: f64,
     /// Which detachment onsets are located.
     pub onsets: Onsets,
-    /// Whether a cascade's intermediate rounds are solved loosely (see
-    /// [`crate::solver::equilibrium`]).
+    /// Whether a cascade's intermediate rounds are solved loosely (see the solver's
+    /// equilibrium module).
     pub loose_rounds: bool,
     /// Whether a cascade round's solve starts from the detached elements' load handed to
     /// their neighbours ([`crate::backend::shares`]); on with [`Model::loose_rounds`].
@@ -65,7 +65,7 @@ pub struct Model {
     /// [`Model::loose_rounds`].
     pub certify_detached: bool,
     /// Whether a loose round that detaches nothing is solved once more, to
-    /// [`crate::solver::equilibrium::TIGHT_TOLERANCE`], before the exact solve; on with
+    /// the solver's tight tolerance, before the exact solve; on with
     /// [`Model::loose_rounds`].
     pub tighten_stalls: bool,
     /// What the run is for.
@@ -81,7 +81,7 @@ pub struct Model {
     /// in one piece as the first contact's non-adhesive solution.
     pub loading: Option<Loading>,
     /// Whether a measure of the adhesive force may stop once the force minimum is confirmed
-    /// ([`crate::solver::protocol::CONFIRM_D_BAR`] past it): only where the results are
+    /// (the solver's confirming d̄ past it): only where the results are
     /// normalised, so that the test's d̄ has its meaning; a surface in the user's units runs
     /// to the end of contact.
     pub confirm_minimum: bool,
@@ -342,7 +342,7 @@ impl Model {
             Preload::Force(f) => LoadTarget::Force(f),
             Preload::AreaFraction(a) => LoadTarget::AreaFraction(a),
         };
-        let refuse = |spec: &'static crate::run::schema::Spec, value: f64, expected: String| {
+        let refuse = |spec: &'static crate::params::Spec, value: f64, expected: String| {
             Err(invalid(spec, compact(value), expected))
         };
         match target {
@@ -702,7 +702,7 @@ fn check_map_resolution(scene: &Scene, hint: PullOffHint) -> Result<(), ModelErr
 /// spacings, for any contact it could hold to be resolved: no contact is larger than the
 /// window, so where even the window's mean diameter 2√(A/π) spans fewer than
 /// [`MIN_MAP_SPACINGS_AT_MINIMUM`] map spacings, so does the contact at the force minimum
-/// (the run measures that contact too: [`crate::analysis::report`]). Roughness on a smooth
+/// (the run's report measures that contact too). Roughness on a smooth
 /// base passes (its base is the shape the contact resolves).
 fn check_window_map_resolution(
     scene: &Scene,
@@ -974,7 +974,7 @@ mod tests {
             .check_scales("f32", F32_SAFE_RANGE)
             .unwrap_err()
             .to_string();
-        let e = crate::run::schema::words::flags(&e);
+        let e = crate::params::words::flags(&e);
         assert!(e.contains("f32") && e.contains("--backend cpu"), "{e}");
     }
 
@@ -992,7 +992,7 @@ mod tests {
         )
         .unwrap_err();
         assert!(matches!(e, ModelError::TooCoarse { .. }), "{e}");
-        let text = crate::run::schema::words::flags(&e.to_string());
+        let text = crate::params::words::flags(&e.to_string());
         let suggested: usize = text
             .split("use --grid ")
             .nth(1)

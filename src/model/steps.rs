@@ -5,7 +5,7 @@
 use super::grid::invalid;
 use super::limits::MIN_FINAL_D_BAR;
 use super::ModelError;
-use crate::run::schema::FINAL_D;
+use crate::params::FINAL_D;
 use crate::scene::{PullOffHint, Scene};
 use crate::text::compact;
 

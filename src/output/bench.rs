@@ -4,7 +4,7 @@
 use super::chart::{LogLogChart, Series};
 use super::OutputError;
 use crate::bench::{GridProfile, Measurement, PulloffProfile};
-use crate::run::schema::ONSETS;
+use crate::params::ONSETS;
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::Path;

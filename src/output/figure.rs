@@ -1,5 +1,5 @@
 //! Every chart's files: the picture in each format asked for
-//! ([`FIGURE_FORMAT`](crate::run::schema::FIGURE_FORMAT): SVG, PDF, PNG), beside each other
+//! ([`FIGURE_FORMAT`](crate::params::FIGURE_FORMAT): SVG, PDF, PNG), beside each other
 //! with one stem (`f_of_d.svg`, `f_of_d.pdf`, `f_of_d.png`), and always `<stem>.plot.csv`,
 //! the data the chart draws, one row per point (or cell) drawn, so that a figure can be drawn
 //! again with another tool. A chart is named by its SVG path; the other files are derived
@@ -86,8 +86,8 @@ impl FigureFormats {
     }
 
     /// The formats of a checked value of
-    /// [`FIGURE_FORMAT`](crate::run::schema::FIGURE_FORMAT) (a list of names, as
-    /// [`values`](crate::run::schema::values) gives it), or why not.
+    /// [`FIGURE_FORMAT`](crate::params::FIGURE_FORMAT) (a list of names, as
+    /// [`values`](crate::params::values) gives it), or why not.
     pub fn from_value(value: &serde_json::Value) -> Result<FigureFormats, String> {
         let names: Option<Vec<FigureFormat>> = value.as_array().and_then(|a| {
             a.iter()
@@ -98,15 +98,15 @@ impl FigureFormats {
             Some(n) if !n.is_empty() => Ok(FigureFormats::of(&n)),
             _ => Err(format!(
                 "{} = {value} is invalid (a bug: it was checked)",
-                crate::run::schema::FIGURE_FORMAT
+                crate::params::FIGURE_FORMAT
             )),
         }
     }
 
     /// The formats written as the command line writes them ("svg,pdf,png"), checked as
-    /// [`FIGURE_FORMAT`](crate::run::schema::FIGURE_FORMAT) is; the refusal names it.
+    /// [`FIGURE_FORMAT`](crate::params::FIGURE_FORMAT) is; the refusal names it.
     pub fn parse(text: &str) -> Result<FigureFormats, String> {
-        let value = crate::run::schema::values::from_text(crate::run::schema::FIGURE_FORMAT, text)?;
+        let value = crate::params::values::from_text(crate::params::FIGURE_FORMAT, text)?;
         FigureFormats::from_value(&value)
     }
 
@@ -198,7 +198,7 @@ pub fn write_figure<T: PlotRecord>(
         reason,
     };
     let svg = svg.map_err(|reason| drawn(chart, reason))?;
-    let svg = crate::run::schema::words::flags(&svg);
+    let svg = crate::params::words::flags(&svg);
     for format in formats.iter() {
         let path = picture(chart, format);
         let bytes = match format {

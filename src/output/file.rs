@@ -19,7 +19,7 @@
 //!   status 1 and the result kept where it is said to be.
 //! - [`file_id`] and [`note_input`]: which file a path names, however spelled or linked, and the
 //!   files this run reads; an output that is one of them is refused (see
-//!   [`crate::run::claim`]), and never written.
+//!   the session's claim of its outputs), and never written.
 //! - [`check_target`]: a target that exists and is not a regular file (a device, a FIFO, a
 //!   folder) is refused.
 //! - [`read_regular`]: the one way jkrbem reads a file a user may have put in its way (a shard,
@@ -196,7 +196,7 @@ fn check_writable(path: &Path, meta: &fs::Metadata) -> Result<(), OutputError> {
                 format!(
                     "it exists and is write-protected: make it writable (chmod u+w), choose \
                      another name, or pass {} to replace it",
-                    crate::run::schema::FORCE
+                    crate::params::FORCE
                 ),
             ));
         }
@@ -441,10 +441,10 @@ pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
 /// a chart's legend, the study's captions) name their parameters by marker in memory, so that
 /// each front end words them; every text file the library writes (JSON, CSV, SVG, HTML) is the
 /// command line's, and is worded as it is written, each marker as its flag
-/// ([`words::flags`](crate::run::schema::words::flags)). A file read back (a summary a later
+/// ([`words::flags`](crate::params::words::flags)). A file read back (a summary a later
 /// run reuses, a shard) therefore names flags.
 pub fn write_text(path: &Path, text: &str) -> Result<(), OutputError> {
-    write_bytes(path, crate::run::schema::words::flags(text).as_bytes())
+    write_bytes(path, crate::params::words::flags(text).as_bytes())
 }
 
 /// Write rows as CSV to `path` atomically (see [`write_atomic`]); `header` is written first

@@ -20,6 +20,7 @@ pub mod pressure_profile;
 pub mod profile;
 pub mod provenance;
 pub mod render;
+pub mod roughness_npy;
 pub mod series;
 pub mod states_csv;
 pub mod study_charts;
@@ -28,14 +29,14 @@ pub mod summary;
 pub mod sweep_charts;
 pub mod sweep_csv;
 
-use crate::run::schema::Spec;
+use crate::params::Spec;
 use thiserror::Error;
 
 /// What named a path in a request: a parameter (shown as its marker, which each front end
 /// words) or an argument of a command that is no parameter (`collect`'s `DIR`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum NamedBy {
-    /// A parameter, e.g. [`OUT`](crate::run::schema::OUT).
+    /// A parameter, e.g. [`OUT`](crate::params::OUT).
     Param(&'static Spec),
     /// An argument, as the command names it.
     Argument(&'static str),
@@ -151,8 +152,8 @@ impl OutputError {
         }
     }
 
-    /// The same error, saying which parameter named the path (e.g. [`OUT`](crate::run::schema::OUT),
-    /// [`SUMMARY`](crate::run::schema::SUMMARY)), unless one was said already.
+    /// The same error, saying which parameter named the path (e.g. [`OUT`](crate::params::OUT),
+    /// [`SUMMARY`](crate::params::SUMMARY)), unless one was said already.
     pub fn with_param(mut self, name: impl Into<NamedBy>) -> Self {
         let name = name.into();
         match &mut self {

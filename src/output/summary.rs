@@ -14,7 +14,7 @@ use super::OutputError;
 use crate::analysis::estimate::AdhesiveResult;
 use crate::analysis::generic_limit::GenericLimit;
 use crate::analysis::report::RunReport;
-use crate::run::schema::{FINAL_D, MEASURE, ONSETS, STEPS};
+use crate::params::{FINAL_D, MEASURE, ONSETS, STEPS};
 use crate::text::fixed;
 use serde::Serialize;
 use std::path::Path;

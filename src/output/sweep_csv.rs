@@ -14,7 +14,7 @@
 use super::file;
 use super::summary::Summary;
 use super::OutputError;
-use crate::run::schema::{ACCURACY, GRID, MARGIN, RATIOS, SHARD, START_RADIUS, STEPS};
+use crate::params::{ACCURACY, GRID, MARGIN, RATIOS, SHARD, START_RADIUS, STEPS};
 use crate::scene::MAX_RATIO;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -686,8 +686,7 @@ pub fn parse_shard(text: &str) -> Result<(usize, usize), String> {
     Ok((k, n))
 }
 
-/// The most shards a sweep is split into.
-pub const MAX_SHARDS: usize = 10_000;
+pub use crate::params::limits::MAX_SHARDS;
 
 /// The ratios (by position) that shard K of N runs: positions j with j mod N = K − 1.
 pub fn shard_ratios(ratios: &[f64], shard: Option<(usize, usize)>) -> Vec<f64> {
@@ -788,7 +787,7 @@ mod tests {
         write_shard(dir.path(), &other, (2, 2), vec![r2]);
         let e = collect(dir.path()).unwrap_err();
         assert!(
-            crate::run::schema::words::flags(&e.to_string()).contains("--grid 128 against 64"),
+            crate::params::words::flags(&e.to_string()).contains("--grid 128 against 64"),
             "{e}"
         );
 

@@ -17,7 +17,7 @@ use crate::model::{Measure, Model, ModelOptions};
 use crate::output::chart::{LogLogChart, Series};
 use crate::output::figure::FigureFormats;
 use crate::output::names;
-use crate::run::schema::{BACKENDS, GRIDS, MEASURE, OUT, REGRID, VARIANTS};
+use crate::params::{BACKENDS, GRIDS, MEASURE, OUT, REGRID, VARIANTS};
 use crate::scene::Scene;
 use serde::Serialize;
 use std::fmt;

@@ -11,7 +11,7 @@ use crate::analysis::estimate::AdhesiveResult;
 use crate::model::{Model, ModelOptions};
 use crate::output::summary::Summary;
 use crate::output::sweep_csv::SweepRow;
-use crate::run::schema::{ACCURACY, OUT};
+use crate::params::{ACCURACY, OUT};
 use crate::solver::State;
 use rayon::prelude::*;
 use std::path::PathBuf;

@@ -16,19 +16,14 @@ use crate::output::bench::{timing_chart, write_csv, BenchRow};
 use crate::output::figure::FigureFormats;
 #[cfg(feature = "gpu")]
 use crate::output::profile::{self, ProfileRow};
-use crate::run::schema::{
+use crate::params::{
     BACKENDS, CG_ITERATIONS, GRIDS, OUT, PRECISIONS, PROFILE, PULLOFF_MAX_GRID, REPEATS,
 };
 use crate::scene::Scene;
 use std::path::PathBuf;
 
-/// Most timed samples of one measurement (`repeats`): each is at least 20 ms after 0.2 s of
-/// warm-up, so a thousand already take minutes per grid and backend; the median of more moves
-/// no further.
-pub const MAX_REPEATS: usize = 1000;
-/// Most CG iterations of one timed solve (`cg_iterations`): a hundred thousand take about a
-/// minute at 256² on two cores; more time the same iteration for longer.
-pub const MAX_TIMED_CG_ITERATIONS: usize = 100_000;
+pub use crate::params::limits::MAX_REPEATS;
+pub use crate::params::limits::MAX_TIMED_CG_ITERATIONS;
 
 /// A request to time the backends.
 #[derive(Debug, Clone)]

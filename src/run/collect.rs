@@ -3,10 +3,10 @@
 //! ([`super::scenes::collect::collect_batch`]).
 
 use super::scenes::collect::{collect_batch, records_in, BatchMerged};
-use super::schema::OUT;
 use super::sweep::{collect_shards, Merged};
 use super::{input, RunError};
 use crate::output::figure::FigureFormats;
+use crate::params::OUT;
 use std::path::Path;
 
 /// What `collect` merged.

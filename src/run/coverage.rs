@@ -15,7 +15,7 @@ use crate::analysis::convergence::{self, TableValue};
 use crate::analysis::estimate;
 use crate::analysis::generic_limit;
 use crate::model::{Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID, MAX_MARGIN};
-use crate::run::schema::{
+use crate::params::{
     words, Spec, APEX_OFFSET, APEX_OFFSETS, BACKEND, GRID, GRIDS, MARGIN, MARGINS, MESH_ANGLE,
     MESH_ANGLES, OUT, RATIOS, RUNS_PER_CASE, SHAPES, VARIANTS,
 };
@@ -32,9 +32,7 @@ pub const LEVELS_BELOW_REFERENCE: u32 = 2;
 /// The sphere's case grids (its reference, 1/2, is exact).
 pub const SPHERE_GRIDS: [usize; 3] = [32, 64, 128];
 
-/// Most runs one case is estimated from (`runs_per_case`; also at most the number of margins):
-/// more than any list of margins a study gives (the default has 5).
-pub const MAX_RUNS_PER_CASE: usize = 100;
+pub use crate::params::limits::MAX_RUNS_PER_CASE;
 
 /// The default domain margins: the default one and four more, 0.05 apart.
 pub const DEFAULT_MARGINS: [f64; 5] = [0.08, 0.13, 0.18, 0.23, 0.28];
@@ -286,7 +284,7 @@ pub const MIN_CASE_GRID: usize = crate::plan::MIN_PLAN_GRID;
 pub const COVERAGE_SPECS: [&Spec; 11] = [
     RATIOS,
     SHAPES,
-    crate::run::schema::EXPONENTS,
+    crate::params::EXPONENTS,
     GRIDS,
     MARGINS,
     VARIANTS,

@@ -11,7 +11,7 @@ use crate::analysis::CrossedCylinders;
 use crate::model::{Model, ModelOptions};
 use crate::output::figure::FigureFormats;
 use crate::output::line_chart::{LineChart, Style};
-use crate::run::schema::{Spec, ANGLE, GRID, OUT};
+use crate::params::{Spec, ANGLE, GRID, OUT};
 use crate::theory;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -105,7 +105,7 @@ impl CrossedRequest {
 /// Run the request: check every angle, claim the outputs, run, write crossed.csv and the chart.
 /// `rename` maps the analysis layer's parameters ([`ANGLE`], the cylinders' modulus, …) to
 /// those the front end names in messages (e.g. `crossed`'s
-/// [`ANGLES`](crate::run::schema::ANGLES)).
+/// [`ANGLES`](crate::params::ANGLES)).
 pub fn crossed(
     req: &CrossedRequest,
     rename: &dyn Fn(&'static Spec) -> &'static Spec,

@@ -6,8 +6,8 @@
 //!
 //! Errors say whether the request was refused before any work ([`RunError::Input`]) or the
 //! work failed ([`RunError::Failed`]), and name the parameter or value to change: a parameter
-//! by its [`schema::Spec`]'s marker, which each front end words (the command line as its flag,
-//! Python as its keyword; [`schema::words`]).
+//! by its [`crate::params::Spec`]'s marker, which each front end words (the command line as its flag,
+//! Python as its keyword; [`crate::params::words`]).
 
 pub mod accuracy;
 pub mod batch;
@@ -25,7 +25,6 @@ pub mod pulloff;
 pub mod reference;
 pub mod request;
 pub mod scenes;
-pub mod schema;
 pub mod simulate;
 pub mod study;
 pub mod sweep;

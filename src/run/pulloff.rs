@@ -8,7 +8,7 @@ use crate::analysis::report::RunReport;
 use crate::backend::Backend;
 use crate::model::Model;
 use crate::output::states_csv::StateWriter;
-use crate::run::schema::Spec;
+use crate::params::Spec;
 use crate::solver::{self, Outcome};
 use std::path::{Path, PathBuf};
 use std::time::Instant;

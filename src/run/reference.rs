@@ -14,9 +14,7 @@ use crate::analysis::convergence::{self, TableLaw};
 use crate::analysis::estimate;
 use crate::analysis::report::RunReport;
 use crate::model::{Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID};
-use crate::run::schema::{
-    ACCURACY, FIRST_GRID, MAX_GRID as MAX_GRID_SPEC, OUT, PHASES, RATIOS, TARGET,
-};
+use crate::params::{ACCURACY, FIRST_GRID, MAX_GRID as MAX_GRID_SPEC, OUT, PHASES, RATIOS, TARGET};
 use crate::scene::Scene;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -29,17 +27,12 @@ pub const REFERENCE_RATIOS: [f64; 12] = [
 /// Grids of a ladder at the least (the fit's model term needs three).
 pub const MIN_LEVELS: usize = 3;
 
-/// The coarsest first grid of a ladder (Nx): coarser grids are not yet first order.
-pub const MIN_FIRST_GRID: usize = crate::plan::MIN_PLAN_GRID;
+pub use crate::params::limits::MIN_FIRST_GRID;
 
-/// Runs per grid at the most ([`ReferenceRequest::phases`]).
-pub const MAX_PHASES: usize = 8;
+pub use crate::params::limits::MAX_REFERENCE_PHASES as MAX_PHASES;
 
-/// The tightest target a ladder may aim at (relative uncertainty, 0.1 %): tighter takes grids
-/// past any machine's memory.
-pub const MIN_TARGET: f64 = 0.001;
-/// The loosest target (relative uncertainty, 50 %): a looser one is no reference.
-pub const MAX_TARGET: f64 = 0.5;
+pub use crate::params::limits::MAX_REFERENCE_TARGET as MAX_TARGET;
+pub use crate::params::limits::MIN_REFERENCE_TARGET as MIN_TARGET;
 
 /// The step between the domain margins of one grid's runs (relative to the initial contact's
 /// half-axes): the first run has the margin asked for, each further one this much more. 0.05

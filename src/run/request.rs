@@ -1,4 +1,4 @@
-//! A simulation as a typed value: every parameter of [`schema::SPECS`] as a field, defaults
+//! A simulation as a typed value: every parameter of [`params::SPECS`] as a field, defaults
 //! filled from the schema, checked once, round-tripping through JSON. Both front ends (and a
 //! batch's table) build one from the values they were given ([`Request::from_values`]) and
 //! turn it into the session's [`SimulateRequest`] ([`Request::simulate_request`]): the choice of
@@ -6,12 +6,6 @@
 //! happen here, once.
 
 use super::open::{BackendRequest, Convolution};
-use super::schema::{self, values, Fallback, Spec, SPECS};
-use super::schema::{
-    ACCURACY, CONVOLUTION, EXTRAPOLATE, EXTRAPOLATE_GRIDS, FINAL_D, GRID, GRID_Y, HEIGHT_MAP,
-    INDENTER, MEASURE, ONSETS, PRELOAD_AREA, PRELOAD_DEPTH, PRELOAD_FORCE, R1, RATIO, REGRID,
-    ROUGHNESS, SPACING, START_RADIUS, STEPS, TIME_LIMIT, WINDOW_X, WINDOW_Y,
-};
 use super::simulate::{Mode, SimulateRequest, Sink};
 use super::{input, RunError};
 use crate::analysis::fields::FieldChoice;
@@ -19,6 +13,12 @@ use crate::backend::select::{BackendKind, Precision};
 use crate::model::{Measure, ModelOptions, Onsets, Preload};
 use crate::output::digest::InputFile;
 use crate::output::figure::{FigureFormat, FigureFormats};
+use crate::params::{self, values, Fallback, Spec, SPECS};
+use crate::params::{
+    ACCURACY, CONVOLUTION, EXTRAPOLATE, EXTRAPOLATE_GRIDS, FINAL_D, GRID, GRID_Y, HEIGHT_MAP,
+    INDENTER, MEASURE, ONSETS, PRELOAD_AREA, PRELOAD_DEPTH, PRELOAD_FORCE, R1, RATIO, REGRID,
+    ROUGHNESS, SPACING, START_RADIUS, STEPS, TIME_LIMIT, WINDOW_X, WINDOW_Y,
+};
 use crate::scene::height_map::HeightMap;
 use crate::scene::{Indenter, MeasuredSurface, RoughShape, Scene};
 use crate::setup::Preconditioner;
@@ -59,7 +59,7 @@ impl Shape {
 }
 
 /// One simulation's request: each field is the parameter of the same name in
-/// [`schema::SPECS`] (its unit, range and default are there). `None`: chosen for the scene.
+/// [`params::SPECS`] (its unit, range and default are there). `None`: chosen for the scene.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 #[allow(missing_docs)]
@@ -194,7 +194,7 @@ impl Request {
 
     /// Refuse a shape's parameter given with another indenter (it would be ignored).
     fn refuse_foreign(&self, map_given: bool, rough_given: bool) -> Result<(), RunError> {
-        use schema::{EXPONENT, R2, RADIUS, SCALE};
+        use params::{EXPONENT, R2, RADIUS, SCALE};
         use Shape::*;
         let rough = self.roughness.is_some() || rough_given;
         let given: [(&Spec, bool, &[Shape]); 12] = [
@@ -249,7 +249,7 @@ impl Request {
         if self.ratio.is_some() && self.r1.is_some() {
             return Err(input(format!(
                 "{RATIO} and {R1} both set R1/R2: give one ({R1} with {}, or {RATIO})",
-                schema::R2
+                params::R2
             )));
         }
         Ok(())
@@ -502,7 +502,7 @@ impl Request {
         let fields = FieldChoice::parse(&self.fields).map_err(|_| {
             input(format!(
                 "{} = {} is invalid",
-                schema::FIELDS,
+                params::FIELDS,
                 values::shown(&self.fields)
             ))
         })?;

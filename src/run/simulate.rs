@@ -20,10 +20,8 @@ use crate::output::pressure_profile::{self, JkrSphere};
 use crate::output::provenance::Provenance;
 use crate::output::summary::Summary;
 use crate::output::{fields_npz, names, pressure_chart, NamedBy};
+use crate::params::{Spec, ACCURACY, EXTRAPOLATE_GRIDS, FIELDS, GRID, OUT, SUMMARY, TIME_LIMIT};
 use crate::plan;
-use crate::run::schema::{
-    Spec, ACCURACY, EXTRAPOLATE_GRIDS, FIELDS, GRID, OUT, SUMMARY, TIME_LIMIT,
-};
 use crate::scene::Scene;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -42,9 +40,7 @@ pub enum Mode {
     Accuracy(f64),
 }
 
-/// The longest time limit an accuracy run takes (s): 30 days. Longer ones are no limit in
-/// practice, and far longer ones overflow a clock.
-pub const MAX_TIME_LIMIT_S: f64 = 30.0 * 86400.0;
+pub use crate::params::limits::MAX_TIME_LIMIT_S;
 
 /// The accuracy a simulation aims at when neither a grid nor an accuracy is asked for (2 %).
 pub const DEFAULT_ACCURACY: f64 = 0.02;

@@ -24,7 +24,7 @@ use crate::output::study_index::{self, Figure, StudyPage};
 use crate::output::summary::Summary;
 use crate::output::sweep_charts::{force_vs_ratio_chart, pulloff_curves_chart};
 use crate::output::sweep_csv::{self, SweepRow};
-use crate::run::schema::{ACCURACY, OUT, QUICK};
+use crate::params::{ACCURACY, OUT, QUICK};
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

@@ -13,7 +13,7 @@ use crate::output::figure::FigureFormats;
 use crate::output::sweep_charts::write_sweep_charts;
 use crate::output::sweep_csv::{self, Shard, SweepRow, SweepSettings};
 use crate::output::NamedBy;
-use crate::run::schema::{ALLOW_MISSING, GRID, OUT, RATIO, RATIOS};
+use crate::params::{ALLOW_MISSING, GRID, OUT, RATIO, RATIOS};
 use crate::scene::{Scene, SceneError};
 use std::path::{Path, PathBuf};
 

@@ -5,7 +5,7 @@
 use super::measured::MeasuredSurface;
 use super::rough::RoughShape;
 use super::{check, input_range, Scales, SceneError};
-use crate::run::schema::{EXPONENT, RADIUS, SCALE};
+use crate::params::{EXPONENT, RADIUS, SCALE};
 use crate::text::compact;
 use crate::theory::hertz::HertzContact;
 use crate::theory::power_law::{kendall_approach, kendall_force, PowerLawContact};
@@ -13,17 +13,13 @@ use crate::theory::{self, TheoryModel};
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-/// Largest power-law exponent n accepted (dimensionless): beyond it h = s·rⁿ is a flat punch
-/// for every grid (use [`Indenter::FlatPunch`]).
-pub const MAX_EXPONENT: f64 = 64.0;
+pub use crate::params::limits::MAX_EXPONENT;
 
 /// The power law's factor s of h = s·rⁿ where none is given (length^(1−n)): with n = 2,
 /// s = 1/(2R) = 0.5 is the sphere of radius 1.
 pub const DEFAULT_POWER_LAW_SCALE: f64 = 0.5;
 
-/// Smallest power-law exponent n accepted (dimensionless): n ≤ 1 (a cone or sharper) has an
-/// infinite pressure at its tip and no finite peak pressure to check scales with.
-pub const MIN_EXPONENT: f64 = 1.25;
+pub use crate::params::limits::MIN_EXPONENT;
 
 /// Height of the flat punch's walls above its face, in the larger of its radius and Kendall's
 /// approach at pull-off (dimensionless): far beyond any gap the half-space can close (the
@@ -499,7 +495,7 @@ mod tests {
 
     #[test]
     fn bad_shapes_name_their_parameter() {
-        use crate::run::schema::{EXPONENT, RADIUS, SCALE};
+        use crate::params::{EXPONENT, RADIUS, SCALE};
         for (shape, param) in [
             (Indenter::PowerLaw { n: 0.5, scale: 1.0 }, EXPONENT),
             (

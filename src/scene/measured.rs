@@ -24,7 +24,7 @@
 
 use super::height_map::HeightMap;
 use super::SceneError;
-use crate::run::schema::{Spec, CONVOLUTION, HEIGHT_MAP, WINDOW_X, WINDOW_Y};
+use crate::params::{Spec, CONVOLUTION, HEIGHT_MAP, WINDOW_X, WINDOW_Y};
 use crate::text::compact;
 
 /// The fit around the lowest node takes the nodes within this fraction of the map's smaller

@@ -13,22 +13,15 @@ pub use indenter::{
 pub use measured::{MeasuredSurface, Placement};
 pub use rough::RoughShape;
 
-use crate::run::schema::{Spec, E_STAR, R1, R2, RATIO, WORK_OF_ADHESION};
+use crate::params::{Spec, E_STAR, R1, R2, RATIO, WORK_OF_ADHESION};
 use crate::text::compact;
 use thiserror::Error;
 
-/// Largest axis ratio R1/R2 accepted (dimensionless). The study goes to 50; beyond about
-/// 1000 the contact is a thin strip that no grid of [`crate::model::MAX_GRID`] columns
-/// resolves across its minor axis from the default c̄0.
-pub const MAX_RATIO: f64 = 1000.0;
+pub use crate::params::limits::MAX_RATIO;
 
-/// Smallest dimensional input accepted (R1, R2, E*, Δγ, in the user's units). With every
-/// input in [`MIN_INPUT`, `MAX_INPUT`] every scale of the problem (c_r, the approach scale,
-/// σ_c, forces) and its square stay far inside the range of f64.
-pub const MIN_INPUT: f64 = 1e-30;
+pub use crate::params::limits::MIN_INPUT;
 
-/// Largest dimensional input accepted (see [`MIN_INPUT`]).
-pub const MAX_INPUT: f64 = 1e30;
+pub use crate::params::limits::MAX_INPUT;
 
 /// An invalid scene parameter, named by its [`Spec`] (which each front end words: the
 /// command line as its flag, Python as its keyword).
@@ -63,8 +56,8 @@ impl SceneError {
     }
 
     /// The same error naming its parameter as the front end does (`rename` maps the
-    /// library's parameter, e.g. [`ANGLE`](crate::run::schema::ANGLE), to the one that sets
-    /// it there, e.g. [`ANGLES`](crate::run::schema::ANGLES)).
+    /// library's parameter, e.g. [`ANGLE`](crate::params::ANGLE), to the one that sets
+    /// it there, e.g. [`ANGLES`](crate::params::ANGLES)).
     pub fn renamed(self, rename: &dyn Fn(&'static Spec) -> &'static Spec) -> SceneError {
         match self {
             SceneError::Invalid {
@@ -348,7 +341,7 @@ mod tests {
         let e = Scene::from_ratio(2.0, 1.0, 1e300, 1.0)
             .unwrap_err()
             .to_string();
-        let shown = crate::run::schema::words::flags(&e);
+        let shown = crate::params::words::flags(&e);
         assert!(shown.starts_with("--e-star = 1e300 is invalid"), "{shown}");
         assert!(Scene::from_ratio(MAX_RATIO, 1.0, MAX_INPUT, MIN_INPUT).is_ok());
     }

@@ -7,7 +7,7 @@
 use super::height_map::HeightMap;
 use super::indenter::Indenter;
 use super::SceneError;
-use crate::run::schema::ROUGHNESS;
+use crate::params::ROUGHNESS;
 use crate::text::compact;
 
 /// A base shape with roughness added.

@@ -154,7 +154,7 @@ impl fmt::Display for CgEnd {
                 return write!(
                     f,
                     "reached the iteration limit ({})",
-                    crate::run::schema::CG_MAX_ITERATIONS
+                    crate::params::CG_MAX_ITERATIONS
                 )
             }
             CgEnd::ResidualGap => {

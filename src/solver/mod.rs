@@ -19,7 +19,7 @@ pub use protocol::{run, run_until, run_watched, run_with_contact, Outcome};
 pub use state::{Phase, State};
 
 use crate::backend::BackendError;
-use crate::run::schema::{CG_ACCEPT, CG_TOLERANCE, MARGIN, START_RADIUS};
+use crate::params::{CG_ACCEPT, CG_TOLERANCE, MARGIN, START_RADIUS};
 use cg::CgEnd;
 use thiserror::Error;
 
@@ -103,9 +103,9 @@ pub enum SolverError {
     #[error(
         "the preload cannot be reached: {why} (at d̄ = {d_bar:.5}, after {steps} loading \
          steps); ask for a smaller preload ({}, {} or {}) or give a larger domain",
-        crate::run::schema::PRELOAD_DEPTH,
-        crate::run::schema::PRELOAD_FORCE,
-        crate::run::schema::PRELOAD_AREA
+        crate::params::PRELOAD_DEPTH,
+        crate::params::PRELOAD_FORCE,
+        crate::params::PRELOAD_AREA
     )]
     PreloadUnreachable {
         /// Approach of the last loading state (dimensionless).

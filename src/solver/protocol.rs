@@ -68,7 +68,7 @@ pub struct Outcome {
     pub refinement: Option<Refinement>,
     /// For a measured surface (a height map, roughness): the least-force pull-off state of
     /// the last grid and its contact mask (row-major, x fastest), kept for the straight
-    /// fronts' check ([`crate::analysis::fronts`]); `None` for the smooth shapes.
+    /// fronts' check (the analysis of the fronts); `None` for the smooth shapes.
     pub min_contact: Option<(State, Vec<bool>)>,
 }
 

@@ -3,7 +3,7 @@
 
 use super::cg::{CgEnd, CgReport, REPLACE_EVERY, TRUE_RESIDUAL_SLACK};
 use crate::model::CgSettings;
-use crate::run::schema::{
+use crate::params::{
     BACKEND, CG_ACCEPT, CG_MAX_ITERATIONS, CG_TOLERANCE, PRECISION, PRECONDITIONER, STEPS,
 };
 
@@ -198,7 +198,7 @@ mod tests {
         ];
         let w: Vec<String> = warnings(&retries, &s)
             .iter()
-            .map(|w| crate::run::schema::words::flags(w))
+            .map(|w| crate::params::words::flags(w))
             .collect();
         assert_eq!(w.len(), 3, "{w:#?}");
         assert!(

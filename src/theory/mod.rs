@@ -132,7 +132,7 @@ fn require(
 /// Checks `ratio` = R1/R2 (dimensionless): finite and ≥ 1, and exactly 1 if `sphere`.
 fn check_ratio(ratio: f64, sphere: bool) -> Result<(), TheoryError> {
     require(
-        ratio.is_finite() && (1.0..=crate::scene::MAX_RATIO).contains(&ratio),
+        ratio.is_finite() && (1.0..=crate::params::limits::MAX_RATIO).contains(&ratio),
         "ratio",
         ratio,
         "in [1, 1000] (R1/R2, R1 ≥ R2), as every command takes it",
@@ -145,8 +145,7 @@ fn check_ratio(ratio: f64, sphere: bool) -> Result<(), TheoryError> {
     )
 }
 
-/// The most points a closed-form curve is evaluated at (a count).
-pub const MAX_CURVE_POINTS: usize = 1_000_000;
+pub use crate::params::limits::MAX_CURVE_POINTS;
 
 /// `n` points (2 to [`MAX_CURVE_POINTS`]) of the closed-form curve for `ratio` = R1/R2
 /// (dimensionless, in [1, 1000]), evenly spaced in c̄ and ordered by decreasing c̄: from 3 to 0 (Hertz) or to 0.05 (Jkr, Jg).

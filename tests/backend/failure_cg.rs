@@ -81,7 +81,7 @@ fn an_iteration_starved_solve_on_a_ragged_set_fails_naming_its_residual() {
     let (model, mut backend, mut fields) = ragged_unpreconditioned(10);
     let err = solve_fixed(&mut backend, &model, &mut fields, model.load.d0).unwrap_err();
     // The message as the command line words it.
-    let message = jkrbem::run::schema::words::flags(&err.to_string());
+    let message = jkrbem::params::words::flags(&err.to_string());
     println!("{message}");
     let SolverError::CgNotConverged {
         first,

@@ -39,9 +39,9 @@ fn every_bad_input_of_the_shared_table_is_refused_naming_its_flag() {
     for (named, given) in &cases {
         let mut args: Vec<String> = vec!["simulate".into()];
         for (name, value) in given {
-            let spec = jkrbem::run::schema::by_name(name).expect("a parameter of the schema");
+            let spec = jkrbem::params::by_name(name).expect("a parameter of the schema");
             args.push(spec.flag.to_string());
-            if !matches!(spec.kind, jkrbem::run::schema::Kind::Switch) {
+            if !matches!(spec.kind, jkrbem::params::Kind::Switch) {
                 args.push(value.clone());
             }
         }
@@ -52,7 +52,7 @@ fn every_bad_input_of_the_shared_table_is_refused_naming_its_flag() {
         let refs: Vec<&str> = args.iter().map(|s| s.as_str()).collect();
         let o = run_in(dir.path(), &refs, &[]);
         let err = String::from_utf8_lossy(&o.stderr).to_string();
-        let flag = jkrbem::run::schema::by_name(named).unwrap().flag;
+        let flag = jkrbem::params::by_name(named).unwrap().flag;
         if o.status.code() != Some(2) || !names(&err, flag) {
             wrong.push(format!("{args:?}: exit {:?}, {err}", o.status.code()));
         }

@@ -6,7 +6,7 @@
 //! whose range the command does not hold.
 
 use crate::common::bin;
-use jkrbem::run::schema::{of_command, Kind, Range, Spec, APEX_OFFSETS, SHARD};
+use jkrbem::params::{of_command, Kind, Range, Spec, APEX_OFFSETS, SHARD};
 use std::path::Path;
 use std::process::Stdio;
 use std::time::{Duration, Instant};

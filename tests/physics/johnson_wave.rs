@@ -297,7 +297,11 @@ fn pipeline_pull_off(w: &Wave, nx: usize, dir: &std::path::Path) -> f64 {
         .collect();
     let map = HeightMap::new(nx, MAP_ROWS, s, heights).unwrap();
     let path = dir.join(format!("wave-{nx}.npy"));
-    std::fs::write(&path, jkrbem::scene::roughness::npy_bytes(&map).unwrap()).unwrap();
+    std::fs::write(
+        &path,
+        jkrbem::output::roughness_npy::npy_bytes(&map).unwrap(),
+    )
+    .unwrap();
     let path = path.display().to_string();
     let (e, dg, sp, grid) = (
         w.e_star.to_string(),

@@ -23,7 +23,7 @@ use crate::backend::{
     BackendError, CgKernels, CgStop, ChordAxes, ContactChange, ContactKernels, ContactMeasure,
     Counters, Device, ElasticOperator, GridSetup, Preconditioner, Scalars, Slot,
 };
-use crate::run::schema::BACKEND;
+use crate::params::BACKEND;
 use wgpu::util::DeviceExt;
 
 /// Most workgroups of a reduction's first pass.

@@ -166,7 +166,7 @@ impl GpuContext {
                     "no GPU adapter with compute shaders was found: install a Vulkan, Metal or \
                      DX12 driver (on Linux without a GPU, Mesa's lavapipe gives a software one), \
                      or run with `{} cpu`",
-                    crate::run::schema::BACKEND
+                    crate::params::BACKEND
                 )
             } else {
                 format!(

@@ -1,10 +1,10 @@
 //! The flags of `jkrbem simulate`, derived from the request schema
-//! ([`jkrbem::run::schema::SPECS`]): one flag per parameter, its help, unit, range and default
+//! ([`jkrbem::params::SPECS`]): one flag per parameter, its help, unit, range and default
 //! from there. What is given is kept as text, by parameter name, for
 //! [`jkrbem::run::request::Request::from_texts`] to check.
 
 use clap::{Arg, ArgAction, ArgMatches, FromArgMatches};
-use jkrbem::run::schema::{Kind, Spec, SPECS};
+use jkrbem::params::{Kind, Spec, SPECS};
 
 /// The texts given to `jkrbem simulate`, by parameter name, in the schema's order.
 #[derive(Debug, Clone, Default)]
@@ -21,7 +21,7 @@ fn arg(spec: &'static Spec) -> Arg {
     } else {
         format!("{} [{terms}]", spec.help)
     };
-    let help = jkrbem::run::schema::words::flags(&help);
+    let help = jkrbem::params::words::flags(&help);
     let a = Arg::new(spec.name)
         .long(&spec.flag[2..])
         .help(help)
@@ -37,7 +37,7 @@ fn arg(spec: &'static Spec) -> Arg {
 
 /// The `--help` section a parameter is listed in.
 fn heading(spec: &Spec) -> &'static str {
-    use jkrbem::run::schema::Group::*;
+    use jkrbem::params::Group::*;
     match spec.group {
         Scene => "Scene (indenter and materials)",
         Model => "Grid, domain and load path",

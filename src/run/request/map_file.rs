@@ -1,10 +1,10 @@
 //! A height map read from its file (`.npy` or text), refused before reading where it would not
 //! fit in memory.
 
-use super::super::schema::{Spec, SPACING};
 use super::super::{input, RunError};
 use crate::output::digest::InputFile;
 use crate::output::file::{read_regular, ReadError};
+use crate::params::{Spec, SPACING};
 use crate::scene::height_map::{HeightMap, HeightMapError};
 use std::collections::HashMap;
 use std::ffi::OsString;

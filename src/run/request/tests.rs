@@ -117,7 +117,7 @@ fn the_schemas_defaults_are_the_models() {
 #[test]
 fn every_choice_the_schema_offers_is_a_value_of_the_request() {
     for spec in SPECS {
-        if let schema::Kind::Choice(names) | schema::Kind::Choices(names) = spec.kind {
+        if let params::Kind::Choice(names) | params::Kind::Choices(names) = spec.kind {
             for name in names {
                 let r = Request::from_texts([(spec.name, *name)]);
                 assert!(r.is_ok(), "{} = {name}: {:?}", spec.name, r.err());

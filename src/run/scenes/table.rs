@@ -5,8 +5,8 @@
 //! names the row and the column, and the parameter in the table's words (its name).
 
 use crate::output::file::{read_regular, ReadError};
+use crate::params::{self, values, words, Fronts, Spec, SPECS};
 use crate::run::request::Request;
-use crate::run::schema::{self, values, words, Fronts, Spec, SPECS};
 use crate::run::{input, RunError};
 use std::collections::HashMap;
 use std::path::Path;
@@ -113,7 +113,7 @@ fn columns(header: &csv::StringRecord, source: &str) -> Result<Vec<Column>, RunE
         let column = match name.trim() {
             "id" => Column::Id,
             "" => return Err(input(format!("{at}: a column without a name"))),
-            n => match schema::by_column(n) {
+            n => match params::by_column(n) {
                 Some(spec) if spec.fronts == Fronts::Cli => {
                     return Err(input(format!(
                         "{at}: a batch chooses each scene's files itself (DIR/scene-<id>.csv \

@@ -46,10 +46,8 @@
 
 mod fft2;
 pub mod noise;
-mod save;
 mod stats;
 
-pub use save::{npy_bytes, save, sidecar, sidecar_path};
 pub use stats::{
     carrying_wavelength, radial_psd, rms_curvature, rms_height, rms_slope, shortest_wavelength,
     statistics, PsdBin, Statistics, SLOPE_TAIL,
@@ -57,12 +55,11 @@ pub use stats::{
 
 use super::height_map::HeightMap;
 use super::SceneError;
-use crate::model::ModelError;
-use crate::run::schema::{
+use crate::params::{
     Kind, Spec, CUTOFF, GRID, GRID_Y, HURST, LARGEST_WAVELENGTH, RMS_HEIGHT, RMS_SLOPE, ROLLOFF,
     SPACING,
 };
-use crate::text::compact;
+use crate::text::{bytes_text, compact};
 use fft2::{wavenumber, Fft2};
 use noise::Normals;
 use realfft::num_complex::Complex;
@@ -73,10 +70,8 @@ use std::f64::consts::PI;
 /// seed give the same surface.
 pub const GENERATOR_VERSION: &str = "jkrbem-roughness/1";
 
-/// Fewest nodes along either axis (a count), as a [`HeightMap`].
-pub const MIN_NODES: usize = 4;
-/// Most nodes along either axis (a count), as a [`HeightMap`].
-pub const MAX_NODES: usize = 16384;
+pub use crate::params::limits::MAX_ROUGHNESS_NODES as MAX_NODES;
+pub use crate::params::limits::MIN_ROUGHNESS_NODES as MIN_NODES;
 /// Most nodes in all (a count): 8192², about 1.6 GB of heights and spectrum while generating.
 pub const MAX_TOTAL_NODES: usize = 1 << 26;
 /// Memory a surface takes per node while it is generated and written (bytes): the heights,
@@ -217,25 +212,14 @@ impl RoughnessParams {
         memory_estimate(self.nx(), self.ny())
     }
 
-    /// Refuses, before any work, a surface whose generation does not fit in the memory this
-    /// machine can give a run ([`crate::plan::available_memory`]: free memory, the control
-    /// group's and the process's limits, or `JKRBEM_MEMORY_LIMIT` where set).
+    /// Refuses a surface whose generation needs more than `available` bytes (no check if
+    /// `None`; the plan's memory check gives it what this machine has).
     ///
     /// # Errors
     ///
-    /// [`ModelError::Invalid`] naming ⟨grid⟩ (and ⟨grid_y⟩) with the estimate, what is
-    /// available and the largest surface of the same shape that fits; [`ModelError::Environment`]
-    /// for a `JKRBEM_MEMORY_LIMIT` that is no number of bytes.
-    pub fn check_memory(&self) -> Result<(), ModelError> {
-        self.check_memory_within(crate::plan::available_memory()?)
-    }
-
-    /// [`RoughnessParams::check_memory`] against `available` bytes (no check if `None`).
-    ///
-    /// # Errors
-    ///
-    /// [`ModelError::Invalid`], as [`RoughnessParams::check_memory`].
-    pub fn check_memory_within(&self, available: Option<u64>) -> Result<(), ModelError> {
+    /// [`SceneError::Invalid`] naming ⟨grid⟩ (and ⟨grid_y⟩) with the estimate, what is
+    /// available and the largest surface of the same shape that fits.
+    pub fn check_memory_within(&self, available: Option<u64>) -> Result<(), SceneError> {
         let (nx, ny) = (self.nx(), self.ny());
         let need = memory_estimate(nx, ny);
         let Some(available) = available.filter(|&a| need > a) else {
@@ -255,15 +239,15 @@ impl RoughnessParams {
         } else {
             format!("the largest that fits is {GRID} {fx}")
         };
-        Err(ModelError::Invalid {
+        Err(SceneError::Invalid {
             param: GRID,
-            value: nx.to_string(),
+            value: nx as f64,
             expected: format!(
                 "a surface of {GRID} × {GRID_Y} = {nx} × {ny} nodes needs about {} while it is \
                  generated ({BYTES_PER_NODE} bytes per node), more than the {} this machine has \
                  available (free memory, control group and process limits); {fits}",
-                crate::plan::bytes_text(need),
-                crate::plan::bytes_text(available)
+                bytes_text(need),
+                bytes_text(available)
             ),
         })
     }

@@ -1,6 +1,6 @@
 use super::stats::modes;
 use super::*;
-use crate::run::schema::SEED;
+use crate::params::SEED;
 use std::f64::consts::PI;
 
 /// Relative difference of `a` from `b`.
@@ -410,36 +410,6 @@ fn bad_parameters_are_refused_naming_them() {
     };
     assert!(generate(&nyquist).is_ok());
     assert_eq!(SEED.name, "seed");
-}
-
-#[test]
-fn the_surface_round_trips_through_npy_and_its_sidecar_says_what_it_is() {
-    let params = RoughnessParams {
-        grid_y: Some(24),
-        seed: 9,
-        ..RoughnessParams::with_rms_slope(32, 0.1, 0.6, 0.05)
-    };
-    let map = generate(&params).unwrap();
-    let back = HeightMap::from_npy_bytes(&npy_bytes(&map).unwrap(), 0.1, "surface").unwrap();
-    assert_eq!(back, map);
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("surface.npy");
-    std::fs::write(&path, b"old").unwrap();
-    let json_path = save(&map, &params, &path).unwrap();
-    assert_eq!(json_path, dir.path().join("surface.json"));
-    assert_eq!(HeightMap::read(&path, 0.1).unwrap(), map);
-    let meta: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
-    assert_eq!(meta["generator"], GENERATOR_VERSION);
-    assert_eq!(meta["data"], "surface.npy");
-    let stored: RoughnessParams = serde_json::from_value(meta["params"].clone()).unwrap();
-    assert_eq!(stored, params.resolved().unwrap());
-    assert_eq!(stored.cutoff, Some(0.4));
-    assert_eq!(stored.largest_wavelength, Some(3.2));
-    // The stored parameters make the same surface again.
-    assert_eq!(generate(&stored).unwrap(), map);
-    let achieved: Statistics = serde_json::from_value(meta["statistics"].clone()).unwrap();
-    assert!(rel(achieved.rms_slope, 0.05) < 1e-9);
 }
 
 #[test]

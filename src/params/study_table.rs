@@ -8,10 +8,13 @@
 //! with the kind and range of each of its values, and its default where its commands differ
 //! is said in words ([`Fallback::Chosen`]).
 
+use super::limits::{
+    MAX_CURVE_POINTS, MAX_EXPONENT, MAX_INPUT, MAX_MARGIN, MAX_MESH_ANGLE, MAX_RATIO,
+    MAX_REFERENCE_PHASES, MAX_REFERENCE_TARGET, MAX_REPEATS, MAX_RUNS_PER_CASE, MAX_SHARDS,
+    MAX_TIMED_CG_ITERATIONS, MIN_EXPONENT, MIN_FIRST_GRID, MIN_GRID, MIN_INPUT, MIN_POISSON,
+    MIN_REFERENCE_TARGET,
+};
 use super::{cli_only, spec, Fallback, Fronts, Group, Kind, Range, Spec};
-use crate::analysis::crossed::MIN_POISSON;
-use crate::model::{MAX_MARGIN, MAX_MESH_ANGLE, MIN_GRID};
-use crate::scene::{MAX_EXPONENT, MAX_INPUT, MAX_RATIO, MIN_EXPONENT, MIN_INPUT};
 
 /// Most pull-offs a command runs at the same time (`--jobs`).
 pub const MAX_JOBS: usize = 256;
@@ -27,12 +30,9 @@ const CROSSING_ANGLE: Kind = Kind::Real(Range {
     hi_open: false,
 });
 /// A grid side of a list of grids (`--grids`).
-const GRID_SIDE: Kind = Kind::PowerOfTwo(MIN_GRID as u64, crate::model::MAX_GRID as u64);
+const GRID_SIDE: Kind = Kind::PowerOfTwo(MIN_GRID as u64, super::limits::MAX_GRID as u64);
 /// The first grid of a reference ladder and its finest.
-const LADDER_GRID: Kind = Kind::PowerOfTwo(
-    crate::run::reference::MIN_FIRST_GRID as u64,
-    crate::model::MAX_GRID as u64,
-);
+const LADDER_GRID: Kind = Kind::PowerOfTwo(MIN_FIRST_GRID as u64, super::limits::MAX_GRID as u64);
 
 /// A parameter of one or more of these commands, which only the command line takes.
 const fn cli(
@@ -104,7 +104,7 @@ pub const PHASES: &Spec = &cli(
     "phases",
     "--phases",
     "",
-    Kind::Count(1, crate::run::reference::MAX_PHASES as u64),
+    Kind::Count(1, MAX_REFERENCE_PHASES as u64),
     Value("1"),
     "Reference: runs per grid, each at another domain margin (0.08, 0.13, 0.18, …), so that \
      the fit averages the grid phase's scatter.",
@@ -114,10 +114,7 @@ pub const TARGET: &Spec = &cli(
     "target",
     "--target",
     "",
-    Kind::Fraction(
-        crate::run::reference::MIN_TARGET,
-        crate::run::reference::MAX_TARGET,
-    ),
+    Kind::Fraction(MIN_REFERENCE_TARGET, MAX_REFERENCE_TARGET),
     Value("0.3%"),
     "Reference: the relative uncertainty wanted of each |min F̄| at Δx → 0 (a percentage, the \
      unit required); each ladder's grids double until it is reached. Tighter than 0.1 % takes \
@@ -188,7 +185,7 @@ pub const RUNS_PER_CASE: &Spec = &cli(
     "runs_per_case",
     "--runs-per-case",
     "",
-    Kind::Count(1, crate::run::coverage::MAX_RUNS_PER_CASE as u64),
+    Kind::Count(1, MAX_RUNS_PER_CASE as u64),
     Value("1"),
     "Coverage: runs per case, at consecutive margins of one grid (up to the number of \
      margins); every window of consecutive margins is a case.",
@@ -217,7 +214,7 @@ pub const SHARD: &Spec = &cli(
     "shard",
     "--shard",
     "",
-    Kind::Count(1, crate::output::sweep_csv::MAX_SHARDS as u64),
+    Kind::Count(1, MAX_SHARDS as u64),
     Chosen("none: the whole sweep"),
     "Sweep: run only shard K of N, written K/N (1 ≤ K ≤ N ≤ 10000): the ratios at positions \
      K, K+N, K+2N, … of ratios; `jkrbem collect` merges the shards' files.",
@@ -264,7 +261,7 @@ pub const REPEATS: &Spec = &cli(
     "repeats",
     "--repeats",
     "",
-    Kind::Count(1, crate::run::bench::MAX_REPEATS as u64),
+    Kind::Count(1, MAX_REPEATS as u64),
     Value("5"),
     "Bench: timed samples of the convolution and of the CG solve; the median is reported.",
 );
@@ -273,7 +270,7 @@ pub const CG_ITERATIONS: &Spec = &cli(
     "cg_iterations",
     "--cg-iterations",
     "",
-    Kind::Count(1, crate::run::bench::MAX_TIMED_CG_ITERATIONS as u64),
+    Kind::Count(1, MAX_TIMED_CG_ITERATIONS as u64),
     Value("20"),
     "Bench: CG iterations per timed solve (tolerance 0, so exactly this many).",
 );
@@ -293,7 +290,7 @@ pub const PULLOFF_MAX_GRID: &Spec = &cli(
     "--pulloff-max-grid",
     "elements",
     // 0 times no pull-off; no grid is finer than the largest a run takes.
-    Kind::Count(0, crate::model::MAX_GRID as u64),
+    Kind::Count(0, super::limits::MAX_GRID as u64),
     Value("128"),
     "Bench: time a whole pull-off only on grids up to this Nx (0: none).",
 );
@@ -313,7 +310,7 @@ pub const POINTS: &Spec = &cli(
     "--points",
     "",
     // A curve needs two points; a million already resolves it far below plotting.
-    Kind::Count(2, crate::theory::MAX_CURVE_POINTS as u64),
+    Kind::Count(2, MAX_CURVE_POINTS as u64),
     Value("400"),
     "Theory: the number of points on the curve.",
 );

@@ -2,12 +2,12 @@
 //! C order: `a[j, i]` is node `(i, j)`, as [`HeightMap::read`] takes it back) and a JSON
 //! sidecar `<name>.json` beside it with the parameters (defaults filled in), the achieved
 //! statistics and the generator's version. Both are written atomically
-//! ([`crate::output::file`]): an existing file is replaced whole or not at all.
+//! ([`super::file`]): an existing file is replaced whole or not at all.
 
-use super::{statistics, RoughnessParams, GENERATOR_VERSION};
-use crate::output::file::write_bytes;
-use crate::output::OutputError;
+use super::file::write_bytes;
+use super::OutputError;
 use crate::scene::height_map::HeightMap;
+use crate::scene::roughness::{statistics, RoughnessParams, GENERATOR_VERSION};
 use ndarray::Array2;
 use ndarray_npy::WriteNpyExt;
 use serde_json::{json, Value};
@@ -92,4 +92,40 @@ pub fn save(
         serde_json::to_string_pretty(&meta).map_err(|e| encode(&json_path, e.to_string()))?;
     write_bytes(&json_path, format!("{text}\n").as_bytes())?;
     Ok(json_path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::roughness::{generate, Statistics};
+
+    #[test]
+    fn the_surface_round_trips_through_npy_and_its_sidecar_says_what_it_is() {
+        let params = RoughnessParams {
+            grid_y: Some(24),
+            seed: 9,
+            ..RoughnessParams::with_rms_slope(32, 0.1, 0.6, 0.05)
+        };
+        let map = generate(&params).unwrap();
+        let back = HeightMap::from_npy_bytes(&npy_bytes(&map).unwrap(), 0.1, "surface").unwrap();
+        assert_eq!(back, map);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("surface.npy");
+        std::fs::write(&path, b"old").unwrap();
+        let json_path = save(&map, &params, &path).unwrap();
+        assert_eq!(json_path, dir.path().join("surface.json"));
+        assert_eq!(HeightMap::read(&path, 0.1).unwrap(), map);
+        let meta: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
+        assert_eq!(meta["generator"], GENERATOR_VERSION);
+        assert_eq!(meta["data"], "surface.npy");
+        let stored: RoughnessParams = serde_json::from_value(meta["params"].clone()).unwrap();
+        assert_eq!(stored, params.resolved().unwrap());
+        assert_eq!(stored.cutoff, Some(0.4));
+        assert_eq!(stored.largest_wavelength, Some(3.2));
+        // The stored parameters make the same surface again.
+        assert_eq!(generate(&stored).unwrap(), map);
+        let achieved: Statistics = serde_json::from_value(meta["statistics"].clone()).unwrap();
+        assert!((achieved.rms_slope / 0.05 - 1.0).abs() < 1e-9);
+    }
 }

@@ -1,13 +1,12 @@
 //! The table of parameters: one `const` [`Spec`] each (a message names one as `{MARGIN}`), and
 //! [`SPECS`], every one of them in the order `--help` shows them.
 
-use super::{cli_only, spec, Fallback, Group, Kind, Range, Spec};
-use crate::model::{
-    MAX_CG_ITERATIONS, MAX_CG_TOLERANCE, MAX_GRID, MAX_MARGIN, MAX_MESH_ANGLE, MAX_STEPS,
-    MIN_FINAL_D_BAR, MIN_GRID, START_RADIUS_RANGE,
+use super::limits::{
+    MAX_CG_ITERATIONS, MAX_CG_TOLERANCE, MAX_EXPONENT, MAX_GRID, MAX_INPUT, MAX_MARGIN,
+    MAX_MESH_ANGLE, MAX_RATIO, MAX_ROUGHNESS_NODES, MAX_STEPS, MAX_TIME_LIMIT_S, MIN_EXPONENT,
+    MIN_FINAL_D_BAR, MIN_GRID, MIN_INPUT, MIN_ROUGHNESS_NODES, START_RADIUS_RANGE,
 };
-use crate::scene::{MAX_EXPONENT, MIN_EXPONENT};
-use crate::scene::{MAX_INPUT, MAX_RATIO, MIN_INPUT};
+use super::{cli_only, spec, Fallback, Group, Kind, Range, Spec};
 
 /// A dimensional input's range (R1, R2, E*, Δγ, a, s, the map's spacing).
 const INPUT: Kind = Kind::Real(Range::closed(MIN_INPUT, MAX_INPUT));
@@ -505,7 +504,7 @@ pub const TIME_LIMIT: &Spec = &spec(
     "--time-limit",
     Plan,
     "s",
-    Kind::Seconds(1.0, crate::run::simulate::MAX_TIME_LIMIT_S),
+    Kind::Seconds(1.0, MAX_TIME_LIMIT_S),
     Chosen("none"),
     "Wall-clock time a run to an accuracy may take (the CLI writes it with its unit: `90s`, \
      `20min`, `2h`; Python in seconds). The coarsest grid that resolves the contact runs first; \
@@ -717,10 +716,7 @@ pub const ROUGHNESS_GRID: &Spec = &spec(
     "nodes",
     // A map needs 4 nodes a side; past 16384 its transforms leave any machine's memory (and
     // the total is capped lower still, at MAX_TOTAL_NODES).
-    Kind::Count(
-        crate::scene::roughness::MIN_NODES as u64,
-        crate::scene::roughness::MAX_NODES as u64,
-    ),
+    Kind::Count(MIN_ROUGHNESS_NODES as u64, MAX_ROUGHNESS_NODES as u64),
     Chosen("none: required"),
     "Roughness: nodes along x, nx (any count, though a power of two transforms fastest).",
 );
@@ -730,10 +726,7 @@ pub const ROUGHNESS_GRID_Y: &Spec = &spec(
     "--grid-y",
     Study,
     "nodes",
-    Kind::Count(
-        crate::scene::roughness::MIN_NODES as u64,
-        crate::scene::roughness::MAX_NODES as u64,
-    ),
+    Kind::Count(MIN_ROUGHNESS_NODES as u64, MAX_ROUGHNESS_NODES as u64),
     Chosen("as ⟨grid⟩"),
     "Roughness: nodes along y, ny.",
 );

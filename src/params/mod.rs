@@ -2,11 +2,15 @@
 //! plan, outputs): its name, unit, range, default and help, and the words each front end gives
 //! it (the CLI's flag, the Python keyword, which is the name). Both front ends derive their
 //! arguments from [`SPECS`]; requests are checked against it ([`values`]) and built from it
-//! ([`super::request`]); the library's messages name a parameter by its [`Spec`] (displayed as
+//! (the session's request); the library's messages name a parameter by its [`Spec`] (displayed as
 //! a marker that each front end words in its own names, [`words`]).
 
+pub mod limits;
 pub mod values;
 pub mod words;
+
+mod field_choice;
+pub use field_choice::FieldChoice;
 
 mod study_table;
 mod table;

@@ -215,7 +215,7 @@ pub fn from_text(spec: &Spec, text: &str) -> Result<Value, String> {
             let parts: Option<Vec<f64>> = text.split(',').map(number).collect();
             grids_in(spec, &parts.ok_or_else(bad)?, lo, hi, &s)
         }
-        Kind::States => crate::analysis::fields::FieldChoice::parse(text)
+        Kind::States => super::FieldChoice::parse(text)
             .map(|_| Value::from(text.trim()))
             .map_err(|_| bad()),
         Kind::Choices(names) => {
