@@ -3,11 +3,15 @@
 //! criterion.
 //!
 //! [`params`] is the ground floor: every parameter's name, range, unit and words, which
-//! every room reads and which reads none of them. Data flows one way: [`scene`] → [`model`] → [`solver`] (over a [`backend`]) → states →
-//! [`output`]. [`theory`] holds the closed forms the results are checked against,
-//! [`analysis`] every number derived from the states (estimates and their uncertainties, fits,
-//! contours), [`run`] the session layer that plans, runs and hands results to `output`, and
-//! [`bench`](mod@bench) times the backend operations and whole pull-offs (`jkrbem bench`).
+//! every room reads and which reads none of them. Data flows one way: [`scene`] → [`model`] →
+//! [`solver`] (over a [`backend`]) → states → [`analysis`] → [`output`]. [`theory`] holds the
+//! closed forms the results are checked against, [`analysis`] every number derived from the
+//! states (estimates and their uncertainties, fits, contours), [`plan`] the grids and the
+//! memory a request needs, [`session`] the typed request and its run (one pull-off, a scene
+//! to an accuracy, a batch of scenes) handed to `output`, [`studies`] what is built on
+//! sessions (sweeps, the study, references and coverage, timings), and [`bench`](mod@bench)
+//! times the backend operations and whole pull-offs (`jkrbem bench`). Each room imports only
+//! rooms below it.
 
 #![warn(missing_docs)]
 
@@ -18,9 +22,10 @@ pub mod model;
 pub mod output;
 pub mod params;
 pub mod plan;
-pub mod run;
 pub mod scene;
+pub mod session;
 pub mod setup;
 pub mod solver;
+pub mod studies;
 pub mod text;
 pub mod theory;

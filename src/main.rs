@@ -238,7 +238,7 @@ fn main() -> ExitCode {
     #[cfg(feature = "gpu")]
     jkrbem::backend::gpu::headless::quiet_display_probe();
     install_signal_handlers();
-    jkrbem::run::provenance::set_command_line(command_line());
+    jkrbem::session::provenance::set_command_line(command_line());
     let command = values_may_start_with_a_hyphen(Cli::command());
     let cli = Cli::from_arg_matches(&command.get_matches()).unwrap_or_else(|e| e.exit());
     jkrbem::output::file::set_force(cli.force);

@@ -4,11 +4,11 @@
 //! turns into numpy arrays. Errors name the Python keyword, never a CLI flag.
 
 use jkrbem::model::{Measure, Model};
-use jkrbem::run::request::Request;
 use jkrbem::params::{self, words::keywords};
-use jkrbem::run::simulate::{simulate as run_simulate, Simulated, Sink, DEFAULT_ACCURACY};
-use jkrbem::run::{RunError, Watch};
 use jkrbem::scene::height_map::HeightMap;
+use jkrbem::session::request::Request;
+use jkrbem::session::simulate::{simulate as run_simulate, Simulated, Sink, DEFAULT_ACCURACY};
+use jkrbem::session::{RunError, Watch};
 use jkrbem::solver::State;
 use jkrbem::theory::{self, TheoryModel};
 use pyo3::create_exception;
@@ -37,8 +37,8 @@ create_exception!(
 
 // The library's limits and defaults, as the CLI's: the longest `time_limit` (s), the most
 // points of a closed-form curve and the power law's default factor s of h = s·rⁿ.
-use jkrbem::run::simulate::MAX_TIME_LIMIT_S;
 use jkrbem::scene::DEFAULT_POWER_LAW_SCALE as DEFAULT_SCALE;
+use jkrbem::session::simulate::MAX_TIME_LIMIT_S;
 use jkrbem::theory::MAX_CURVE_POINTS as MAX_THEORY_POINTS;
 
 /// A refusal naming Python keywords.
@@ -119,7 +119,7 @@ fn array_map(req: &Request, heights: Option<Heights<'_>>) -> PyResult<Option<Hei
     HeightMap::new(nx, ny, spacing, values)
         .map(Some)
         .map_err(|e| {
-            let name = if req.indenter == jkrbem::run::request::Shape::HeightMap {
+            let name = if req.indenter == jkrbem::session::request::Shape::HeightMap {
                 "height_map"
             } else {
                 "roughness"
@@ -702,7 +702,7 @@ impl Watch for BatchWatch {
     fn warning(&self, line: &str) {
         self.event(json!({"event": "warning", "text": keywords(line)}));
     }
-    fn scene_ended(&self, s: &jkrbem::run::scenes::pool::SceneEnded) {
+    fn scene_ended(&self, s: &jkrbem::session::batch::pool::SceneEnded) {
         self.event(
             json!({"event": "scene", "index": s.index, "done": s.done, "total": s.total,
                           "adhesive_force": s.f_ad_bar, "grid_adhesive_force": s.grid_f_ad_bar,
@@ -736,13 +736,13 @@ fn batch<'py>(
     processes: usize,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Vec<SceneAnswer<'py>>> {
-    use jkrbem::run::scenes::pool::{run_all, SceneJob};
+    use jkrbem::session::batch::pool::{run_all, SceneJob};
     guarded(|| {
         let given: Vec<serde_json::Map<String, Value>> = parse(requests)?;
         let mut requests = Vec::with_capacity(given.len());
         let mut jobs = Vec::with_capacity(given.len());
         // Each file the scenes name is read once, its map shared by the scenes naming it.
-        let mut reads = jkrbem::run::request::MapReads::default();
+        let mut reads = jkrbem::session::request::MapReads::default();
         for (i, g) in given.iter().enumerate() {
             let at = |e: RunError| input_error(format!("scenes[{i}]: {e}"));
             let values = Request::check_json(g.iter().map(|(k, v)| (k.as_str(), v)))
@@ -751,7 +751,7 @@ fn batch<'py>(
             let sim = req
                 .simulate_request_sharing(Sink::Memory, None, &mut reads)
                 .map_err(at)?;
-            jkrbem::run::simulate::planned_outputs(&sim).map_err(at)?;
+            jkrbem::session::simulate::planned_outputs(&sim).map_err(at)?;
             jobs.push(SceneJob {
                 request: sim,
                 label: format!("scenes[{i}]"),

@@ -6,7 +6,7 @@ use super::progress::Progress;
 use super::{count_in, failures, no_repeats, run_error, CliError};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::params::{GRIDS, RATIO};
-use jkrbem::run::accuracy::{accuracy, AccuracyRequest, Variant};
+use jkrbem::studies::accuracy::{accuracy, AccuracyRequest, Variant};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem accuracy`.

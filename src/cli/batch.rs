@@ -2,13 +2,13 @@
 //! `simulate` as a column) simulated to `DIR/scene-<id>.csv` and `.json`; `--shard K/N` runs
 //! every N-th row so a cluster can split the batch, `--resume` skips the scenes already done,
 //! and `jkrbem collect DIR` merges them into `DIR/batch.csv`. The work is
-//! [`jkrbem::run::scenes::batch`].
+//! [`jkrbem::session::batch::run`].
 
 use super::parse::value;
 use super::progress::Progress;
 use super::{run_error, CliError};
 use jkrbem::params::JOBS;
-use jkrbem::run::scenes::batch::{batch, BatchRequest};
+use jkrbem::session::batch::run::{batch, BatchRequest};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem batch`.

@@ -1,6 +1,6 @@
 //! `jkrbem bench`: time the convolution, one CG iteration and whole pull-offs per backend and
 //! grid; print a table and GPU/CPU ratios, write a CSV and an SVG chart. The work is
-//! [`jkrbem::run::bench`].
+//! [`jkrbem::studies::bench`].
 
 use super::parse::value;
 use super::progress::Progress;
@@ -11,7 +11,7 @@ use jkrbem::output::bench as bench_text;
 use jkrbem::params::{
     CG_ITERATIONS, GRIDS, MARGIN, PULLOFF_MAX_GRID, RATIO, REPEATS, START_RADIUS,
 };
-use jkrbem::run::bench::{bench, BenchRequest};
+use jkrbem::studies::bench::{bench, BenchRequest};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem bench`.

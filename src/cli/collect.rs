@@ -4,12 +4,12 @@
 //! shards) says; missing and incomplete ratios are named by value, and rows that could not be
 //! checked or drawn are warned of. For a batch, its records and every scene's summary into
 //! DIR/batch.csv (and the wall times into DIR/batch-timings.csv); missing, stale and
-//! incomplete scenes are named by id. The work is [`jkrbem::run::collect::collect`].
+//! incomplete scenes are named by id. The work is [`jkrbem::studies::collect::collect`].
 
 use super::{run_error, CliError};
-use jkrbem::run::collect::{collect, Collected};
-use jkrbem::run::scenes::collect::BatchMerged;
-use jkrbem::run::sweep::Merged;
+use jkrbem::session::batch::collect::BatchMerged;
+use jkrbem::studies::collect::{collect, Collected};
+use jkrbem::studies::sweep::Merged;
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem collect`.

@@ -1,5 +1,5 @@
 //! `jkrbem coverage`: how honest the stated uncertainties are. Parses the flags; the work is
-//! [`jkrbem::run::coverage`].
+//! [`jkrbem::studies::coverage`].
 
 use super::parse::value;
 use super::progress::Progress;
@@ -8,12 +8,12 @@ use jkrbem::backend::select::BackendKind;
 use jkrbem::params::{
     APEX_OFFSETS, EXPONENTS, GRIDS, MARGINS, MESH_ANGLES, RATIOS, RUNS_PER_CASE, SEEDS,
 };
-use jkrbem::run::coverage::{
+use jkrbem::session::open::BackendRequest;
+use jkrbem::studies::coverage::{
     coverage, generic_coverage, generic_scenes, CaseVariant, CoverageRequest, CoverageShape,
     CoverageSummary, GenericCoverageRequest, DEFAULT_MARGINS,
 };
-use jkrbem::run::open::BackendRequest;
-use jkrbem::run::reference::REFERENCE_RATIOS;
+use jkrbem::studies::reference::REFERENCE_RATIOS;
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem coverage`.

@@ -1,6 +1,6 @@
 //! `jkrbem crossed`: two identical elastic cylinders crossed at angles θ, each mapped to an
 //! ellipsoid (physics §1), one pull-off per angle; the adhesive force in newtons (in the units
-//! of the inputs) beside Johnson–Greenwood's. The work is [`jkrbem::run::crossed`].
+//! of the inputs) beside Johnson–Greenwood's. The work is [`jkrbem::studies::crossed`].
 
 use super::parse::value;
 use super::progress::Progress;
@@ -10,7 +10,7 @@ use jkrbem::params::{
     Spec, ACCURACY, ANGLE, ANGLES, E, GRID, JOBS, MARGIN, NU, POISSON, RADIUS, STEPS,
     WORK_OF_ADHESION, YOUNG,
 };
-use jkrbem::run::crossed::{crossed, CrossedRequest};
+use jkrbem::studies::crossed::{crossed, CrossedRequest};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem crossed`.

@@ -52,15 +52,15 @@ impl fmt::Display for CliError {
 }
 
 /// A request's error as the command's: a refusal is bad input, anything else a failed run.
-pub fn run_error(e: jkrbem::run::RunError) -> CliError {
+pub fn run_error(e: jkrbem::session::RunError) -> CliError {
     match e {
-        jkrbem::run::RunError::Input(m) => CliError::Input(m),
-        jkrbem::run::RunError::Failed(m) => CliError::Run(m),
+        jkrbem::session::RunError::Input(m) => CliError::Input(m),
+        jkrbem::session::RunError::Failed(m) => CliError::Run(m),
     }
 }
 
-impl From<jkrbem::run::RunError> for CliError {
-    fn from(e: jkrbem::run::RunError) -> Self {
+impl From<jkrbem::session::RunError> for CliError {
+    fn from(e: jkrbem::session::RunError) -> Self {
         run_error(e)
     }
 }
@@ -121,8 +121,11 @@ pub fn failures(what: &str, failures: &[String], note: &str) -> Result<(), CliEr
 
 /// A batch's grid choice from `--grid` and `--accuracy`: the grid if given, else the accuracy
 /// (default [`simulate::DEFAULT_ACCURACY`]).
-pub fn grid_choice(grid: Option<usize>, accuracy: Option<f64>) -> jkrbem::run::batch::GridChoice {
-    use jkrbem::run::batch::GridChoice;
+pub fn grid_choice(
+    grid: Option<usize>,
+    accuracy: Option<f64>,
+) -> jkrbem::session::pulloffs::GridChoice {
+    use jkrbem::session::pulloffs::GridChoice;
     match grid {
         Some(nx) => GridChoice::Fixed(nx),
         None => GridChoice::Accuracy(accuracy.unwrap_or(simulate::DEFAULT_ACCURACY)),

@@ -1,13 +1,13 @@
 //! `jkrbem reference`: the table of converged adhesive forces per R1/R2 that the convergence law
-//! is fitted to. Parses the flags; the work is [`jkrbem::run::reference`].
+//! is fitted to. Parses the flags; the work is [`jkrbem::studies::reference`].
 
 use super::parse::value;
 use super::progress::Progress;
 use super::{run_error, CliError};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::params::{FIRST_GRID, MAX_GRID, PHASES, RATIOS, TARGET};
-use jkrbem::run::open::BackendRequest;
-use jkrbem::run::reference::{reference, ReferenceRequest, REFERENCE_RATIOS};
+use jkrbem::session::open::BackendRequest;
+use jkrbem::studies::reference::{reference, ReferenceRequest, REFERENCE_RATIOS};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem reference`.

@@ -1,12 +1,12 @@
 //! `jkrbem reproduce`: the whole study of physics §8 from one command — the sweep over R1/R2,
 //! the fits, the crossed cylinders — with every chart as SVG and an index.html that shows
-//! them. The work is [`jkrbem::run::study`].
+//! them. The work is [`jkrbem::studies::study`].
 
 use super::parse::value;
 use super::progress::Progress;
 use super::{failures, run_error, CliError};
 use jkrbem::params::JOBS;
-use jkrbem::run::study::{study, StudyRequest};
+use jkrbem::studies::study::{study, StudyRequest};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem reproduce`.

@@ -9,8 +9,8 @@ use jkrbem::params::{
     words::flags, Spec, CUTOFF, HURST, LARGEST_WAVELENGTH, OUT, RMS_HEIGHT, RMS_SLOPE, ROLLOFF,
     ROUGHNESS_GRID, ROUGHNESS_GRID_Y, SEED, SPACING,
 };
-use jkrbem::run::claim::{write_error, Outputs};
 use jkrbem::scene::roughness::{self, RoughnessParams};
+use jkrbem::session::claim::{write_error, Outputs};
 use jkrbem::text::compact;
 use std::path::PathBuf;
 

@@ -2,7 +2,7 @@
 //! `reproduce`): one backend request for every run of the study.
 
 use jkrbem::backend::select::{BackendKind, Precision};
-use jkrbem::run::open::BackendRequest;
+use jkrbem::session::open::BackendRequest;
 
 /// The backend every run of a study uses, and the arithmetic of its FFT passes.
 #[derive(Debug, Clone, clap::Args)]

@@ -1,13 +1,13 @@
 //! `jkrbem sweep`: one pull-off per axis ratio R1/R2, with per-ratio states and summaries and
 //! a summary CSV; `--shard K/N` runs every N-th ratio so a cluster can split the sweep, and
-//! `jkrbem collect` merges the shards. The work is [`jkrbem::run::sweep`].
+//! `jkrbem collect` merges the shards. The work is [`jkrbem::studies::sweep`].
 
 use super::parse::value;
 use super::progress::Progress;
 use super::stdout::not_stdout;
 use super::{count_in, no_repeats, run_error, CliError};
 use jkrbem::params::{ACCURACY, GRID, JOBS, MARGIN, RATIOS, START_RADIUS, STEPS};
-use jkrbem::run::sweep::{sweep, SweepRequest};
+use jkrbem::studies::sweep::{sweep, SweepRequest};
 use std::path::PathBuf;
 
 /// Arguments of `jkrbem sweep`.

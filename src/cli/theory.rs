@@ -5,7 +5,7 @@ use super::stdout::{is_stdout, write_stdout_bytes, Channel};
 use super::{input, CliError};
 use clap::ValueEnum;
 use jkrbem::params::{OUT, POINTS, RATIO};
-use jkrbem::run::claim::{write_error, Outputs};
+use jkrbem::session::claim::{write_error, Outputs};
 use jkrbem::theory::{self, TheoryModel};
 use std::path::PathBuf;
 

@@ -10,11 +10,11 @@ use crate::common;
 
 use common::{jkrbem, stderr};
 use jkrbem::backend::select::BackendKind;
-use jkrbem::run::coverage::{
+use jkrbem::session::open::BackendRequest;
+use jkrbem::session::Quiet;
+use jkrbem::studies::coverage::{
     coverage, summarise, CaseVariant, CoverageCase, CoverageRequest, CoverageSummary,
 };
-use jkrbem::run::open::BackendRequest;
-use jkrbem::run::Quiet;
 
 #[test]
 fn the_coverage_command_writes_every_case_and_reuses_its_runs() {
@@ -229,14 +229,14 @@ fn stated_intervals_hold_on_turned_meshes_and_offset_apexes() {
 /// The generic study of `shapes` (power-law exponents `exponents`) on the ladder `grids` at
 /// `margins`, the phase set shifted by each of `shifts`, on the CPU; prints every case.
 fn generic_study(
-    shapes: &[jkrbem::run::coverage::CoverageShape],
+    shapes: &[jkrbem::studies::coverage::CoverageShape],
     exponents: &[f64],
     grids: &[usize],
     margins: &[f64],
     shifts: &[(f64, f64)],
     out: &std::path::Path,
-) -> jkrbem::run::coverage::GenericCoverageDone {
-    use jkrbem::run::coverage::{generic_coverage, generic_scenes, GenericCoverageRequest};
+) -> jkrbem::studies::coverage::GenericCoverageDone {
+    use jkrbem::studies::coverage::{generic_coverage, generic_scenes, GenericCoverageRequest};
     let mut scenes = Vec::new();
     for &s in shapes {
         scenes.extend(generic_scenes(s, exponents, &[1]).unwrap());
@@ -321,7 +321,7 @@ fn the_coverage_command_checks_shapes_without_a_law() {
 #[test]
 #[ignore = "slow tier: 240 pull-offs up to 128², about 10 minutes on 2 cores"]
 fn slow_generic_intervals_hold_their_closed_forms_nine_times_in_ten() {
-    use jkrbem::run::coverage::CoverageShape;
+    use jkrbem::studies::coverage::CoverageShape;
     let dir = tempfile::tempdir().unwrap();
     let done = generic_study(
         &[CoverageShape::FlatPunch, CoverageShape::PowerLaw],

@@ -6,9 +6,9 @@ use jkrbem::analysis::fields::{FieldChoice, StateFields};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::model::ModelOptions;
 use jkrbem::output::pressure_profile::{profile_chart, profiles, JkrSphere};
-use jkrbem::run::open::BackendRequest;
-use jkrbem::run::simulate::{simulate, Mode, SimulateRequest, Sink};
 use jkrbem::scene::Scene;
+use jkrbem::session::open::BackendRequest;
+use jkrbem::session::simulate::{simulate, Mode, SimulateRequest, Sink};
 use jkrbem::theory::jkr::jkr_pressure;
 use std::sync::OnceLock;
 
@@ -34,7 +34,7 @@ fn fields_of(ratio: f64, nx: usize, choice: FieldChoice) -> (Vec<StateFields>, u
             input_files: Vec::new(),
             figures: Default::default(),
         },
-        &jkrbem::run::Quiet,
+        &jkrbem::session::Quiet,
     )
     .unwrap();
     let run = done.runs.into_iter().last().unwrap();

@@ -5,10 +5,10 @@
 
 use jkrbem::backend::select::BackendKind;
 use jkrbem::model::{Measure, ModelOptions, Onsets};
-use jkrbem::run::open::BackendRequest;
-use jkrbem::run::simulate::{simulate, Mode, SimulateRequest, Sink};
-use jkrbem::run::Quiet;
 use jkrbem::scene::{Indenter, Scene};
+use jkrbem::session::open::BackendRequest;
+use jkrbem::session::simulate::{simulate, Mode, SimulateRequest, Sink};
+use jkrbem::session::Quiet;
 
 /// The summary of `indenter` extrapolated over `grids` (each at every grid phase), CPU, in
 /// memory.

@@ -4,10 +4,10 @@
 
 use jkrbem::backend::select::BackendKind;
 use jkrbem::model::ModelOptions;
-use jkrbem::run::open::BackendRequest;
-use jkrbem::run::simulate::{simulate, Mode, SimulateRequest, Sink};
-use jkrbem::run::Watch;
 use jkrbem::scene::Scene;
+use jkrbem::session::open::BackendRequest;
+use jkrbem::session::simulate::{simulate, Mode, SimulateRequest, Sink};
+use jkrbem::session::Watch;
 use jkrbem::solver::State;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -41,10 +41,10 @@ fn a_run_in_memory_equals_the_run_to_files_and_writes_nothing() {
             out: Some(out.clone()),
             summary: None,
         }),
-        &jkrbem::run::Quiet,
+        &jkrbem::session::Quiet,
     )
     .unwrap();
-    let kept = simulate(&request(Sink::Memory), &jkrbem::run::Quiet).unwrap();
+    let kept = simulate(&request(Sink::Memory), &jkrbem::session::Quiet).unwrap();
     assert!(kept.states.is_empty(), "no file named");
     assert_eq!(filed.states, vec![out.clone()]);
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);

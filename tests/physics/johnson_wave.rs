@@ -17,9 +17,9 @@ use jkrbem::backend::cpu::CpuBackend;
 use jkrbem::backend::prelude::*;
 use jkrbem::backend::{GridSetup, Preconditioner};
 use jkrbem::model::{kappa, CgSettings, ModelOptions};
-use jkrbem::run::request::Request;
-use jkrbem::run::simulate::{simulate, Sink};
 use jkrbem::scene::height_map::HeightMap;
+use jkrbem::session::request::Request;
+use jkrbem::session::simulate::{simulate, Sink};
 use jkrbem::solver::cg::{self, CgWork};
 use jkrbem::solver::equilibrium::{equilibrate, Fields};
 use jkrbem::theory::johnson_wave::Wave;
@@ -323,7 +323,7 @@ fn pipeline_pull_off(w: &Wave, nx: usize, dir: &std::path::Path) -> f64 {
     .unwrap();
     let simulated = simulate(
         &request.simulate_request(Sink::Memory, None).unwrap(),
-        &jkrbem::run::Quiet,
+        &jkrbem::session::Quiet,
     )
     .unwrap();
     let run = &simulated.runs[0];

@@ -133,8 +133,8 @@ fn slow_loose_rounds_give_the_exact_rounds_states() {
 /// provenance say f32.
 #[test]
 fn the_f32_fft_passes_give_the_f64_pull_off() {
-    use jkrbem::run::request::Request;
-    use jkrbem::run::simulate::{simulate, Sink};
+    use jkrbem::session::request::Request;
+    use jkrbem::session::simulate::{simulate, Sink};
     let run = |precision: &str| {
         let request = Request::from_texts([
             ("ratio", "1"),
@@ -144,7 +144,7 @@ fn the_f32_fft_passes_give_the_f64_pull_off() {
         ])
         .unwrap();
         let request = request.simulate_request(Sink::Memory, None).unwrap();
-        simulate(&request, &jkrbem::run::Quiet).unwrap().summary
+        simulate(&request, &jkrbem::session::Quiet).unwrap().summary
     };
     let (f64_run, f32_run) = (run("f64"), run("f32"));
     let (a, b) = (&f64_run.runs[0], &f32_run.runs[0]);

@@ -13,8 +13,8 @@ pub use throttle::{Throttle, PLAIN_EVERY};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use jkrbem::model::Model;
-use jkrbem::run::scenes::pool::SceneEnded;
-use jkrbem::run::Watch;
+use jkrbem::session::batch::pool::SceneEnded;
+use jkrbem::session::Watch;
 use jkrbem::solver::State;
 use std::io::IsTerminal;
 use std::sync::Mutex;

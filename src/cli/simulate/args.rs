@@ -1,7 +1,7 @@
 //! The flags of `jkrbem simulate`, derived from the request schema
 //! ([`jkrbem::params::SPECS`]): one flag per parameter, its help, unit, range and default
 //! from there. What is given is kept as text, by parameter name, for
-//! [`jkrbem::run::request::Request::from_texts`] to check.
+//! [`jkrbem::session::request::Request::from_texts`] to check.
 
 use clap::{Arg, ArgAction, ArgMatches, FromArgMatches};
 use jkrbem::params::{Kind, Spec, SPECS};

@@ -7,8 +7,8 @@ use super::progress::Progress;
 use super::stdout::{claim_stdout, is_stdout, write_stdout_bytes, Channel};
 use super::{run_error, CliError};
 use jkrbem::output::states_csv::states_csv_bytes;
-use jkrbem::run::request::Request;
-use jkrbem::run::simulate::{failure_error, simulate, Sink};
+use jkrbem::session::request::Request;
+use jkrbem::session::simulate::{failure_error, simulate, Sink};
 use std::path::PathBuf;
 
 mod args;
@@ -16,7 +16,7 @@ mod args;
 pub use args::Args;
 
 /// The accuracy of a bare `simulate` (relative): the adhesive force to 2 %.
-pub use jkrbem::run::simulate::DEFAULT_ACCURACY;
+pub use jkrbem::session::simulate::DEFAULT_ACCURACY;
 
 /// What goes to standard output instead of a file (`-`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

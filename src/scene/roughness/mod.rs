@@ -50,7 +50,7 @@ mod stats;
 
 pub use stats::{
     carrying_wavelength, radial_psd, rms_curvature, rms_height, rms_slope, shortest_wavelength,
-    statistics, PsdBin, Statistics, SLOPE_TAIL,
+    statistics, PsdBin, Statistics, CARRY_SHARE, SLOPE_TAIL,
 };
 
 use super::height_map::HeightMap;

@@ -2,11 +2,11 @@
 //! merged later) read back from their states files (complete, or a failed run's partial
 //! file). The session layer gathers the points; the chart only draws them.
 
-use super::batch::JobResult;
 use crate::output::file::is_partial_of;
 use crate::output::names;
 use crate::output::sweep_csv::SweepRow;
 use crate::output::OutputError;
+use crate::session::pulloffs::JobResult;
 use std::path::{Path, PathBuf};
 
 /// The (d̄, F̄) points of each row's states in `dir`, or why there are none (a missing or

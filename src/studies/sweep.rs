@@ -1,13 +1,8 @@
 //! One pull-off per axis ratio R1/R2 (or one shard of them), with each ratio's states, summary
 //! and contours, the sweep's summary CSV (or shard file) and its charts.
 
-use super::batch::{batch_model, run_files, run_jobs, GridChoice, Job};
 use super::chart_data;
-use super::claim::{named, write_error, Outputs};
 use super::curves::{row_curves, sweep_curves};
-use super::open::BackendRequest;
-use super::Watch;
-use super::{input, RunError};
 use crate::model::{Model, ModelOptions};
 use crate::output::figure::FigureFormats;
 use crate::output::sweep_charts::write_sweep_charts;
@@ -15,6 +10,11 @@ use crate::output::sweep_csv::{self, Shard, SweepRow, SweepSettings};
 use crate::output::NamedBy;
 use crate::params::{ALLOW_MISSING, GRID, OUT, RATIO, RATIOS};
 use crate::scene::{Scene, SceneError};
+use crate::session::claim::{named, write_error, Outputs};
+use crate::session::open::BackendRequest;
+use crate::session::pulloffs::{batch_model, run_files, run_jobs, GridChoice, Job};
+use crate::session::Watch;
+use crate::session::{input, RunError};
 use std::path::{Path, PathBuf};
 
 /// A request for a sweep over R1/R2.
@@ -239,7 +239,7 @@ fn check_rows(dir: &Path, c: &sweep_csv::Collected) -> Result<Vec<(f64, PathBuf)
             continue;
         }
         let summary = states_path(dir, row.ratio, row.grid).with_extension("json");
-        match sweep_csv::check_row(row, shard, &summary).map_err(super::failed)? {
+        match sweep_csv::check_row(row, shard, &summary).map_err(crate::session::failed)? {
             sweep_csv::RowCheck::Agrees => {}
             sweep_csv::RowCheck::NoSummary => {
                 if row.is_usable() {
@@ -302,7 +302,7 @@ pub fn collect_shards(
         CollectError::Corrupt(..)
         | CollectError::Mixed(..)
         | CollectError::Duplicate { .. }
-        | CollectError::Mismatch { .. } => super::failed(e),
+        | CollectError::Mismatch { .. } => crate::session::failed(e),
     })?;
     let unchecked = check_rows(dir, &c)?;
     let mut problems = Vec::new();
@@ -329,7 +329,7 @@ pub fn collect_shards(
         ));
     }
     if !problems.is_empty() && !allow_missing {
-        return Err(super::failed(format!(
+        return Err(crate::session::failed(format!(
             "{}; nothing was written (pass {ALLOW_MISSING} to merge what there is)",
             problems.join("; ")
         )));

@@ -7,10 +7,7 @@
 //! `reference --phases` does. Runs already in the output folder are reused
 //! and estimated again, so that a new law is checked on the same runs in seconds.
 
-use super::claim::{named, write_error, Outputs};
-use super::open::BackendRequest;
 use super::reference::run_or_reuse;
-use super::{failed, input, RunError, Watch};
 use crate::analysis::convergence::{self, TableValue};
 use crate::analysis::estimate;
 use crate::analysis::generic_limit;
@@ -20,6 +17,9 @@ use crate::params::{
     MESH_ANGLES, OUT, RATIOS, RUNS_PER_CASE, SHAPES, VARIANTS,
 };
 use crate::scene::Scene;
+use crate::session::claim::{named, write_error, Outputs};
+use crate::session::open::BackendRequest;
+use crate::session::{failed, input, RunError, Watch};
 use crate::solver::edge_advice;
 use serde::Serialize;
 use std::fmt;

@@ -6,16 +6,16 @@
 
 pub mod reuse;
 
-use super::claim::{named, write_error, Outputs};
-use super::open::BackendRequest;
-use super::simulate::{simulate, Mode, SimulateRequest, Sink};
-use super::{failed, input, RunError, Watch};
 use crate::analysis::convergence::{self, TableLaw};
 use crate::analysis::estimate;
 use crate::analysis::report::RunReport;
 use crate::model::{Measure, Model, ModelError, ModelOptions, Onsets, MAX_GRID};
 use crate::params::{ACCURACY, FIRST_GRID, MAX_GRID as MAX_GRID_SPEC, OUT, PHASES, RATIOS, TARGET};
 use crate::scene::Scene;
+use crate::session::claim::{named, write_error, Outputs};
+use crate::session::open::BackendRequest;
+use crate::session::simulate::{simulate, Mode, SimulateRequest, Sink};
+use crate::session::{failed, input, RunError, Watch};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 

@@ -1,33 +1,23 @@
-//! The session layer: what a user asks for (one pull-off, an adhesive force to an accuracy, a
-//! sweep over R1/R2, a batch of any scenes, crossed cylinders, the whole study, timings),
-//! planned, run on backends and handed to `output` to write. Each front end (the `jkrbem`
-//! command line, a test, another program) only builds a request, calls one function here and
-//! shows what comes back.
+//! The session: what a user asks for as one typed request, checked, planned and run on a
+//! backend (one pull-off, an adhesive force to an accuracy, a batch of any scenes), its
+//! outputs claimed and written through `output`. Each front end (the `jkrbem` command line,
+//! Python, a test) only builds a request, calls one function here and shows what comes back;
+//! the studies build on it, never the reverse.
 //!
 //! Errors say whether the request was refused before any work ([`RunError::Input`]) or the
 //! work failed ([`RunError::Failed`]), and name the parameter or value to change: a parameter
-//! by its [`crate::params::Spec`]'s marker, which each front end words (the command line as its flag,
-//! Python as its keyword; [`crate::params::words`]).
+//! by its [`crate::params::Spec`]'s marker, which each front end words (the command line as
+//! its flag, Python as its keyword; [`crate::params::words`]).
 
-pub mod accuracy;
 pub mod batch;
-pub mod bench;
-pub mod chart_data;
 pub mod claim;
-pub mod collect;
-pub mod coverage;
-pub mod crossed;
-pub mod curves;
 pub mod fields;
 pub mod open;
 pub mod provenance;
 pub mod pulloff;
-pub mod reference;
+pub mod pulloffs;
 pub mod request;
-pub mod scenes;
 pub mod simulate;
-pub mod study;
-pub mod sweep;
 
 use crate::model::Model;
 use crate::solver::State;
@@ -81,8 +71,8 @@ pub trait Watch: Sync {
     fn pulloff_ended(&self) {}
     /// A warning about a result.
     fn warning(&self, _line: &str) {}
-    /// A scene of a batch ended ([`scenes::pool`]), with its answer or why it has none.
-    fn scene_ended(&self, _scene: &scenes::pool::SceneEnded) {}
+    /// A scene of a batch ended ([`batch::pool`]), with its answer or why it has none.
+    fn scene_ended(&self, _scene: &batch::pool::SceneEnded) {}
     /// Asked after every state, held ones included: `false` stops the pull-off there (what an
     /// interrupt from a notebook needs); the run then returns the states it had handed on,
     /// marked incomplete.

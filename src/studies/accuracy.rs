@@ -4,11 +4,6 @@
 //! uncertainty), and the same for first-order extrapolations of consecutive grids, against
 //! the wall time each cost.
 
-use super::batch::{run_files, run_jobs, Job};
-use super::claim::{named, write_error, Outputs};
-use super::open::BackendRequest;
-use super::Watch;
-use super::{input, RunError};
 use crate::analysis::estimate::{from_runs, Estimate};
 use crate::analysis::extrapolate::extrapolate_first_order;
 use crate::analysis::report::RunReport;
@@ -19,6 +14,11 @@ use crate::output::figure::FigureFormats;
 use crate::output::names;
 use crate::params::{BACKENDS, GRIDS, MEASURE, OUT, REGRID, VARIANTS};
 use crate::scene::Scene;
+use crate::session::claim::{named, write_error, Outputs};
+use crate::session::open::BackendRequest;
+use crate::session::pulloffs::{run_files, run_jobs, Job};
+use crate::session::Watch;
+use crate::session::{input, RunError};
 use serde::Serialize;
 use std::fmt;
 use std::path::PathBuf;

@@ -2,11 +2,6 @@
 //! grids) a whole pull-off, optionally the GPU's kernels one by one; the rows are written as
 //! CSV and a chart. The timing itself is [`crate::bench`].
 
-use super::claim::{named, write_error, Outputs};
-use super::open::backend_error;
-use super::provenance::word;
-use super::Watch;
-use super::{input, RunError};
 #[cfg(feature = "gpu")]
 use crate::backend::select::AnyBackend;
 use crate::backend::select::{self, BackendKind, Opened, Precision};
@@ -20,6 +15,11 @@ use crate::params::{
     BACKENDS, CG_ITERATIONS, GRIDS, OUT, PRECISIONS, PROFILE, PULLOFF_MAX_GRID, REPEATS,
 };
 use crate::scene::Scene;
+use crate::session::claim::{named, write_error, Outputs};
+use crate::session::open::backend_error;
+use crate::session::provenance::word;
+use crate::session::Watch;
+use crate::session::{input, RunError};
 use std::path::PathBuf;
 
 pub use crate::params::limits::MAX_REPEATS;

@@ -1,14 +1,9 @@
 //! The whole study of physics §8 from one request: the sweep over R1/R2, the branch fits and
 //! their laws, the crossed cylinders, every chart as SVG and an index.html that shows them.
 
-use super::batch::{jg_of, run_files, run_jobs, Job, JobResult};
 use super::chart_data;
-use super::claim::{named, write_error, Outputs};
 use super::crossed::{crossed, CrossedRequest};
 use super::curves::{row_curves, run_of};
-use super::open::BackendRequest;
-use super::Watch;
-use super::{failed, input, RunError};
 use crate::analysis::capture::ContourRow;
 use crate::analysis::estimate::{self, AdhesiveResult};
 use crate::analysis::study_fits::{
@@ -26,6 +21,11 @@ use crate::output::sweep_charts::{force_vs_ratio_chart, pulloff_curves_chart};
 use crate::output::sweep_csv::{self, SweepRow};
 use crate::params::{ACCURACY, OUT, QUICK};
 use crate::scene::Scene;
+use crate::session::claim::{named, write_error, Outputs};
+use crate::session::open::BackendRequest;
+use crate::session::pulloffs::{jg_of, run_files, run_jobs, Job, JobResult};
+use crate::session::Watch;
+use crate::session::{failed, input, RunError};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -736,9 +736,9 @@ fn crossed_step(
     watch: &dyn Watch,
 ) -> Result<(), RunError> {
     let crossed_grid = if args.quick {
-        super::batch::GridChoice::Fixed(128)
+        crate::session::pulloffs::GridChoice::Fixed(128)
     } else {
-        super::batch::GridChoice::Accuracy(0.02)
+        crate::session::pulloffs::GridChoice::Accuracy(0.02)
     };
     let crossed_dir = args.out.join("crossed");
     let crossed_req = CrossedRequest {

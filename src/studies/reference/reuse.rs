@@ -9,9 +9,9 @@ use crate::backend::select::BackendKind;
 use crate::model::ModelOptions;
 use crate::output::states_csv::read_state_rows;
 use crate::params::BACKEND;
-use crate::run::open::BackendRequest;
-use crate::run::provenance::word;
 use crate::scene::Scene;
+use crate::session::open::BackendRequest;
+use crate::session::provenance::word;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 

@@ -6,8 +6,8 @@
 
 use crate::output::file::{read_regular, ReadError};
 use crate::params::{self, values, words, Fronts, Spec, SPECS};
-use crate::run::request::Request;
-use crate::run::{input, RunError};
+use crate::session::request::Request;
+use crate::session::{input, RunError};
 use std::collections::HashMap;
 use std::path::Path;
 

@@ -1,12 +1,12 @@
 //! `jkrbem collect DIR`: what the folder holds decides what is merged, a split sweep's shard
 //! files ([`super::sweep::collect_shards`]) or a batch's records and scene summaries
-//! ([`super::scenes::collect::collect_batch`]).
+//! ([`crate::session::batch::collect::collect_batch`]).
 
-use super::scenes::collect::{collect_batch, records_in, BatchMerged};
 use super::sweep::{collect_shards, Merged};
-use super::{input, RunError};
 use crate::output::figure::FigureFormats;
 use crate::params::OUT;
+use crate::session::batch::collect::{collect_batch, records_in, BatchMerged};
+use crate::session::{input, RunError};
 use std::path::Path;
 
 /// What `collect` merged.

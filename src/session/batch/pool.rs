@@ -3,8 +3,8 @@
 //! `jkrbem batch`) or stay in memory (Python's `jkrbem.batch`).
 
 use crate::model::Model;
-use crate::run::simulate::{simulate, SimulateRequest, Simulated};
-use crate::run::{failed, RunError, Watch};
+use crate::session::simulate::{simulate, SimulateRequest, Simulated};
+use crate::session::{failed, RunError, Watch};
 use crate::solver::State;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};

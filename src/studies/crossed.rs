@@ -2,16 +2,16 @@
 //! §1), one pull-off per angle; the adhesive force in the inputs' force unit beside
 //! Johnson–Greenwood's, as CSV and a chart.
 
-use super::batch::{batch_model, run_files, run_jobs, GridChoice, Job};
-use super::claim::{named, write_error, Outputs};
-use super::open::BackendRequest;
-use super::Watch;
-use super::{input, RunError};
 use crate::analysis::CrossedCylinders;
 use crate::model::{Model, ModelOptions};
 use crate::output::figure::FigureFormats;
 use crate::output::line_chart::{LineChart, Style};
 use crate::params::{Spec, ANGLE, GRID, OUT};
+use crate::session::claim::{named, write_error, Outputs};
+use crate::session::open::BackendRequest;
+use crate::session::pulloffs::{batch_model, run_files, run_jobs, GridChoice, Job};
+use crate::session::Watch;
+use crate::session::{input, RunError};
 use crate::theory;
 use serde::Serialize;
 use std::path::PathBuf;
