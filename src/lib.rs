@@ -7,6 +7,11 @@
 //! [`analysis`] every number derived from the states (estimates and their uncertainties, fits,
 //! contours), [`run`] the session layer that plans, runs and hands results to `output`, and
 //! [`bench`](mod@bench) times the backend operations and whole pull-offs (`jkrbem bench`).
+//!
+//! Cargo features, all on by default: `gpu` (the wgpu backend), `cli` (the `jkrbem` command:
+//! clap and indicatif; it takes `figures`) and `figures` (drawing the charts as SVG, PDF and
+//! PNG). A library built without `figures` computes every chart's data but draws none:
+//! writing a chart fails with [`output::figure::NOT_DRAWN`].
 
 #![warn(missing_docs)]
 
