@@ -12,6 +12,11 @@
 //! sessions (sweeps, the study, references and coverage, timings), and [`bench`](mod@bench)
 //! times the backend operations and whole pull-offs (`jkrbem bench`). Each room imports only
 //! rooms below it.
+//!
+//! Cargo features, all on by default: `gpu` (the wgpu backend), `cli` (the `jkrbem` command:
+//! clap and indicatif; it takes `figures`) and `figures` (drawing the charts as SVG, PDF and
+//! PNG). A library built without `figures` computes every chart's data but draws none:
+//! writing a chart fails with [`output::figure::NOT_DRAWN`].
 
 #![warn(missing_docs)]
 

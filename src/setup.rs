@@ -20,9 +20,8 @@ pub struct GridSetup {
 }
 
 /// How the elastic operator's inverse is approximated for preconditioning.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, serde::Serialize, serde::Deserialize,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Preconditioner {
     /// No preconditioning: z = r.

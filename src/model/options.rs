@@ -7,17 +7,8 @@ use crate::setup::Preconditioner;
 /// Which detachment onsets (the local minima of the sawtooth F(d)) a pull-off locates. The
 /// contact set at the end of every load step does not depend on this: the detachment rule is
 /// monotone, so a step ends on the greatest stable subset of the set it started from.
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Default,
-    clap::ValueEnum,
-    serde::Serialize,
-    serde::Deserialize,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Onsets {
     /// Whole load steps; the onsets of a step are located only where they can hold the force
@@ -45,17 +36,8 @@ impl Onsets {
 }
 
 /// What a run is for.
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Default,
-    clap::ValueEnum,
-    serde::Serialize,
-    serde::Deserialize,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Measure {
     /// The whole pull-off curve, to the end of contact.

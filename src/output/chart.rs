@@ -6,16 +6,21 @@
 //! charts too).
 
 use super::figure::{write_figure, FigureFormats, PlotPoint};
+#[cfg(feature = "figures")]
 use super::figure_style::{
     colour, draw_markers, AXIS_FONT, DASH, LABEL_FONT, LINE_WIDTH, MARGIN, MARKER_RADIUS,
-    PAGE_HEIGHT, PAGE_WIDTH, TITLE_FONT, X_LABEL_AREA, Y_LABEL_AREA,
+    TITLE_FONT, X_LABEL_AREA, Y_LABEL_AREA,
 };
+use super::figure_style::{PAGE_HEIGHT, PAGE_WIDTH};
+#[cfg(feature = "figures")]
 use super::legend::{render_with_legend, Legend, PlotFrame, Sample};
 use super::OutputError;
+#[cfg(feature = "figures")]
 use plotters::prelude::*;
 use std::path::Path;
 
 /// Most distinct x values that still get one tick each.
+#[cfg(feature = "figures")]
 const MAX_DATA_TICKS: usize = 12;
 
 /// One labelled series of points.
@@ -79,13 +84,22 @@ impl LogLogChart {
 
     /// The chart as an SVG document: the plot at [`LogLogChart::size`], the legend inside it
     /// or below.
+    #[cfg(feature = "figures")]
     pub fn to_svg(&self) -> Result<String, String> {
         render_with_legend(self.size, &self.legend(), |root| {
             self.draw(root).map_err(|e| e.to_string())
         })
     }
 
+    /// Without the `figures` feature no chart is drawn: always
+    /// [`NOT_DRAWN`](super::figure::NOT_DRAWN).
+    #[cfg(not(feature = "figures"))]
+    pub fn to_svg(&self) -> Result<String, String> {
+        Err(super::figure::NOT_DRAWN.into())
+    }
+
     /// The legend: a line through a marker, dashed and hollow for dashed series.
+    #[cfg(feature = "figures")]
     fn legend(&self) -> Legend {
         Legend::new(
             self.series
@@ -134,6 +148,7 @@ impl LogLogChart {
 
     /// Every point with a place on the axes, and the top of its error bar: what the ranges
     /// must hold.
+    #[cfg(feature = "figures")]
     fn points(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
         self.series.iter().flat_map(|s| {
             plottable_with_errors(s)
@@ -141,6 +156,7 @@ impl LogLogChart {
         })
     }
 
+    #[cfg(feature = "figures")]
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
@@ -207,6 +223,7 @@ impl LogLogChart {
 }
 
 /// The plot area of `chart` in the picture's pixels, with nothing marked yet.
+#[cfg(feature = "figures")]
 pub(crate) fn plot_frame<DB: DrawingBackend, CT: plotters::coord::CoordTranslate>(
     chart: &ChartContext<'_, DB, CT>,
 ) -> PlotFrame {
@@ -218,6 +235,7 @@ pub(crate) fn plot_frame<DB: DrawingBackend, CT: plotters::coord::CoordTranslate
 }
 
 /// Render a chart drawn by `draw` into an SVG document of `size` pixels.
+#[cfg(feature = "figures")]
 pub(crate) fn render_svg(
     size: (u32, u32),
     draw: impl FnOnce(&DrawingArea<SVGBackend, plotters::coord::Shift>) -> Result<(), String>,
@@ -249,6 +267,7 @@ fn plottable_with_errors(s: &Series) -> impl Iterator<Item = ((f64, f64), Option
 }
 
 /// The points of a series that have a place on log axes.
+#[cfg(feature = "figures")]
 fn plottable(points: &[(f64, f64)]) -> impl Iterator<Item = (f64, f64)> + '_ {
     points
         .iter()
@@ -259,6 +278,7 @@ fn plottable(points: &[(f64, f64)]) -> impl Iterator<Item = (f64, f64)> + '_ {
 /// The range of one axis, padded by a fifth of a decade either side, and its ticks: the
 /// data's own values when `data_ticks` and there are at most [`MAX_DATA_TICKS`] of them,
 /// otherwise the 1–2–5 values inside the range (only the decades if those are too many).
+#[cfg(feature = "figures")]
 fn axis(values: &[f64], data_ticks: bool) -> (std::ops::Range<f64>, Vec<f64>) {
     let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -360,6 +380,7 @@ mod tests {
         }
     }
 
+    #[cfg(feature = "figures")]
     #[test]
     fn a_long_legend_label_wraps_inside_the_picture() {
         // Before: a 30-ratio sweep's label ran past the picture's right edge.
@@ -397,6 +418,7 @@ mod tests {
         }
     }
 
+    #[cfg(feature = "figures")]
     #[test]
     fn few_x_values_are_their_own_ticks() {
         let (r, t) = axis(&[64.0, 128.0, 256.0, 64.0], true);
@@ -407,6 +429,7 @@ mod tests {
         assert!(t.contains(&1.0) && t.contains(&50.0));
     }
 
+    #[cfg(feature = "figures")]
     #[test]
     fn a_chart_renders_to_svg() {
         let mut c = LogLogChart::new("t", "x (unit)", "y (ms)");

@@ -6,9 +6,17 @@
 //! from it ([`FigureFormats::files`]).
 
 use super::names::{figure_file as picture, plot_csv};
-use super::{file, render, OutputError};
+#[cfg(feature = "figures")]
+use super::render;
+use super::{file, OutputError};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
+
+/// Why a chart is not drawn in a build without the `figures` feature (the library alone, e.g.
+/// the Python package's): its data are computed, but none of its files is written.
+pub const NOT_DRAWN: &str =
+    "this build of jkrbem has no figures (it was built without the `figures` feature), so \
+     charts cannot be drawn";
 
 /// A picture's file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -185,7 +193,8 @@ impl PlotRecord for PlotPoint {
 /// `<stem>.plot.csv` ([`names::plot_csv`](super::names::plot_csv)). Each file is written
 /// atomically; the text is worded for the command line first (as every text file is,
 /// [`file::write_text`]), so that every format says the same. The first failure is returned,
-/// naming its file.
+/// naming its file. Without the `figures` feature a PDF or PNG cannot be made: asking for one
+/// fails with [`NOT_DRAWN`] (and no chart of this crate is drawn at all: its `svg` is that).
 pub fn write_figure<T: PlotRecord>(
     chart: &Path,
     svg: Result<String, String>,
@@ -203,8 +212,12 @@ pub fn write_figure<T: PlotRecord>(
         let path = picture(chart, format);
         let bytes = match format {
             FigureFormat::Svg => svg.clone().into_bytes(),
+            #[cfg(feature = "figures")]
             FigureFormat::Pdf => render::to_pdf(&svg).map_err(|e| drawn(&path, e))?,
+            #[cfg(feature = "figures")]
             FigureFormat::Png => render::to_png(&svg).map_err(|e| drawn(&path, e))?,
+            #[cfg(not(feature = "figures"))]
+            FigureFormat::Pdf | FigureFormat::Png => return Err(drawn(&path, NOT_DRAWN.into())),
         };
         file::write_bytes(&path, &bytes)?;
     }
@@ -251,6 +264,7 @@ mod tests {
         assert_eq!(FigureFormat::parse("jpeg"), None);
     }
 
+    #[cfg(feature = "figures")]
     #[test]
     fn a_figure_is_written_in_every_format_with_its_data() {
         let dir = tempfile::tempdir().unwrap();
@@ -303,5 +317,35 @@ mod tests {
         let e = write_figure::<PlotPoint>(&bad, Err("no".into()), &[], all).unwrap_err();
         assert!(e.to_string().contains("bad.svg"), "{e}");
         assert!(!bad.with_extension("plot.csv").exists());
+    }
+
+    #[cfg(not(feature = "figures"))]
+    #[test]
+    fn without_figures_a_chart_is_refused_and_nothing_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let chart = dir.path().join("c.svg");
+        let mut c = crate::output::line_chart::LineChart::new("t", "x", "y");
+        c.push(
+            "line",
+            vec![(0.0, 1.0), (0.1, 2.0)],
+            0,
+            crate::output::line_chart::Style::Line,
+        );
+        // Its data are still there; the chart is not drawn, and writing it says why.
+        assert_eq!(c.plot_points().len(), 2);
+        assert_eq!(c.to_svg(), Err(NOT_DRAWN.to_string()));
+        let e = c.write_figure(&chart, FigureFormats::SVG).unwrap_err();
+        assert!(e.to_string().contains("c.svg"), "{e}");
+        assert!(e.to_string().contains("`figures` feature"), "{e}");
+        // A PDF or PNG of an SVG drawn elsewhere is refused too.
+        let e = write_figure::<PlotPoint>(
+            &chart,
+            Ok("<svg/>".into()),
+            &[],
+            FigureFormats::of(&[FigureFormat::Png]),
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("c.png"), "{e}");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
     }
 }

@@ -1,9 +1,13 @@
 //! The figures' style, in one place: a page-width canvas whose text prints at 9–11 pt, the
 //! Okabe–Ito colours (safe for colour-blind readers) with a marker shape per colour (so that
-//! series stay apart in greyscale), and the dash of fits and second references.
+//! series stay apart in greyscale), and the dash of fits and second references. The colours
+//! and markers are `plotters`' (the `figures` feature); the sizes are every chart's.
 
+#[cfg(feature = "figures")]
 use plotters::coord::CoordTranslate;
+#[cfg(feature = "figures")]
 use plotters::element::{EmptyElement, PathElement, Polygon};
+#[cfg(feature = "figures")]
 use plotters::prelude::*;
 
 /// Pixels per inch of an SVG's user unit (CSS px): a picture of [`PAGE_WIDTH`] px prints at
@@ -50,6 +54,7 @@ pub const EM_PER_CHAR: f64 = 0.55;
 
 /// The Okabe–Ito colours (Okabe & Ito 2008), in an order whose neighbours differ in lightness
 /// too: blue, orange, bluish green, reddish purple, black, vermillion, sky blue, yellow.
+#[cfg(feature = "figures")]
 pub const PALETTE: [RGBColor; 8] = [
     RGBColor(0, 114, 178),
     RGBColor(230, 159, 0),
@@ -62,6 +67,7 @@ pub const PALETTE: [RGBColor; 8] = [
 ];
 
 /// The colour of colour index `k`.
+#[cfg(feature = "figures")]
 pub fn colour(k: usize) -> RGBColor {
     PALETTE[k % PALETTE.len()]
 }
@@ -74,6 +80,7 @@ pub fn text_width(text: &str, size: u32) -> u32 {
 /// Draw the markers of colour index `k` at `points` (in `area`'s coordinates): circles,
 /// squares, triangles, diamonds or inverted triangles (by `k`), filled or hollow, of radius
 /// `r` (px).
+#[cfg(feature = "figures")]
 pub fn draw_markers<DB, CT>(
     area: &DrawingArea<DB, CT>,
     points: &[CT::From],
@@ -129,6 +136,7 @@ mod tests {
         assert!(LABEL_FONT as f64 * 72.0 / PX_PER_INCH >= 9.0);
     }
 
+    #[cfg(feature = "figures")]
     #[test]
     fn neighbouring_colours_differ_in_greyscale() {
         let grey = |c: RGBColor| 0.299 * c.0 as f64 + 0.587 * c.1 as f64 + 0.114 * c.2 as f64;

@@ -4,14 +4,19 @@
 //! below it (never over the data). Shapes (contours) can be drawn with equal scales on both
 //! axes.
 
+#[cfg(feature = "figures")]
 use super::chart::{linear_tick_label, plot_frame};
 use super::figure::{write_figure, FigureFormats, PlotPoint};
+#[cfg(feature = "figures")]
 use super::figure_style::{
     colour, draw_markers, AXIS_FONT, DASH, LABEL_FONT, LINE_WIDTH, MARGIN, MARKER_RADIUS,
-    PAGE_HEIGHT, PAGE_WIDTH, TITLE_FONT, X_LABEL_AREA, Y_LABEL_AREA,
+    TITLE_FONT, X_LABEL_AREA, Y_LABEL_AREA,
 };
+use super::figure_style::{PAGE_HEIGHT, PAGE_WIDTH};
+#[cfg(feature = "figures")]
 use super::legend::{render_with_legend, Legend, PlotFrame, Sample};
 use super::OutputError;
+#[cfg(feature = "figures")]
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -70,6 +75,7 @@ pub struct LineChart {
 pub type Estimate = ((f64, f64), f64);
 
 /// The least height (px) of the plot of a chart with equal scales.
+#[cfg(feature = "figures")]
 const MIN_EQUAL_HEIGHT: u32 = 150;
 
 impl LineChart {
@@ -144,13 +150,22 @@ impl LineChart {
 
     /// The chart as an SVG document: the plot at [`LineChart::size`], the legend inside it
     /// or below.
+    #[cfg(feature = "figures")]
     pub fn to_svg(&self) -> Result<String, String> {
         render_with_legend(self.fitted_size(), &self.legend(), |root| {
             self.draw(root).map_err(|e| e.to_string())
         })
     }
 
+    /// Without the `figures` feature no chart is drawn: always
+    /// [`NOT_DRAWN`](super::figure::NOT_DRAWN).
+    #[cfg(not(feature = "figures"))]
+    pub fn to_svg(&self) -> Result<String, String> {
+        Err(super::figure::NOT_DRAWN.into())
+    }
+
     /// The legend, each entry drawn as its curve is.
+    #[cfg(feature = "figures")]
     pub(super) fn legend(&self) -> Legend {
         Legend::new(
             self.curves
@@ -179,6 +194,7 @@ impl LineChart {
     /// `pixels` (width, height): an axis whose data (`centred`, x then y) lie on both sides of
     /// 0 (a whole outline) about its centre, any other (a quarter contour from its axes)
     /// keeping its lower end.
+    #[cfg(feature = "figures")]
     fn equalised(
         xr: std::ops::Range<f64>,
         yr: std::ops::Range<f64>,
@@ -236,6 +252,7 @@ impl LineChart {
 
     /// x ticks: on a log axis log10 of 1, 2, 5 × 10^k inside the range; on a linear axis
     /// about ten round values.
+    #[cfg(feature = "figures")]
     fn x_ticks(&self, r: &std::ops::Range<f64>) -> Vec<f64> {
         if self.x_log {
             let decades = r.start.floor() as i32..=r.end.ceil() as i32;
@@ -257,6 +274,7 @@ impl LineChart {
     }
 
     /// A curve's finite points (positive x on a log axis).
+    #[cfg(feature = "figures")]
     fn plotted(&self, c: &Curve) -> Vec<(f64, f64)> {
         self.plotted_with_errors(c)
             .into_iter()
@@ -282,6 +300,7 @@ impl LineChart {
     }
 
     /// Every point, and the ends of its error bar: what must be in range.
+    #[cfg(feature = "figures")]
     fn extent(&self) -> Vec<(f64, f64)> {
         self.curves
             .iter()
@@ -291,6 +310,7 @@ impl LineChart {
     }
 
     /// The linear ranges of x and y that hold `points`, padded by 5 % either side.
+    #[cfg(feature = "figures")]
     fn ranges(points: &[(f64, f64)]) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
         let range = |v: Vec<f64>| {
             let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
@@ -310,6 +330,7 @@ impl LineChart {
     /// The size of the plot and its axes (px): [`LineChart::size`], or with equal scales its
     /// height fitted to the data's aspect (at least [`MIN_EQUAL_HEIGHT`] px of plot), so that a
     /// slender shape fills the plot's width rather than a corner of a square.
+    #[cfg(feature = "figures")]
     fn fitted_size(&self) -> (u32, u32) {
         if !self.equal_scales || self.x_log {
             return self.size;
@@ -325,6 +346,7 @@ impl LineChart {
         )
     }
 
+    #[cfg(feature = "figures")]
     pub(super) fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
@@ -368,6 +390,7 @@ impl LineChart {
         }
     }
 
+    #[cfg(feature = "figures")]
     fn draw_on<DB: DrawingBackend, X>(
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
@@ -451,7 +474,8 @@ impl super::figure::WriteFigure for LineChart {
     }
 }
 
-#[cfg(test)]
+// Every test draws the chart.
+#[cfg(all(test, feature = "figures"))]
 mod tests {
     use super::*;
     use crate::output::figure_style::PALETTE;

@@ -1,6 +1,10 @@
 //! Outputs: state CSVs, run summaries for people and scripts, log–log and linear charts, and
 //! the timings of `jkrbem bench`. Every file is written through [`file`](mod@file): never half-written,
 //! never over a file that is not a regular one, and never over another run's.
+//!
+//! The charts are drawn (SVG, PDF, PNG) with the default-on `figures` feature. Without it every
+//! chart's data is still computed, but a chart is not drawn, and writing one fails, naming it,
+//! with [`figure::NOT_DRAWN`] (none of its files is written).
 
 pub mod batch_csv;
 pub mod bench;
@@ -10,6 +14,7 @@ pub mod fields_npz;
 pub mod figure;
 pub mod figure_style;
 pub mod file;
+#[cfg(feature = "figures")]
 pub mod legend;
 pub mod line_chart;
 pub mod names;
@@ -19,6 +24,7 @@ pub mod pressure_profile;
 #[cfg(feature = "gpu")]
 pub mod profile;
 pub mod provenance;
+#[cfg(feature = "figures")]
 pub mod render;
 pub mod roughness_npy;
 pub mod series;

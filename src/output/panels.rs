@@ -3,16 +3,20 @@
 //! states). Each panel keeps its own axes, title and legend; a legend goes inside its panel
 //! where a corner is free of data, else below the panels (never over the data).
 
+#[cfg(feature = "figures")]
 use super::chart::render_svg;
 use super::figure::{write_figure, FigureFormats, PlotPoint};
 use super::figure_style::{PAGE_HEIGHT, PAGE_WIDTH};
+#[cfg(feature = "figures")]
 use super::legend::{with_plot_area, Legend};
 use super::line_chart::LineChart;
 use super::OutputError;
+#[cfg(feature = "figures")]
 use plotters::prelude::*;
 use std::path::Path;
 
 /// Space between the panels and the legends below them (px).
+#[cfg(feature = "figures")]
 const GAP: u32 = 8;
 
 /// Charts drawn side by side in one figure.
@@ -36,6 +40,7 @@ impl Panels {
     /// The figure as an SVG document. Its recorded plot area
     /// ([`PLOT_AREA_NOTE`](super::legend::PLOT_AREA_NOTE)) spans the panels' plot areas, from
     /// the first one's left edge to the last one's right.
+    #[cfg(feature = "figures")]
     pub fn to_svg(&self) -> Result<String, String> {
         let n = self.charts.len().max(1) as u32;
         let cell = self.size.0 / n;
@@ -85,9 +90,17 @@ impl Panels {
         Ok(with_plot_area(svg, span(&areas)))
     }
 
+    /// Without the `figures` feature no chart is drawn: always
+    /// [`NOT_DRAWN`](super::figure::NOT_DRAWN).
+    #[cfg(not(feature = "figures"))]
+    pub fn to_svg(&self) -> Result<String, String> {
+        Err(super::figure::NOT_DRAWN.into())
+    }
+
     /// Draw every panel in its share of `root`'s width, and each legend whose `placed` entry
     /// is unset in a free corner of its panel (recording where); `areas` gets the panels' plot
     /// areas.
+    #[cfg(feature = "figures")]
     fn draw(
         &self,
         root: &DrawingArea<SVGBackend, plotters::coord::Shift>,
@@ -133,6 +146,7 @@ impl Panels {
 }
 
 /// The box from the first plot area's left and top to the last one's right and bottom.
+#[cfg(feature = "figures")]
 fn span(areas: &[(i32, i32, i32, i32)]) -> (i32, i32, i32, i32) {
     let l = areas.iter().map(|a| a.0).min().unwrap_or(0);
     let t = areas.iter().map(|a| a.1).min().unwrap_or(0);
@@ -147,7 +161,8 @@ impl super::figure::WriteFigure for Panels {
     }
 }
 
-#[cfg(test)]
+// Every test draws the chart.
+#[cfg(all(test, feature = "figures"))]
 mod tests {
     use super::*;
     use crate::output::line_chart::Style;

@@ -5,21 +5,28 @@
 //! scale are drawn at its ends, and the colour bar says so), the contact's outline (the
 //! element sides between contact and no contact), and a colour bar in force/length².
 
+#[cfg(feature = "figures")]
 use super::chart::{linear_tick_label, plot_frame, render_svg};
 use super::figure::{write_figure, FigureFormats, PlotRecord};
+#[cfg(feature = "figures")]
 use super::figure_style::{AXIS_FONT, LABEL_FONT, MARGIN, PAGE_WIDTH, TITLE_FONT};
+#[cfg(feature = "figures")]
 use super::legend::with_plot_area;
 use super::OutputError;
 use crate::analysis::fields::StateFields;
+#[cfg(feature = "figures")]
 use plotters::prelude::*;
+#[cfg(feature = "figures")]
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::Path;
 
 /// The most cells the picture draws along a side.
 const MAX_CELLS: usize = 160;
 /// The width of the colour bar's zone: the bar, its labels and its title (px).
+#[cfg(feature = "figures")]
 const BAR_ZONE: u32 = 125;
 /// The colour bar's own width (px).
+#[cfg(feature = "figures")]
 const BAR_WIDTH: i32 = 16;
 /// The share of the interior's |p| below the colour scale's end (dimensionless).
 const SCALE_QUANTILE: f64 = 0.98;
@@ -27,6 +34,7 @@ const SCALE_QUANTILE: f64 = 0.98;
 const BORDER: f64 = 0.15;
 
 /// The colour of p/scale ∈ [−1, 1]: blue (tension) through white to red (compression).
+#[cfg(feature = "figures")]
 fn colour(t: f64) -> RGBColor {
     let t = t.clamp(-1.0, 1.0);
     let fade = |v: f64| (255.0 * (1.0 - v.abs())) as u8;
@@ -117,7 +125,15 @@ pub fn pressure_cells(f: &StateFields) -> Vec<PressureCell> {
     cells
 }
 
+/// Without the `figures` feature no chart is drawn: always
+/// [`NOT_DRAWN`](super::figure::NOT_DRAWN).
+#[cfg(not(feature = "figures"))]
+pub fn pressure_svg(_f: &StateFields, _title: &str) -> Result<String, String> {
+    Err(super::figure::NOT_DRAWN.into())
+}
+
 /// The SVG heat map of `f`'s pressure, titled `title`.
+#[cfg(feature = "figures")]
 pub fn pressure_svg(f: &StateFields, title: &str) -> Result<String, String> {
     let (i0, i1, j0, j1) = window(f);
     let (scale, peak) = colour_scale(f);
@@ -218,6 +234,7 @@ pub(crate) fn colour_scale(f: &StateFields) -> (f64, f64) {
 /// The colour bar at `(x, top, bottom)` (px in `root`): p from −scale to +scale
 /// (force/length²), five labels to its right and its title beside them; where `peak` lies
 /// beyond the scale, two lines above the bar say that the colours are clipped there.
+#[cfg(feature = "figures")]
 fn draw_colour_bar(
     root: &DrawingArea<SVGBackend, plotters::coord::Shift>,
     (x, top, bottom): (i32, i32, i32),

@@ -8,17 +8,8 @@ use crate::backend::BackendError;
 use crate::model::Model;
 
 /// How the displacements u = K ∗ p are convolved.
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Default,
-    clap::ValueEnum,
-    serde::Serialize,
-    serde::Deserialize,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Convolution {
     /// Zero-padded to 2Nx × 2Ny: the exact non-periodic sum (physics §4), for an isolated

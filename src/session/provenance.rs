@@ -18,11 +18,14 @@ pub fn set_command_line(line: String) {
     let _ = COMMAND_LINE.set(line);
 }
 
-/// An option's value as the CLI spells it (e.g. "adhesive-force", "cpu").
-pub(crate) fn word<T: clap::ValueEnum>(value: T) -> String {
-    value
-        .to_possible_value()
-        .map_or_else(String::new, |v| v.get_name().to_string())
+/// An option's value as the CLI spells it (e.g. "adhesive-force", "cpu"): its serialised name,
+/// kebab-case as the parser's (checked against clap's in the tests, where the `cli` feature
+/// builds it).
+pub(crate) fn word<T: serde::Serialize>(value: T) -> String {
+    match serde_json::to_value(value) {
+        Ok(Value::String(name)) => name,
+        _ => String::new(),
+    }
 }
 
 /// The scene in the user's units.
@@ -129,4 +132,41 @@ pub fn provenance(scene: &Scene, options: Value, backend: Value) -> Provenance {
         backend,
         COMMAND_LINE.get().cloned(),
     )
+}
+
+#[cfg(all(test, feature = "cli"))]
+mod tests {
+    use super::word;
+    use crate::backend::select::{BackendKind, Precision};
+    use crate::model::Measure;
+    use crate::session::open::Convolution;
+    use crate::setup::Preconditioner;
+    use clap::ValueEnum;
+
+    /// Every value of `T` as the parser names it.
+    fn parser_names<T: ValueEnum + serde::Serialize + Clone>() -> Vec<(String, String)> {
+        T::value_variants()
+            .iter()
+            .map(|v| {
+                let parsed = v.to_possible_value().unwrap().get_name().to_string();
+                (word(v.clone()), parsed)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_word_is_the_name_the_parser_takes() {
+        let all = [
+            parser_names::<Preconditioner>(),
+            parser_names::<Measure>(),
+            parser_names::<BackendKind>(),
+            parser_names::<Precision>(),
+            parser_names::<Convolution>(),
+        ];
+        for (word, parsed) in all.iter().flatten() {
+            assert_eq!(word, parsed);
+        }
+        assert_eq!(word(Measure::AdhesiveForce), "adhesive-force");
+        assert_eq!(word(Precision::F64), "f64");
+    }
 }

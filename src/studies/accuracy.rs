@@ -24,7 +24,8 @@ use std::fmt;
 use std::path::PathBuf;
 
 /// A way of running each grid.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Variant {
     /// The whole curve on a fixed grid.
     Plain,

@@ -38,7 +38,8 @@ pub use crate::params::limits::MAX_RUNS_PER_CASE;
 pub const DEFAULT_MARGINS: [f64; 5] = [0.08, 0.13, 0.18, 0.23, 0.28];
 
 /// How each case's grid is run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum CaseVariant {
     /// The same Δx throughout (`--measure adhesive-force`).
     Fixed,
@@ -678,7 +679,8 @@ pub fn summarise(name: &str, cases: &[&CoverageCase]) -> Option<CoverageSummary>
 }
 
 /// A shape whose stated uncertainties coverage checks.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum CoverageShape {
     /// The ellipsoid, by its convergence law ([`coverage`]).
     Ellipsoid,

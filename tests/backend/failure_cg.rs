@@ -9,8 +9,11 @@
 
 use crate::common;
 
-use common::cg_failures::{assert_floor_detected_and_marked, cpu_run, number_after, short_run};
-use common::{cpu_backend, jkrbem, model_for, pseudo_random, stderr};
+use common::cg_failures::{assert_floor_detected_and_marked, cpu_run, short_run};
+use common::{cpu_backend, model_for, pseudo_random};
+// The tests that run the binary need the `cli` feature, which builds it.
+#[cfg(feature = "cli")]
+use common::{cg_failures::number_after, jkrbem, stderr};
 use jkrbem::backend::prelude::*;
 use jkrbem::backend::Preconditioner;
 use jkrbem::model::{Model, ModelOptions};
@@ -139,6 +142,7 @@ fn a_non_finite_warm_start_is_caught_and_the_retry_starts_from_zero() {
     assert!(p.iter().all(|v| v.is_finite()));
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn cli_stops_with_the_residual_reached_when_even_the_retry_falls_short() {
     let dir = tempfile::tempdir().unwrap();
@@ -178,6 +182,7 @@ fn cli_stops_with_the_residual_reached_when_even_the_retry_falls_short() {
         .contains("did not converge"));
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn cli_warns_and_marks_a_run_accepted_above_its_tolerance() {
     let dir = tempfile::tempdir().unwrap();

@@ -105,7 +105,9 @@ pub fn gpu_backend(setup: &jkrbem::backend::GridSetup) -> Option<jkrbem::backend
     Some(jkrbem::backend::gpu::GpuBackend::new(ctx, setup).expect("GPU backend opens"))
 }
 
-/// Run the `jkrbem` binary with `args` in `dir` and wait for it.
+/// Run the `jkrbem` binary with `args` in `dir` and wait for it. The binary is built with
+/// the `cli` feature only: so is every test that runs it.
+#[cfg(feature = "cli")]
 pub fn jkrbem(args: &[&str], dir: &std::path::Path) -> std::process::Output {
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"))
         .args(args)
@@ -144,7 +146,9 @@ pub fn stdout(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
-/// The binary as a command, the memory limit of the caller's environment removed.
+/// The binary as a command, the memory limit of the caller's environment removed (the `cli`
+/// feature's, as [`jkrbem`]).
+#[cfg(feature = "cli")]
 pub fn bin() -> std::process::Command {
     let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"));
     c.env_remove("JKRBEM_MEMORY_LIMIT");
@@ -153,6 +157,7 @@ pub fn bin() -> std::process::Command {
 
 /// Run the binary ([`bin`]) in `dir` with `args` and the environment variables `env`; its
 /// output as it came, with no check of its wording (see [`run_in`]).
+#[cfg(feature = "cli")]
 pub fn output_in(
     dir: &std::path::Path,
     args: &[&str],
@@ -169,6 +174,7 @@ pub fn output_in(
 /// Run the binary in `dir` with `args` and the environment variables `env`, the memory
 /// limit of the caller's environment removed, and check that it worded every parameter it
 /// names ([`worded`]).
+#[cfg(feature = "cli")]
 pub fn run_in(dir: &std::path::Path, args: &[&str], env: &[(&str, &str)]) -> std::process::Output {
     let o = output_in(dir, args, env);
     worded(&o);

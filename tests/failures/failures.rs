@@ -5,7 +5,10 @@
 
 use crate::common;
 
-use common::{jkrbem, model_for, run_model, stderr};
+// The tests that run the binary need the `cli` feature, which builds it.
+#[cfg(feature = "cli")]
+use common::{jkrbem, stderr};
+use common::{model_for, run_model};
 use jkrbem::model::{Measure, ModelOptions, Onsets};
 use jkrbem::solver::{Phase, SolverError};
 
@@ -57,6 +60,7 @@ fn too_large_load_steps_change_the_answer_and_located_onsets_fix_it() {
     assert!(f20 < a20 && f40 < a20);
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn too_large_load_steps_are_reported() {
     let dir = tempfile::tempdir().unwrap();
@@ -103,6 +107,7 @@ fn too_large_load_steps_are_reported() {
     );
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn too_coarse_a_grid_is_reported_with_n_d_and_the_expected_error() {
     let dir = tempfile::tempdir().unwrap();
@@ -242,6 +247,7 @@ fn regridding_a_shrinking_contact_buys_the_accuracy_of_a_finer_grid() {
     assert!(e_fine < 0.75 * e_plain, "{e_fine} vs {e_plain}");
 }
 
+#[cfg(feature = "cli")]
 #[test]
 #[ignore = "slow tier (about 2 minutes): cargo test --release -- --ignored"]
 fn accuracy_target_chooses_a_model_that_reaches_it() {
@@ -293,6 +299,7 @@ fn accuracy_target_chooses_a_model_that_reaches_it() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn accuracy_targets_out_of_reach_or_without_a_unit_are_refused_before_any_work() {
     let dir = tempfile::tempdir().unwrap();

@@ -8,8 +8,11 @@
 
 use crate::common;
 
-use common::cg_failures::{cpu_run, gpu_run, number_after, short_run};
-use common::{jkrbem, model_for, stderr};
+use common::cg_failures::{cpu_run, gpu_run, short_run};
+use common::model_for;
+// The test that runs the binary needs the `cli` feature, which builds it.
+#[cfg(feature = "cli")]
+use common::{cg_failures::number_after, jkrbem, stderr};
 use jkrbem::backend::gpu::F32_RESIDUAL_FLOOR;
 use jkrbem::model::ModelOptions;
 use jkrbem::solver::cg::TRUE_RESIDUAL_SLACK;
@@ -75,6 +78,7 @@ fn f32_at_the_default_tolerance_is_not_flagged() {
     );
 }
 
+#[cfg(feature = "cli")]
 fn cli_gpu_asked_for_1e_11_says_it_stopped_at_the_f32_floor() {
     if jkrbem::backend::gpu::test_context().is_none() {
         return;
@@ -111,24 +115,21 @@ fn cli_gpu_asked_for_1e_11_says_it_stopped_at_the_f32_floor() {
 
 /// This file's tests, for `tests/gpu/main.rs`; `missing`: why there is no GPU adapter.
 pub fn trials(missing: Option<&str>) -> Vec<libtest_mimic::Trial> {
-    common::gpu_trials(
-        "failure_cg_gpu",
-        &[
-            (
-                "f32_asked_for_1e_11_stops_at_its_floor_and_says_so",
-                f32_asked_for_1e_11_stops_at_its_floor_and_says_so,
-            ),
-            (
-                "f32_at_the_default_tolerance_is_not_flagged",
-                f32_at_the_default_tolerance_is_not_flagged,
-            ),
-            (
-                "cli_gpu_asked_for_1e_11_says_it_stopped_at_the_f32_floor",
-                cli_gpu_asked_for_1e_11_says_it_stopped_at_the_f32_floor,
-            ),
-        ],
-        &[],
-        &[],
-        missing,
-    )
+    #[cfg_attr(not(feature = "cli"), allow(unused_mut))]
+    let mut tests: Vec<(&'static str, fn())> = vec![
+        (
+            "f32_asked_for_1e_11_stops_at_its_floor_and_says_so",
+            f32_asked_for_1e_11_stops_at_its_floor_and_says_so,
+        ),
+        (
+            "f32_at_the_default_tolerance_is_not_flagged",
+            f32_at_the_default_tolerance_is_not_flagged,
+        ),
+    ];
+    #[cfg(feature = "cli")]
+    tests.push((
+        "cli_gpu_asked_for_1e_11_says_it_stopped_at_the_f32_floor",
+        cli_gpu_asked_for_1e_11_says_it_stopped_at_the_f32_floor,
+    ));
+    common::gpu_trials("failure_cg_gpu", &tests, &[], &[], missing)
 }

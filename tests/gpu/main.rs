@@ -2,16 +2,18 @@
 //! (`conformance`: cpu, cpu-periodic, gpu and gpu-periodic) and the tests that need a GPU adapter. Where no
 //! adapter exists, those are reported as ignored with the reason, never as passed; with
 //! `JKRBEM_REQUIRE_GPU=1` that is a failure instead. Without the `gpu` feature only the CPU
-//! backends' conformance runs. One test binary; each former file is a module, its tests named
+//! backends' conformance runs; without the `cli` feature none of the tests that run the binary
+//! does. One test binary; each former file is a module, its tests named
 //! `<module>::<test>`.
 
 #[path = "../common/mod.rs"]
 mod common;
 
-#[cfg(feature = "gpu")]
+// The tests that run the binary need the `cli` feature too, which builds it.
+#[cfg(all(feature = "gpu", feature = "cli"))]
 mod cli_gpu;
 mod conformance;
-#[cfg(feature = "gpu")]
+#[cfg(all(feature = "gpu", feature = "cli"))]
 mod device_session;
 #[cfg(feature = "gpu")]
 mod failure_cg_gpu;
@@ -43,7 +45,9 @@ fn main() {
     #[cfg(feature = "gpu")]
     {
         let missing = missing.as_deref();
+        #[cfg(feature = "cli")]
         all.extend(cli_gpu::trials(missing));
+        #[cfg(feature = "cli")]
         all.extend(device_session::trials(missing));
         all.extend(failure_cg_gpu::trials(missing));
         all.extend(gpu_backend::trials(missing));

@@ -6,8 +6,10 @@
 //! the stated intervals must hold the reference, and they must not be needlessly wide; the
 //! same for c̄ and d̄ at the minimum.
 
+#[cfg(feature = "cli")]
 use crate::common;
 
+#[cfg(feature = "cli")]
 use common::{jkrbem, stderr};
 use jkrbem::backend::select::BackendKind;
 use jkrbem::session::open::BackendRequest;
@@ -16,6 +18,7 @@ use jkrbem::studies::coverage::{
     coverage, summarise, CaseVariant, CoverageCase, CoverageRequest, CoverageSummary,
 };
 
+#[cfg(feature = "cli")]
 #[test]
 fn the_coverage_command_writes_every_case_and_reuses_its_runs() {
     let dir = tempfile::tempdir().unwrap();
@@ -68,6 +71,7 @@ fn the_coverage_command_writes_every_case_and_reuses_its_runs() {
     );
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn bad_coverage_requests_are_refused_before_any_work() {
     let dir = tempfile::tempdir().unwrap();
@@ -269,6 +273,7 @@ fn generic_study(
     done
 }
 
+#[cfg(feature = "cli")]
 #[test]
 fn the_coverage_command_checks_shapes_without_a_law() {
     let dir = tempfile::tempdir().unwrap();

@@ -21,6 +21,11 @@ mod loading;
 mod mesh_angle;
 mod pulloff_answers;
 mod pulloff_cost;
+// The commands' tests run the binary, which is built with the `cli` feature only (so are the
+// tests of `coverage` that run it).
+#[cfg(feature = "cli")]
 mod reference;
+#[cfg(feature = "cli")]
 mod reproduce;
+#[cfg(feature = "cli")]
 mod sweep;
