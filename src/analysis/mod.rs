@@ -14,6 +14,7 @@ pub mod fields;
 pub mod fit;
 pub mod fronts;
 pub mod generic_limit;
+pub mod jkr_sphere;
 pub mod line_fit;
 mod lstsq;
 pub mod report;

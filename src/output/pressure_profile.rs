@@ -1,7 +1,7 @@
 //! Profiles of one state's contact pressure along the grid's x and y axes through the
 //! contact's centre, as a [`LineChart`]: jkrbem's element values as markers (one colour per
-//! axis) and, for a sphere, JKR's closed-form pressure at the state's own contact radius and
-//! approach drawn along the same lines. The edge's tension singularity would stretch the y axis
+//! axis) and, where the caller hands one in (JKR's for a sphere), a closed-form pressure at the
+//! state's own contact radius and approach drawn along the same lines. The edge's tension singularity would stretch the y axis
 //! until the interior is flat: the axis is clipped at the heat map's colour scale (the 98th
 //! percentile of the interior's |p|, [`pressure_chart`](super::pressure_chart)), the closed
 //! form is drawn only where it lies inside, element values beyond are drawn at the limit in a
@@ -12,9 +12,7 @@ use super::line_chart::{LineChart, Style};
 use super::pressure_chart::{colour_scale, contact_box, window};
 use super::OutputError;
 use crate::analysis::fields::StateFields;
-use crate::scene::{Indenter, Scene};
 use crate::text::compact_digits;
-use crate::theory::jkr::jkr_pressure;
 use std::path::Path;
 
 /// The x axis' description.
@@ -32,36 +30,15 @@ const CLOSED_FORM_COLOUR: usize = 4;
 /// The colour of the element values beyond the clip (vermillion).
 const BEYOND_COLOUR: usize = 5;
 
-/// A sphere's JKR closed form: what [`jkr_pressure`] needs beyond the state.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct JkrSphere {
-    /// The sphere's radius R (length).
-    pub radius: f64,
-    /// The effective modulus E* (force/length²).
-    pub e_star: f64,
-}
-
-impl JkrSphere {
-    /// The closed form of `scene`'s indenter where it has one: the sphere, as an ellipsoid of
-    /// R1 = R2 or a power law of n = 2 (h = s r², R = 1/(2s)). `None` for every other shape,
-    /// rough spheres and height maps among them.
-    pub fn of(scene: &Scene) -> Option<JkrSphere> {
-        let radius = match scene.indenter {
-            Indenter::Ellipsoid { r1, r2 } if r1 == r2 => r1,
-            Indenter::PowerLaw { n: 2.0, scale } => 0.5 / scale,
-            _ => return None,
-        };
-        Some(JkrSphere {
-            radius,
-            e_star: scene.e_star,
-        })
-    }
-
-    /// JKR's pressure (force/length²) at distance `r` (length) from the apex for the state of
-    /// mean contact radius `a` and approach `d` (length).
-    pub fn pressure(&self, r: f64, a: f64, d: f64) -> f64 {
-        jkr_pressure(r, a, d, self.radius, self.e_star)
-    }
+/// A closed form of the pressure drawn beside the profiles, handed in by the caller (this
+/// module computes none): its name and `pressure(r, a, d)` (force/length²) at distance `r`
+/// from the apex for the state of mean contact radius `a` and approach `d` (lengths).
+#[derive(Clone, Copy)]
+pub struct ClosedFormPressure<'a> {
+    /// The closed form's name in the legend ("JKR").
+    pub name: &'a str,
+    /// p(r, a, d) (force/length²).
+    pub pressure: &'a dyn Fn(f64, f64, f64) -> f64,
 }
 
 /// One axis' profile: the element values along a grid row (x) or column (y).
@@ -169,10 +146,14 @@ fn clipped_line(p: &dyn Fn(f64) -> f64, half: f64, limit: f64) -> (Vec<(f64, f64
 /// The profile chart of `f`, titled `title` (a note of the clip is added where anything is
 /// clipped): the x and y profiles ([`profiles`]) as markers, filled in colour 0 and hollow in
 /// colour 1, element values beyond the clip in a colour of their own at the limit, and where
-/// `jkr` is given JKR's pressure at the state's own mean contact radius and approach along the
-/// same lines (one black line where both lines lie as far from the apex, else one per axis in
-/// its markers' colour).
-pub fn profile_chart(f: &StateFields, jkr: Option<JkrSphere>, title: &str) -> LineChart {
+/// `closed` is given its pressure at the state's own mean contact radius and approach along
+/// the same lines (one black line where both lines lie as far from the apex, else one per axis
+/// in its markers' colour).
+pub fn profile_chart(
+    f: &StateFields,
+    closed: Option<ClosedFormPressure<'_>>,
+    title: &str,
+) -> LineChart {
     let (limit, _) = colour_scale(f);
     let num = |v: f64| compact_digits(v, 3).replace('-', "−");
     let mut chart = LineChart::new(title, X_LABEL, Y_LABEL);
@@ -211,22 +192,23 @@ pub fn profile_chart(f: &StateFields, jkr: Option<JkrSphere>, title: &str) -> Li
             );
         }
     }
-    if let Some(jkr) = jkr {
+    if let Some(closed) = closed {
         let (a, d) = (f.state.mean_radius, f.state.d);
+        let name = closed.name;
         let same = (px.offset.abs() - py.offset.abs()).abs() <= 1e-9 * f.dx;
         let lines: Vec<(&Profile, String, usize)> = if same {
-            let label = format!("JKR at a = {}, d = {}", num(a), num(d));
+            let label = format!("{name} at a = {}, d = {}", num(a), num(d));
             vec![(&px, label, CLOSED_FORM_COLOUR)]
         } else {
             [&px, &py]
                 .into_iter()
                 .enumerate()
-                .map(|(k, pr)| (pr, format!("JKR along {} (a = {})", pr.axis, num(a)), k))
+                .map(|(k, pr)| (pr, format!("{name} along {} (a = {})", pr.axis, num(a)), k))
                 .collect()
         };
         for (profile, label, colour) in lines {
             let offset = profile.offset;
-            let p = |s: f64| jkr.pressure(s.hypot(offset), a, d);
+            let p = |s: f64| (closed.pressure)(s.hypot(offset), a, d);
             let half = ((a - offset.abs()) * (a + offset.abs())).max(0.0).sqrt();
             let (line, cut) = clipped_line(&p, half, limit);
             clipped |= cut;
@@ -244,17 +226,24 @@ pub fn profile_chart(f: &StateFields, jkr: Option<JkrSphere>, title: &str) -> Li
 pub fn write_profile_chart(
     path: &Path,
     f: &StateFields,
-    jkr: Option<JkrSphere>,
+    closed: Option<ClosedFormPressure<'_>>,
     title: &str,
     formats: FigureFormats,
 ) -> Result<(), OutputError> {
-    profile_chart(f, jkr, title).write_figure(path, formats)
+    profile_chart(f, closed, title).write_figure(path, formats)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::analysis::jkr_sphere::JkrSphere;
+    use crate::scene::{Indenter, Scene};
     use crate::solver::State;
+
+    /// `jkr`'s pressure as the chart takes it.
+    fn drawn(jkr: &JkrSphere) -> impl Fn(f64, f64, f64) -> f64 + '_ {
+        move |r, a, d| jkr.pressure(r, a, d)
+    }
 
     /// The fields of JKR's pressure for a sphere of R = E* = 1 at contact radius `a` and
     /// approach `d`, on an n × n grid of side Δx = 4a/n with the apex at an element corner.
@@ -337,7 +326,12 @@ mod tests {
         for (scene, has) in scenes {
             let jkr = JkrSphere::of(&scene);
             assert_eq!(jkr.is_some(), has, "{}", scene.headline());
-            let chart = profile_chart(&f, jkr, "t");
+            let p = jkr.as_ref().map(drawn);
+            let closed = p.as_ref().map(|p| ClosedFormPressure {
+                name: "JKR",
+                pressure: p,
+            });
+            let chart = profile_chart(&f, closed, "t");
             let lines = chart
                 .curves
                 .iter()
@@ -379,7 +373,13 @@ mod tests {
         let f = jkr_fields(64, a, d);
         let (limit, peak) = colour_scale(&f);
         assert!(peak > limit, "the edge lies beyond the interior's scale");
-        let chart = profile_chart(&f, JkrSphere::of(&sphere(1.0, 1.0)), "t");
+        let jkr = JkrSphere::of(&sphere(1.0, 1.0)).unwrap();
+        let p = drawn(&jkr);
+        let closed = ClosedFormPressure {
+            name: "JKR",
+            pressure: &p,
+        };
+        let chart = profile_chart(&f, Some(closed), "t");
         assert!(chart.title.contains("clipped"), "{}", chart.title);
         for c in &chart.curves {
             for (s, p) in &c.points {

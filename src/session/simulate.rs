@@ -13,10 +13,11 @@ use crate::analysis::fields::{
     minimum_label, FieldChoice, FieldPicks, StateFields, LOWEST_NOT_MINIMUM,
 };
 use crate::analysis::generic_limit;
+use crate::analysis::jkr_sphere::JkrSphere;
 use crate::model::{Measure, Model, ModelOptions, Onsets};
 use crate::output::digest::InputFile;
 use crate::output::figure::FigureFormats;
-use crate::output::pressure_profile::{self, JkrSphere};
+use crate::output::pressure_profile::{self, ClosedFormPressure};
 use crate::output::provenance::Provenance;
 use crate::output::summary::Summary;
 use crate::output::{fields_npz, names, pressure_chart, NamedBy};
@@ -365,7 +366,12 @@ fn write_fields(
                 min.index, run.grid.0, run.grid.1
             );
             let jkr = JkrSphere::of(scene);
-            match pressure_profile::write_profile_chart(&chart, min, jkr, &title, figures) {
+            let p = |r, a, d| jkr.map_or(f64::NAN, |j| j.pressure(r, a, d));
+            let closed = jkr.map(|_| ClosedFormPressure {
+                name: "JKR",
+                pressure: &p,
+            });
+            match pressure_profile::write_profile_chart(&chart, min, closed, &title, figures) {
                 Ok(()) => written.extend(figures.files(&chart)),
                 Err(e) => unwritten.push(e.with_param(FIELDS).to_string()),
             }

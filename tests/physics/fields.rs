@@ -3,9 +3,10 @@
 //! −σ_c, and at the sphere's force minimum follow JKR's closed-form pressure.
 
 use jkrbem::analysis::fields::{FieldChoice, StateFields};
+use jkrbem::analysis::jkr_sphere::JkrSphere;
 use jkrbem::backend::select::BackendKind;
 use jkrbem::model::ModelOptions;
-use jkrbem::output::pressure_profile::{profile_chart, profiles, JkrSphere};
+use jkrbem::output::pressure_profile::{profile_chart, profiles, ClosedFormPressure};
 use jkrbem::scene::Scene;
 use jkrbem::session::open::BackendRequest;
 use jkrbem::session::simulate::{simulate, Mode, SimulateRequest, Sink};
@@ -143,7 +144,12 @@ fn the_sphere_s_pressure_profiles_follow_jkr_s_line_and_agree_on_both_axes() {
     let f = sphere_minimum(128);
     let scene = Scene::from_ratio(1.0, 1.0, 1.0, 1.0).unwrap();
     let jkr = JkrSphere::of(&scene).expect("the sphere has JKR's closed form");
-    let chart = profile_chart(f, Some(jkr), "sphere");
+    let p = |r, a, d| jkr.pressure(r, a, d);
+    let closed = ClosedFormPressure {
+        name: "JKR",
+        pressure: &p,
+    };
+    let chart = profile_chart(f, Some(closed), "sphere");
     let points = chart.plot_points();
     let series = |prefix: &str, style: &str| -> Vec<(f64, f64)> {
         points
