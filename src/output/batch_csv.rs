@@ -4,7 +4,7 @@
 //! shard's record grows with its own rows, not with the table), read back by `collect`; and
 //! the merged table `batch.csv` (one row per scene: its id, its parameters, its results) with
 //! the wall times kept apart in `batch-timings.csv`, so that the table is the same however the
-//! batch was split. Serialisation only: what goes in them is decided in `run::scenes`.
+//! batch was split. Serialisation only: what goes in them is decided in `session::batch`.
 
 use super::file::{self, read_regular, ReadError};
 use super::OutputError;
@@ -21,7 +21,7 @@ pub const MANIFEST_FORMAT_1: &str = "jkrbem batch 1";
 
 /// The largest record [`Manifest::read`] reads (bytes): a scene's request is about a
 /// kilobyte, and a batch (a whole batch's record) has at most
-/// `run::scenes::table::MAX_SCENES` of them.
+/// `session::batch::table::MAX_SCENES` of them.
 pub const MAX_MANIFEST_BYTES: u64 = 64 << 20;
 
 /// What tells a batch's table from another: how many scenes it has, and a digest of every
@@ -103,7 +103,7 @@ pub struct ManifestScene {
     pub row: usize,
     /// Its id (its files are `scene-<id>.*`).
     pub id: String,
-    /// Its request as the schema completed it (`run::request::Request::to_json`).
+    /// Its request as the schema completed it (`session::request::Request::to_json`).
     pub request: Value,
 }
 

@@ -2,7 +2,7 @@
 //! b/a against F̄, the branch laws d̄(c̄), F̄(c̄), F̄(d̄) with their fits, the fitted
 //! coefficients against R1/R2, the contours, and a pull-off curve beside the contact outlines
 //! of its marked states (the study's Fig. 2b). The points, closed forms and fitted laws come
-//! computed from the session layer (`run::chart_data`); this module only draws them.
+//! computed from the session layer (`studies::chart_data`); this module only draws them.
 
 use super::line_chart::{LineChart, Style};
 use super::panels::Panels;

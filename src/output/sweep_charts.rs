@@ -10,7 +10,7 @@ use crate::analysis::convergence::{answer_too_coarse, COARSE_N_D};
 use std::path::Path;
 
 /// What a sweep's charts draw beside its rows' own numbers, gathered and computed by the
-/// session layer (`run::curves`): each row's states and closed form, JG's adhesive force and
+/// session layer (`studies::curves`): each row's states and closed form, JG's adhesive force and
 /// the law fitted to the rows.
 #[derive(Debug, Clone, Default)]
 pub struct SweepCurves {

@@ -17,6 +17,7 @@ mod hardening_collect;
 mod hardening_files;
 mod hardening_inputs;
 mod hardening_reference;
+mod layout;
 mod periodic_map;
 mod print_quality;
 mod ranges;
