@@ -16,7 +16,7 @@
 #[cfg(feature = "gpu")]
 use crate::backend::gpu::GpuBackend;
 #[cfg(feature = "gpu")]
-use crate::backend::Device;
+use crate::backend::FieldStore;
 use crate::backend::{Backend, BackendError, Counters, Slot};
 use crate::model::{CgSettings, Model};
 use crate::solver::cg::{self, CgWork};
@@ -54,7 +54,7 @@ impl Default for BenchOptions {
     }
 }
 
-/// Backend work per CG iteration: differences of [`Device::counters`] over a solve, less
+/// Backend work per CG iteration: differences of [`crate::backend::Device::counters`] over a solve, less
 /// those of CG's start, divided by the iterations made.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct WorkPerIteration {

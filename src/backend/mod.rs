@@ -40,7 +40,9 @@ pub use measure::ContactMeasure;
 
 /// Every part of the backend contract, for code that calls backends' operations.
 pub mod prelude {
-    pub use super::{Backend, CgKernels, ContactKernels, Device, ElasticOperator, Scalars};
+    pub use super::{
+        Backend, CgKernels, ContactKernels, Device, ElasticOperator, FieldStore, MaskStore, Scalars,
+    };
 }
 
 use thiserror::Error;
@@ -138,7 +140,9 @@ pub struct Counters {
     pub submit_ns: u64,
 }
 
-/// Fields resident on a device: the part of the contract every other part builds on.
+/// A device and what lives on it: the part of the contract every other part builds on (the
+/// types of its fields and contact sets, its name and precision, its grid, its counters, and
+/// a sibling for another grid). Making, moving and copying them is [`FieldStore`] and [`MaskStore`].
 pub trait Device {
     /// A real field of nx × ny values resident on the backend's device.
     type Field;
@@ -153,22 +157,6 @@ pub trait Device {
     fn precision(&self) -> &'static str;
     /// Grid shape (nx, ny).
     fn shape(&self) -> (usize, usize);
-    /// A new field, zero everywhere.
-    fn field(&mut self) -> Result<Self::Field, BackendError>;
-    /// Copy host values (row-major, length nx·ny) into a field.
-    fn upload(&mut self, dst: &mut Self::Field, host: &[f64]) -> Result<(), BackendError>;
-    /// Copy a field back to the host (row-major, length nx·ny).
-    fn download(&mut self, src: &Self::Field, host: &mut [f64]) -> Result<(), BackendError>;
-    /// dst = src on the whole grid.
-    fn copy(&mut self, src: &Self::Field, dst: &mut Self::Field) -> Result<(), BackendError>;
-    /// A new contact set, empty.
-    fn mask(&mut self) -> Result<Self::Mask, BackendError>;
-    /// Copy host flags (row-major, length nx·ny, true = in contact) into a contact set.
-    fn upload_mask(&mut self, dst: &mut Self::Mask, host: &[bool]) -> Result<(), BackendError>;
-    /// Copy a contact set back to the host (row-major, length nx·ny).
-    fn download_mask(&mut self, src: &Self::Mask, host: &mut [bool]) -> Result<(), BackendError>;
-    /// dst = src (on the device).
-    fn copy_mask(&mut self, src: &Self::Mask, dst: &mut Self::Mask) -> Result<(), BackendError>;
     /// Work done since creation (zeros where a backend does not count).
     fn counters(&self) -> Counters {
         Counters::default()
@@ -178,6 +166,30 @@ pub trait Device {
     fn sibling(&self, setup: &GridSetup) -> Result<Self, BackendError>
     where
         Self: Sized;
+}
+
+/// Real fields on the device: made, uploaded, read back and copied.
+pub trait FieldStore: Device {
+    /// A new field, zero everywhere.
+    fn field(&mut self) -> Result<Self::Field, BackendError>;
+    /// Copy host values (row-major, length nx·ny) into a field.
+    fn upload(&mut self, dst: &mut Self::Field, host: &[f64]) -> Result<(), BackendError>;
+    /// Copy a field back to the host (row-major, length nx·ny).
+    fn download(&mut self, src: &Self::Field, host: &mut [f64]) -> Result<(), BackendError>;
+    /// dst = src on the whole grid.
+    fn copy(&mut self, src: &Self::Field, dst: &mut Self::Field) -> Result<(), BackendError>;
+}
+
+/// Contact sets on the device: made, uploaded, read back and copied.
+pub trait MaskStore: Device {
+    /// A new contact set, empty.
+    fn mask(&mut self) -> Result<Self::Mask, BackendError>;
+    /// Copy host flags (row-major, length nx·ny, true = in contact) into a contact set.
+    fn upload_mask(&mut self, dst: &mut Self::Mask, host: &[bool]) -> Result<(), BackendError>;
+    /// Copy a contact set back to the host (row-major, length nx·ny).
+    fn download_mask(&mut self, src: &Self::Mask, host: &mut [bool]) -> Result<(), BackendError>;
+    /// dst = src (on the device).
+    fn copy_mask(&mut self, src: &Self::Mask, dst: &mut Self::Mask) -> Result<(), BackendError>;
 }
 
 /// Scalar registers on the device.
@@ -191,7 +203,7 @@ pub trait Scalars: Device {
 }
 
 /// The elastic half-space's influence operator and an approximate inverse of it.
-pub trait ElasticOperator: Device {
+pub trait ElasticOperator: FieldStore {
     /// dst = K ∗ src, the non-periodic convolution with the influence kernel
     /// (src a pressure, dst a displacement); evaluated on the whole grid.
     fn convolve(&mut self, src: &Self::Field, dst: &mut Self::Field) -> Result<(), BackendError>;
@@ -340,7 +352,7 @@ pub trait CgKernels: ElasticOperator + Scalars {
 }
 
 /// The operations of the pull-off protocol on a contact set C (each takes it as `c`).
-pub trait ContactKernels: Device {
+pub trait ContactKernels: FieldStore + MaskStore {
     /// One sweep of the Pohrt–Popov rule: detach elements of C with p < −σ_c and, with
     /// `attach_at` = Some(d), attach elements off C whose gap g = h − d + u at approach d
     /// (length) is negative; then p = 0 off C. With `attach_at` = None the sweep only

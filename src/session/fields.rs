@@ -7,7 +7,7 @@
 use super::{failed, RunError};
 use crate::analysis::fields::{Pick, StateFields};
 use crate::backend::cpu::CpuBackend;
-use crate::backend::Device;
+use crate::backend::FieldStore;
 use crate::model::Model;
 use crate::solver::equilibrium::{solve_fixed, Fields};
 

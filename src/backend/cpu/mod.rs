@@ -20,8 +20,8 @@ use super::kernel::stiffness_spectrum;
 use super::measure::{self, ChordAxes, ContactMeasure};
 use super::rules::{self, Flip};
 use super::{
-    BackendError, CgKernels, ContactChange, ContactKernels, Device, ElasticOperator, GridSetup,
-    Preconditioner, Scalars, Slot,
+    BackendError, CgKernels, ContactChange, ContactKernels, Device, ElasticOperator, FieldStore,
+    GridSetup, MaskStore, Preconditioner, Scalars, Slot,
 };
 use rayon::prelude::*;
 use spectral::SpectralFilter;
@@ -181,6 +181,9 @@ impl Device for CpuBackend {
     fn sibling(&self, setup: &GridSetup) -> Result<Self, BackendError> {
         Self::build(setup, self.periodic, self.convolution.is_f32())
     }
+}
+
+impl FieldStore for CpuBackend {
     fn field(&mut self) -> Result<Vec<f64>, BackendError> {
         Ok(vec![0.0; self.nx * self.ny])
     }
@@ -196,6 +199,9 @@ impl Device for CpuBackend {
         dst.copy_from_slice(src);
         Ok(())
     }
+}
+
+impl MaskStore for CpuBackend {
     fn mask(&mut self) -> Result<Vec<bool>, BackendError> {
         Ok(vec![false; self.nx * self.ny])
     }

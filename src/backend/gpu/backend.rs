@@ -21,7 +21,8 @@ use crate::backend::cpu::spectral::SpectralFilter;
 use crate::backend::kernel::stiffness_spectrum;
 use crate::backend::{
     BackendError, CgKernels, CgStop, ChordAxes, ContactChange, ContactKernels, ContactMeasure,
-    Counters, Device, ElasticOperator, GridSetup, Preconditioner, Scalars, Slot,
+    Counters, Device, ElasticOperator, FieldStore, GridSetup, MaskStore, Preconditioner, Scalars,
+    Slot,
 };
 use crate::params::BACKEND;
 use wgpu::util::DeviceExt;
@@ -778,6 +779,12 @@ impl Device for GpuBackend {
     fn sibling(&self, setup: &GridSetup) -> Result<Self, BackendError> {
         GpuBackend::with_convolution(self.ctx.clone(), setup, self.periodic)
     }
+    fn counters(&self) -> Counters {
+        self.rec.counters
+    }
+}
+
+impl FieldStore for GpuBackend {
     fn field(&mut self) -> Result<GpuField, BackendError> {
         let buffer = storage(&self.ctx, "field", self.n() as u64 * 4);
         self.ctx.check()?;
@@ -806,6 +813,9 @@ impl Device for GpuBackend {
         self.copy_grid(&src.buffer, &dst.buffer);
         Ok(())
     }
+}
+
+impl MaskStore for GpuBackend {
     fn mask(&mut self) -> Result<GpuMask, BackendError> {
         let buffer = storage(&self.ctx, "contact mask", self.n() as u64 * 4);
         self.ctx.check()?;
@@ -833,9 +843,6 @@ impl Device for GpuBackend {
     fn copy_mask(&mut self, src: &GpuMask, dst: &mut GpuMask) -> Result<(), BackendError> {
         self.copy_grid(&src.buffer, &dst.buffer);
         Ok(())
-    }
-    fn counters(&self) -> Counters {
-        self.rec.counters
     }
 }
 
