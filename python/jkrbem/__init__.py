@@ -174,7 +174,7 @@ def _frame_records(frame: Any) -> List[Dict[str, Any]]:
     return records
 
 
-# What the library says of a scene an interrupted batch did not start (src/run/scenes/pool.rs).
+# What the library says of a scene an interrupted batch did not start (src/session/batch/pool.rs).
 _NOT_STARTED = "not started (the batch was stopped)"
 
 
