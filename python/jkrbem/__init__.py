@@ -24,6 +24,11 @@ import numpy as np
 
 from . import _check, _jkrbem, _progress, _request, _results
 from ._jkrbem import InputError, SolveError
+
+# The keyword of the parameter to change, where the library blames one (set on each raised
+# error that comes from a run; None otherwise).
+InputError.parameter = None
+SolveError.parameter = None
 from ._load import load
 from ._progress import _PROGRESS
 from ._results import STATE_COLUMNS, Fields, Result, Run

@@ -8,10 +8,13 @@ __version__: str
 class InputError(ValueError):
     """A parameter is out of its range or the combination cannot run; names the keyword."""
 
+    parameter: Optional[str]
+
 class SolveError(RuntimeError):
     """A run failed after it started; ``result`` keeps the partial states."""
 
     result: Any
+    parameter: Optional[str]
 
 def simulate(
     request: str,

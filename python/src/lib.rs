@@ -41,6 +41,20 @@ use jkrbem::scene::DEFAULT_POWER_LAW_SCALE as DEFAULT_SCALE;
 use jkrbem::session::simulate::MAX_TIME_LIMIT_S;
 use jkrbem::theory::MAX_CURVE_POINTS as MAX_THEORY_POINTS;
 
+/// A run's error as Python's: an [`InputError`] for a refusal, a [`SolveError`] for a failure,
+/// the message in keywords and the keyword of the parameter to change as the exception's
+/// `parameter` (None where the error blames none).
+fn run_error(py: Python<'_>, e: &RunError) -> PyErr {
+    let err = if e.is_input() {
+        input_error(&e.message)
+    } else {
+        SolveError::new_err(keywords(&e.message))
+    };
+    // Setting an attribute on a fresh exception instance cannot fail short of memory.
+    let _ = err.value(py).setattr("parameter", e.param.map(|p| p.name));
+    err
+}
+
 /// A refusal naming Python keywords.
 fn input_error(message: impl std::fmt::Display) -> PyErr {
     InputError::new_err(keywords(&message.to_string()))
@@ -464,10 +478,7 @@ fn simulate<'py>(
         if let Some(e) = watch.callback.take_error() {
             return Err(e);
         }
-        let done = done.map_err(|e| match e {
-            e @ RunError::Input(_) => input_error(e),
-            other => SolveError::new_err(keywords(&other.to_string())),
-        })?;
+        let done = done.map_err(|e| run_error(py, &e))?;
         let fields = fields_out(py, &done)?;
         Ok((
             answer(&done, &req, watch.callback.interrupted()).to_string(),
@@ -777,10 +788,7 @@ fn batch<'py>(
                     None,
                 )),
                 Err(e) => {
-                    let kind = match e {
-                        RunError::Input(_) => "input",
-                        RunError::Failed(_) => "failed",
-                    };
+                    let kind = if e.is_input() { "input" } else { "failed" };
                     Ok((
                         None,
                         Vec::new(),

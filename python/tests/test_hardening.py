@@ -465,3 +465,14 @@ def test_a_summary_with_malformed_runs_is_refused_naming_the_file(tmp_path):
         summary.write_text(json.dumps({"f_ad_bar": 0.5, "runs": runs}))
         e = refused(lambda: jkrbem.load(summary), f"bad{i}.json", jkrbem.InputError)
         assert "not a jkrbem summary" in str(e), str(e)
+
+
+# Issue 56, item 3: a run's error carries the parameter to change, as the exception's
+# `parameter` (the keyword), not only in its words.
+
+
+def test_a_runs_error_names_its_parameter_as_an_attribute():
+    e = refused(lambda: jkrbem.simulate(ratio=1, grid=16), "grid", jkrbem.InputError)
+    assert e.parameter == "grid", (e.parameter, str(e))
+    # An error that blames no parameter says so.
+    assert jkrbem.InputError("x").parameter is None

@@ -53,9 +53,10 @@ impl fmt::Display for CliError {
 
 /// A request's error as the command's: a refusal is bad input, anything else a failed run.
 pub fn run_error(e: jkrbem::session::RunError) -> CliError {
-    match e {
-        jkrbem::session::RunError::Input(m) => CliError::Input(m),
-        jkrbem::session::RunError::Failed(m) => CliError::Run(m),
+    if e.is_input() {
+        CliError::Input(e.message)
+    } else {
+        CliError::Run(e.message)
     }
 }
 

@@ -4,8 +4,8 @@
 //! Python, a test) only builds a request, calls one function here and shows what comes back;
 //! the studies build on it, never the reverse.
 //!
-//! Errors say whether the request was refused before any work ([`RunError::Input`]) or the
-//! work failed ([`RunError::Failed`]), and name the parameter or value to change: a parameter
+//! Errors say whether the request was refused before any work ([`ErrorKind::Input`]) or the
+//! work failed ([`ErrorKind::Failed`]), and name the parameter or value to change: a parameter
 //! by its [`crate::params::Spec`]'s marker, which each front end words (the command line as
 //! its flag, Python as its keyword; [`crate::params::words`]).
 
@@ -20,36 +20,113 @@ pub mod request;
 pub mod simulate;
 
 use crate::model::Model;
+use crate::params::Spec;
 use crate::solver::State;
 use std::fmt;
 
-/// Why a request did not produce its results.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum RunError {
+/// Why a request did not produce its results: whether it was refused before any work
+/// ([`ErrorKind::Input`]) or the work failed ([`ErrorKind::Failed`]), the parameter to change
+/// where one is to blame (a front end shows it in its own words: Python as the exception's
+/// `parameter`), and the message.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunError {
+    /// Refused before any work, or failed in it.
+    pub kind: ErrorKind,
+    /// The parameter to change, where the error names one as its cause.
+    pub param: Option<&'static Spec>,
+    /// What is wrong, with every parameter written as its marker.
+    pub message: String,
+}
+
+/// Whether a request was refused or its work failed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ErrorKind {
     /// The request was refused before any work (bad input, an output that cannot be written).
-    Input(String),
+    Input,
     /// The work started and failed.
-    Failed(String),
+    Failed,
+}
+
+impl RunError {
+    /// Whether the request was refused before any work.
+    pub fn is_input(&self) -> bool {
+        self.kind == ErrorKind::Input
+    }
+
+    /// The same error, its message passed through `f` (the parameter and the kind kept).
+    pub fn map_message(self, f: impl FnOnce(String) -> String) -> Self {
+        RunError {
+            message: f(self.message),
+            ..self
+        }
+    }
 }
 
 impl fmt::Display for RunError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            RunError::Input(m) | RunError::Failed(m) => f.write_str(m),
-        }
+        f.write_str(&self.message)
     }
 }
 
 impl std::error::Error for RunError {}
 
-/// A refusal, from any layer's error.
-pub fn input(e: impl fmt::Display) -> RunError {
-    RunError::Input(e.to_string())
+/// What an error of any layer says of its cause: its message, and the parameter it names as
+/// the one to change, where its type carries one (the model's, the scene's and the height
+/// map's errors do; free text does not).
+pub trait Reason: fmt::Display {
+    /// The parameter the error blames, if its type records one.
+    fn param(&self) -> Option<&'static Spec> {
+        None
+    }
 }
 
-/// A failure, from any layer's error.
-pub fn failed(e: impl fmt::Display) -> RunError {
-    RunError::Failed(e.to_string())
+impl Reason for String {}
+impl Reason for &str {}
+impl Reason for crate::backend::BackendError {}
+impl Reason for crate::solver::SolverError {}
+impl Reason for crate::output::OutputError {}
+impl Reason for crate::scene::height_map::HeightMapError {}
+impl Reason for crate::params::values::Refusal {}
+impl Reason for serde_json::Error {}
+impl Reason for std::io::Error {}
+impl Reason for crate::output::sweep_csv::CollectError {}
+
+impl Reason for crate::scene::SceneError {
+    fn param(&self) -> Option<&'static Spec> {
+        Some(crate::scene::SceneError::param(self))
+    }
+}
+
+impl Reason for crate::model::ModelError {
+    fn param(&self) -> Option<&'static Spec> {
+        use crate::model::ModelError as E;
+        match self {
+            E::Grid { param, .. } | E::Invalid { param, .. } => Some(param),
+            E::TooCoarse { .. } => Some(crate::params::GRID),
+            E::MapTooCoarse { .. } | E::WindowMapTooCoarse { .. } => {
+                Some(crate::params::HEIGHT_MAP)
+            }
+            E::Environment { .. } | E::Scale { .. } => None,
+        }
+    }
+}
+
+/// A refusal, from any layer's error, naming its parameter where the error's type records one.
+pub fn input(e: impl Reason) -> RunError {
+    RunError {
+        kind: ErrorKind::Input,
+        param: e.param(),
+        message: e.to_string(),
+    }
+}
+
+/// A failure, from any layer's error, naming its parameter where the error's type records one.
+pub fn failed(e: impl Reason) -> RunError {
+    RunError {
+        kind: ErrorKind::Failed,
+        param: e.param(),
+        message: e.to_string(),
+    }
 }
 
 /// What watches a run as it goes (a progress line for a person; nothing for a script or a
@@ -86,3 +163,40 @@ pub trait Watch: Sync {
 pub struct Quiet;
 
 impl Watch for Quiet {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::ModelError;
+    use crate::params::{GRID, HEIGHT_MAP};
+
+    #[test]
+    fn a_run_error_carries_the_parameter_its_cause_names() {
+        let e = input(ModelError::Invalid {
+            param: GRID,
+            value: "20".into(),
+            expected: "a power of two".into(),
+        });
+        assert!(e.is_input());
+        assert_eq!(e.param.map(|p| p.name), Some("grid"));
+        assert!(e.message.starts_with(&GRID.to_string()), "{}", e.message);
+        let e = failed(ModelError::WindowMapTooCoarse {
+            map: "map.txt".into(),
+            across: 8.0,
+            width: 0.016,
+            needed_spacing: 0.001,
+        });
+        assert!(!e.is_input());
+        assert_eq!(e.param.map(|p| p.name), Some(HEIGHT_MAP.name));
+        // Free text blames nothing, and a message passed on keeps the parameter.
+        assert_eq!(input("no such thing").param, None);
+        let e = input(ModelError::Invalid {
+            param: GRID,
+            value: "20".into(),
+            expected: "x".into(),
+        })
+        .map_message(|m| format!("r1: {m}"));
+        assert_eq!(e.param.map(|p| p.name), Some("grid"));
+        assert!(e.message.starts_with("r1: "));
+    }
+}

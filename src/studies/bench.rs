@@ -112,12 +112,8 @@ fn grids(args: &BenchRequest) -> Result<Vec<usize>, RunError> {
 /// Open `which` in `precision` for `model`'s grid.
 fn open(which: BackendKind, precision: Precision, model: &Model) -> Result<Opened, RunError> {
     let named = |m: String| format!("{}: {m}", flag(which, precision));
-    select::open_in(which, precision, &model.grid_setup(), false).map_err(|e| {
-        match backend_error(e) {
-            RunError::Input(m) => RunError::Input(named(m)),
-            RunError::Failed(m) => RunError::Failed(named(m)),
-        }
-    })
+    select::open_in(which, precision, &model.grid_setup(), false)
+        .map_err(|e| backend_error(e).map_message(named))
 }
 
 /// Check the request, claim its outputs, open every backend, time every grid and write the

@@ -406,9 +406,11 @@ fn check_case_grid(
 /// grid as the grids, …), and one that coverage does not set is followed by a note that
 /// coverage runs with its default.
 fn in_coverage_words(e: RunError) -> RunError {
-    let RunError::Failed(m) = e else {
+    if e.is_input() {
         return e;
-    };
+    }
+    let param = e.param.map(|p| coverage_spec(p).unwrap_or(p));
+    let m = e.message;
     let m = m.replace(
         &edge_advice(),
         &format!("use larger {MARGINS} or finer {GRIDS}"),
@@ -420,13 +422,16 @@ fn in_coverage_words(e: RunError) -> RunError {
         .collect();
     let m = words::render(&m, &|p| coverage_spec(p).unwrap_or(p).to_string());
     if foreign.is_empty() {
-        return RunError::Failed(m);
+        return RunError { param, ..failed(m) };
     }
-    RunError::Failed(format!(
-        "{m}\n  (coverage runs every case with the defaults of {}, which it does not set: \
-         change {GRIDS} or {MARGINS}, or run that case with `jkrbem simulate`)",
-        foreign.join(", ")
-    ))
+    RunError {
+        param,
+        ..failed(format!(
+            "{m}\n  (coverage runs every case with the defaults of {}, which it does not set: \
+             change {GRIDS} or {MARGINS}, or run that case with `jkrbem simulate`)",
+            foreign.join(", ")
+        ))
+    }
 }
 
 /// Check the request, then run (or reuse) every case, estimate each and sum them up.
@@ -1003,7 +1008,8 @@ pub fn generic_coverage(
                 })();
                 let (runs, (reference, reference_uncertainty)) = match ran {
                     Ok(r) => r,
-                    Err(RunError::Failed(why)) => {
+                    Err(e) if !e.is_input() => {
+                        let why = e.message;
                         watch.warning(&format!("{name}, margin {margin}: a run failed: {why}"));
                         (Vec::new(), (f64::NAN, f64::NAN))
                     }
@@ -1226,7 +1232,7 @@ mod tests {
         use crate::solver::cg::CgEnd;
         use crate::solver::SolverError;
         let shown = |e: SolverError| {
-            let e = in_coverage_words(RunError::Failed(format!("r1-n16: {e}")));
+            let e = in_coverage_words(failed(format!("r1-n16: {e}")));
             words::flags(&e.to_string())
         };
         // A contact at the domain's edge: the solver's advice (a larger margin or a smaller

@@ -344,7 +344,7 @@ fn ladder(
                 Ok(run) => runs.push(run),
                 // A grid that no longer fits in memory (less is free than when the ladder was
                 // checked) ends the ladder.
-                Err(RunError::Input(e)) if levels > 0 && e.contains("available") => {
+                Err(e) if e.is_input() && levels > 0 && e.message.contains("available") => {
                     watch.warning(&format!(
                         "R1/R2 = {ratio}: the ladder stops at grid {nx}: {e}"
                     ));
