@@ -44,15 +44,13 @@ use jkrbem::theory::MAX_CURVE_POINTS as MAX_THEORY_POINTS;
 /// A run's error as Python's: an [`InputError`] for a refusal, a [`SolveError`] for a failure,
 /// the message in keywords and the keyword of the parameter to change as the exception's
 /// `parameter` (None where the error blames none).
-fn run_error(py: Python<'_>, e: &RunError) -> PyErr {
+fn run_error(e: &RunError) -> PyErr {
     let err = if e.is_input() {
         input_error(&e.message)
     } else {
         SolveError::new_err(keywords(&e.message))
     };
-    // Setting an attribute on a fresh exception instance cannot fail short of memory.
-    let _ = err.value(py).setattr("parameter", e.param.map(|p| p.name));
-    err
+    naming(err, e.param)
 }
 
 /// A refusal naming Python keywords.
@@ -97,8 +95,17 @@ fn parse<T: for<'de> Deserialize<'de>>(json: &str) -> PyResult<T> {
 fn request(json: &str) -> PyResult<Request> {
     let given: serde_json::Map<String, Value> = parse(json)?;
     let values = Request::check_json(given.iter().map(|(k, v)| (k.as_str(), v)))
-        .map_err(|r| refusal(&r.message, r.wrong_type))?;
-    Request::from_values(values).map_err(input_error)
+        .map_err(|r| naming(refusal(&r.message, r.wrong_type), r.param))?;
+    Request::from_values(values).map_err(|e| naming(input_error(&e), e.param))
+}
+
+/// `err` with the keyword of `param` as its `parameter` (None where no parameter is blamed).
+fn naming(err: PyErr, param: Option<&'static params::Spec>) -> PyErr {
+    Python::attach(|py| {
+        // Setting an attribute on a fresh exception instance cannot fail short of memory.
+        let _ = err.value(py).setattr("parameter", param.map(|p| p.name));
+    });
+    err
 }
 
 /// A refused value in Python's words: a TypeError where it was of the wrong type (or no
@@ -478,7 +485,7 @@ fn simulate<'py>(
         if let Some(e) = watch.callback.take_error() {
             return Err(e);
         }
-        let done = done.map_err(|e| run_error(py, &e))?;
+        let done = done.map_err(|e| run_error(&e))?;
         let fields = fields_out(py, &done)?;
         Ok((
             answer(&done, &req, watch.callback.interrupted()).to_string(),

@@ -474,5 +474,9 @@ def test_a_summary_with_malformed_runs_is_refused_naming_the_file(tmp_path):
 def test_a_runs_error_names_its_parameter_as_an_attribute():
     e = refused(lambda: jkrbem.simulate(ratio=50, grid=16), "grid", jkrbem.InputError)
     assert e.parameter == "grid", (e.parameter, str(e))
+    # A value refused before any run names its parameter too, as does a value of the wrong type.
+    e = refused(lambda: jkrbem.simulate(ratio=1, cg_tolerance=0.1), "cg_tolerance",
+                jkrbem.InputError)
+    assert e.parameter == "cg_tolerance", (e.parameter, str(e))
     # An error that blames no parameter says so.
     assert jkrbem.InputError("x").parameter is None

@@ -295,6 +295,8 @@ pub struct Refusal {
     pub message: String,
     /// Whether the value was of the wrong type.
     pub wrong_type: bool,
+    /// The parameter whose value was refused (`None` for a name that is no parameter).
+    pub param: Option<&'static Spec>,
 }
 
 impl From<String> for Refusal {
@@ -302,6 +304,7 @@ impl From<String> for Refusal {
         Refusal {
             message,
             wrong_type: false,
+            param: None,
         }
     }
 }
@@ -339,6 +342,7 @@ pub fn from_json(spec: &Spec, value: &Value) -> Result<Value, Refusal> {
             json_type(value)
         ),
         wrong_type: true,
+        param: None,
     };
     let is_num = |v: &Value| v.is_number();
     // A whole number must be written as one (32, not 32.0); one beyond 64 bits comes as a
@@ -397,11 +401,19 @@ pub fn checked<'a, T: 'a, E: Into<Refusal>>(
             return Err(Refusal {
                 message: unknown(specs, name),
                 wrong_type: true,
+                param: None,
             });
         };
-        let v = from(spec, raw).map_err(Into::into)?;
+        let naming = |e: E| Refusal {
+            param: Some(spec),
+            ..e.into()
+        };
+        let v = from(spec, raw).map_err(naming)?;
         if out.insert(spec.name.to_string(), v).is_some() {
-            return Err(format!("{spec} is given more than once").into());
+            return Err(Refusal {
+                param: Some(spec),
+                ..format!("{spec} is given more than once").into()
+            });
         }
     }
     Ok(out)

@@ -86,7 +86,11 @@ impl Reason for crate::backend::BackendError {}
 impl Reason for crate::solver::SolverError {}
 impl Reason for crate::output::OutputError {}
 impl Reason for crate::scene::height_map::HeightMapError {}
-impl Reason for crate::params::values::Refusal {}
+impl Reason for crate::params::values::Refusal {
+    fn param(&self) -> Option<&'static Spec> {
+        self.param
+    }
+}
 impl Reason for serde_json::Error {}
 impl Reason for std::io::Error {}
 impl Reason for crate::output::sweep_csv::CollectError {}
