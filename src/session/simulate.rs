@@ -365,11 +365,10 @@ fn write_fields(
                 "p along x and y at {at} (state {}), {}×{}",
                 min.index, run.grid.0, run.grid.1
             );
-            let jkr = JkrSphere::of(scene);
-            let p = |r, a, d| jkr.map_or(f64::NAN, |j| j.pressure(r, a, d));
-            let closed = jkr.map(|_| ClosedFormPressure {
+            let jkr = JkrSphere::of(scene).map(|j| move |r, a, d| j.pressure(r, a, d));
+            let closed = jkr.as_ref().map(|p| ClosedFormPressure {
                 name: "JKR",
-                pressure: &p,
+                pressure: p,
             });
             match pressure_profile::write_profile_chart(&chart, min, closed, &title, figures) {
                 Ok(()) => written.extend(figures.files(&chart)),

@@ -86,7 +86,7 @@ pub const SLOPE_TAIL: f64 = 0.01;
 /// spacings (the shortest a lattice holds).
 pub fn shortest_wavelength(map: &HeightMap) -> f64 {
     let floor = 2.0 * map.spacing();
-    let mean = map.heights().iter().sum::<f64>() / map.heights().len() as f64;
+    let mean = mean_and_rms(map.heights()).0;
     let centred: Vec<f64> = map.heights().iter().map(|h| h - mean).collect();
     let Some(windowed) = hann_windowed(map, centred) else {
         // A map flat after the window (e.g. a single sloped plane of two nodes): nothing short.
@@ -135,10 +135,7 @@ const SMOOTH_RESIDUAL: f64 = 1e-6;
 /// [`shortest_wavelength`]. `None` for a map that is its quadratic up to round-off.
 pub fn carrying_wavelength(map: &HeightMap) -> Option<f64> {
     let residual = less_quadratic(map);
-    let rms = |v: &[f64]| (v.iter().map(|h| h * h).sum::<f64>() / v.len() as f64).sqrt();
-    let mean = map.heights().iter().sum::<f64>() / map.heights().len() as f64;
-    let centred: Vec<f64> = map.heights().iter().map(|h| h - mean).collect();
-    let (r, whole) = (rms(&residual), rms(&centred));
+    let (r, whole) = (mean_and_rms(&residual).1, mean_and_rms(map.heights()).1);
     if !(r.is_finite() && r > SMOOTH_RESIDUAL * whole) {
         return None;
     }
