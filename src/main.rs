@@ -40,8 +40,8 @@ use std::process::ExitCode;
 
 /// FFT-based BEM solver for JKR-type adhesive contact of a rigid indenter with an elastic
 /// half-space (Pohrt–Popov detachment criterion): an ellipsoid h = x²/(2R1) + y²/(2R2) by
-/// default, or a flat punch, a power law h = s·rⁿ or a measured height map (`simulate
-/// --indenter`).
+/// default, or a flat punch, a power law h = s·rⁿ, a cone h = r·cot α or a measured height map
+/// (`simulate --indenter`).
 ///
 /// Units: give lengths in any unit L, E* in F/L² and the work of adhesion Δγ in F/L (energy per
 /// area); dimensional outputs come out in L and F. Normalised outputs (suffix _bar) of an

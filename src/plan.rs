@@ -1112,9 +1112,8 @@ mod tests {
     fn generic_ladders_resolve_the_contact_and_grow_within_memory() {
         use crate::scene::Indenter;
         let base = ModelOptions::default();
-        let law =
-            Scene::with_indenter(Indenter::PowerLaw { n: 3.0, scale: 0.5 }, 1.0, 1.0).unwrap();
-        let punch = Scene::with_indenter(Indenter::FlatPunch { radius: 1.0 }, 1.0, 1.0).unwrap();
+        let law = Scene::with_indenter(Indenter::power_law(3.0, 0.5), 1.0, 1.0).unwrap();
+        let punch = Scene::with_indenter(Indenter::flat_punch(1.0), 1.0, 1.0).unwrap();
         for scene in [&law, &punch] {
             let g = generic_grids(scene, &base).unwrap();
             println!("{}: {g:?}", scene.indenter.name());

@@ -92,7 +92,8 @@ def simulate(
     The scene: an ellipsoid h = x²/(2 R1) + y²/(2 R2) given by ``ratio`` = R1/R2 (default 5)
     and ``r2`` (length), or by ``r1`` and ``r2``; or ``indenter="flat_punch"`` (``radius``,
     length) or ``"power_law"`` (h = ``scale``·rⁿ, ``exponent`` n; ``scale`` s defaults to 0.5,
-    as in the CLI: s = 1/(2R), so n = 2 is the sphere of R = 1). ``e_star`` is E* (F/L²),
+    as in the CLI: s = 1/(2R), so n = 2 is the sphere of R = 1) or ``"cone"`` (h = r·cot α,
+    ``half_angle`` α in degrees, default 70; normalised by its own exact pull-off, |min F̄| = 1). ``e_star`` is E* (F/L²),
     ``work_of_adhesion`` Δγ (F/L). A shape keyword of another indenter is refused.
 
     What runs: ``accuracy`` ("2%" or 0.02) plans the grids that reach it; ``grid`` (a power of

@@ -476,7 +476,7 @@ fn simulate<'py>(
         let map = array_map(&req, height_map)?;
         let sim = req
             .simulate_request(Sink::Memory, map)
-            .map_err(input_error)?;
+            .map_err(|e| naming(input_error(&e), e.param))?;
         let watch = PyWatch::new(progress);
         let pool = process_pool()?;
         let done = interruptible(py, &watch.callback, || {
@@ -503,7 +503,7 @@ fn plan(request: &str, height_map: Option<Heights<'_>>) -> PyResult<String> {
         let req = self::request(request)?;
         let scene = req
             .scene(array_map(&req, height_map)?)
-            .map_err(input_error)?;
+            .map_err(|e| naming(input_error(&e), e.param))?;
         let target = req.accuracy.unwrap_or(DEFAULT_ACCURACY);
         let p = jkrbem::plan::for_accuracy(&scene, target, &req.options())
             .map_err(|e| input_error(e.to_string()))?;
@@ -762,7 +762,7 @@ fn batch<'py>(
         // Each file the scenes name is read once, its map shared by the scenes naming it.
         let mut reads = jkrbem::session::request::MapReads::default();
         for (i, g) in given.iter().enumerate() {
-            let at = |e: RunError| input_error(format!("scenes[{i}]: {e}"));
+            let at = |e: RunError| naming(input_error(format!("scenes[{i}]: {e}")), e.param);
             let values = Request::check_json(g.iter().map(|(k, v)| (k.as_str(), v)))
                 .map_err(|r| refusal(&format!("scenes[{i}]: {}", r.message), r.wrong_type))?;
             let req = Request::from_values(values).map_err(at)?;

@@ -1,7 +1,7 @@
 //! The closed form a state's pressure field is set beside: JKR's for a sphere (an ellipsoid of
 //! R1 = R2, or the power law of n = 2), at the state's own contact radius and approach.
 
-use crate::scene::{Indenter, Scene};
+use crate::scene::Scene;
 use crate::theory::jkr::jkr_pressure;
 
 /// A sphere's JKR closed form: what [`jkr_pressure`] needs beyond the state.
@@ -18,11 +18,7 @@ impl JkrSphere {
     /// R1 = R2 or a power law of n = 2 (h = s r², R = 1/(2s)). `None` for every other shape,
     /// rough spheres and height maps among them.
     pub fn of(scene: &Scene) -> Option<JkrSphere> {
-        let radius = match scene.indenter {
-            Indenter::Ellipsoid { r1, r2 } if r1 == r2 => r1,
-            Indenter::PowerLaw { n: 2.0, scale } => 0.5 / scale,
-            _ => return None,
-        };
+        let radius = scene.indenter.shape().sphere_radius()?;
         Some(JkrSphere {
             radius,
             e_star: scene.e_star,

@@ -196,10 +196,7 @@ impl RunReport {
             (!why.is_empty()).then(|| why.join("; and "))
         });
         // A flat punch's contact is pinned by its edge: its minimum is always that onset.
-        let punch = matches!(
-            model.scene.indenter,
-            crate::scene::Indenter::FlatPunch { .. }
-        );
+        let punch = matches!(model.scene.indenter, crate::scene::Indenter::FlatPunch(_));
         let min_pinned = !punch && min.is_some_and(|m| pinned_at(model, outcome, m));
         let unresolved = step_warning(model, outcome);
         let min_resolved = unresolved.is_none();

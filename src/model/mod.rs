@@ -945,7 +945,7 @@ mod tests {
         // domain", and E* = 1e-300 as "CG produced a non-finite value". The CLI's input ranges
         // refuse those values; a scene built past them is refused here, naming σ_c.
         let s = Scene {
-            indenter: crate::scene::Indenter::Ellipsoid { r1: 1.0, r2: 1.0 },
+            indenter: crate::scene::Indenter::ellipsoid(1.0, 1.0),
             e_star: 1e300,
             work_of_adhesion: 1.0,
         };

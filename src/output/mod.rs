@@ -9,6 +9,7 @@
 pub mod batch_csv;
 pub mod bench;
 pub mod chart;
+pub mod data;
 pub mod digest;
 pub mod fields_npz;
 pub mod figure;

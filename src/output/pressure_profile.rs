@@ -294,7 +294,7 @@ mod tests {
             seed: 1,
             ..RoughnessParams::with_rms_slope(64, 0.025, 0.8, 0.05)
         };
-        let base = Indenter::Ellipsoid { r1: 1.0, r2: 1.0 };
+        let base = Indenter::ellipsoid(1.0, 1.0);
         let rough = RoughShape::new(base, generate(&params).unwrap(), "generated").unwrap();
         Scene::with_indenter(Indenter::Rough(std::sync::Arc::new(rough)), 1.0, 1.0).unwrap()
     }
@@ -310,15 +310,15 @@ mod tests {
             (sphere(1.0, 1.0), true),
             (sphere(3.0, 1.0), false),
             (
-                Scene::with_indenter(Indenter::PowerLaw { n: 2.0, scale: 0.5 }, 1.0, 1.0).unwrap(),
+                Scene::with_indenter(Indenter::power_law(2.0, 0.5), 1.0, 1.0).unwrap(),
                 true,
             ),
             (
-                Scene::with_indenter(Indenter::PowerLaw { n: 3.0, scale: 0.5 }, 1.0, 1.0).unwrap(),
+                Scene::with_indenter(Indenter::power_law(3.0, 0.5), 1.0, 1.0).unwrap(),
                 false,
             ),
             (
-                Scene::with_indenter(Indenter::FlatPunch { radius: 1.0 }, 1.0, 1.0).unwrap(),
+                Scene::with_indenter(Indenter::flat_punch(1.0), 1.0, 1.0).unwrap(),
                 false,
             ),
             (rough_sphere(), false),
@@ -349,14 +349,7 @@ mod tests {
             assert_eq!(chart.to_svg().is_ok(), cfg!(feature = "figures"));
         }
         // R = 1/(2s) for the power law of n = 2.
-        let pl = Scene::with_indenter(
-            Indenter::PowerLaw {
-                n: 2.0,
-                scale: 0.25,
-            },
-            3.0,
-            1.0,
-        );
+        let pl = Scene::with_indenter(Indenter::power_law(2.0, 0.25), 3.0, 1.0);
         assert_eq!(
             JkrSphere::of(&pl.unwrap()),
             Some(JkrSphere {

@@ -2,7 +2,8 @@
 //! `<stem>.incomplete-<pid>.csv` ([`PartialFile`]); only a complete run renames it to the path
 //! asked for, so a file under that name always holds a complete run, and an existing file
 //! there is left untouched until then. The header is written at once, so that even a run that
-//! fails before its first state leaves a file that says what it would have held.
+//! fails before its first state leaves a file that says what it would have held. Written and
+//! read back through [`super::data`], the seam of every data file.
 
 use super::file::PartialFile;
 use super::OutputError;
@@ -86,24 +87,6 @@ pub fn states_csv_bytes(states: &[State], onsets: &str) -> Vec<u8> {
     writer.into_inner().unwrap_or_default()
 }
 
-/// Read the states of a CSV written by [`StateWriter`] (for tests and post-processing).
-pub fn read_states(path: &Path) -> Result<Vec<csv::StringRecord>, OutputError> {
-    let mut r = csv::Reader::from_path(path).map_err(|e| OutputError::csv(path, e))?;
-    r.records()
-        .collect::<Result<_, _>>()
-        .map_err(|e| OutputError::csv(path, e))
-}
-
-/// Read a states CSV back into [`State`]s (the columns of [`HEADER`]).
-pub fn read_state_rows(path: &Path) -> Result<Vec<State>, OutputError> {
-    let csv_err = |e| OutputError::csv(path, e);
-    csv::Reader::from_path(path)
-        .map_err(csv_err)?
-        .deserialize()
-        .collect::<Result<_, _>>()
-        .map_err(csv_err)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -149,7 +132,7 @@ mod tests {
             format!("{old_header}\n0,approach,1,2,3,4,5,6,7,8,9,10,11,12,13,14\n"),
         )
         .unwrap();
-        let states = read_state_rows(&path).unwrap();
+        let states = crate::output::data::read_states(&path).unwrap().states;
         assert_eq!(states.len(), 1);
         assert_eq!(states[0].b_bar, 14.0);
         assert!(states[0].cg_residual.is_nan(), "not recorded reads as NaN");

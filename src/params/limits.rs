@@ -58,8 +58,18 @@ pub const MAX_INPUT: f64 = 1e30;
 pub const MAX_EXPONENT: f64 = 64.0;
 
 /// Smallest power-law exponent n accepted (dimensionless): n ≤ 1 (a cone or sharper) has an
-/// infinite pressure at its tip and no finite peak pressure to check scales with.
+/// infinite pressure at its tip and no finite peak pressure to check scales with (the cone,
+/// n = 1, is a shape of its own, checked with its mean pressure).
 pub const MIN_EXPONENT: f64 = 1.25;
+
+/// Smallest cone half-angle α accepted (degrees, between the axis and the flank): sharper
+/// cones leave the half-space's small-slope theory far behind (its flank rises 5.7 per unit
+/// run at 10°).
+pub const MIN_HALF_ANGLE: f64 = 10.0;
+
+/// Largest cone half-angle α accepted (degrees): beyond it the cone is a plane for every
+/// grid (its flank rises 0.017 per unit run at 89°).
+pub const MAX_HALF_ANGLE: f64 = 89.0;
 
 /// Fewest nodes along either axis of a generated roughness (a count), as of a height map.
 pub const MIN_ROUGHNESS_NODES: usize = 4;

@@ -9,10 +9,10 @@
 //! is said in words ([`Fallback::Chosen`]).
 
 use super::limits::{
-    MAX_CURVE_POINTS, MAX_EXPONENT, MAX_INPUT, MAX_MARGIN, MAX_MESH_ANGLE, MAX_RATIO,
-    MAX_REFERENCE_PHASES, MAX_REFERENCE_TARGET, MAX_REPEATS, MAX_RUNS_PER_CASE, MAX_SHARDS,
-    MAX_TIMED_CG_ITERATIONS, MIN_EXPONENT, MIN_FIRST_GRID, MIN_GRID, MIN_INPUT, MIN_POISSON,
-    MIN_REFERENCE_TARGET,
+    MAX_CURVE_POINTS, MAX_EXPONENT, MAX_HALF_ANGLE, MAX_INPUT, MAX_MARGIN, MAX_MESH_ANGLE,
+    MAX_RATIO, MAX_REFERENCE_PHASES, MAX_REFERENCE_TARGET, MAX_REPEATS, MAX_RUNS_PER_CASE,
+    MAX_SHARDS, MAX_TIMED_CG_ITERATIONS, MIN_EXPONENT, MIN_FIRST_GRID, MIN_GRID, MIN_HALF_ANGLE,
+    MIN_INPUT, MIN_POISSON, MIN_REFERENCE_TARGET,
 };
 use super::{cli_only, spec, Fallback, Fronts, Group, Kind, Range, Spec};
 
@@ -165,11 +165,11 @@ pub const SHAPES: &Spec = &cli(
     "shapes",
     "--shapes",
     "",
-    Kind::Choice(&["ellipsoid", "flat-punch", "power-law"]),
+    Kind::Choice(&["cone", "ellipsoid", "flat-punch", "power-law"]),
     Value("ellipsoid"),
     "Coverage: the shapes, comma-separated: `ellipsoid` (its convergence law, against JKR or \
-     the reference table), `flat-punch` (against Kendall's 1) and `power-law` (against its JKR \
-     solution), the last two extrapolated over grids and grid phases without a law.",
+     the reference table), `flat-punch` (against Kendall's 1), `power-law` and `cone` (against \
+     their JKR solutions), the last three extrapolated over grids and grid phases without a law.",
 );
 /// The power-law exponents of coverage's cases.
 pub const EXPONENTS: &Spec = &cli(
@@ -179,6 +179,16 @@ pub const EXPONENTS: &Spec = &cli(
     Kind::Real(Range::closed(MIN_EXPONENT, MAX_EXPONENT)),
     Chosen("1.5, 3, 8"),
     "Coverage: the power law's exponents n, comma-separated.",
+);
+/// The cone half-angles of coverage's cases.
+pub const HALF_ANGLES: &Spec = &cli(
+    "half_angles",
+    "--half-angles",
+    "degrees",
+    Kind::Real(Range::closed(MIN_HALF_ANGLE, MAX_HALF_ANGLE)),
+    Chosen("70"),
+    "Coverage: the cone's half-angles α, comma-separated (in its own normalisation every cone \
+     is one problem: other angles check only round-off).",
 );
 /// The runs of one coverage case.
 pub const RUNS_PER_CASE: &Spec = &cli(
@@ -410,6 +420,7 @@ pub const STUDY_SPECS: &[&Spec] = &[
     RUNS_PER_CASE,
     SHAPES,
     EXPONENTS,
+    HALF_ANGLES,
     BACKENDS,
     PRECISIONS,
     SHARD,

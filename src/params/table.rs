@@ -2,9 +2,10 @@
 //! [`SPECS`], every one of them in the order `--help` shows them.
 
 use super::limits::{
-    MAX_CG_ITERATIONS, MAX_CG_TOLERANCE, MAX_EXPONENT, MAX_GRID, MAX_INPUT, MAX_MARGIN,
-    MAX_MESH_ANGLE, MAX_RATIO, MAX_ROUGHNESS_NODES, MAX_STEPS, MAX_TIME_LIMIT_S, MIN_EXPONENT,
-    MIN_FINAL_D_BAR, MIN_GRID, MIN_INPUT, MIN_ROUGHNESS_NODES, START_RADIUS_RANGE,
+    MAX_CG_ITERATIONS, MAX_CG_TOLERANCE, MAX_EXPONENT, MAX_GRID, MAX_HALF_ANGLE, MAX_INPUT,
+    MAX_MARGIN, MAX_MESH_ANGLE, MAX_RATIO, MAX_ROUGHNESS_NODES, MAX_STEPS, MAX_TIME_LIMIT_S,
+    MIN_EXPONENT, MIN_FINAL_D_BAR, MIN_GRID, MIN_HALF_ANGLE, MIN_INPUT, MIN_ROUGHNESS_NODES,
+    START_RADIUS_RANGE,
 };
 use super::{cli_only, spec, Fallback, Group, Kind, Range, Spec};
 
@@ -22,12 +23,13 @@ pub const INDENTER: &Spec = &spec(
     "--indenter",
     Scene,
     "",
-    Kind::Choice(&["ellipsoid", "flat-punch", "height-map", "power-law"]),
+    Kind::Choice(&["cone", "ellipsoid", "flat-punch", "height-map", "power-law"]),
     Value("ellipsoid"),
     "The indenter's shape: `ellipsoid` (⟨ratio⟩ or ⟨r1⟩, ⟨r2⟩), `flat-punch` (⟨radius⟩), \
-     `power-law` (h = s·rⁿ: ⟨exponent⟩, ⟨scale⟩) or `height-map` (⟨height_map⟩, ⟨spacing⟩). The \
-     ellipsoid has a convergence law; the others run one grid by default, set beside the closed \
-     form of their Δx → 0 limit where one exists (Kendall; the power law's JKR solution), and \
+     `power-law` (h = s·rⁿ: ⟨exponent⟩, ⟨scale⟩), `cone` (h = r·cot α: ⟨half_angle⟩) or \
+     `height-map` (⟨height_map⟩, ⟨spacing⟩). The ellipsoid has a convergence law; the others run \
+     one grid by default, set beside the closed form of their Δx → 0 limit where one exists \
+     (Kendall; the power law's and the cone's JKR solutions), and \
      ⟨accuracy⟩ or ⟨extrapolate⟩ extrapolate them over grids and grid phases without a law.",
 );
 /// R1/R2 of the ellipsoid.
@@ -100,6 +102,19 @@ pub const EXPONENT: &Spec = &spec(
     Kind::Real(Range::closed(MIN_EXPONENT, MAX_EXPONENT)),
     Chosen("2"),
     "Power law h = s·rⁿ: the exponent n (2 is the sphere of radius 1/(2s)).",
+);
+/// The cone's half-angle.
+pub const HALF_ANGLE: &Spec = &spec(
+    "half_angle",
+    "--half-angle",
+    Scene,
+    "degrees",
+    Kind::Real(Range::closed(MIN_HALF_ANGLE, MAX_HALF_ANGLE)),
+    Chosen("70"),
+    "Cone h = r·cot α: the half-angle α between the axis and the flank. Results are normalised \
+     by the cone's exact pull-off: forces by 54 Δγ² tan³α / (π E*), lengths by twice its contact \
+     radius there, 36 Δγ tan²α / (π E*), approaches by the way from there to the end of \
+     contact, 4 Δγ tan α / E*.",
 );
 /// The power law's factor.
 pub const SCALE: &Spec = &spec(
@@ -577,6 +592,7 @@ pub const SPECS: &[&Spec] = &[
     WORK_OF_ADHESION,
     RADIUS,
     EXPONENT,
+    HALF_ANGLE,
     SCALE,
     HEIGHT_MAP,
     SPACING,

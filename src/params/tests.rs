@@ -90,7 +90,7 @@ fn values_out_of_kind_or_range_are_refused_naming_the_parameter() {
         (APEX_OFFSET, "0.25"),
         (EXTRAPOLATE_GRIDS, "128,64"),
         (EXTRAPOLATE_GRIDS, "64"),
-        (INDENTER, "cone"),
+        (INDENTER, "sphere"),
         (FIELDS, "every:0"),
         (FIGURE_FORMAT, "jpeg"),
         (FIGURE_FORMAT, "svg,svg"),

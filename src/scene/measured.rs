@@ -23,9 +23,11 @@
 //! grid finer than the map's spacing resolves every facet of it.
 
 use super::height_map::HeightMap;
-use super::SceneError;
+use super::indenter::{ellipsoid_hint, ellipsoid_scales, FirstContact, IndenterShape, PullOffHint};
+use super::{Scales, SceneError};
 use crate::params::{Spec, CONVOLUTION, HEIGHT_MAP, WINDOW_X, WINDOW_Y};
 use crate::text::compact;
+use crate::theory::hertz::hertz_for_mean_radius;
 
 /// The fit around the lowest node takes the nodes within this fraction of the map's smaller
 /// half-width (dimensionless), and at least [`MIN_FIT_NODES`] spacings.
@@ -484,6 +486,76 @@ fn check_periodic(map: &HeightMap, source: &str) -> Result<(), SceneError> {
         });
     }
     Ok(())
+}
+
+/// A measured surface as an indenter: its apex at the origin, sized and normalised as the
+/// ellipsoid of its apex's principal radii (in the user's units where it has none).
+impl IndenterShape for MeasuredSurface {
+    fn name(&self) -> &'static str {
+        "height-map"
+    }
+
+    fn describe(&self) -> String {
+        MeasuredSurface::describe(self)
+    }
+
+    fn tag(&self) -> String {
+        "height-map".to_string()
+    }
+
+    fn normalised_by(&self) -> String {
+        match self.radii {
+            Some(_) => "the apex fit's radii, as an ellipsoid's".to_string(),
+            None => "none: the user's units".to_string(),
+        }
+    }
+
+    fn height(&self, x: f64, y: f64, _e_star: f64, _work_of_adhesion: f64) -> f64 {
+        MeasuredSurface::height(self, x, y).unwrap_or(f64::INFINITY)
+    }
+
+    fn scales(&self, e_star: f64, work_of_adhesion: f64) -> Scales {
+        match self.radii {
+            Some((r1, r2)) => ellipsoid_scales(r1, r2, e_star, work_of_adhesion),
+            None => Scales::UNITS,
+        }
+    }
+
+    /// The apex ellipsoid's Hertz contact, as a circle of its major half-axis: the map's
+    /// principal axes need not lie along the grid's.
+    fn first_contact(
+        &self,
+        c: f64,
+        e_star: f64,
+        _work_of_adhesion: f64,
+    ) -> Result<FirstContact, String> {
+        let Some((r1, r2)) = self.radii else {
+            return Err(
+                "a map that is not convex about its lowest node has no first \
+                        contact to build: it is pressed on"
+                    .to_string(),
+            );
+        };
+        let h = hertz_for_mean_radius(r1, r2, e_star, c).map_err(|e| e.to_string())?;
+        Ok(FirstContact { b: h.a, ..h.into() })
+    }
+
+    fn pull_off_hint(&self, _e_star: f64, _work_of_adhesion: f64) -> Option<PullOffHint> {
+        let (r1, r2) = self.radii?;
+        ellipsoid_hint(r1 / r2)
+    }
+
+    fn ellipsoid_like(&self) -> Option<(f64, f64)> {
+        self.radii
+    }
+
+    fn map(&self) -> Option<&HeightMap> {
+        Some(&self.map)
+    }
+
+    fn covers(&self, half_x: f64, half_y: f64) -> bool {
+        MeasuredSurface::covers(self, half_x, half_y)
+    }
 }
 
 #[cfg(test)]

@@ -2,13 +2,14 @@
 //! the normalisation (physics §2) that every output uses. Knows nothing of grids or FFTs.
 
 pub mod height_map;
-mod indenter;
+pub mod indenter;
 mod measured;
 mod rough;
 pub mod roughness;
 
 pub use indenter::{
-    FirstContact, Indenter, PullOffHint, DEFAULT_POWER_LAW_SCALE, MAX_EXPONENT, MIN_EXPONENT,
+    FirstContact, Indenter, IndenterShape, PullOffHint, DEFAULT_POWER_LAW_SCALE, MAX_EXPONENT,
+    MIN_EXPONENT,
 };
 pub use measured::{MeasuredSurface, Placement};
 pub use rough::RoughShape;
@@ -135,7 +136,7 @@ impl Scene {
             r1 / r2 <= MAX_RATIO,
             &format!("R1/R2 = {} must be ≤ {MAX_RATIO}", compact(r1 / r2)),
         )?;
-        Scene::with_indenter(Indenter::Ellipsoid { r1, r2 }, e_star, work_of_adhesion)
+        Scene::with_indenter(Indenter::ellipsoid(r1, r2), e_star, work_of_adhesion)
     }
 
     /// A scene of any indenter, E* (force/length²) and Δγ (force/length); the shape's
@@ -186,29 +187,16 @@ impl Scene {
     }
 
     /// A short tag for file names: "r5" for an ellipsoid of R1/R2 = 5, "flat-punch",
-    /// "power-law-n3".
+    /// "power-law-n3", "cone-a70", "rough-r1" for a rough sphere.
     pub fn tag(&self) -> String {
-        match self.indenter {
-            Indenter::Ellipsoid { .. } => format!("r{}", self.ratio()),
-            Indenter::PowerLaw { n, .. } => format!("power-law-n{n}"),
-            Indenter::FlatPunch { .. } => "flat-punch".to_string(),
-            Indenter::HeightMap(_) => "height-map".to_string(),
-            Indenter::Rough(ref r) => format!(
-                "rough-{}",
-                Scene {
-                    indenter: r.base.clone(),
-                    ..self.clone()
-                }
-                .tag()
-            ),
-        }
+        self.indenter.shape().tag()
     }
 
     /// The scene in a few words for progress lines: "R1/R2 = 5" for an ellipsoid, else the
     /// indenter's description.
     pub fn headline(&self) -> String {
         match self.indenter {
-            Indenter::Ellipsoid { .. } => format!("R1/R2 = {}", self.ratio()),
+            Indenter::Ellipsoid(_) => format!("R1/R2 = {}", self.ratio()),
             _ => self.indenter.describe(),
         }
     }
@@ -216,7 +204,7 @@ impl Scene {
     /// Whether the indenter is an ellipsoid (the shape the study, its convergence law, the
     /// reference table and Johnson–Greenwood's theory are for).
     pub fn is_ellipsoid(&self) -> bool {
-        matches!(self.indenter, Indenter::Ellipsoid { .. })
+        matches!(self.indenter, Indenter::Ellipsoid(_))
     }
 
     /// Whether the indenter is pressed on by default (a loading phase to the first contact's
@@ -237,23 +225,7 @@ impl Scene {
 
     /// What normalises the results, in words.
     pub fn normalised_by(&self) -> String {
-        match &self.indenter {
-            Indenter::Ellipsoid { .. } => "the ellipsoid's c_r, 3πRΔγ, c_r²/R".to_string(),
-            Indenter::PowerLaw { .. } => "the power law's c_n, 3πR_nΔγ, c_n²/R_n".to_string(),
-            Indenter::FlatPunch { .. } => "the punch's radius, Kendall's force and approach".into(),
-            Indenter::HeightMap(m) => match m.radii {
-                Some(_) => "the apex fit's radii, as an ellipsoid's".to_string(),
-                None => "none: the user's units".to_string(),
-            },
-            Indenter::Rough(r) => format!(
-                "the base shape's: {}",
-                Scene {
-                    indenter: r.base.clone(),
-                    ..self.clone()
-                }
-                .normalised_by()
-            ),
-        }
+        self.indenter.shape().normalised_by()
     }
 
     /// Whether the results are normalised (by the shape's own scales, a base shape's or a

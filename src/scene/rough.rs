@@ -5,8 +5,8 @@
 //! same continuous one on every grid.
 
 use super::height_map::HeightMap;
-use super::indenter::Indenter;
-use super::SceneError;
+use super::indenter::{FirstContact, Indenter, IndenterShape, PullOffHint};
+use super::{Scales, SceneError};
 use crate::params::ROUGHNESS;
 use crate::text::compact;
 
@@ -80,5 +80,57 @@ impl RoughShape {
             compact(self.map.spacing()),
             compact(self.rms_height())
         )
+    }
+}
+
+impl IndenterShape for RoughShape {
+    fn name(&self) -> &'static str {
+        "rough"
+    }
+
+    fn describe(&self) -> String {
+        RoughShape::describe(self)
+    }
+
+    fn tag(&self) -> String {
+        format!("rough-{}", self.base.shape().tag())
+    }
+
+    fn normalised_by(&self) -> String {
+        format!("the base shape's: {}", self.base.shape().normalised_by())
+    }
+
+    fn height(&self, x: f64, y: f64, e_star: f64, work_of_adhesion: f64) -> f64 {
+        self.base.height(x, y, e_star, work_of_adhesion)
+            + self.roughness(x, y).unwrap_or(f64::INFINITY)
+    }
+
+    fn scales(&self, e_star: f64, work_of_adhesion: f64) -> Scales {
+        self.base.scales(e_star, work_of_adhesion)
+    }
+
+    fn first_contact(
+        &self,
+        c: f64,
+        e_star: f64,
+        work_of_adhesion: f64,
+    ) -> Result<FirstContact, String> {
+        self.base.first_contact(c, e_star, work_of_adhesion)
+    }
+
+    fn pull_off_hint(&self, e_star: f64, work_of_adhesion: f64) -> Option<PullOffHint> {
+        self.base.pull_off_hint(e_star, work_of_adhesion)
+    }
+
+    fn ellipsoid_like(&self) -> Option<(f64, f64)> {
+        self.base.shape().ellipsoid_like()
+    }
+
+    fn map(&self) -> Option<&HeightMap> {
+        Some(&self.map)
+    }
+
+    fn covers(&self, half_x: f64, half_y: f64) -> bool {
+        RoughShape::covers(self, half_x, half_y) && self.base.covers(half_x, half_y)
     }
 }

@@ -124,6 +124,16 @@ pub fn input(e: impl Reason) -> RunError {
     }
 }
 
+/// A refusal that blames `param`, the parameter to change, whose marker its `message` names:
+/// Python's exception carries it as `parameter`, as it does a typed error's.
+pub fn refuse(param: &'static Spec, message: impl fmt::Display) -> RunError {
+    RunError {
+        kind: ErrorKind::Input,
+        param: Some(param),
+        message: message.to_string(),
+    }
+}
+
 /// A failure, from any layer's error, naming its parameter where the error's type records one.
 pub fn failed(e: impl Reason) -> RunError {
     RunError {
@@ -202,5 +212,28 @@ mod tests {
         .map_message(|m| format!("r1: {m}"));
         assert_eq!(e.param.map(|p| p.name), Some("grid"));
         assert!(e.message.starts_with("r1: "));
+    }
+
+    /// A refusal the session words itself blames the parameter it names first: the request's
+    /// own checks (a shape's parameter given with another shape, two that exclude each other).
+    #[test]
+    fn the_sessions_own_refusals_blame_their_parameter() {
+        use crate::params::{EXTRAPOLATE_GRIDS, HALF_ANGLE, RATIO};
+        use serde_json::json;
+        for (given, param) in [
+            (
+                json!({"indenter": "power-law", "half_angle": 60.0}),
+                HALF_ANGLE,
+            ),
+            (json!({"ratio": 2.0, "r1": 3.0}), RATIO),
+            (json!({"extrapolate_grids": [32, 64]}), EXTRAPOLATE_GRIDS),
+        ] {
+            let given = given.as_object().unwrap().clone();
+            let e = request::Request::from_json(given.iter().map(|(k, v)| (k.as_str(), v)))
+                .and_then(|r| r.simulate_request(simulate::Sink::Memory, None).map(|_| ()))
+                .unwrap_err();
+            assert!(e.is_input(), "{e}");
+            assert_eq!(e.param.map(|p| p.name), Some(param.name), "{e}");
+        }
     }
 }

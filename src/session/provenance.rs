@@ -31,11 +31,6 @@ pub(crate) fn word<T: serde::Serialize>(value: T) -> String {
 /// The scene in the user's units.
 pub fn scene_json(scene: &Scene) -> Value {
     let shape = match &scene.indenter {
-        Indenter::Ellipsoid { r1, r2 } => json!({"indenter": "ellipsoid", "r1": r1, "r2": r2,
-                                                 "ratio": r1 / r2}),
-        Indenter::PowerLaw { n, scale } => json!({"indenter": "power-law", "exponent": n,
-                                                  "scale": scale}),
-        Indenter::FlatPunch { radius } => json!({"indenter": "flat-punch", "radius": radius}),
         Indenter::HeightMap(m) => json!({"indenter": "height-map", "source": m.source,
                                          "spacing": m.map.spacing(),
                                          "fitted_radii": m.radii.map(|r| [r.0, r.1]),
@@ -48,6 +43,13 @@ pub fn scene_json(scene: &Scene) -> Value {
             base["roughness"] = json!({"source": r.source, "spacing": r.map.spacing(),
                                        "rms_height": r.rms_height()});
             base
+        }
+        smooth => {
+            let mut v = json!({"indenter": smooth.name()});
+            for (name, value) in smooth.shape().parameters() {
+                v[name] = json!(value);
+            }
+            v
         }
     };
     let mut v = shape;

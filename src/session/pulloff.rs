@@ -7,7 +7,7 @@ use crate::analysis::capture::MaskObserver;
 use crate::analysis::report::RunReport;
 use crate::backend::Backend;
 use crate::model::Model;
-use crate::output::states_csv::StateWriter;
+use crate::output::data::{state_stream, StateStream};
 use crate::params::Spec;
 use crate::solver::{self, Outcome};
 use std::path::{Path, PathBuf};
@@ -63,10 +63,8 @@ pub fn pulloff<B: Backend>(
     mut capture: Option<&mut dyn MaskObserver>,
     deadline: Option<Instant>,
 ) -> Result<Pulloff, RunError> {
-    let mut writer = match file {
-        Some(f) => {
-            Some(StateWriter::create(f.path, model.onsets.name()).map_err(write_error(f.param))?)
-        }
+    let mut writer: Option<Box<dyn StateStream>> = match file {
+        Some(f) => Some(state_stream(f.path, model.onsets.name()).map_err(write_error(f.param))?),
         None => None,
     };
     let mut write_error_at = None;

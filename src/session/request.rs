@@ -7,7 +7,7 @@
 
 use super::open::{BackendRequest, Convolution};
 use super::simulate::{Mode, SimulateRequest, Sink};
-use super::{input, RunError};
+use super::{input, refuse, RunError};
 use crate::analysis::fields::FieldChoice;
 use crate::backend::select::{BackendKind, Precision};
 use crate::model::{Measure, ModelOptions, Onsets, Preload};
@@ -36,6 +36,8 @@ pub use map_file::MapReads;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Shape {
+    /// A cone h = r·cot α.
+    Cone,
     /// h = x²/(2 R1) + y²/(2 R2).
     Ellipsoid,
     /// A flat cylindrical punch.
@@ -50,6 +52,7 @@ impl Shape {
     /// The name the schema gives it ("flat-punch").
     pub fn name(self) -> &'static str {
         match self {
+            Shape::Cone => "cone",
             Shape::Ellipsoid => "ellipsoid",
             Shape::FlatPunch => "flat-punch",
             Shape::HeightMap => "height-map",
@@ -73,6 +76,7 @@ pub struct Request {
     pub radius: Option<f64>,
     pub exponent: Option<f64>,
     pub scale: Option<f64>,
+    pub half_angle: Option<f64>,
     pub height_map: Option<PathBuf>,
     pub spacing: Option<f64>,
     pub roughness: Option<PathBuf>,
@@ -194,40 +198,44 @@ impl Request {
 
     /// Refuse a shape's parameter given with another indenter (it would be ignored).
     fn refuse_foreign(&self, map_given: bool, rough_given: bool) -> Result<(), RunError> {
-        use params::{EXPONENT, R2, RADIUS, SCALE};
+        use params::{EXPONENT, HALF_ANGLE, R2, RADIUS, SCALE};
         use Shape::*;
         let rough = self.roughness.is_some() || rough_given;
-        let given: [(&Spec, bool, &[Shape]); 12] = [
+        let given: [(&Spec, bool, &[Shape]); 13] = [
             (RATIO, self.ratio.is_some(), &[Ellipsoid]),
             (R1, self.r1.is_some(), &[Ellipsoid]),
             (R2, self.r2.is_some(), &[Ellipsoid]),
             (
                 START_RADIUS,
                 self.start_radius.is_some(),
-                &[Ellipsoid, PowerLaw, HeightMap],
+                &[Ellipsoid, PowerLaw, Cone, HeightMap],
             ),
             (RADIUS, self.radius.is_some(), &[FlatPunch]),
             (EXPONENT, self.exponent.is_some(), &[PowerLaw]),
             (SCALE, self.scale.is_some(), &[PowerLaw]),
+            (HALF_ANGLE, self.half_angle.is_some(), &[Cone]),
             (
                 HEIGHT_MAP,
                 self.height_map.is_some() || map_given,
                 &[HeightMap],
             ),
             (SPACING, self.spacing.is_some() && !rough, &[HeightMap]),
-            (ROUGHNESS, rough, &[Ellipsoid, PowerLaw, FlatPunch]),
+            (ROUGHNESS, rough, &[Ellipsoid, PowerLaw, FlatPunch, Cone]),
             (WINDOW_X, self.window_x.is_some(), &[HeightMap]),
             (WINDOW_Y, self.window_y.is_some(), &[HeightMap]),
         ];
         for (spec, given, shapes) in given {
             if given && !shapes.contains(&self.indenter) {
                 let names: Vec<&str> = shapes.iter().map(|s| s.name()).collect();
-                return Err(input(format!(
-                    "{spec} is for {INDENTER} {}, not {} (it would be ignored): leave it out, \
+                return Err(refuse(
+                    spec,
+                    format!(
+                        "{spec} is for {INDENTER} {}, not {} (it would be ignored): leave it out, \
                      or give the indenter it is for",
-                    names.join(" or "),
-                    self.indenter.name()
-                )));
+                        names.join(" or "),
+                        self.indenter.name()
+                    ),
+                ));
             }
         }
         let preloads = [
@@ -247,10 +255,13 @@ impl Request {
             )));
         }
         if self.ratio.is_some() && self.r1.is_some() {
-            return Err(input(format!(
-                "{RATIO} and {R1} both set R1/R2: give one ({R1} with {}, or {RATIO})",
-                params::R2
-            )));
+            return Err(refuse(
+                RATIO,
+                format!(
+                    "{RATIO} and {R1} both set R1/R2: give one ({R1} with {}, or {RATIO})",
+                    params::R2
+                ),
+            ));
         }
         Ok(())
     }
@@ -290,13 +301,15 @@ impl Request {
                 .map_err(input)?;
                 smooth.indenter
             }
-            Shape::FlatPunch => Indenter::FlatPunch {
-                radius: self.radius.unwrap_or(1.0),
-            },
-            Shape::PowerLaw => Indenter::PowerLaw {
-                n: self.exponent.unwrap_or(2.0),
-                scale: self.scale.unwrap_or(crate::scene::DEFAULT_POWER_LAW_SCALE),
-            },
+            Shape::FlatPunch => Indenter::flat_punch(self.radius.unwrap_or(1.0)),
+            Shape::PowerLaw => Indenter::power_law(
+                self.exponent.unwrap_or(2.0),
+                self.scale.unwrap_or(crate::scene::DEFAULT_POWER_LAW_SCALE),
+            ),
+            Shape::Cone => Indenter::cone(
+                self.half_angle
+                    .unwrap_or(crate::scene::indenter::DEFAULT_HALF_ANGLE),
+            ),
             Shape::HeightMap => self.height_map_indenter(map, reads, &mut read)?,
         };
         let shape = match self.roughness_map(rough_map, reads, &mut read)? {
@@ -322,9 +335,10 @@ impl Request {
             (Some(map), _) => Ok(Some((map, "the array given".to_string()))),
             (None, Some(path)) => {
                 let Some(spacing) = self.spacing else {
-                    return Err(input(format!(
-                        "{ROUGHNESS} needs {SPACING} (the nodes' spacing, length)"
-                    )));
+                    return Err(refuse(
+                        ROUGHNESS,
+                        format!("{ROUGHNESS} needs {SPACING} (the nodes' spacing, length)"),
+                    ));
                 };
                 let name = crate::text::printable(&path.display().to_string(), 200);
                 let (map, file) = reads.read(path, &name, spacing, ROUGHNESS)?;
@@ -349,10 +363,13 @@ impl Request {
             (Some(map), _) => (map, "the array given".to_string()),
             (None, Some(path)) => {
                 let Some(spacing) = self.spacing else {
-                    return Err(input(format!(
-                        "{INDENTER} height-map needs {HEIGHT_MAP} and {SPACING} (the nodes' \
+                    return Err(refuse(
+                        INDENTER,
+                        format!(
+                            "{INDENTER} height-map needs {HEIGHT_MAP} and {SPACING} (the nodes' \
                          spacing, length)"
-                    )));
+                        ),
+                    ));
                 };
                 let name = crate::text::printable(&path.display().to_string(), 200);
                 let (map, file) = reads.read(path, &name, spacing, HEIGHT_MAP)?;
@@ -360,10 +377,13 @@ impl Request {
                 (map, name)
             }
             (None, None) => {
-                return Err(input(format!(
-                    "{INDENTER} height-map needs {HEIGHT_MAP} and {SPACING} (the nodes' \
+                return Err(refuse(
+                    INDENTER,
+                    format!(
+                        "{INDENTER} height-map needs {HEIGHT_MAP} and {SPACING} (the nodes' \
                      spacing, length)"
-                )))
+                    ),
+                ))
             }
         };
         let surface = if self.convolution == Convolution::Periodic {
@@ -435,36 +455,46 @@ impl Request {
                 dropped.push(EXTRAPOLATE);
             }
             if !dropped.is_empty() {
-                return Err(input(format!(
-                    "{ACCURACY} and {} cannot be given together: a run to an accuracy chooses \
+                return Err(refuse(
+                    ACCURACY,
+                    format!(
+                        "{ACCURACY} and {} cannot be given together: a run to an accuracy chooses \
                      its grids, load steps and measure itself (leave out {})",
-                    dropped[0],
-                    names(&dropped)
-                )));
+                        dropped[0],
+                        names(&dropped)
+                    ),
+                ));
             }
         }
         if self.extrapolate {
             if let Some(g) = one_grid.iter().find(|s| [GRID, GRID_Y].contains(s)) {
-                return Err(input(format!(
+                return Err(refuse(
+                    EXTRAPOLATE,
+                    format!(
                     "{EXTRAPOLATE} and {g} cannot be given together: an extrapolation runs its \
                      own grids (give them as {EXTRAPOLATE_GRIDS})"
-                )));
+                ),
+                ));
             }
         } else if self.extrapolate_grids.is_some() {
-            return Err(input(format!(
-                "{EXTRAPOLATE_GRIDS} is for {EXTRAPOLATE}: give both, or leave it out"
-            )));
+            return Err(refuse(
+                EXTRAPOLATE_GRIDS,
+                format!("{EXTRAPOLATE_GRIDS} is for {EXTRAPOLATE}: give both, or leave it out"),
+            ));
         }
         // Only the ellipsoid has a convergence law: the other shapes run one grid.
         let one = self.indenter != Shape::Ellipsoid || !one_grid.is_empty();
         let extrapolate = self.extrapolate.then(|| self.extrapolate_grids.clone());
         let mode = Mode::choose(self.accuracy, extrapolate, one);
         if self.time_limit.is_some() && !matches!(mode, Mode::Accuracy(_)) {
-            return Err(input(format!(
-                "{TIME_LIMIT} applies to a run to an accuracy ({ACCURACY} given, or none of \
+            return Err(refuse(
+                TIME_LIMIT,
+                format!(
+                    "{TIME_LIMIT} applies to a run to an accuracy ({ACCURACY} given, or none of \
                  {}, which run one grid)",
-                names(&ONE_GRID)
-            )));
+                    names(&ONE_GRID)
+                ),
+            ));
         }
         Ok(mode)
     }
@@ -508,22 +538,25 @@ impl Request {
         })?;
         let time_limit = match self.time_limit {
             Some(t) => Some(Duration::try_from_secs_f64(t).map_err(|_| {
-                input(format!(
-                    "{TIME_LIMIT} = {} is invalid",
-                    crate::text::compact(t)
-                ))
+                refuse(
+                    TIME_LIMIT,
+                    format!("{TIME_LIMIT} = {} is invalid", crate::text::compact(t)),
+                )
             })?),
             None => None,
         };
         self.backend().check()?;
         let (scene, input_files) = self.scene_sharing(map, reads)?;
         if self.convolution == Convolution::Periodic && scene.window_half().is_none() {
-            return Err(input(format!(
+            return Err(refuse(
+                CONVOLUTION,
+                format!(
                 "{CONVOLUTION} periodic is for a surface periodic over the domain, a height map \
                  that is one period of it (a nominally flat rough or a wavy surface): the {} is \
                  an isolated contact, which needs {CONVOLUTION} padded",
                 scene.indenter.name()
-            )));
+            ),
+            ));
         }
         Ok(SimulateRequest {
             scene,

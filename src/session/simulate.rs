@@ -6,7 +6,7 @@
 use super::claim::Outputs;
 use super::open::{open_for, BackendRequest};
 use super::pulloff::{pulloff, Pulloff, StatesFile};
-use super::{failed, input, provenance, RunError, Watch};
+use super::{failed, input, provenance, refuse, RunError, Watch};
 use crate::analysis::capture::MaskObserver;
 use crate::analysis::estimate::{self, AdhesiveResult};
 use crate::analysis::fields::{
@@ -20,7 +20,7 @@ use crate::output::figure::FigureFormats;
 use crate::output::pressure_profile::{self, ClosedFormPressure};
 use crate::output::provenance::Provenance;
 use crate::output::summary::Summary;
-use crate::output::{fields_npz, names, pressure_chart, NamedBy};
+use crate::output::{data, names, pressure_chart, NamedBy};
 use crate::params::{Spec, ACCURACY, EXTRAPOLATE_GRIDS, FIELDS, GRID, OUT, SUMMARY, TIME_LIMIT};
 use crate::plan;
 use crate::scene::Scene;
@@ -203,7 +203,7 @@ fn targets(
         outs.iter().map(|p| (p.clone(), OUT.into())).collect();
     if !req.fields.is_none() {
         for o in outs {
-            targets.push((names::fields_npz(o), FIELDS.into()));
+            targets.push((data::fields_path(o), FIELDS.into()));
             for chart in [names::pressure_chart(o), names::profile_chart(o)] {
                 for file in req.figures.files(&chart) {
                     targets.push((file, FIELDS.into()));
@@ -294,17 +294,23 @@ pub fn simulate(req: &SimulateRequest, watch: &dyn Watch) -> Result<Simulated, R
 /// Refuse a [`Sink::OneRunReturned`] request that runs several grids or keeps fields.
 fn one_run_returned(req: &SimulateRequest, models: &[Model]) -> Result<(), RunError> {
     if models.len() != 1 || matches!(req.mode, Mode::Extrapolate(_)) {
-        return Err(input(format!(
-            "{OUT} -: standard output takes the states of one run, and this request runs {} \
+        return Err(refuse(
+            OUT,
+            format!(
+                "{OUT} -: standard output takes the states of one run, and this request runs {} \
              grids; give {OUT} a file name (the stem of one states file per grid)",
-            models.len()
-        )));
+                models.len()
+            ),
+        ));
     }
     if !req.fields.is_none() {
-        return Err(input(format!(
-            "{FIELDS}: the fields are written beside the states file, and {OUT} - sends the \
+        return Err(refuse(
+            FIELDS,
+            format!(
+                "{FIELDS}: the fields are written beside the states file, and {OUT} - sends the \
              states to standard output; give {OUT} a file name"
-        )));
+            ),
+        ));
     }
     Ok(())
 }
@@ -332,9 +338,8 @@ fn write_fields(
             "states_csv": out.display().to_string(),
             "provenance": provenance,
         });
-        let npz = names::fields_npz(out);
-        match fields_npz::write_npz(&npz, &run.fields, about) {
-            Ok(()) => written.push(npz),
+        match data::write_fields(out, &run.fields, about) {
+            Ok(path) => written.push(path),
             Err(e) => unwritten.push(e.with_param(FIELDS).to_string()),
         }
         // The run's lowest state: its force minimum, or only the lowest force it recorded.
@@ -403,12 +408,15 @@ fn output_paths(
                 .clone()
                 .unwrap_or_else(|| names::simulate_stem(name, &req.scene.tag()));
             if stem.is_dir() || stem.file_stem().is_none() {
-                return Err(input(format!(
-                    "{OUT} {}: with several grids {OUT} is the stem of one states file per \
+                return Err(refuse(
+                    OUT,
+                    format!(
+                        "{OUT} {}: with several grids {OUT} is the stem of one states file per \
                      grid (e.g. runs/r5.csv gives runs/r5-n128.csv, …); give a file name, not a \
                      folder",
-                    stem.display()
-                )));
+                        stem.display()
+                    ),
+                ));
             }
             if req.scene.is_ellipsoid() {
                 models
@@ -795,9 +803,10 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
                 None => plan::extrapolation_grids(&req.scene, &req.options).map_err(input)?,
             };
             if !(2..=8).contains(&grids.len()) || grids.windows(2).any(|w| w[1] <= w[0]) {
-                return Err(input(format!(
-                    "{EXTRAPOLATE_GRIDS}: give 2 to 8 increasing grids, e.g. 64,128,256"
-                )));
+                return Err(refuse(
+                    EXTRAPOLATE_GRIDS,
+                    format!("{EXTRAPOLATE_GRIDS}: give 2 to 8 increasing grids, e.g. 64,128,256"),
+                ));
             }
             let models = per_grid(&grids, &req.options, EXTRAPOLATE_GRIDS)?;
             Ok(Planned {
@@ -864,19 +873,23 @@ fn plan_generic(req: &SimulateRequest) -> Result<Planned, RunError> {
             .collect::<Result<Vec<_>, _>>()
     };
     match &req.mode {
-        Mode::Single => Err(input(format!(
-            "{GRID}: one grid of the {} has no uncertainty to extrapolate",
-            req.scene.indenter.name()
-        ))),
+        Mode::Single => Err(refuse(
+            GRID,
+            format!(
+                "{GRID}: one grid of the {} has no uncertainty to extrapolate",
+                req.scene.indenter.name()
+            ),
+        )),
         Mode::Extrapolate(grids) => {
             let grids = match grids {
                 Some(g) => g.clone(),
                 None => plan::generic_grids(&req.scene, &req.options).map_err(input)?,
             };
             if !(2..=8).contains(&grids.len()) || grids.windows(2).any(|w| w[1] <= w[0]) {
-                return Err(input(format!(
-                    "{EXTRAPOLATE_GRIDS}: give 2 to 8 increasing grids, e.g. 64,128,256"
-                )));
+                return Err(refuse(
+                    EXTRAPOLATE_GRIDS,
+                    format!("{EXTRAPOLATE_GRIDS}: give 2 to 8 increasing grids, e.g. 64,128,256"),
+                ));
             }
             let mut models = Vec::new();
             for &nx in &grids {

@@ -17,6 +17,7 @@ use crate::scene::Scene;
 use crate::session::claim::{named, write_error, Outputs};
 use crate::session::open::BackendRequest;
 use crate::session::pulloffs::{run_files, run_jobs, Job};
+use crate::session::refuse;
 use crate::session::Watch;
 use crate::session::{input, RunError};
 use serde::Serialize;
@@ -169,14 +170,16 @@ fn backend_name(kind: BackendKind) -> &'static str {
 /// Check the request, claim its outputs, run every grid and write the chart.
 pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone, RunError> {
     if !(2..=12).contains(&req.grids.len()) || req.grids.windows(2).any(|w| w[1] <= w[0]) {
-        return Err(input(format!(
-            "{GRIDS}: give 2 to 12 increasing grids, e.g. 32,64,128"
-        )));
+        return Err(refuse(
+            GRIDS,
+            format!("{GRIDS}: give 2 to 12 increasing grids, e.g. 32,64,128"),
+        ));
     }
     if req.variants.is_empty() || req.backends.is_empty() {
-        return Err(input(format!(
-            "{VARIANTS} and {BACKENDS}: give at least one of each"
-        )));
+        return Err(refuse(
+            VARIANTS,
+            format!("{VARIANTS} and {BACKENDS}: give at least one of each"),
+        ));
     }
     let scene = Scene::from_ratio(req.ratio, 1.0, 1.0, 1.0).map_err(input)?;
     // Every model is built, and every output claimed, before any work.
@@ -186,7 +189,7 @@ pub fn accuracy(req: &AccuracyRequest, watch: &dyn Watch) -> Result<AccuracyDone
             let mut jobs = Vec::new();
             for &nx in &req.grids {
                 let model = Model::build(&scene, &variant.options(nx))
-                    .map_err(|e| input(format!("{GRIDS} {nx}: {e}")))?;
+                    .map_err(|e| refuse(GRIDS, format!("{GRIDS} {nx}: {e}")))?;
                 let file = format!("{}-{}-n{nx}.csv", backend_name(kind), variant.name());
                 jobs.push(Job {
                     target: None,

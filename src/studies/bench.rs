@@ -19,7 +19,7 @@ use crate::session::claim::{named, write_error, Outputs};
 use crate::session::open::backend_error;
 use crate::session::provenance::word;
 use crate::session::Watch;
-use crate::session::{input, RunError};
+use crate::session::{input, refuse, RunError};
 use std::path::PathBuf;
 
 pub use crate::params::limits::MAX_REPEATS;
@@ -89,19 +89,23 @@ fn flag(kind: BackendKind, precision: Precision) -> String {
 /// 16 to 65536.
 fn grids(args: &BenchRequest) -> Result<Vec<usize>, RunError> {
     if args.grids.is_empty() {
-        return Err(input(format!(
-            "{GRIDS} is empty: give e.g. {GRIDS} 64,128,256"
-        )));
+        return Err(refuse(
+            GRIDS,
+            format!("{GRIDS} is empty: give e.g. {GRIDS} 64,128,256"),
+        ));
     }
     if let Some(bad) = args
         .grids
         .iter()
         .find(|&&g| !(MIN_GRID..=MAX_GRID).contains(&g) || !g.is_power_of_two())
     {
-        return Err(input(format!(
-            "{GRIDS} {bad} is invalid: every grid must be a power of two from {MIN_GRID} to \
+        return Err(refuse(
+            GRIDS,
+            format!(
+                "{GRIDS} {bad} is invalid: every grid must be a power of two from {MIN_GRID} to \
              {MAX_GRID} (e.g. {GRIDS} 64,128,256)"
-        )));
+            ),
+        ));
     }
     let mut g = args.grids.clone();
     g.sort_unstable();
@@ -129,9 +133,12 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
     targets.extend(args.figures.files(&svg));
     if args.profile {
         if cfg!(not(feature = "gpu")) {
-            return Err(input(format!(
+            return Err(refuse(
+                PROFILE,
+                format!(
                 "{PROFILE} times GPU kernels, and this jkrbem was built without the `gpu` feature"
-            )));
+            ),
+            ));
         }
         targets.push(profile_csv.clone());
         if args.pulloff_max_grid > 0 {
@@ -217,22 +224,31 @@ pub fn bench(args: &BenchRequest, watch: &dyn Watch) -> Result<BenchDone, RunErr
 /// too.
 fn bench_models(args: &BenchRequest, grids: &[usize]) -> Result<(Scene, Vec<Model>), RunError> {
     if !(1..=MAX_REPEATS).contains(&args.repeats) {
-        return Err(input(format!(
-            "{REPEATS} {} is invalid: give 1 to {MAX_REPEATS}",
-            args.repeats
-        )));
+        return Err(refuse(
+            REPEATS,
+            format!(
+                "{REPEATS} {} is invalid: give 1 to {MAX_REPEATS}",
+                args.repeats
+            ),
+        ));
     }
     if !(1..=MAX_TIMED_CG_ITERATIONS).contains(&args.cg_iterations) {
-        return Err(input(format!(
-            "{CG_ITERATIONS} {} is invalid: give 1 to {MAX_TIMED_CG_ITERATIONS}",
-            args.cg_iterations
-        )));
+        return Err(refuse(
+            CG_ITERATIONS,
+            format!(
+                "{CG_ITERATIONS} {} is invalid: give 1 to {MAX_TIMED_CG_ITERATIONS}",
+                args.cg_iterations
+            ),
+        ));
     }
     if args.pulloff_max_grid > MAX_GRID {
-        return Err(input(format!(
-            "{PULLOFF_MAX_GRID} {} is invalid: give 0 (no pull-off) to {MAX_GRID}",
-            args.pulloff_max_grid
-        )));
+        return Err(refuse(
+            PULLOFF_MAX_GRID,
+            format!(
+                "{PULLOFF_MAX_GRID} {} is invalid: give 0 (no pull-off) to {MAX_GRID}",
+                args.pulloff_max_grid
+            ),
+        ));
     }
     let scene = Scene::from_ratio(args.ratio, 1.0, 1.0, 1.0).map_err(input)?;
     let models = grids

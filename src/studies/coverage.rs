@@ -19,6 +19,7 @@ use crate::params::{
 use crate::scene::Scene;
 use crate::session::claim::{named, write_error, Outputs};
 use crate::session::open::BackendRequest;
+use crate::session::refuse;
 use crate::session::{failed, input, RunError, Watch};
 use crate::solver::edge_advice;
 use serde::Serialize;
@@ -244,14 +245,17 @@ fn reference_of(ratio: f64, table: &[TableValue]) -> Result<CaseReference, RunEr
         });
     }
     let row = table.iter().find(|r| r.ratio == ratio).ok_or_else(|| {
-        input(format!(
-            "{RATIOS} {ratio}: the reference table has no row for it; give 1 or one of {}",
-            table
-                .iter()
-                .map(|r| crate::text::compact(r.ratio))
-                .collect::<Vec<_>>()
-                .join(", ")
-        ))
+        refuse(
+            RATIOS,
+            format!(
+                "{RATIOS} {ratio}: the reference table has no row for it; give 1 or one of {}",
+                table
+                    .iter()
+                    .map(|r| crate::text::compact(r.ratio))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        )
     })?;
     Ok(CaseReference {
         f_ad_bar: (row.f_ad_bar, row.uncertainty),
@@ -366,10 +370,13 @@ fn check_case_grid(
     placements: &[Placement],
 ) -> Result<(), RunError> {
     if !nx.is_power_of_two() || !(MIN_CASE_GRID..=MAX_GRID).contains(&nx) {
-        return Err(input(format!(
+        return Err(refuse(
+            GRIDS,
+            format!(
             "{GRIDS} {nx}: give powers of two from {MIN_CASE_GRID} to {MAX_GRID} (coarser grids \
              are not yet in the first-order regime the estimates assume)"
-        )));
+        ),
+        ));
     }
     let builds = |nx: usize| -> Result<(), ModelError> {
         for &margin in margins {
@@ -388,15 +395,19 @@ fn check_case_grid(
             while fine < MAX_GRID && builds(fine).is_err() {
                 fine *= 2;
             }
-            Err(input(format!(
-                "{GRIDS} {nx}: too coarse for R1/R2 = {} (the contact would span too few \
+            Err(refuse(
+                GRIDS,
+                format!(
+                    "{GRIDS} {nx}: too coarse for R1/R2 = {} (the contact would span too few \
                  elements at the {MARGINS} and {MESH_ANGLES} asked); give {GRIDS} {fine} or finer",
-                crate::text::compact(scene.ratio())
-            )))
+                    crate::text::compact(scene.ratio())
+                ),
+            ))
         }
-        Err(e) => Err(input(format!(
-            "{GRIDS} {nx} with these {MARGINS}, {MESH_ANGLES} and {APEX_OFFSETS}: {e}"
-        ))),
+        Err(e) => Err(refuse(
+            GRIDS,
+            format!("{GRIDS} {nx} with these {MARGINS}, {MESH_ANGLES} and {APEX_OFFSETS}: {e}"),
+        )),
     }
 }
 
@@ -517,27 +528,34 @@ fn check_request(req: &CoverageRequest) -> Result<(), RunError> {
         || req.mesh_angles.is_empty()
         || req.apex_offsets.is_empty()
     {
-        return Err(input(format!(
-            "{RATIOS}, {MARGINS}, {VARIANTS}, {MESH_ANGLES} and {APEX_OFFSETS}: give at least \
+        return Err(refuse(
+            RATIOS,
+            format!(
+                "{RATIOS}, {MARGINS}, {VARIANTS}, {MESH_ANGLES} and {APEX_OFFSETS}: give at least \
              one of each"
-        )));
+            ),
+        ));
     }
     if !(1..=req.margins.len().min(MAX_RUNS_PER_CASE)).contains(&req.runs_per_case) {
-        return Err(input(format!(
-            "{RUNS_PER_CASE} {}: give 1 to the number of {MARGINS} ({}), at most \
+        return Err(refuse(
+            RUNS_PER_CASE,
+            format!(
+                "{RUNS_PER_CASE} {}: give 1 to the number of {MARGINS} ({}), at most \
              {MAX_RUNS_PER_CASE}",
-            req.runs_per_case,
-            req.margins.len()
-        )));
+                req.runs_per_case,
+                req.margins.len()
+            ),
+        ));
     }
     if let Some(m) = req
         .margins
         .iter()
         .find(|m| !(0.0..=MAX_MARGIN).contains(*m))
     {
-        return Err(input(format!(
-            "{MARGINS} {m}: give margins in [0, {MAX_MARGIN}]"
-        )));
+        return Err(refuse(
+            MARGINS,
+            format!("{MARGINS} {m}: give margins in [0, {MAX_MARGIN}]"),
+        ));
     }
     Ok(())
 }
@@ -562,12 +580,15 @@ fn plan_cases(req: &CoverageRequest) -> Result<Vec<(f64, Vec<usize>, CaseReferen
                 .iter()
                 .find(|&&g| g << LEVELS_BELOW_REFERENCE > finest)
             {
-                return Err(input(format!(
-                    "{GRIDS} {too_fine}: the reference of R1/R2 = {ratio} comes from grids up \
+                return Err(refuse(
+                    GRIDS,
+                    format!(
+                        "{GRIDS} {too_fine}: the reference of R1/R2 = {ratio} comes from grids up \
                      to {finest}; give grids up to {} (at least {LEVELS_BELOW_REFERENCE} levels \
                      coarser, so that the reference is known far better than a case)",
-                    finest >> LEVELS_BELOW_REFERENCE
-                )));
+                        finest >> LEVELS_BELOW_REFERENCE
+                    ),
+                ));
             }
         }
         for &nx in &grids {
@@ -693,6 +714,8 @@ pub enum CoverageShape {
     FlatPunch,
     /// The power law, extrapolated without a law, against its JKR solution.
     PowerLaw,
+    /// The cone, extrapolated without a law, against its JKR solution.
+    Cone,
     /// A generated rough sphere ([`rough_sphere`], one scene per seed), extrapolated without
     /// a law, against the same runs on a grid twice finer than any its estimate used.
     RoughSphere,
@@ -704,6 +727,7 @@ impl fmt::Display for CoverageShape {
             CoverageShape::Ellipsoid => "ellipsoid",
             CoverageShape::FlatPunch => "flat-punch",
             CoverageShape::PowerLaw => "power-law",
+            CoverageShape::Cone => "cone",
             CoverageShape::RoughSphere => "rough-sphere",
         })
     }
@@ -829,31 +853,31 @@ pub fn rough_sphere(seed: u64) -> Result<Scene, RunError> {
         )
     };
     let map = generate(&params).map_err(input)?;
-    let base = Indenter::Ellipsoid { r1: 1.0, r2: 1.0 };
+    let base = Indenter::ellipsoid(1.0, 1.0);
     let source = format!("generated, seed {seed}");
     let rough = RoughShape::new(base, map, &source).map_err(input)?;
     Scene::with_indenter(Indenter::Rough(std::sync::Arc::new(rough)), 1.0, 1.0).map_err(input)
 }
 
 /// The scenes of `shape`, E* = Δγ = 1, each with its name and truth: a flat punch of radius 1
-/// or the power law h = 0.5·rⁿ for each of `exponents` (their closed forms), or a rough sphere
+/// or the power law h = 0.5·rⁿ for each of `exponents` or the cone of each of `half_angles`
+/// (degrees) (their closed forms), or a rough sphere
 /// for each of `seeds` ([`rough_sphere`], against a finer grid).
 pub fn generic_scenes(
     shape: CoverageShape,
     exponents: &[f64],
+    half_angles: &[f64],
     seeds: &[u64],
 ) -> Result<Vec<(String, Scene, Truth)>, RunError> {
     use crate::scene::{Indenter, DEFAULT_POWER_LAW_SCALE};
     let indenters: Vec<Indenter> = match shape {
         CoverageShape::Ellipsoid => Vec::new(),
-        CoverageShape::FlatPunch => vec![Indenter::FlatPunch { radius: 1.0 }],
+        CoverageShape::FlatPunch => vec![Indenter::flat_punch(1.0)],
         CoverageShape::PowerLaw => exponents
             .iter()
-            .map(|&n| Indenter::PowerLaw {
-                n,
-                scale: DEFAULT_POWER_LAW_SCALE,
-            })
+            .map(|&n| Indenter::power_law(n, DEFAULT_POWER_LAW_SCALE))
             .collect(),
+        CoverageShape::Cone => half_angles.iter().map(|&a| Indenter::cone(a)).collect(),
         CoverageShape::RoughSphere => {
             return seeds
                 .iter()
@@ -959,15 +983,19 @@ pub fn generic_coverage(
     watch: &dyn Watch,
 ) -> Result<GenericCoverageDone, RunError> {
     if req.scenes.is_empty() || req.margins.is_empty() || req.phase_shifts.is_empty() {
-        return Err(input(format!(
-            "{SHAPES}, {MARGINS} and {APEX_OFFSETS}: give at least one of each"
-        )));
+        return Err(refuse(
+            SHAPES,
+            format!("{SHAPES}, {MARGINS} and {APEX_OFFSETS}: give at least one of each"),
+        ));
     }
     if req.grids.len() < 2 || req.grids.windows(2).any(|w| w[1] <= w[0]) {
-        return Err(input(format!(
-            "{GRIDS}: the shapes without a convergence law take a ladder of two or more \
+        return Err(refuse(
+            GRIDS,
+            format!(
+                "{GRIDS}: the shapes without a convergence law take a ladder of two or more \
              increasing grids, e.g. 32,64,128"
-        )));
+            ),
+        ));
     }
     req.backend.check()?;
     for (name, scene, truth) in &req.scenes {
@@ -980,7 +1008,7 @@ pub fn generic_coverage(
                     ..ModelOptions::default()
                 };
                 Model::build(scene, &options)
-                    .map_err(|e| input(format!("{GRIDS} {nx} for {name}: {e}")))?;
+                    .map_err(|e| refuse(GRIDS, format!("{GRIDS} {nx} for {name}: {e}")))?;
             }
         }
     }

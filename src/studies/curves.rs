@@ -2,6 +2,7 @@
 //! merged later) read back from their states files (complete, or a failed run's partial
 //! file). The session layer gathers the points; the chart only draws them.
 
+use crate::output::data::read_states;
 use crate::output::file::is_partial_of;
 use crate::output::names;
 use crate::output::sweep_csv::SweepRow;
@@ -51,29 +52,12 @@ pub fn state_points(states: &[crate::solver::State]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// (d̄, F̄) of the pull-off and onset states in a states CSV.
+/// (d̄, F̄) of the pull-off and onset states in a states file.
 ///
 /// The file may be a run's partial states, cut off mid-row by a write error: the rows up to the
 /// first one that is not whole (fewer fields than the header) are read, and the rest ignored.
 pub fn pulloff_points(states_csv: &Path) -> Result<Vec<(f64, f64)>, OutputError> {
-    let mut reader = csv::ReaderBuilder::new()
-        .flexible(true)
-        .from_path(states_csv)
-        .map_err(|e| OutputError::csv(states_csv, e))?;
-    let header = reader
-        .headers()
-        .cloned()
-        .map_err(|e| OutputError::csv(states_csv, e))?;
-    let col = |name: &str| header.iter().position(|h| h == name);
-    let (Some(phase), Some(d), Some(f)) = (col("phase"), col("d_bar"), col("f_bar")) else {
-        return Ok(Vec::new());
-    };
-    Ok(reader
-        .records()
-        .map_while(|r| r.ok().filter(|r| r.len() == header.len()))
-        .filter(|r| r.get(phase) != Some("approach"))
-        .filter_map(|r| Some((r.get(d)?.parse().ok()?, r.get(f)?.parse().ok()?)))
-        .collect())
+    Ok(state_points(&read_states(states_csv)?.states))
 }
 
 /// The newest partial states file of `target_name` in `dir` (see

@@ -14,6 +14,7 @@ use crate::params::{ACCURACY, FIRST_GRID, MAX_GRID as MAX_GRID_SPEC, OUT, PHASES
 use crate::scene::Scene;
 use crate::session::claim::{named, write_error, Outputs};
 use crate::session::open::BackendRequest;
+use crate::session::refuse;
 use crate::session::simulate::{simulate, Mode, SimulateRequest, Sink};
 use crate::session::{failed, input, RunError, Watch};
 use serde::{Deserialize, Serialize};
@@ -218,10 +219,13 @@ pub fn ladder_grids(
             Ok(m) => m,
             Err(ModelError::TooCoarse { .. }) if nx == first => {
                 let fine = coarsest();
-                return Err(input(format!(
+                return Err(refuse(
+                    FIRST_GRID,
+                    format!(
                     "{FIRST_GRID} {nx}: too coarse for R1/R2 = {ratio} (the contact would span \
                      too few elements); give {FIRST_GRID} {fine} or more"
-                )));
+                ),
+                ));
             }
             Err(e) => {
                 return Err(input(format!(
@@ -516,18 +520,24 @@ fn existing_rows(path: &std::path::Path) -> Result<Vec<ReferenceRow>, RunError> 
         return Ok(Vec::new());
     }
     let mut r = csv::Reader::from_path(path).map_err(|e| {
-        input(format!(
-            "{OUT} {}: cannot read the existing table: {e}",
-            path.display()
-        ))
+        refuse(
+            OUT,
+            format!(
+                "{OUT} {}: cannot read the existing table: {e}",
+                path.display()
+            ),
+        )
     })?;
     r.deserialize()
         .collect::<Result<Vec<ReferenceRow>, _>>()
         .map_err(|e| {
-            input(format!(
-                "{OUT} {} exists and is not a reference table ({e}): give another name",
-                path.display()
-            ))
+            refuse(
+                OUT,
+                format!(
+                    "{OUT} {} exists and is not a reference table ({e}): give another name",
+                    path.display()
+                ),
+            )
         })
 }
 
@@ -537,14 +547,20 @@ fn existing_rows(path: &std::path::Path) -> Result<Vec<ReferenceRow>, RunError> 
 /// sorted by ratio) after each ratio so that a long job keeps what it has finished.
 pub fn reference(req: &ReferenceRequest, watch: &dyn Watch) -> Result<ReferenceDone, RunError> {
     if !(MIN_TARGET..=MAX_TARGET).contains(&req.target) {
-        return Err(input(format!(
-            "{TARGET}: give a percentage in [{}, {}], e.g. 0.3%",
-            crate::text::compact(MIN_TARGET * 100.0),
-            crate::text::compact(MAX_TARGET * 100.0)
-        )));
+        return Err(refuse(
+            TARGET,
+            format!(
+                "{TARGET}: give a percentage in [{}, {}], e.g. 0.3%",
+                crate::text::compact(MIN_TARGET * 100.0),
+                crate::text::compact(MAX_TARGET * 100.0)
+            ),
+        ));
     }
     if req.ratios.is_empty() || req.ratios.iter().any(|r| !(1.0..=1000.0).contains(r)) {
-        return Err(input(format!("{RATIOS}: give ratios R1/R2 in [1, 1000]")));
+        return Err(refuse(
+            RATIOS,
+            format!("{RATIOS}: give ratios R1/R2 in [1, 1000]"),
+        ));
     }
     if !req.max_grid.is_power_of_two() || !(MIN_FIRST_GRID..=MAX_GRID).contains(&req.max_grid) {
         return Err(input(format!(
@@ -554,18 +570,24 @@ pub fn reference(req: &ReferenceRequest, watch: &dyn Watch) -> Result<ReferenceD
     }
     if let Some(nx) = req.first_grid {
         if !nx.is_power_of_two() || nx < MIN_FIRST_GRID || nx > req.max_grid {
-            return Err(input(format!(
+            return Err(refuse(
+                FIRST_GRID,
+                format!(
                 "{FIRST_GRID} {nx}: give a power of two from {MIN_FIRST_GRID} to {MAX_GRID_SPEC} \
                  ({})",
                 req.max_grid
-            )));
+            ),
+            ));
         }
     }
     if !(1..=MAX_PHASES).contains(&req.phases) {
-        return Err(input(format!(
-            "{PHASES} {}: give the runs per grid, 1 to {MAX_PHASES}",
-            req.phases
-        )));
+        return Err(refuse(
+            PHASES,
+            format!(
+                "{PHASES} {}: give the runs per grid, 1 to {MAX_PHASES}",
+                req.phases
+            ),
+        ));
     }
     req.backend.check()?;
     // Every ratio's ladder, checked before any work.

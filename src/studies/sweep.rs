@@ -13,6 +13,7 @@ use crate::scene::{Scene, SceneError};
 use crate::session::claim::{named, write_error, Outputs};
 use crate::session::open::BackendRequest;
 use crate::session::pulloffs::{batch_model, run_files, run_jobs, GridChoice, Job};
+use crate::session::refuse;
 use crate::session::Watch;
 use crate::session::{input, RunError};
 use std::path::{Path, PathBuf};
@@ -76,7 +77,12 @@ pub fn figure_files(dir: &Path, formats: FigureFormats) -> Vec<PathBuf> {
 /// The model of one ratio (R2 = E* = Δγ = 1: the normalised results do not depend on them)
 /// and the accuracy it is held to.
 fn model_for(req: &SweepRequest, ratio: f64) -> Result<(Model, Option<f64>), RunError> {
-    let fail = |e: String| input(format!("{RATIOS} {}: {e}", crate::text::compact(ratio)));
+    let fail = |e: String| {
+        refuse(
+            RATIOS,
+            format!("{RATIOS} {}: {e}", crate::text::compact(ratio)),
+        )
+    };
     // The ratio out of range is said as R1/R2 (the sweep's ratios are not its own ratio).
     let scene = Scene::from_ratio(ratio, 1.0, 1.0, 1.0).map_err(|e| match e {
         SceneError::Invalid {

@@ -225,6 +225,8 @@ fn cli_warns_and_marks_a_run_accepted_above_its_tolerance() {
     assert!(!s["warnings"].as_array().unwrap().is_empty(), "{s}");
     let worst = s["runs"][0]["cg_residual_max"].as_f64().unwrap();
     assert!(worst > 1e-19 && worst < 1e-14, "{worst:e}");
-    let states = jkrbem::output::states_csv::read_state_rows(&dir.path().join("s.csv")).unwrap();
+    let states = jkrbem::output::data::read_states(&dir.path().join("s.csv"))
+        .unwrap()
+        .states;
     assert!(states.iter().all(|s| s.cg_residual > 1e-19));
 }

@@ -501,6 +501,15 @@ fn other_indenters_run_one_grid_beside_their_closed_form() {
             "--radius",
         ),
         (&["--indenter", "flat-punch", "--r1", "3"][..], "--r1"),
+        (
+            &["--indenter", "cone", "--half-angle", "90"][..],
+            "--half-angle",
+        ),
+        (
+            &["--indenter", "power-law", "--half-angle", "60"][..],
+            "--half-angle",
+        ),
+        (&["--indenter", "cone", "--exponent", "3"][..], "--exponent"),
     ] {
         let o = std::process::Command::new(env!("CARGO_BIN_EXE_jkrbem"))
             .arg("simulate")
@@ -691,7 +700,9 @@ fn fields_are_written_as_npz_numpy_reads_and_a_pressure_picture() {
         .unwrap()
         .starts_with("force/length²"));
     // Each state's Σ p Δx² is its force; the states CSV has the same force on that row.
-    let states = jkrbem::output::states_csv::read_states(&dir.path().join("r.csv")).unwrap();
+    let states = jkrbem::output::data::read_states(&dir.path().join("r.csv"))
+        .unwrap()
+        .states;
     for k in 0..p.shape()[0] {
         let sum = p.index_axis(ndarray::Axis(0), k).sum() * dx[k] * dx[k];
         assert!(
@@ -699,8 +710,7 @@ fn fields_are_written_as_npz_numpy_reads_and_a_pressure_picture() {
             "{sum} vs {}",
             force[k]
         );
-        let row: f64 = states[index[k] as usize][3].parse().unwrap();
-        assert_eq!(row, force[k]);
+        assert_eq!(states[index[k] as usize].force, force[k]);
     }
     // A bad choice is refused naming the flag, before any work.
     let o = jkrbem(

@@ -53,7 +53,7 @@ pub fn rough_sphere(slope: f64, seed: u64) -> Scene {
         ..RoughnessParams::with_rms_slope(256, 0.025, 0.8, slope)
     };
     let map = generate(&params).expect("roughness");
-    let base = Indenter::Ellipsoid { r1: 1.0, r2: 1.0 };
+    let base = Indenter::ellipsoid(1.0, 1.0);
     let rough = RoughShape::new(base, map, "generated").unwrap();
     Scene::with_indenter(Indenter::Rough(std::sync::Arc::new(rough)), 1.0, 1.0).unwrap()
 }

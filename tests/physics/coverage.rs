@@ -243,7 +243,7 @@ fn generic_study(
     use jkrbem::studies::coverage::{generic_coverage, generic_scenes, GenericCoverageRequest};
     let mut scenes = Vec::new();
     for &s in shapes {
-        scenes.extend(generic_scenes(s, exponents, &[1]).unwrap());
+        scenes.extend(generic_scenes(s, exponents, &[70.0], &[1]).unwrap());
     }
     let req = GenericCoverageRequest {
         scenes,

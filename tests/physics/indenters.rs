@@ -31,13 +31,13 @@ fn adhesive_force(indenter: Indenter, nx: usize, apex_offset: (f64, f64)) -> (f6
 fn a_power_law_of_exponent_two_is_the_sphere_state_by_state() {
     // The same profile and scales by another formula: equal to round-off, state by state.
     let sphere = common::run_model(model(
-        Indenter::Ellipsoid { r1: 1.0, r2: 1.0 },
+        Indenter::ellipsoid(1.0, 1.0),
         64,
         Measure::Curve,
         (0.0, 0.0),
     ));
     let law = common::run_model(model(
-        Indenter::PowerLaw { n: 2.0, scale: 0.5 },
+        Indenter::power_law(2.0, 0.5),
         64,
         Measure::Curve,
         (0.0, 0.0),
@@ -58,7 +58,7 @@ fn a_power_law_of_exponent_two_is_the_sphere_state_by_state() {
 
 #[test]
 fn a_power_law_of_exponent_four_converges_at_first_order_to_its_jkr_solution() {
-    let law = Indenter::PowerLaw { n: 4.0, scale: 1.0 };
+    let law = Indenter::power_law(4.0, 1.0);
     let (_, exact) = law.exact_adhesive_force(1.0, 1.0).unwrap();
     let runs: Vec<(f64, f64)> = [32, 64, 128]
         .iter()
@@ -87,7 +87,7 @@ fn the_flat_punch_approaches_kendall_within_its_first_order_bound() {
     // centre lies inside the radius) differs from the disc by O(Δx) with a grid-phase part:
     // measured errors 2.3, 1.3, 0.17 % on 32², 64², 128² (0.03 % on 256², −0.14 % on 512²),
     // within 0.5·Δx/a + 0.3 %.
-    let punch = Indenter::FlatPunch { radius: 1.0 };
+    let punch = Indenter::flat_punch(1.0);
     for (nx, offset) in [
         (32, (0.0, 0.0)),
         (64, (0.0, 0.0)),
@@ -122,7 +122,7 @@ fn sampled_ellipsoid(like: &Model, lift: f64, tilt: f64) -> Indenter {
 #[test]
 fn a_height_map_sampled_from_the_ellipsoid_is_the_ellipsoid() {
     let ellipsoid = model(
-        Indenter::Ellipsoid { r1: 2.0, r2: 1.0 },
+        Indenter::ellipsoid(2.0, 1.0),
         64,
         Measure::AdhesiveForce,
         (0.0, 0.0),
@@ -166,7 +166,7 @@ fn a_height_map_sampled_from_the_ellipsoid_is_the_ellipsoid() {
 #[test]
 fn a_shifted_or_slightly_tilted_height_map_gives_the_same_adhesive_force() {
     let like = model(
-        Indenter::Ellipsoid { r1: 2.0, r2: 1.0 },
+        Indenter::ellipsoid(2.0, 1.0),
         64,
         Measure::AdhesiveForce,
         (0.0, 0.0),

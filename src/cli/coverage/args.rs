@@ -3,7 +3,7 @@
 use super::super::parse::value;
 use jkrbem::backend::select::BackendKind;
 use jkrbem::params::{
-    APEX_OFFSETS, EXPONENTS, GRIDS, MARGINS, MESH_ANGLES, RATIOS, RUNS_PER_CASE, SEEDS,
+    APEX_OFFSETS, EXPONENTS, GRIDS, HALF_ANGLES, MARGINS, MESH_ANGLES, RATIOS, RUNS_PER_CASE, SEEDS,
 };
 use jkrbem::studies::coverage::{CaseVariant, CoverageShape};
 use std::path::PathBuf;
@@ -12,9 +12,10 @@ use std::path::PathBuf;
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Shapes, comma-separated: `ellipsoid` (single-grid cases by its convergence law, the
-    /// flags below), `flat-punch` (against Kendall's 1) and `power-law` (against its JKR
-    /// solution, one scene per --exponents) and `rough-sphere` (one scene per --seeds, against
-    /// a grid twice finer than --grids' finest): each case of the last three is an extrapolation
+    /// flags below), `flat-punch` (against Kendall's 1), `power-law` (against its JKR
+    /// solution, one scene per --exponents), `cone` (against its JKR solution, one scene per
+    /// --half-angles) and `rough-sphere` (one scene per --seeds, against a grid twice finer
+    /// than --grids' finest): each case of the last four is an extrapolation
     /// over the ladder --grids [default 32,64,128] at four grid phases per grid, the phase set
     /// shifted by each --apex-offsets entry, at each --margins [default 0.08, 0.18].
     #[arg(long, value_enum, value_delimiter = ',', default_value = "ellipsoid")]
@@ -22,6 +23,10 @@ pub struct Args {
     /// The power law's exponents n, comma-separated (with --shapes power-law).
     #[arg(long, value_delimiter = ',', default_value = "1.5,3,8", value_parser = value::<f64>(EXPONENTS))]
     pub exponents: Vec<f64>,
+    /// The cone's half-angles α in degrees, comma-separated (with --shapes cone). In its own
+    /// normalisation every cone is one problem: other angles check only round-off.
+    #[arg(long, value_delimiter = ',', default_value = "70", value_parser = value::<f64>(HALF_ANGLES))]
+    pub half_angles: Vec<f64>,
     /// Seeds of the rough spheres' roughness, comma-separated (with --shapes rough-sphere:
     /// R = 1, rms slope 0.1, Hurst 0.8, cut-off 0.4, roll-off 1, pressed on to the sphere's
     /// first contact; each held against the same runs on a grid twice finer than --grids'

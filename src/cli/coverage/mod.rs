@@ -43,6 +43,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     super::stdout::not_stdout("--out", &args.out, "coverage")?;
     no_repeats("--shapes", &args.shapes)?;
     no_repeats("--exponents", &args.exponents)?;
+    no_repeats("--half-angles", &args.half_angles)?;
     no_repeats("--seeds", &args.seeds)?;
     ellipsoid_flags_need_the_ellipsoid(&args)?;
     let generic: Vec<CoverageShape> = args
@@ -54,7 +55,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
     if !generic.is_empty() {
         let mut scenes = Vec::new();
         for &s in &generic {
-            scenes.extend(generic_scenes(s, &args.exponents, &args.seeds).map_err(run_error)?);
+            scenes.extend(
+                generic_scenes(s, &args.exponents, &args.half_angles, &args.seeds)
+                    .map_err(run_error)?,
+            );
         }
         let margins = if args.margins.is_empty() {
             vec![0.08, 0.18]

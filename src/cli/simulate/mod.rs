@@ -6,7 +6,7 @@
 use super::progress::Progress;
 use super::stdout::{claim_stdout, is_stdout, write_stdout_bytes, Channel};
 use super::{run_error, CliError};
-use jkrbem::output::states_csv::states_csv_bytes;
+use jkrbem::output::data::states_bytes;
 use jkrbem::session::request::Request;
 use jkrbem::session::simulate::{failure_error, simulate, Sink};
 use std::path::PathBuf;
@@ -75,7 +75,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         Some(OnStdout::Summary) => write_stdout_bytes(done.summary.to_json().as_bytes()),
         Some(OnStdout::States) => {
             for run in &done.runs {
-                write_stdout_bytes(&states_csv_bytes(&run.states, run.onsets.name()));
+                write_stdout_bytes(&states_bytes(&run.states, run.onsets.name()));
             }
         }
         None => {}

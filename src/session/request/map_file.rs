@@ -6,6 +6,7 @@ use crate::output::digest::InputFile;
 use crate::output::file::{read_regular, ReadError};
 use crate::params::{Spec, SPACING};
 use crate::scene::height_map::{HeightMap, HeightMapError};
+use crate::session::refuse;
 use std::collections::HashMap;
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -79,7 +80,7 @@ fn read_as(
     })?;
     let read = InputFile::read(param.name, path, &bytes);
     let map = HeightMap::from_file_bytes(path, &bytes, spacing).map_err(|e| match e {
-        HeightMapError::Spacing { .. } => input(format!("{SPACING}: {e}")),
+        HeightMapError::Spacing { .. } => refuse(SPACING, format!("{SPACING}: {e}")),
         e => input(format!("{param}: {e}")),
     })?;
     Ok((map, read))
@@ -113,7 +114,7 @@ impl MapReads {
             crate::output::file::note_input(path, &param.to_string());
             let map = map
                 .with_spacing(spacing, name)
-                .map_err(|e| input(format!("{SPACING}: {e}")))?;
+                .map_err(|e| refuse(SPACING, format!("{SPACING}: {e}")))?;
             let record = InputFile {
                 parameter: param.name.to_string(),
                 path: path.display().to_string(),

@@ -7,7 +7,7 @@
 use crate::analysis::report::RunReport;
 use crate::backend::select::BackendKind;
 use crate::model::ModelOptions;
-use crate::output::states_csv::read_state_rows;
+use crate::output::data::read_states;
 use crate::params::BACKEND;
 use crate::scene::Scene;
 use crate::session::open::BackendRequest;
@@ -191,8 +191,11 @@ fn report_differences(run: &RunReport, asked: &RunSettings, kind: BackendKind) -
 /// |min F̄| and the lowest F̄, c̄, d̄, Δx and n_d at the minimum), if it does not.
 fn states_differences(run: &RunReport, states: &Path) -> Option<String> {
     let shown = states.display();
-    let rows = match read_state_rows(states) {
-        Ok(rows) => rows,
+    let rows = match read_states(states) {
+        Ok(read) if read.cut_short => {
+            return Some(format!("its states {shown} end in a row cut short"))
+        }
+        Ok(read) => read.states,
         Err(e) => return Some(format!("its states {shown} cannot be read: {e}")),
     };
     if rows.len() != run.states {
