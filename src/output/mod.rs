@@ -55,6 +55,16 @@ impl From<&'static Spec> for NamedBy {
     }
 }
 
+impl NamedBy {
+    /// The parameter, where a parameter (not an argument) names the output.
+    pub fn spec(&self) -> Option<&'static Spec> {
+        match self {
+            NamedBy::Param(p) => Some(p),
+            NamedBy::Argument(_) => None,
+        }
+    }
+}
+
 impl std::fmt::Display for NamedBy {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {

@@ -52,7 +52,8 @@ impl Outputs {
                     path.display(),
                     other.display(),
                     lock_of(path).display()
-                )));
+                ))
+                .blaming(param.spec()));
             }
             // Nothing has been computed yet: a lock that cannot be taken (held by another
             // run, a read-only or full folder, a name too long, a file where a folder should
@@ -112,7 +113,8 @@ impl Outputs {
                      another name",
                     path.display(),
                     read.describe()
-                )));
+                ))
+                .blaming(param.spec()));
             }
             if let Some(read) = input_at(&claimed.lock) {
                 return Err(input(format!(
@@ -121,7 +123,8 @@ impl Outputs {
                     path.display(),
                     lock_of(path).display(),
                     read.describe()
-                )));
+                ))
+                .blaming(param.spec()));
             }
             seen.push(claimed);
         }

@@ -53,6 +53,14 @@ impl RunError {
         self.kind == ErrorKind::Input
     }
 
+    /// The same error blaming `param` (where it is `Some`), its message and kind kept.
+    pub fn blaming(self, param: Option<&'static Spec>) -> Self {
+        RunError {
+            param: param.or(self.param),
+            ..self
+        }
+    }
+
     /// The same error, its message passed through `f` (the parameter and the kind kept).
     pub fn map_message(self, f: impl FnOnce(String) -> String) -> Self {
         RunError {

@@ -769,7 +769,7 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
     let build = |options: &ModelOptions, param: Option<&'static Spec>| {
         Model::build(&req.scene, options).map_err(|e| match param {
             None => input(e),
-            Some(p) => input(format!("{p} {}: {e}", options.nx)),
+            Some(p) => refuse(p, format!("{p} {}: {e}", options.nx)),
         })
     };
     // One model per grid Nx (Ny fitted to the contact), a refusal naming `param` and the grid.
@@ -868,7 +868,8 @@ fn plan_generic(req: &SimulateRequest) -> Result<Planned, RunError> {
                     apex_offset,
                     ..options.clone()
                 };
-                Model::build(&req.scene, &options).map_err(|e| input(format!("{param} {nx}: {e}")))
+                Model::build(&req.scene, &options)
+                    .map_err(|e| refuse(param, format!("{param} {nx}: {e}")))
             })
             .collect::<Result<Vec<_>, _>>()
     };

@@ -14,9 +14,8 @@ use crate::params::{ACCURACY, FIRST_GRID, MAX_GRID as MAX_GRID_SPEC, OUT, PHASES
 use crate::scene::Scene;
 use crate::session::claim::{named, write_error, Outputs};
 use crate::session::open::BackendRequest;
-use crate::session::refuse;
 use crate::session::simulate::{simulate, Mode, SimulateRequest, Sink};
-use crate::session::{failed, input, RunError, Watch};
+use crate::session::{failed, input, refuse, RunError, Watch};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
@@ -228,10 +227,10 @@ pub fn ladder_grids(
                 ));
             }
             Err(e) => {
-                return Err(input(format!(
-                    "{MAX_GRID_SPEC} {}: grid {nx}: {e}",
-                    req.max_grid
-                )))
+                return Err(refuse(
+                    MAX_GRID_SPEC,
+                    format!("{MAX_GRID_SPEC} {}: grid {nx}: {e}", req.max_grid),
+                ))
             }
         };
         let need = models.iter().map(Model::memory_estimate).max().unwrap_or(0);
@@ -563,10 +562,13 @@ pub fn reference(req: &ReferenceRequest, watch: &dyn Watch) -> Result<ReferenceD
         ));
     }
     if !req.max_grid.is_power_of_two() || !(MIN_FIRST_GRID..=MAX_GRID).contains(&req.max_grid) {
-        return Err(input(format!(
-            "{MAX_GRID_SPEC} {}: give a power of two from {MIN_FIRST_GRID} to {MAX_GRID}",
-            req.max_grid
-        )));
+        return Err(refuse(
+            MAX_GRID_SPEC,
+            format!(
+                "{MAX_GRID_SPEC} {}: give a power of two from {MIN_FIRST_GRID} to {MAX_GRID}",
+                req.max_grid
+            ),
+        ));
     }
     if let Some(nx) = req.first_grid {
         if !nx.is_power_of_two() || nx < MIN_FIRST_GRID || nx > req.max_grid {

@@ -1,12 +1,11 @@
 //! A height map read from its file (`.npy` or text), refused before reading where it would not
 //! fit in memory.
 
-use super::super::{input, RunError};
+use super::super::{input, refuse, RunError};
 use crate::output::digest::InputFile;
 use crate::output::file::{read_regular, ReadError};
 use crate::params::{Spec, SPACING};
 use crate::scene::height_map::{HeightMap, HeightMapError};
-use crate::session::refuse;
 use std::collections::HashMap;
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -25,7 +24,7 @@ const NPY_HEADER_PREFIX: u64 = 1 << 16;
 
 /// Refuse a regular `.npy` file whose header states a shape outside the map limits, from its
 /// first bytes alone (the data is not read).
-fn refuse_npy_shape(path: &Path, name: &str, param: &Spec) -> Result<(), RunError> {
+fn refuse_npy_shape(path: &Path, name: &str, param: &'static Spec) -> Result<(), RunError> {
     use std::io::Read;
     if !std::fs::metadata(path).is_ok_and(|m| m.is_file()) {
         return Ok(()); // read_regular says why it cannot be read
@@ -37,26 +36,29 @@ fn refuse_npy_shape(path: &Path, name: &str, param: &Spec) -> Result<(), RunErro
     if !prefix.starts_with(b"\x93NUMPY") {
         return Ok(());
     }
-    HeightMap::refuse_npy_shape(&prefix, name).map_err(|e| input(format!("{param}: {e}")))
+    HeightMap::refuse_npy_shape(&prefix, name).map_err(|e| refuse(param, format!("{param}: {e}")))
 }
 
 /// Refuse, before reading it, a map file whose reading would need more memory than the machine
 /// has ([`crate::plan::available_memory`]).
-fn check_map_memory(path: &Path, name: &str, param: &Spec) -> Result<(), RunError> {
+fn check_map_memory(path: &Path, name: &str, param: &'static Spec) -> Result<(), RunError> {
     let Ok(meta) = std::fs::metadata(path) else {
         return Ok(()); // read_regular says why it cannot be read
     };
     let available = crate::plan::available_memory().map_err(input)?;
     let need = meta.len().saturating_mul(MAP_READ_BYTES_PER_BYTE);
     match available {
-        Some(a) if meta.is_file() && need > a => Err(input(format!(
-            "{param} {name}: reading this {} file needs up to {} of memory, more than the \
+        Some(a) if meta.is_file() && need > a => Err(refuse(
+            param,
+            format!(
+                "{param} {name}: reading this {} file needs up to {} of memory, more than the \
              {} this machine has available (free memory, control group and process limits): \
              save it as a .npy of float32 (4 bytes a height), or crop or subsample it",
-            crate::plan::bytes_text(meta.len()),
-            crate::plan::bytes_text(need),
-            crate::plan::bytes_text(a)
-        ))),
+                crate::plan::bytes_text(meta.len()),
+                crate::plan::bytes_text(need),
+                crate::plan::bytes_text(a)
+            ),
+        )),
         _ => Ok(()),
     }
 }
@@ -75,13 +77,13 @@ fn read_as(
     refuse_npy_shape(path, name, param)?;
     check_map_memory(path, name, param)?;
     let bytes = read_regular(path, MAX_MAP_BYTES).map_err(|e| match e {
-        ReadError::Absent => input(format!("{param} {name}: no such file")),
-        ReadError::Refused(why) => input(format!("{param} {name}: {why}")),
+        ReadError::Absent => refuse(param, format!("{param} {name}: no such file")),
+        ReadError::Refused(why) => refuse(param, format!("{param} {name}: {why}")),
     })?;
     let read = InputFile::read(param.name, path, &bytes);
     let map = HeightMap::from_file_bytes(path, &bytes, spacing).map_err(|e| match e {
         HeightMapError::Spacing { .. } => refuse(SPACING, format!("{SPACING}: {e}")),
-        e => input(format!("{param}: {e}")),
+        e => refuse(param, format!("{param}: {e}")),
     })?;
     Ok((map, read))
 }
