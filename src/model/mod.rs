@@ -396,7 +396,7 @@ impl Model {
     }
 
     /// The characteristic numbers a backend holds, with their names and units: σ_c, the
-    /// element side, the first approach, the load step and the first contact's peak pressure.
+    /// element side, the first approach, the load step and the first contact's pressure scale.
     pub fn scales(&self) -> [(&'static str, f64); 5] {
         let p0 = self.initial.p0;
         [
@@ -404,7 +404,10 @@ impl Model {
             ("Δx, the element side (length)", self.dx),
             ("d0, the first approach (length)", self.load.d0),
             ("the load step (length)", self.load.d_step),
-            ("the first contact's peak pressure (force/length²)", p0),
+            (
+                "the first contact's pressure (its peak; a cone's mean) (force/length²)",
+                p0,
+            ),
         ]
     }
 

@@ -139,7 +139,8 @@ pub struct FirstContact {
     pub d: f64,
     /// Normal force, compressive positive (force).
     pub force: f64,
-    /// Peak pressure (force per length²; at the centre).
+    /// Its pressure scale (force per length²): the peak, at the centre; the mean F/(πa²) where
+    /// the peak is infinite (under a cone's tip).
     pub p0: f64,
 }
 

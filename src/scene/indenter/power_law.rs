@@ -131,7 +131,7 @@ impl IndenterShape for PowerLaw {
 }
 
 /// The scales of an axisymmetric power-law contact `p` (its c_n, 3πR_nΔγ, c_n²/R_n).
-pub(super) fn mdr_scales(p: &PowerLawContact) -> Scales {
+fn mdr_scales(p: &PowerLawContact) -> Scales {
     let (length, force, approach) = p.scales();
     Scales {
         length,
@@ -142,7 +142,7 @@ pub(super) fn mdr_scales(p: &PowerLawContact) -> Scales {
 
 /// Where the method of dimensionality reduction puts `p`'s pull-off, normalised by
 /// [`mdr_scales`].
-pub(super) fn mdr_hint(p: &PowerLawContact) -> PullOffHint {
+fn mdr_hint(p: &PowerLawContact) -> PullOffHint {
     let s = mdr_scales(p);
     PullOffHint {
         end_d_bar: p.end_of_contact().d / s.approach,
@@ -151,6 +151,6 @@ pub(super) fn mdr_hint(p: &PowerLawContact) -> PullOffHint {
 }
 
 /// `p`'s exact adhesive force under displacement control, normalised by [`mdr_scales`].
-pub(super) fn mdr_adhesive_force(p: &PowerLawContact) -> f64 {
+fn mdr_adhesive_force(p: &PowerLawContact) -> f64 {
     -p.force_minimum().force / mdr_scales(p).force
 }
