@@ -404,10 +404,7 @@ impl Model {
             ("Δx, the element side (length)", self.dx),
             ("d0, the first approach (length)", self.load.d0),
             ("the load step (length)", self.load.d_step),
-            (
-                "the first contact's pressure (its peak; a cone's mean) (force/length²)",
-                p0,
-            ),
+            ("the first contact's pressure scale (force/length²)", p0),
         ]
     }
 
