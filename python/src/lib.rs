@@ -53,6 +53,12 @@ fn run_error(e: &RunError) -> PyErr {
     naming(err, e.param)
 }
 
+/// A request's refusal as an [`InputError`] naming its keywords, with the keyword it
+/// blames as `parameter`.
+fn refused(e: &RunError) -> PyErr {
+    naming(input_error(e), e.param)
+}
+
 /// A refusal naming Python keywords.
 fn input_error(message: impl std::fmt::Display) -> PyErr {
     InputError::new_err(keywords(&message.to_string()))
@@ -96,7 +102,7 @@ fn request(json: &str) -> PyResult<Request> {
     let given: serde_json::Map<String, Value> = parse(json)?;
     let values = Request::check_json(given.iter().map(|(k, v)| (k.as_str(), v)))
         .map_err(|r| naming(refusal(&r.message, r.wrong_type), r.param))?;
-    Request::from_values(values).map_err(|e| naming(input_error(&e), e.param))
+    Request::from_values(values).map_err(|e| refused(&e))
 }
 
 /// `err` with the keyword of `param` as its `parameter` (None where no parameter is blamed).
@@ -476,7 +482,7 @@ fn simulate<'py>(
         let map = array_map(&req, height_map)?;
         let sim = req
             .simulate_request(Sink::Memory, map)
-            .map_err(|e| naming(input_error(&e), e.param))?;
+            .map_err(|e| refused(&e))?;
         let watch = PyWatch::new(progress);
         let pool = process_pool()?;
         let done = interruptible(py, &watch.callback, || {
@@ -503,7 +509,7 @@ fn plan(request: &str, height_map: Option<Heights<'_>>) -> PyResult<String> {
         let req = self::request(request)?;
         let scene = req
             .scene(array_map(&req, height_map)?)
-            .map_err(|e| naming(input_error(&e), e.param))?;
+            .map_err(|e| refused(&e))?;
         let target = req.accuracy.unwrap_or(DEFAULT_ACCURACY);
         let p = jkrbem::plan::for_accuracy(&scene, target, &req.options())
             .map_err(|e| input_error(e.to_string()))?;

@@ -121,20 +121,4 @@ mod tests {
             format!("{HEADER}\n").into_bytes()
         );
     }
-
-    #[test]
-    fn a_file_written_before_the_cg_residual_column_still_reads() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("old.csv");
-        let old_header = HEADER.strip_suffix(",cg_residual,dx,onsets").unwrap();
-        fs::write(
-            &path,
-            format!("{old_header}\n0,approach,1,2,3,4,5,6,7,8,9,10,11,12,13,14\n"),
-        )
-        .unwrap();
-        let states = crate::output::data::read_states(&path).unwrap().states;
-        assert_eq!(states.len(), 1);
-        assert_eq!(states[0].b_bar, 14.0);
-        assert!(states[0].cg_residual.is_nan(), "not recorded reads as NaN");
-    }
 }

@@ -753,6 +753,17 @@ struct Planned {
 }
 
 impl Planned {
+    /// Just `models`: no target, note, fallback or finer grids.
+    fn of(models: Vec<Model>) -> Planned {
+        Planned {
+            models,
+            target: None,
+            note: None,
+            fallback: 0,
+            more: Vec::new(),
+        }
+    }
+
     /// Every model the request may run: the planned ones, then the finer grids that may
     /// follow.
     fn all_models(&self) -> Vec<Model> {
@@ -762,6 +773,17 @@ impl Planned {
             .cloned()
             .collect()
     }
+}
+
+/// Refuse an extrapolation's ladder `grids` unless it is 2 to 8 increasing grids.
+fn check_ladder(grids: &[usize]) -> Result<(), RunError> {
+    if !(2..=8).contains(&grids.len()) || grids.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(refuse(
+            EXTRAPOLATE_GRIDS,
+            format!("{EXTRAPOLATE_GRIDS}: give 2 to 8 increasing grids, e.g. 64,128,256"),
+        ));
+    }
+    Ok(())
 }
 
 /// The models the request runs.
@@ -790,32 +812,15 @@ fn plan_models(req: &SimulateRequest) -> Result<Planned, RunError> {
         return plan_generic(req);
     }
     match &req.mode {
-        Mode::Single => Ok(Planned {
-            models: vec![build(&req.options, None)?],
-            target: None,
-            note: None,
-            fallback: 0,
-            more: Vec::new(),
-        }),
+        Mode::Single => Ok(Planned::of(vec![build(&req.options, None)?])),
         Mode::Extrapolate(grids) => {
             let grids = match grids {
                 Some(g) => g.clone(),
                 None => plan::extrapolation_grids(&req.scene, &req.options).map_err(input)?,
             };
-            if !(2..=8).contains(&grids.len()) || grids.windows(2).any(|w| w[1] <= w[0]) {
-                return Err(refuse(
-                    EXTRAPOLATE_GRIDS,
-                    format!("{EXTRAPOLATE_GRIDS}: give 2 to 8 increasing grids, e.g. 64,128,256"),
-                ));
-            }
+            check_ladder(&grids)?;
             let models = per_grid(&grids, &req.options, EXTRAPOLATE_GRIDS)?;
-            Ok(Planned {
-                models,
-                target: None,
-                note: None,
-                fallback: 0,
-                more: Vec::new(),
-            })
+            Ok(Planned::of(models))
         }
         Mode::Accuracy(target) => {
             let p = plan::for_accuracy(&req.scene, *target, &req.options).map_err(input)?;
@@ -886,23 +891,12 @@ fn plan_generic(req: &SimulateRequest) -> Result<Planned, RunError> {
                 Some(g) => g.clone(),
                 None => plan::generic_grids(&req.scene, &req.options).map_err(input)?,
             };
-            if !(2..=8).contains(&grids.len()) || grids.windows(2).any(|w| w[1] <= w[0]) {
-                return Err(refuse(
-                    EXTRAPOLATE_GRIDS,
-                    format!("{EXTRAPOLATE_GRIDS}: give 2 to 8 increasing grids, e.g. 64,128,256"),
-                ));
-            }
+            check_ladder(&grids)?;
             let mut models = Vec::new();
             for &nx in &grids {
                 models.extend(phases(nx, &req.options, EXTRAPOLATE_GRIDS)?);
             }
-            Ok(Planned {
-                models,
-                target: None,
-                note: None,
-                fallback: 0,
-                more: Vec::new(),
-            })
+            Ok(Planned::of(models))
         }
         Mode::Accuracy(target) => {
             let p = plan::for_generic_accuracy(&req.scene, *target, &req.options).map_err(input)?;

@@ -17,6 +17,7 @@
 //! pinned first contact, overshoots to near the minimum and is confirmed as it (measured:
 //! |min F̄| = 0.986 on 32², against 1.30 from the true minimum).
 
+use super::power_law::{mdr_adhesive_force, mdr_hint, PowerLaw};
 use super::{FirstContact, IndenterShape, PullOffHint};
 use crate::params::limits::{MAX_HALF_ANGLE, MIN_HALF_ANGLE};
 use crate::params::HALF_ANGLE;
@@ -33,24 +34,42 @@ pub const DEFAULT_HALF_ANGLE: f64 = 70.0;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cone {
     /// The half-angle α (degrees), in [[`MIN_HALF_ANGLE`], [`MAX_HALF_ANGLE`]].
-    pub half_angle: f64,
+    half_angle: f64,
+    /// cot α (dimensionless), computed once: the height of every node needs it.
+    slope: f64,
 }
 
 impl Cone {
-    /// cot α (dimensionless): the flank's slope.
-    pub fn slope(&self) -> f64 {
-        1.0 / self.half_angle.to_radians().tan()
+    /// The cone of half-angle `half_angle` (degrees, between its axis and its flank; checked
+    /// by [`IndenterShape::check`]).
+    pub fn new(half_angle: f64) -> Cone {
+        Cone {
+            half_angle,
+            slope: 1.0 / half_angle.to_radians().tan(),
+        }
     }
 
-    /// The closed forms for E* (force/length²) and Δγ (force/length): the power law of n = 1
-    /// and factor cot α.
-    fn contact(&self, e_star: f64, work_of_adhesion: f64) -> PowerLawContact {
-        PowerLawContact {
+    /// The half-angle α (degrees).
+    pub fn half_angle(&self) -> f64 {
+        self.half_angle
+    }
+
+    /// cot α (dimensionless): the flank's slope.
+    pub fn slope(&self) -> f64 {
+        self.slope
+    }
+
+    /// The power law the cone is: n = 1, factor cot α.
+    fn law(&self) -> PowerLaw {
+        PowerLaw {
             n: 1.0,
-            scale: self.slope(),
-            e_star,
-            work_of_adhesion,
+            scale: self.slope,
         }
+    }
+
+    /// The closed forms for E* (force/length²) and Δγ (force/length).
+    fn contact(&self, e_star: f64, work_of_adhesion: f64) -> PowerLawContact {
+        self.law().contact(e_star, work_of_adhesion)
     }
 }
 
@@ -89,12 +108,12 @@ impl IndenterShape for Cone {
     }
 
     fn height(&self, x: f64, y: f64, _e_star: f64, _work_of_adhesion: f64) -> f64 {
-        self.slope() * (x * x + y * y).sqrt()
+        self.slope * (x * x + y * y).sqrt()
     }
 
     /// 2 a_F = 36 Δγ tan²α / (π E*), 54 Δγ² tan³α / (π E*) and 4 Δγ tan α / E*.
     fn scales(&self, e_star: f64, work_of_adhesion: f64) -> Scales {
-        let tan = 1.0 / self.slope();
+        let tan = 1.0 / self.slope;
         let end = work_of_adhesion * tan / e_star;
         Scales {
             length: 36.0 / PI * end * tan,
@@ -111,24 +130,16 @@ impl IndenterShape for Cone {
         e_star: f64,
         work_of_adhesion: f64,
     ) -> Result<FirstContact, String> {
-        let p = self.contact(e_star, work_of_adhesion);
-        let force = p.hertz_force(c);
+        let first = self.law().first_contact(c, e_star, work_of_adhesion)?;
         Ok(FirstContact {
-            a: c,
-            b: c,
-            d: p.hertz_approach(c),
-            force,
-            p0: force / (PI * c * c),
+            p0: first.force / (PI * c * c),
+            ..first
         })
     }
 
     fn pull_off_hint(&self, e_star: f64, work_of_adhesion: f64) -> Option<PullOffHint> {
         let p = self.contact(e_star, work_of_adhesion);
-        let s = self.scales(e_star, work_of_adhesion);
-        Some(PullOffHint {
-            end_d_bar: p.end_of_contact().d / s.approach,
-            b_bar_at_min: p.force_minimum().a / s.length,
-        })
+        Some(mdr_hint(&p, self.scales(e_star, work_of_adhesion)))
     }
 
     fn exact_adhesive_force(
@@ -137,8 +148,8 @@ impl IndenterShape for Cone {
         work_of_adhesion: f64,
     ) -> Option<(&'static str, f64)> {
         let p = self.contact(e_star, work_of_adhesion);
-        let s = self.scales(e_star, work_of_adhesion);
-        Some(("JKR (cone)", -p.force_minimum().force / s.force))
+        let f = mdr_adhesive_force(&p, self.scales(e_star, work_of_adhesion));
+        Some(("JKR (cone)", f))
     }
 }
 
@@ -152,7 +163,7 @@ mod tests {
     fn the_cone_is_the_power_law_of_exponent_one_in_closed_form() {
         let (e, w) = (2.0, 0.3);
         for alpha in [MIN_HALF_ANGLE, 45.0, 70.0, 85.0] {
-            let cone = Cone { half_angle: alpha };
+            let cone = Cone::new(alpha);
             let cot = cone.slope();
             assert!((cot - 1.0 / alpha.to_radians().tan()).abs() < 1e-15);
             let p = cone.contact(e, w);
@@ -189,13 +200,13 @@ mod tests {
 
     #[test]
     fn a_cone_is_its_flank_and_checks_its_angle() {
-        let cone = Cone { half_angle: 60.0 };
+        let cone = Cone::new(60.0);
         let h = cone.height(0.3, 0.4, 1.0, 1.0);
         assert!((h - 0.5 / 3f64.sqrt()).abs() < 1e-15, "{h}");
         let fc = cone.first_contact(0.5, 1.0, 1.0).unwrap();
         assert!(fc.p0.is_finite() && (fc.p0 - fc.force / (PI * 0.25)).abs() < 1e-15);
         for bad in [0.0, MIN_HALF_ANGLE - 1.0, 90.0, f64::NAN] {
-            let e = Cone { half_angle: bad }.check().unwrap_err();
+            let e = Cone::new(bad).check().unwrap_err();
             assert_eq!(e.param(), HALF_ANGLE);
         }
     }

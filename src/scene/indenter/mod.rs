@@ -184,7 +184,7 @@ impl Indenter {
 
     /// The cone of half-angle `half_angle` (degrees, between its axis and its flank).
     pub fn cone(half_angle: f64) -> Indenter {
-        Indenter::Cone(Cone { half_angle })
+        Indenter::Cone(Cone::new(half_angle))
     }
 
     /// The shape behind the name, which answers every question below.

@@ -24,7 +24,7 @@ pub struct PowerLaw {
 
 impl PowerLaw {
     /// The closed forms for E* (force/length²) and Δγ (force/length).
-    fn contact(&self, e_star: f64, work_of_adhesion: f64) -> PowerLawContact {
+    pub(super) fn contact(&self, e_star: f64, work_of_adhesion: f64) -> PowerLawContact {
         PowerLawContact {
             n: self.n,
             scale: self.scale,
@@ -113,7 +113,8 @@ impl IndenterShape for PowerLaw {
     }
 
     fn pull_off_hint(&self, e_star: f64, work_of_adhesion: f64) -> Option<PullOffHint> {
-        Some(mdr_hint(&self.contact(e_star, work_of_adhesion)))
+        let p = self.contact(e_star, work_of_adhesion);
+        Some(mdr_hint(&p, mdr_scales(&p)))
     }
 
     fn exact_adhesive_force(
@@ -122,7 +123,7 @@ impl IndenterShape for PowerLaw {
         work_of_adhesion: f64,
     ) -> Option<(&'static str, f64)> {
         let p = self.contact(e_star, work_of_adhesion);
-        Some(("JKR (power law)", mdr_adhesive_force(&p)))
+        Some(("JKR (power law)", mdr_adhesive_force(&p, mdr_scales(&p))))
     }
 
     fn sphere_radius(&self) -> Option<f64> {
@@ -140,17 +141,16 @@ fn mdr_scales(p: &PowerLawContact) -> Scales {
     }
 }
 
-/// Where the method of dimensionality reduction puts `p`'s pull-off, normalised by
-/// [`mdr_scales`].
-fn mdr_hint(p: &PowerLawContact) -> PullOffHint {
-    let s = mdr_scales(p);
+/// Where the method of dimensionality reduction puts `p`'s pull-off, normalised by the
+/// scales `s` (the power law's [`mdr_scales`], or a shape's own).
+pub(super) fn mdr_hint(p: &PowerLawContact, s: Scales) -> PullOffHint {
     PullOffHint {
         end_d_bar: p.end_of_contact().d / s.approach,
         b_bar_at_min: p.force_minimum().a / s.length,
     }
 }
 
-/// `p`'s exact adhesive force under displacement control, normalised by [`mdr_scales`].
-fn mdr_adhesive_force(p: &PowerLawContact) -> f64 {
-    -p.force_minimum().force / mdr_scales(p).force
+/// `p`'s exact adhesive force under displacement control, normalised by the scales `s`.
+pub(super) fn mdr_adhesive_force(p: &PowerLawContact, s: Scales) -> f64 {
+    -p.force_minimum().force / s.force
 }
